@@ -1,0 +1,125 @@
+#include "models/interface/plic_geometry.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace granflow::interface {
+
+namespace {
+
+Normal2 normalise_l1(double mx, double my) {
+  const double s = std::abs(mx) + std::abs(my);
+  if (!(s > 0.0) || !std::isfinite(s)) return {0.0, 0.0};
+  return {mx / s, my / s};
+}
+
+double sign_or_zero(double v) { return v > 0.0 ? 1.0 : (v < 0.0 ? -1.0 : 0.0); }
+
+}  // namespace
+
+double unit_square_fraction(double mx, double my, double a) {
+  // Reflect so that both coefficients are non-negative; the region then grows from the corner
+  // (0,0) as a increases from 0 to mx + my.
+  if (mx < 0.0) {
+    a -= mx;
+    mx = -mx;
+  }
+  if (my < 0.0) {
+    a -= my;
+    my = -my;
+  }
+  if (a <= 0.0) return 0.0;
+  const double n1 = std::min(mx, my);
+  const double n2 = std::max(mx, my);
+  if (a >= n1 + n2) return 1.0;
+  // Triangle / trapezoid / complement-of-triangle, each written without cancellation so that
+  // tiny n1 (near axis-aligned lines) keeps full relative accuracy.
+  if (a < n1) return a * a / (2.0 * n1 * n2);
+  if (a <= n2) return (a - 0.5 * n1) / n2;
+  const double b = n1 + n2 - a;
+  return 1.0 - b * b / (2.0 * n1 * n2);
+}
+
+double line_alpha(double c, Normal2 n) {
+  // Scardovelli & Zaleski (2000): invert the three branches of unit_square_fraction in the
+  // reflected frame (n1 <= n2, n1 + n2 = 1), then shift back to the centred, unreflected frame.
+  c = std::clamp(c, 0.0, 1.0);
+  const double n1 = std::min(std::abs(n.nx), std::abs(n.ny));
+  const double n2 = std::max(std::abs(n.nx), std::abs(n.ny));
+  if (!(n2 > 0.0)) return 0.0;
+  const double v1 = 0.5 * n1 / n2;  // fraction at which the triangle branch ends
+  double a;
+  if (c <= v1)
+    a = std::sqrt(2.0 * c * n1 * n2);
+  else if (c <= 1.0 - v1)
+    a = c * n2 + 0.5 * n1;
+  else
+    a = n1 + n2 - std::sqrt(2.0 * n1 * n2 * (1.0 - c));
+  if (n.nx < 0.0) a += n.nx;
+  if (n.ny < 0.0) a += n.ny;
+  return a - 0.5 * (n.nx + n.ny);
+}
+
+double cell_fraction(Normal2 n, double alpha) {
+  return unit_square_fraction(n.nx, n.ny, alpha + 0.5 * (n.nx + n.ny));
+}
+
+double rectangle_fraction(Normal2 n, double alpha, double x0, double x1, double y0, double y1) {
+  // Map the rectangle onto [0,1]^2: X = x0 + (x1 - x0) xi, Y = y0 + (y1 - y0) eta.
+  return unit_square_fraction(n.nx * (x1 - x0), n.ny * (y1 - y0), alpha - n.nx * x0 - n.ny * y0);
+}
+
+Normal2 to_physical(Normal2 n, double dx, double dy) { return normalise_l1(n.nx / dx, n.ny / dy); }
+
+Normal2 youngs_normal(const Block3x3& b) {
+  const auto& c = b.c;
+  // Distances between the centres of adjacent columns / rows.
+  const double hw = 0.5 * (b.dx[0] + b.dx[1]);
+  const double he = 0.5 * (b.dx[1] + b.dx[2]);
+  const double hs = 0.5 * (b.dy[0] + b.dy[1]);
+  const double hn = 0.5 * (b.dy[1] + b.dy[2]);
+  // Gradient at each corner of the centre cell, then their mean (the 1-2-1 stencil on a uniform
+  // mesh).
+  const double gx = ((c[1][2] + c[2][2] - c[1][1] - c[2][1]) / he +
+                     (c[0][2] + c[1][2] - c[0][1] - c[1][1]) / he +
+                     (c[1][1] + c[2][1] - c[1][0] - c[2][0]) / hw +
+                     (c[0][1] + c[1][1] - c[0][0] - c[1][0]) / hw);
+  const double gy = ((c[2][1] + c[2][2] - c[1][1] - c[1][2]) / hn +
+                     (c[2][0] + c[2][1] - c[1][0] - c[1][1]) / hn +
+                     (c[1][1] + c[1][2] - c[0][1] - c[0][2]) / hs +
+                     (c[1][0] + c[1][1] - c[0][0] - c[0][1]) / hs);
+  // -grad c, expressed in the centre cell's scaled coordinates.
+  return normalise_l1(-gx * b.dx[1], -gy * b.dy[1]);
+}
+
+Normal2 myc_normal(const Block3x3& b) {
+  const auto& c = b.c;
+  // Soil thickness of each column and soil width of each row (physical lengths).
+  double h[3], w[3];
+  for (int k = 0; k < 3; ++k) {
+    h[k] = c[0][k] * b.dy[0] + c[1][k] * b.dy[1] + c[2][k] * b.dy[2];
+    w[k] = c[k][0] * b.dx[0] + c[k][1] * b.dx[1] + c[k][2] * b.dx[2];
+  }
+  const double lx = 0.5 * b.dx[0] + b.dx[1] + 0.5 * b.dx[2];
+  const double ly = 0.5 * b.dy[0] + b.dy[1] + 0.5 * b.dy[2];
+  // Centred candidates in scaled coordinates, major component +-1:
+  //   A (interface y = y(x)): (-dh/dx * dx/dy, sign(bottom - top)),
+  //   B (interface x = x(y)): (sign(left - right), -dw/dy * dy/dx).
+  // On a uniform mesh ax = (c_l - c_r)/2 and by = (c_b - c_t)/2 with c_* the row/column sums.
+  const double ax = (h[0] - h[2]) / lx * (b.dx[1] / b.dy[1]);
+  const double by = (w[0] - w[2]) / ly * (b.dy[1] / b.dx[1]);
+  const Normal2 y = youngs_normal(b);
+  if (ax == 0.0 && by == 0.0) return y;
+  // The height function along the direction in which the interface is flatter is the accurate
+  // one; Youngs' normal is preferred when it is steeper relative to that direction.
+  if (std::abs(ax) <= std::abs(by)) {
+    const double sa = sign_or_zero(w[0] - w[2]);
+    if (std::abs(y.nx) > std::abs(ax) * std::abs(y.ny)) return y;
+    return normalise_l1(ax, sa);
+  }
+  const double sb = sign_or_zero(h[0] - h[2]);
+  if (std::abs(y.ny) > std::abs(by) * std::abs(y.nx)) return y;
+  return normalise_l1(sb, by);
+}
+
+}  // namespace granflow::interface

@@ -1,0 +1,48 @@
+// Operator-split geometric (PLIC) advection of the soil fraction c on a 2D Cartesian (possibly
+// graded) mesh, with the dilatation correction of Weymouth & Yue (2010, J. Comput. Phys.
+// 229:2853) that makes the split scheme exactly conservative for a discretely divergence-free
+// velocity and bounded for Courant numbers below 1/2 per sweep.
+//
+// Data layout (matches a PETSc DMDA local array, DM_BOUNDARY_GHOSTED, DMDA_STENCIL_BOX, width 2):
+//   - 2D arrays are `double**` indexed [j][i] with GLOBAL cell indices; ghost cells exist for
+//     i in [xs-2, xs+xm+1] and j in [ys-2, ys+ym+1], including outside the physical domain.
+//   - Face velocities use the east/north convention: ux[j][i] is the x-velocity on the face between
+//     cells i and i+1 (the west boundary face is ux[j][-1]); uy[j][i] is the y-velocity on the
+//     face between rows j and j+1.
+//   - dx[i], dy[j] are cell widths indexed globally, valid for ghost indices too.
+//
+// One time step (the caller's job, see SerialVofField for a serial reference driver):
+//   1. fill ghosts of c (exchange + boundary conditions), including the corner ghosts;
+//   2. dilatation_indicator(c, owned, cc)  -- once per step, held fixed over both sweeps;
+//   3. vof_sweep(first axis, ...) into c_tmp; fill ghosts of c_tmp;
+//   4. vof_sweep(second axis, ...) back into c; alternate the axis order every step.
+#pragma once
+
+namespace granflow::interface {
+
+// Owned cells [xs, xs+xm) x [ys, ys+ym) in global indices.
+struct CellBox {
+  int xs, ys, xm, ym;
+};
+
+// One directional sweep (axis 0 = x, 1 = y) of Weymouth & Yue's scheme:
+//   c_new = c + (F_low - F_high)/h + cc * (u_high - u_low) dt/h,
+// with F the volume (per unit face area) of the upwind cell's PLIC polygon swept through a face
+// in dt. Writes c_new on owned cells only; c_new must not alias c.
+// Reads c on owned cells plus two ghost layers along `axis` and one across it (corners included),
+// face_velocity on the faces bounding owned cells along `axis`, and cc on owned cells.
+// Requires max_sweep_courant(axis, ...) < 0.5 for boundedness.
+void vof_sweep(int axis, double dt, const double* const* c, const double* const* face_velocity,
+               const double* const* cc, const double* dx, const double* dy,
+               CellBox owned, double** c_new);
+
+// cc = 1 where c > 0.5, else 0, on owned cells. Evaluate once per time step, before the first
+// sweep. Any cc array holding 0/1 values works (cc > 0.5 selects the correction).
+void dilatation_indicator(const double* const* c, CellBox owned, double** cc);
+
+// Largest |u| dt / h over the faces bounding owned cells along `axis`, with h the smaller of the
+// two adjacent cell widths. Local to this rank: reduce with MPI_MAX in parallel.
+double max_sweep_courant(int axis, double dt, const double* const* face_velocity,
+                         const double* dx, const double* dy, CellBox owned);
+
+}  // namespace granflow::interface
