@@ -1,0 +1,160 @@
+// The granular viscosity evaluated per cell: a value type built once from RheologyParameters,
+// dispatching on enums (no virtual calls, no allocation per call).
+#pragma once
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "models/rheology/drucker_prager.hpp"
+#include "models/rheology/drucker_prager_bingham.hpp"
+#include "models/rheology/invariants.hpp"
+#include "models/rheology/matsuoka_nakai.hpp"
+#include "models/rheology/mohr_coulomb.hpp"
+#include "models/rheology/mu_of_i.hpp"
+#include "models/rheology/parameters.hpp"
+#include "models/rheology/regularisation.hpp"
+#include "models/rheology/tensor.hpp"
+
+namespace granflow::rheology {
+
+struct RheologyResult {
+  double dynamic_viscosity;    // eta, Pa s (never NaN, infinite or negative)
+  double kinematic_viscosity;  // nu = eta / rho_s, m^2/s
+  double strain_rate_norm;     // ||dev D||, [YS] Eq. 8, 1/s
+  double lode_angle;           // theta, [YS] Eq. 12, radians in [-pi/6, pi/6]
+  double yield_pressure;       // p as it enters the yield stress: clipped at zero, Pa
+  double friction;             // sin(phi) or mu(I); 3 alpha_phi for drucker_prager_bingham
+  double yield_stress;         // ||T_dev|| = sqrt(J_2) at yield, Pa
+};
+
+// Deviatoric stress T_dev = 2 eta dev(D), [YS] Eq. 16 / [VoF] Eq. 6.
+constexpr SymmetricTensor deviatoric_stress(const StrainRate& strain_rate, double viscosity) noexcept {
+  return (2.0 * viscosity) * deviatoric(strain_rate);
+}
+
+// Pressure entering a yield stress: clipped at zero (no tensile strength beyond k_c), NaN taken
+// as zero, and capped far above any physical value so that products stay finite.
+constexpr double yield_pressure(double pressure) noexcept {
+  constexpr double max_pressure = 1e250;
+  return pressure > 0.0 ? (pressure < max_pressure ? pressure : max_pressure) : 0.0;
+}
+
+class GranularRheology {
+ public:
+  // Throws std::invalid_argument with the message of validate() for unusable parameters.
+  explicit GranularRheology(const RheologyParameters& parameters);
+
+  // Everything at one point. Edge cases: D = 0 gives the regularised maximum (m tau_y + mu_min,
+  // or eta_max when tau_y > 0); a NaN strain rate counts as rest; p <= 0 or NaN as p = 0.
+  [[nodiscard]] RheologyResult evaluate(const StrainRate& strain_rate,
+                                        double pressure) const noexcept {
+    const DeformationState state = deformation_state(strain_rate);
+    const double p = yield_pressure(pressure);
+    const double friction = friction_coefficient(state.strain_rate_norm, p);
+    const double tau = yield_stress(friction, state.sin_three_lode, p);
+    const double eta = regularise(tau, state.strain_rate_norm);
+    return {eta,
+            eta * inverse_density_,
+            state.strain_rate_norm,
+            lode_angle_from_sin3(state.sin_three_lode),
+            p,
+            model_ == Model::drucker_prager_bingham ? 3.0 * bingham_.alpha_phi : friction,
+            tau};
+  }
+
+  // The viscosity alone, for hot loops: skips the Lode angle where the surface does not need it.
+  [[nodiscard]] double dynamic_viscosity(const StrainRate& strain_rate,
+                                         double pressure) const noexcept {
+    const SymmetricTensor dev = deviatoric(strain_rate);
+    double rate = norm(dev);
+    if (std::isnan(rate)) rate = 0.0;
+    const double sin3 = needs_lode_angle_ ? sin_three_lode_angle(dev, rate) : 0.0;
+    const double p = yield_pressure(pressure);
+    return regularise(yield_stress(friction_coefficient(rate, p), sin3, p), rate);
+  }
+
+  [[nodiscard]] double kinematic_viscosity(const StrainRate& strain_rate,
+                                           double pressure) const noexcept {
+    return dynamic_viscosity(strain_rate, pressure) * inverse_density_;
+  }
+
+  // sin(phi) for a constant friction angle, mu(I) otherwise ([YS] Eq. 25).
+  [[nodiscard]] double friction_coefficient(double strain_rate_norm,
+                                            double yield_pressure) const noexcept {
+    if (friction_ == FrictionSource::constant) return sin_phi_;
+    // I -> inf as p -> 0; the yield stress is zero there anyway, this only avoids 0/0.
+    if (!(yield_pressure > 0.0)) return mu_of_i_.limiting_friction;
+    return mu_of_i_.friction(
+        inertial_number(strain_rate_norm, grain_diameter_, density_, yield_pressure));
+  }
+
+  // ||T_dev|| at yield for the model's surface, given friction, sin(3 theta) and p >= 0.
+  [[nodiscard]] double yield_stress(double friction, double sin_three_lode,
+                                    double yield_pressure) const noexcept {
+    double tau = 0.0;
+    switch (model_) {
+      case Model::drucker_prager_bingham:
+        tau = bingham_.yield_stress(yield_pressure);  // [VoF] Eq. 7
+        break;
+      case Model::drucker_prager:
+        tau = drucker_prager_yield_stress(friction, yield_pressure);  // [YS] Eqs. 23-25
+        break;
+      case Model::mohr_coulomb:
+        tau = mohr_coulomb_yield_stress(friction, lode_angle_from_sin3(sin_three_lode),
+                                        yield_pressure);  // [YS] Eq. 28
+        break;
+      case Model::matsuoka_nakai:
+        tau = matsuoka_nakai_for(friction).yield_stress(sin_three_lode, yield_pressure);  // Eq. 30
+        break;
+    }
+    return std::min(tau, max_yield_stress_);
+  }
+
+  // The chosen regularisation applied to tau_y at ||D||; finite and >= 0 for any tau_y >= 0.
+  [[nodiscard]] double regularise(double yield_stress, double strain_rate_norm) const noexcept {
+    const double eta =
+        regularisation_ == Regularisation::exponential
+            ? exponential_viscosity(yield_stress, strain_rate_norm, regularisation_time_,
+                                    min_dynamic_viscosity_)
+            : clipped_viscosity(yield_stress, strain_rate_norm, clip_min_viscosity_,
+                                clip_max_viscosity_);
+    return std::min(eta, std::numeric_limits<double>::max());
+  }
+
+  [[nodiscard]] const RheologyParameters& parameters() const noexcept { return parameters_; }
+  [[nodiscard]] YieldSurface yield_surface() const noexcept { return yield_surface_of(model_); }
+  [[nodiscard]] const DruckerPragerBingham& drucker_prager_bingham() const noexcept {
+    return bingham_;
+  }
+
+ private:
+  [[nodiscard]] MatsuokaNakai matsuoka_nakai_for(double friction) const noexcept {
+    if (friction_ == FrictionSource::constant) return matsuoka_nakai_;
+    return MatsuokaNakai::from_k(mn_fit_ == MatsuokaNakaiFit::isochoric_shear
+                                     ? matsuoka_nakai_k_isochoric(friction)
+                                     : matsuoka_nakai_k_triaxial(friction));
+  }
+
+  static constexpr double max_yield_stress_ = 1e280;  // keeps m * tau_y from reaching NaN
+
+  RheologyParameters parameters_;
+  Model model_;
+  FrictionSource friction_;
+  Regularisation regularisation_;
+  MatsuokaNakaiFit mn_fit_;
+  bool needs_lode_angle_;
+  double sin_phi_;
+  DruckerPragerBingham bingham_;
+  MatsuokaNakai matsuoka_nakai_;
+  MuOfI mu_of_i_;
+  double grain_diameter_;
+  double density_;
+  double inverse_density_;
+  double regularisation_time_;
+  double min_dynamic_viscosity_;
+  double clip_min_viscosity_;  // rho_s nu_min
+  double clip_max_viscosity_;  // rho_s nu_max
+};
+
+}  // namespace granflow::rheology

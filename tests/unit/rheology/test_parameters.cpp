@@ -1,0 +1,148 @@
+// Parameter names as the case file spells them, and validation messages naming the culprit.
+#include <gtest/gtest.h>
+
+#include <limits>
+#include <stdexcept>
+#include <string>
+
+#include "models/rheology/granular_rheology.hpp"
+#include "models/rheology/parameters.hpp"
+
+namespace granflow::rheology {
+namespace {
+
+TEST(RheologyParameters, ModelNamesRoundTripExactly) {
+  EXPECT_EQ(parse_model("drucker_prager_bingham"), Model::drucker_prager_bingham);
+  EXPECT_EQ(parse_model("drucker_prager"), Model::drucker_prager);
+  EXPECT_EQ(parse_model("mohr_coulomb"), Model::mohr_coulomb);
+  EXPECT_EQ(parse_model("matsuoka_nakai"), Model::matsuoka_nakai);
+  for (auto name : model_names) EXPECT_EQ(to_string(*parse_model(name)), name);
+  EXPECT_FALSE(parse_model("Drucker_Prager").has_value());
+  EXPECT_FALSE(parse_model("drucker-prager").has_value());
+  EXPECT_FALSE(parse_model(" mohr_coulomb").has_value());
+  EXPECT_FALSE(parse_model("").has_value());
+  EXPECT_FALSE(parse_model("mu_of_I").has_value());  // a friction law, not a model
+}
+
+TEST(RheologyParameters, OtherEnumNamesRoundTripExactly) {
+  EXPECT_EQ(parse_regularisation("exponential"), Regularisation::exponential);
+  EXPECT_EQ(parse_regularisation("clip"), Regularisation::clip);
+  EXPECT_FALSE(parse_regularisation("clipping").has_value());
+  EXPECT_EQ(parse_friction_source("constant"), FrictionSource::constant);
+  EXPECT_EQ(parse_friction_source("mu_of_I"), FrictionSource::mu_of_I);
+  EXPECT_FALSE(parse_friction_source("mu_of_i").has_value());
+  EXPECT_EQ(parse_yield_surface("mohr_coulomb"), YieldSurface::mohr_coulomb);
+  EXPECT_FALSE(parse_yield_surface("drucker_prager_bingham").has_value());
+  EXPECT_EQ(parse_matsuoka_nakai_fit("triaxial"), MatsuokaNakaiFit::triaxial);
+  EXPECT_EQ(parse_matsuoka_nakai_fit("isochoric_shear"), MatsuokaNakaiFit::isochoric_shear);
+  EXPECT_EQ(to_string(Regularisation::clip), "clip");
+  EXPECT_EQ(to_string(FrictionSource::mu_of_I), "mu_of_I");
+  EXPECT_EQ(to_string(YieldSurface::matsuoka_nakai), "matsuoka_nakai");
+}
+
+TEST(RheologyParameters, ModelDeterminesYieldSurface) {
+  EXPECT_EQ(yield_surface_of(Model::drucker_prager_bingham), YieldSurface::drucker_prager);
+  EXPECT_EQ(yield_surface_of(Model::drucker_prager), YieldSurface::drucker_prager);
+  EXPECT_EQ(yield_surface_of(Model::mohr_coulomb), YieldSurface::mohr_coulomb);
+  EXPECT_EQ(yield_surface_of(Model::matsuoka_nakai), YieldSurface::matsuoka_nakai);
+}
+
+TEST(RheologyParameters, DefaultsAreValidAndFollowThePapers) {
+  const RheologyParameters p;
+  EXPECT_FALSE(validate(p).has_value());
+  EXPECT_EQ(p.min_dynamic_viscosity, 1e-3);     // [VoF] Sec. 2
+  EXPECT_EQ(p.min_kinematic_viscosity, 1e-5);   // [YS] Sec. 4
+  EXPECT_EQ(p.max_kinematic_viscosity, 1.0);
+  EXPECT_EQ(p.matsuoka_nakai_fit, MatsuokaNakaiFit::isochoric_shear);  // [YS] Eq. 34
+}
+
+// The message of the first failing check, which must name the parameter.
+void expect_rejected(const RheologyParameters& p, const std::string& parameter_name) {
+  const auto error = validate(p);
+  ASSERT_TRUE(error.has_value()) << parameter_name;
+  EXPECT_NE(error->find(parameter_name), std::string::npos) << *error;
+  EXPECT_THROW(GranularRheology{p}, std::invalid_argument);
+}
+
+TEST(RheologyParameters, ValidationNamesTheBadParameter) {
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  for (double phi : {0.0, 90.0, 95.0, -5.0, nan}) {
+    RheologyParameters p;
+    p.friction_angle_deg = phi;
+    expect_rejected(p, "friction_angle_deg");
+  }
+  {
+    RheologyParameters p;
+    p.density = -1430.0;
+    expect_rejected(p, "density");
+  }
+  {
+    RheologyParameters p;
+    p.cohesion = -1.0;
+    expect_rejected(p, "cohesion");
+  }
+  {
+    RheologyParameters p;
+    p.model = Model::mohr_coulomb;
+    p.cohesion = 5e3;  // only Drucker-Prager-Bingham has k_c
+    expect_rejected(p, "cohesion");
+  }
+  {
+    RheologyParameters p;
+    p.regularisation_time = 0.0;
+    expect_rejected(p, "regularisation_time");
+  }
+  {
+    RheologyParameters p;
+    p.min_dynamic_viscosity = -1e-3;
+    expect_rejected(p, "min_dynamic_viscosity");
+  }
+  {
+    RheologyParameters p;
+    p.max_kinematic_viscosity = 1e-6;  // below nu_min
+    expect_rejected(p, "max_kinematic_viscosity");
+  }
+  {
+    RheologyParameters p;
+    p.grain_diameter = 0.0;
+    expect_rejected(p, "grain_diameter");
+  }
+  {
+    RheologyParameters p;
+    p.static_friction = 1.2;
+    expect_rejected(p, "static_friction");
+  }
+  {
+    RheologyParameters p;
+    p.limiting_friction = 0.2;  // below mu_s
+    expect_rejected(p, "limiting_friction");
+  }
+  {
+    RheologyParameters p;
+    p.reference_inertial_number = -0.3;
+    expect_rejected(p, "reference_inertial_number");
+  }
+  {
+    RheologyParameters p;
+    p.model = Model::drucker_prager_bingham;
+    p.friction = FrictionSource::mu_of_I;
+    expect_rejected(p, "friction");
+  }
+  {
+    RheologyParameters p;
+    p.model = static_cast<Model>(17);
+    expect_rejected(p, "model");
+  }
+}
+
+TEST(RheologyParameters, MuOfIWithEveryYieldSurfaceIsValid) {
+  for (Model model : {Model::drucker_prager, Model::mohr_coulomb, Model::matsuoka_nakai}) {
+    RheologyParameters p;
+    p.model = model;
+    p.friction = FrictionSource::mu_of_I;
+    EXPECT_FALSE(validate(p).has_value()) << to_string(model);
+  }
+}
+
+}  // namespace
+}  // namespace granflow::rheology
