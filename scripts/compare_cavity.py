@@ -1,0 +1,58 @@
+#!/usr/bin/python3
+"""Compare granflow's cavity centre-line velocities with Ghia, Ghia & Shin (1982).
+
+Usage: compare_cavity.py RUN_DIR RE [--png FILE]
+Prints the largest absolute deviation of u (vertical centre line) and v (horizontal centre line)
+at Ghia's interior points (the wall points are boundary conditions) and exits 0.
+"""
+import argparse
+import os
+import sys
+
+import numpy as np
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+REFDATA = os.path.join(HERE, "..", "validation", "refdata")
+
+
+def read_csv(path):
+    rows = [l.strip() for l in open(path) if l.strip() and not l.startswith("#")]
+    header = rows[0].split(",")
+    data = np.array([[float(x) for x in r.split(",")] for r in rows[1:]])
+    return {h: data[:, k] for k, h in enumerate(header)}
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument("run_dir")
+    ap.add_argument("re", type=int)
+    ap.add_argument("--png")
+    ap.add_argument("--refdata", default=os.environ.get("GRANFLOW_REFDATA", REFDATA))
+    a = ap.parse_args()
+    ref = read_csv(os.path.join(a.refdata, f"ghia1982_cavity_re{a.re}.csv"))
+    ucl = read_csv(os.path.join(a.run_dir, "u_vertical_centreline.csv"))
+    vcl = read_csv(os.path.join(a.run_dir, "v_horizontal_centreline.csv"))
+    yi = (ref["y"] > 0) & (ref["y"] < 1)
+    xi = (ref["x"] > 0) & (ref["x"] < 1)
+    du = np.abs(np.interp(ref["y"][yi], ucl["y"], ucl["u"]) - ref["u"][yi]).max()
+    dv = np.abs(np.interp(ref["x"][xi], vcl["x"], vcl["v"]) - ref["v"][xi]).max()
+    print(f"Re {a.re}: max |u - u_Ghia| = {du:.4f}, max |v - v_Ghia| = {dv:.4f}")
+    if a.png:
+        import matplotlib
+        matplotlib.use("Agg")
+        import matplotlib.pyplot as plt
+        fig, ax = plt.subplots(1, 2, figsize=(9, 4))
+        ax[0].plot(ucl["u"], ucl["y"], "-", label="granflow")
+        ax[0].plot(ref["u"], ref["y"], "o", mfc="none", label="Ghia et al. 1982")
+        ax[0].set_xlabel("u"); ax[0].set_ylabel("y"); ax[0].set_title(f"x = 0.5, Re {a.re}")
+        ax[1].plot(vcl["x"], vcl["v"], "-", label="granflow")
+        ax[1].plot(ref["x"], ref["v"], "o", mfc="none", label="Ghia et al. 1982")
+        ax[1].set_xlabel("x"); ax[1].set_ylabel("v"); ax[1].set_title(f"y = 0.5, Re {a.re}")
+        ax[0].legend()
+        fig.tight_layout()
+        fig.savefig(a.png, dpi=120)
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

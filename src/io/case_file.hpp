@@ -1,0 +1,58 @@
+#pragma once
+// A granflow case: everything a run needs, read from a TOML file plus --set overrides.
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "mesh/grid.hpp"
+#include "solver/flow_settings.hpp"
+
+namespace granflow {
+
+struct TimeSettings {
+  double end = 1.0;
+  double dt = 1e-3;          // initial step, or the fixed step when not adaptive
+  bool adaptive = true;
+  double courant = 0.5;      // largest flow Courant number
+  double max_dt = 1e30;
+  double max_growth = 1.2;   // largest ratio of successive steps
+  double steady_tolerance = 0.0;  // > 0: stop when max|dv/dt| / max|v| falls below it (1/s)
+  long max_steps = 100000000;
+};
+
+struct LineSample {
+  std::string name;
+  std::array<double, 2> start{0, 0}, end{0, 0};
+  int points = 101;
+};
+
+struct OutputSettings {
+  double interval = 0.0;       // simulated time between outputs; 0: only the final state
+  std::vector<double> times;   // extra output times
+  bool fields = true;          // ParaView series
+  std::vector<LineSample> lines;
+  double progress_seconds = 2.0;  // wall seconds between progress lines (0: none)
+};
+
+struct PhaseSettings {
+  double density = 1.0;
+  double viscosity = 1e-3;  // dynamic, Pa s
+};
+
+struct CaseConfig {
+  std::filesystem::path source;
+  std::string title;
+  GridSpec mesh;
+  TimeSettings time;
+  FlowSettings flow;
+  PhaseSettings fluid;
+  OutputSettings output;
+};
+
+// "key.path=value" overrides; value is parsed as TOML (number, bool, array, quoted string) and
+// taken as a bare string otherwise.
+CaseConfig load_case(const std::filesystem::path& file, const std::vector<std::string>& overrides = {});
+CaseConfig parse_case(std::string_view toml_text, const std::vector<std::string>& overrides = {},
+                      const std::filesystem::path& source = "<string>");
+
+}  // namespace granflow

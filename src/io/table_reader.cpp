@@ -1,0 +1,154 @@
+#include "io/table_reader.hpp"
+
+#include <fmt/format.h>
+
+#include <cmath>
+
+#include "io/case_error.hpp"
+
+namespace granflow {
+
+std::string TableReader::key_path(std::string_view key) const {
+  return path_.empty() ? std::string(key) : path_ + "." + std::string(key);
+}
+
+bool TableReader::has(std::string_view key) const { return table_ && table_->contains(key); }
+
+const toml::node* TableReader::get(std::string_view key) {
+  used_.insert(std::string(key));
+  if (!table_) return nullptr;
+  return table_->get(key);
+}
+
+void TableReader::type_error(std::string_view key, const char* expected) const {
+  throw CaseError(fmt::format("{}: expected {}", key_path(key), expected));
+}
+
+std::optional<double> TableReader::optional_number(std::string_view key) {
+  const toml::node* n = get(key);
+  if (!n) return std::nullopt;
+  if (auto v = n->value<double>()) {
+    if (!std::isfinite(*v)) type_error(key, "a finite number");
+    return *v;
+  }
+  type_error(key, "a number");
+}
+
+double TableReader::number(std::string_view key, double fallback) {
+  return optional_number(key).value_or(fallback);
+}
+
+double TableReader::required_number(std::string_view key) {
+  auto v = optional_number(key);
+  if (!v) throw CaseError(fmt::format("{}: missing (a number is required)", key_path(key)));
+  return *v;
+}
+
+long TableReader::integer(std::string_view key, long fallback) {
+  const toml::node* n = get(key);
+  if (!n) return fallback;
+  if (auto v = n->value_exact<int64_t>()) return long(*v);
+  type_error(key, "an integer");
+}
+
+bool TableReader::boolean(std::string_view key, bool fallback) {
+  const toml::node* n = get(key);
+  if (!n) return fallback;
+  if (auto v = n->value_exact<bool>()) return *v;
+  type_error(key, "true or false");
+}
+
+std::string TableReader::string(std::string_view key, std::string fallback) {
+  const toml::node* n = get(key);
+  if (!n) return fallback;
+  if (auto v = n->value_exact<std::string>()) return *v;
+  type_error(key, "a string");
+}
+
+std::string TableReader::required_string(std::string_view key) {
+  if (!has(key)) throw CaseError(fmt::format("{}: missing (a string is required)", key_path(key)));
+  return string(key, {});
+}
+
+std::string TableReader::choice(std::string_view key, std::string fallback,
+                                std::initializer_list<std::string_view> allowed) {
+  std::string v = string(key, fallback);
+  for (auto a : allowed)
+    if (v == a) return v;
+  std::string list;
+  for (auto a : allowed) list += (list.empty() ? "" : ", ") + std::string(a);
+  throw CaseError(fmt::format("{}: '{}' is not one of: {}", key_path(key), v, list));
+}
+
+std::vector<double> TableReader::numbers(std::string_view key, std::vector<double> fallback, size_t min_size) {
+  const toml::node* n = get(key);
+  if (!n) return fallback;
+  const toml::array* arr = n->as_array();
+  if (!arr) type_error(key, "an array of numbers");
+  std::vector<double> out;
+  for (const auto& e : *arr) {
+    auto v = e.value<double>();
+    if (!v || !std::isfinite(*v)) type_error(key, "an array of numbers");
+    out.push_back(*v);
+  }
+  if (out.size() < min_size) type_error(key, fmt::format("at least {} numbers", min_size).c_str());
+  return out;
+}
+
+std::array<double, 2> TableReader::pair(std::string_view key, std::array<double, 2> fallback) {
+  if (!has(key)) {
+    get(key);
+    return fallback;
+  }
+  auto v = numbers(key, {}, 0);
+  if (v.size() != 2) type_error(key, "two numbers [x, y]");
+  return {v[0], v[1]};
+}
+
+std::array<double, 2> TableReader::required_pair(std::string_view key) {
+  if (!has(key)) throw CaseError(fmt::format("{}: missing (two numbers [x, y] are required)", key_path(key)));
+  return pair(key, {});
+}
+
+TableReader TableReader::table(std::string_view key) {
+  const toml::node* n = get(key);
+  if (!n) return TableReader(nullptr, key_path(key));
+  const toml::table* t = n->as_table();
+  if (!t) type_error(key, "a table");
+  return TableReader(t, key_path(key));
+}
+
+std::vector<TableReader> TableReader::tables(std::string_view key) {
+  const toml::node* n = get(key);
+  std::vector<TableReader> out;
+  if (!n) return out;
+  const toml::array* arr = n->as_array();
+  if (!arr) type_error(key, "an array of tables ([[...]])");
+  int index = 0;
+  for (const auto& e : *arr) {
+    const toml::table* t = e.as_table();
+    if (!t) type_error(key, "an array of tables ([[...]])");
+    out.emplace_back(t, fmt::format("{}[{}]", key_path(key), index++));
+  }
+  return out;
+}
+
+void TableReader::finish() const {
+  if (!table_) return;
+  for (const auto& [k, v] : *table_) {
+    if (!used_.count(k.str())) {
+      std::string known;
+      for (const auto& u : used_) known += (known.empty() ? "" : ", ") + u;
+      throw CaseError(fmt::format("{}: unknown key (known keys here: {})", key_path(k.str()), known));
+    }
+  }
+}
+
+void TableReader::require_range(std::string_view key, double value, double lo, double hi, const char* what) const {
+  if (!(value >= lo && value <= hi)) {
+    std::string range = what ? what : fmt::format("in [{}, {}]", lo, hi);
+    throw CaseError(fmt::format("{}: {} is invalid, must be {}", key_path(key), value, range));
+  }
+}
+
+}  // namespace granflow

@@ -1,0 +1,58 @@
+#pragma once
+// Reads one TOML table of a case file key by key. Every key read is recorded, so finish() can report
+// any key that no reader asked for (a misspelt or unsupported key is an error, never ignored).
+#include <array>
+#include <initializer_list>
+#include <optional>
+#include <set>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include <toml++/toml.h>
+
+namespace granflow {
+
+class TableReader {
+ public:
+  TableReader(const toml::table* table, std::string path) : table_(table), path_(std::move(path)) {}
+
+  bool present() const { return table_ != nullptr; }
+  bool has(std::string_view key) const;
+  const std::string& path() const { return path_; }
+  std::string key_path(std::string_view key) const;
+
+  double number(std::string_view key, double fallback);
+  double required_number(std::string_view key);
+  std::optional<double> optional_number(std::string_view key);
+  long integer(std::string_view key, long fallback);
+  bool boolean(std::string_view key, bool fallback);
+  std::string string(std::string_view key, std::string fallback);
+  std::string required_string(std::string_view key);
+  // A string that must be one of `allowed`.
+  std::string choice(std::string_view key, std::string fallback, std::initializer_list<std::string_view> allowed);
+  std::vector<double> numbers(std::string_view key, std::vector<double> fallback, size_t min_size = 0);
+  std::array<double, 2> pair(std::string_view key, std::array<double, 2> fallback);
+  std::array<double, 2> required_pair(std::string_view key);
+
+  // A sub-table; absent gives a reader with present() == false whose reads return their fallbacks.
+  TableReader table(std::string_view key);
+  // An array of tables ([[key]]).
+  std::vector<TableReader> tables(std::string_view key);
+
+  // Throws CaseError naming the first key present in the table that nobody read.
+  void finish() const;
+
+  // Checks that value lies in [lo, hi] (use +-inf for open ends); throws naming the key.
+  void require_range(std::string_view key, double value, double lo, double hi, const char* what = nullptr) const;
+
+ private:
+  const toml::node* get(std::string_view key);
+  [[noreturn]] void type_error(std::string_view key, const char* expected) const;
+
+  const toml::table* table_;
+  std::string path_;
+  std::set<std::string, std::less<>> used_;
+};
+
+}  // namespace granflow

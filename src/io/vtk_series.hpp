@@ -1,0 +1,32 @@
+#pragma once
+// ParaView time series: one VTK XML rectilinear-grid file (.vtr) per output time with cell data,
+// indexed by a .pvd collection that is rewritten whole after each file.
+#include <filesystem>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "mesh/grid.hpp"
+
+namespace granflow {
+
+struct CellData {
+  std::string name;
+  int components = 1;          // 1 (scalar) or 3 (vector, xyz interleaved)
+  std::vector<double> values;  // natural order, size cells * components
+};
+
+class VtkSeries {
+ public:
+  VtkSeries(std::filesystem::path directory, std::string basename);
+  // Rank 0 writes; other ranks may pass empty data and return immediately.
+  void write(const Grid& grid, double time, const std::vector<CellData>& data);
+  const std::filesystem::path& index_file() const { return pvd_; }
+
+ private:
+  std::filesystem::path dir_, pvd_;
+  std::string base_;
+  std::vector<std::pair<double, std::string>> entries_;
+};
+
+}  // namespace granflow

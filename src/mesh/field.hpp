@@ -1,0 +1,86 @@
+#pragma once
+// A cell field on the grid: one global Vec (owned values, what solvers and writers see) and one
+// local Vec (owned plus ghosts, what stencils read). Arrays are indexed [j][i] with global indices.
+#include <petscdmda.h>
+
+#include "mesh/grid.hpp"
+
+namespace granflow {
+
+class Field {
+ public:
+  explicit Field(const Grid& grid) : dm_(grid.field_dm()) {
+    PetscCallAbort(PETSC_COMM_WORLD, DMCreateGlobalVector(dm_, &global_));
+    PetscCallAbort(PETSC_COMM_WORLD, DMCreateLocalVector(dm_, &local_));
+  }
+  ~Field() {
+    VecDestroy(&global_);
+    VecDestroy(&local_);
+  }
+  Field(const Field&) = delete;
+  Field& operator=(const Field&) = delete;
+
+  Vec global() const { return global_; }
+  Vec local() const { return local_; }
+  // Owned values -> local ghosts (interior ghosts only; domain-boundary ghosts are the caller's).
+  void scatter_to_local() {
+    PetscCallAbort(PETSC_COMM_WORLD, DMGlobalToLocalBegin(dm_, global_, INSERT_VALUES, local_));
+    PetscCallAbort(PETSC_COMM_WORLD, DMGlobalToLocalEnd(dm_, global_, INSERT_VALUES, local_));
+  }
+  // Local owned values -> global.
+  void gather_from_local() {
+    PetscCallAbort(PETSC_COMM_WORLD, DMLocalToGlobalBegin(dm_, local_, INSERT_VALUES, global_));
+    PetscCallAbort(PETSC_COMM_WORLD, DMLocalToGlobalEnd(dm_, local_, INSERT_VALUES, global_));
+  }
+  void set(double value) {
+    VecSet(global_, value);
+    VecSet(local_, value);
+  }
+  void copy_from(const Field& other) {
+    VecCopy(other.global_, global_);
+    VecCopy(other.local_, local_);
+  }
+
+ private:
+  DM dm_;
+  Vec global_ = nullptr;
+  Vec local_ = nullptr;
+};
+
+// RAII access to a local (ghosted) or global vector as a 2D array [j][i] in global indices.
+class FieldArray {
+ public:
+  FieldArray(DM dm, Vec v) : dm_(dm), v_(v) { PetscCallAbort(PETSC_COMM_WORLD, DMDAVecGetArray(dm_, v_, &a_)); }
+  ~FieldArray() { DMDAVecRestoreArray(dm_, v_, &a_); }
+  FieldArray(const FieldArray&) = delete;
+  FieldArray& operator=(const FieldArray&) = delete;
+  double* operator[](int j) const { return a_[j]; }
+  double** data() const { return a_; }
+
+ private:
+  DM dm_;
+  Vec v_;
+  double** a_ = nullptr;
+};
+
+class ConstFieldArray {
+ public:
+  ConstFieldArray(DM dm, Vec v) : dm_(dm), v_(v) {
+    PetscCallAbort(PETSC_COMM_WORLD, DMDAVecGetArrayRead(dm_, v_, &a_));
+  }
+  ~ConstFieldArray() { DMDAVecRestoreArrayRead(dm_, v_, &a_); }
+  ConstFieldArray(const ConstFieldArray&) = delete;
+  ConstFieldArray& operator=(const ConstFieldArray&) = delete;
+  const double* operator[](int j) const { return static_cast<const double* const*>(a_)[j]; }
+  const double* const* data() const { return static_cast<const double* const*>(a_); }
+
+ private:
+  DM dm_;
+  Vec v_;
+  void* a_ = nullptr;
+};
+
+inline FieldArray local_array(const Grid& g, Field& f) { return FieldArray(g.field_dm(), f.local()); }
+inline ConstFieldArray local_read(const Grid& g, const Field& f) { return ConstFieldArray(g.field_dm(), f.local()); }
+
+}  // namespace granflow

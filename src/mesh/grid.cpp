@@ -1,0 +1,89 @@
+#include "mesh/grid.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+namespace granflow {
+
+const char* side_name(Side s) {
+  switch (s) {
+    case Side::west: return "west";
+    case Side::east: return "east";
+    case Side::south: return "south";
+    case Side::north: return "north";
+  }
+  return "?";
+}
+
+namespace {
+// Cell widths of a geometric progression whose last/first ratio is `grading`; ghosts mirror the
+// boundary cells so that ghost centres sit at mirror images of the first interior centres.
+void axis_geometry(int n, double lo, double hi, double grading, std::vector<double>& width,
+                   std::vector<double>& centre) {
+  const int g = Grid::ghost_width;
+  width.assign(n + 2 * g, 0.0);
+  centre.assign(n + 2 * g, 0.0);
+  const double r = (n > 1) ? std::pow(grading, 1.0 / (n - 1)) : 1.0;
+  double sum = 0.0;
+  for (int i = 0; i < n; ++i) sum += std::pow(r, i);
+  const double first = (hi - lo) / sum;
+  double x = lo;
+  for (int i = 0; i < n; ++i) {
+    width[i + g] = first * std::pow(r, i);
+    centre[i + g] = x + 0.5 * width[i + g];
+    x += width[i + g];
+  }
+  for (int k = 1; k <= g; ++k) {
+    width[g - k] = width[g + k - 1];
+    centre[g - k] = lo - (centre[g + k - 1] - lo);
+    width[g + n - 1 + k] = width[g + n - k];
+    centre[g + n - 1 + k] = hi + (hi - centre[g + n - k]);
+  }
+}
+}  // namespace
+
+Grid::Grid(MPI_Comm comm, const GridSpec& spec) : comm_(comm), spec_(spec) {
+  if (spec.cells[0] < 1 || spec.cells[1] < 1) throw std::invalid_argument("grid needs at least one cell per axis");
+  PetscCallAbort(comm, DMDACreate2d(comm, DM_BOUNDARY_GHOSTED, DM_BOUNDARY_GHOSTED, DMDA_STENCIL_BOX,
+                                    spec.cells[0], spec.cells[1], PETSC_DECIDE, PETSC_DECIDE, 1,
+                                    ghost_width, nullptr, nullptr, &field_dm_));
+  PetscCallAbort(comm, DMSetUp(field_dm_));
+  PetscInt m, n;
+  const PetscInt *lx, *ly;
+  PetscCallAbort(comm, DMDAGetInfo(field_dm_, nullptr, nullptr, nullptr, nullptr, &m, &n, nullptr, nullptr,
+                                   nullptr, nullptr, nullptr, nullptr, nullptr));
+  PetscCallAbort(comm, DMDAGetOwnershipRanges(field_dm_, &lx, &ly, nullptr));
+  PetscCallAbort(comm, DMDACreate2d(comm, DM_BOUNDARY_NONE, DM_BOUNDARY_NONE, DMDA_STENCIL_STAR,
+                                    spec.cells[0], spec.cells[1], m, n, 1, 1, lx, ly, &matrix_dm_));
+  PetscCallAbort(comm, DMSetUp(matrix_dm_));
+  PetscInt xs, ys, xm, ym;
+  PetscCallAbort(comm, DMDAGetCorners(field_dm_, &xs, &ys, nullptr, &xm, &ym, nullptr));
+  owned_ = CellBox{int(xs), int(ys), int(xm), int(ym)};
+  for (int a = 0; a < 2; ++a)
+    axis_geometry(spec.cells[a], spec.lower[a], spec.upper[a], spec.grading[a], width_[a], centre_[a]);
+}
+
+Grid::~Grid() {
+  DMDestroy(&matrix_dm_);
+  DMDestroy(&field_dm_);
+}
+
+double Grid::min_spacing() const {
+  double h = 1e300;
+  for (int a = 0; a < 2; ++a)
+    for (int i = 0; i < spec_.cells[a]; ++i) h = std::min(h, width_[a][i + ghost_width]);
+  return h;
+}
+
+bool Grid::on_boundary(Side s, int i, int j) const {
+  switch (s) {
+    case Side::west: return i == 0;
+    case Side::east: return i == nx() - 1;
+    case Side::south: return j == 0;
+    case Side::north: return j == ny() - 1;
+  }
+  return false;
+}
+
+}  // namespace granflow

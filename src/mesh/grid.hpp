@@ -1,0 +1,74 @@
+#pragma once
+// Cartesian cell-centred grid on a PETSc DMDA.
+//
+// Every field lives on one DMDA with DM_BOUNDARY_GHOSTED sides and a box stencil of width 2, so local
+// arrays carry two layers of ghost cells also outside the physical domain (indices -2, -1 and n, n+1);
+// boundary conditions fill those. Matrices use a second DMDA with the same parallel layout and a
+// 5-point star stencil, so they are preallocated for exactly the pattern the operators use.
+//
+// Coordinates are held per axis (cell widths and centres, ghosts included), so graded spacing is a
+// change of constructor only. The third axis is carried as nz = 1 for planar 2D.
+#include <petscdmda.h>
+
+#include <array>
+#include <vector>
+
+#include "mesh/cell_box.hpp"
+
+namespace granflow {
+
+enum class Side { west = 0, east = 1, south = 2, north = 3 };
+inline constexpr std::array<Side, 4> all_sides{Side::west, Side::east, Side::south, Side::north};
+const char* side_name(Side s);
+
+struct GridSpec {
+  std::array<int, 2> cells{0, 0};
+  std::array<double, 2> lower{0.0, 0.0};
+  std::array<double, 2> upper{1.0, 1.0};
+  // Ratio of the last to the first cell width per axis (1 = uniform); geometric progression.
+  std::array<double, 2> grading{1.0, 1.0};
+};
+
+class Grid {
+ public:
+  static constexpr int ghost_width = 2;
+
+  Grid(MPI_Comm comm, const GridSpec& spec);
+  ~Grid();
+  Grid(const Grid&) = delete;
+  Grid& operator=(const Grid&) = delete;
+
+  MPI_Comm comm() const { return comm_; }
+  DM field_dm() const { return field_dm_; }    // ghosted, box stencil width 2
+  DM matrix_dm() const { return matrix_dm_; }  // star stencil width 1, same layout
+  int nx() const { return spec_.cells[0]; }
+  int ny() const { return spec_.cells[1]; }
+  long cell_count() const { return long(nx()) * ny(); }
+  const GridSpec& spec() const { return spec_; }
+  const CellBox& owned() const { return owned_; }
+
+  // Per-axis geometry, valid for ghost indices -2 .. n+1.
+  double dx(int i) const { return width_[0][i + ghost_width]; }
+  double dy(int j) const { return width_[1][j + ghost_width]; }
+  double xc(int i) const { return centre_[0][i + ghost_width]; }
+  double yc(int j) const { return centre_[1][j + ghost_width]; }
+  // Face coordinate between cells i and i+1 (east face of cell i).
+  double xf(int i) const { return xc(i) + 0.5 * dx(i); }
+  double yf(int j) const { return yc(j) + 0.5 * dy(j); }
+  double volume(int i, int j) const { return dx(i) * dy(j); }
+  // Raw pointers offset so that p[-2] is the first ghost; for kernels working on plain arrays.
+  const double* dx_data() const { return width_[0].data() + ghost_width; }
+  const double* dy_data() const { return width_[1].data() + ghost_width; }
+  double min_spacing() const;
+  bool on_boundary(Side s, int i, int j) const;
+
+ private:
+  MPI_Comm comm_;
+  GridSpec spec_;
+  DM field_dm_ = nullptr;
+  DM matrix_dm_ = nullptr;
+  CellBox owned_;
+  std::array<std::vector<double>, 2> width_, centre_;
+};
+
+}  // namespace granflow

@@ -1,0 +1,40 @@
+#pragma once
+// Boundary conditions of the flow, one per side of the box.
+#include <array>
+
+#include "mesh/grid.hpp"
+
+namespace granflow {
+
+enum class BoundaryKind {
+  wall,        // no-slip; a non-zero wall velocity makes it a moving (sliding) wall
+  slip,        // impermeable, free of shear
+  atmosphere,  // fixed total pressure: outflow at the static pressure, inflow at p0 - rho|u|^2/2
+};
+
+struct BoundaryCondition {
+  BoundaryKind kind = BoundaryKind::wall;
+  std::array<double, 2> wall_velocity{0.0, 0.0};  // tangential part is used; normal part must be zero
+  double pressure = 0.0;                          // atmosphere: total pressure p0
+  bool total_pressure = true;                     // false: p0 is the static pressure also for inflow
+  // Soil fraction carried in by inflow through an atmosphere boundary.
+  double inflow_soil_fraction = 0.0;
+};
+
+using BoundarySet = std::array<BoundaryCondition, 4>;  // indexed by Side
+
+inline const BoundaryCondition& boundary(const BoundarySet& b, Side s) { return b[static_cast<int>(s)]; }
+
+// Outward unit normal component of a side along an axis (0 = x, 1 = y).
+inline double outward_normal(Side s, int axis) {
+  switch (s) {
+    case Side::west: return axis == 0 ? -1.0 : 0.0;
+    case Side::east: return axis == 0 ? 1.0 : 0.0;
+    case Side::south: return axis == 1 ? -1.0 : 0.0;
+    case Side::north: return axis == 1 ? 1.0 : 0.0;
+  }
+  return 0.0;
+}
+inline int normal_axis(Side s) { return (s == Side::west || s == Side::east) ? 0 : 1; }
+
+}  // namespace granflow

@@ -1,0 +1,38 @@
+#pragma once
+// Settings of the incompressible flow solver, filled from the case file.
+#include <array>
+
+#include "operators/convection_scheme.hpp"
+#include "operators/face_interpolation.hpp"
+#include "solver/boundary.hpp"
+#include "solver/linear_solver.hpp"
+
+namespace granflow {
+
+// How the pressure step couples to momentum (see FlowSolver::cell_force).
+enum class PressureCoupling { projection, piso };
+
+struct NumericsSettings {
+  PressureCoupling pressure_coupling = PressureCoupling::projection;
+  // chi of the rotational correction p -= chi mu div(v*) (projection). Speeds up the pressure where
+  // viscosity dominates, but is stable only for mild viscosity variations (contrast of a few), so off by default.
+  double rotational_coefficient = 0.0;
+  ConvectionScheme convection = ConvectionScheme::quick;
+  double blending = 0.7;        // central share of the blended scheme
+  int outer_iterations = 3;     // PIMPLE outer iterations per step (properties updated in each)
+  double outer_tolerance = 1e-5;  // stop the outer loop when the velocity changes less than this (relative)
+  int pressure_correctors = 2;  // PISO pressure corrections per outer iteration
+  bool momentum_predictor = true;
+  bool transpose_stress = true;  // explicit div(mu grad(v)^T) term
+  FaceViscosity face_viscosity = FaceViscosity::harmonic;
+};
+
+struct FlowSettings {
+  std::array<double, 2> gravity{0.0, 0.0};
+  BoundarySet boundaries{};
+  NumericsSettings numerics{};
+  LinearSolverSettings momentum_solver{"bcgs", "bjacobi", 1e-8, 1e-14, 1000};
+  LinearSolverSettings pressure_solver{"cg", "hypre", 1e-10, 1e-14, 2000};
+};
+
+}  // namespace granflow

@@ -1,0 +1,115 @@
+#pragma once
+// Pressure-based segregated solver for the incompressible Navier-Stokes equations of a mixture with
+// cell-wise density and viscosity ([VoF] Eqs. 17-18, App. B; [YS] Eqs. 2-3), on collocated cells:
+//   - backward Euler in time, implicit upwind convection with deferred correction to the chosen
+//     scheme, implicit viscous term div(mu grad v) with its transpose part lagged;
+//   - PIMPLE: outer iterations (properties updated in each, as in [VoF] Alg. 1), a momentum predictor,
+//     and PISO pressure corrections with Rhie-Chow face fluxes;
+//   - gravity enters as a face force rho_f g next to the pressure gradient, and cell forces are
+//     reconstructed from face forces, so a fluid at rest under gravity stays at rest exactly.
+#include <functional>
+#include <memory>
+#include <vector>
+
+#include "mesh/field.hpp"
+#include "mesh/grid.hpp"
+#include "solver/flow_settings.hpp"
+#include "solver/linear_solver.hpp"
+
+namespace granflow {
+
+struct StepReport {
+  int outer_iterations = 0;
+  int momentum_iterations = 0;  // summed over components and outer iterations
+  int pressure_iterations = 0;  // summed over all pressure solves
+  int pressure_solves = 0;
+  double velocity_change = 0.0;  // relative change in the last outer iteration
+};
+
+class FlowSolver {
+ public:
+  // Called once per outer iteration, before momentum assembly: fill density() and viscosity() for the
+  // owned cells (ghosts are refreshed by the solver afterwards).
+  using PropertyUpdate = std::function<void(FlowSolver&)>;
+
+  FlowSolver(const Grid& grid, const FlowSettings& settings);
+  ~FlowSolver();
+
+  const Grid& grid() const { return grid_; }
+  const FlowSettings& settings() const { return settings_; }
+  Field& velocity(int axis) { return *vel_[axis]; }
+  const Field& velocity(int axis) const { return *vel_[axis]; }
+  Field& pressure() { return *p_; }
+  const Field& pressure() const { return *p_; }
+  Field& density() { return *rho_; }
+  const Field& density() const { return *rho_; }
+  Field& viscosity() { return *mu_; }
+  const Field& viscosity() const { return *mu_; }
+  // Normal velocity at the east (axis 0) or north (axis 1) face of each cell; the west/south faces
+  // of the owned block (global index -1 at the domain boundary) are held in the ghost entries.
+  Field& face_velocity(int axis) { return *face_[axis]; }
+  // External body force per unit volume (N/m^3) besides gravity, e.g. a manufactured-solution source.
+  // Zero unless enable_body_force() was called.
+  void enable_body_force();
+  Field& body_force(int axis) { return *body_force_[axis]; }
+  const Field& face_velocity(int axis) const { return *face_[axis]; }
+
+  void set_property_update(PropertyUpdate f) { property_update_ = std::move(f); }
+  // Applies the property update and refreshes ghosts of density and viscosity.
+  void update_properties();
+  // Pressure in hydrostatic balance with the current density: integrated down each column from the
+  // top with the trapezoidal rule between cell centres, which is exactly what the face forces
+  // balance. Requires a closed or atmosphere top; uses the top boundary's pressure as reference.
+  void set_hydrostatic_pressure();
+  // Velocities given as owned values: refresh ghosts and make face velocities consistent (linear
+  // interpolation; not divergence-free unless the field is).
+  void sync_velocity_from_cells();
+  void refresh_ghosts();
+
+  StepReport step(double dt);
+
+  // Largest |u| dt / h over faces, for the Courant condition.
+  double max_courant(double dt) const;
+  double max_speed() const;
+  // Largest |div v| * V over owned cells, from the face velocities (volumetric imbalance, m^2/s in 2D).
+  double max_divergence() const;
+
+ private:
+  void fill_velocity_ghosts();
+  void fill_scalar_ghosts(Field& f);
+  void assemble_momentum(double dt);
+  void compute_face_forces();
+  int solve_momentum();
+  void compute_hbya();
+  double local_min_viscosity(const double* const* mu, int i, int j) const;
+  double cell_force(int axis, int i, int j, const double* const* ff, const double* const* rho) const;
+  double face_coefficient(const double* const* rau, const double* const* rho, int i, int j, int in, int jn) const;
+  void assemble_pressure_matrix(double dt);
+  int solve_pressure(double dt);
+
+  const Grid& grid_;
+  FlowSettings settings_;
+  PropertyUpdate property_update_;
+
+  std::unique_ptr<Field> vel_[2], vel_old_[2], face_[2], face_old_[2], face_force_[2];
+  std::unique_ptr<Field> p_, rho_, mu_;
+  std::unique_ptr<Field> body_force_[2];
+  std::unique_ptr<Field> hbya_[2], rau_[2], time_weight_[2];
+
+  // Momentum coefficients of the owned cells (row-major over the owned box). Off-diagonal
+  // coefficients are stored positive (matrix entry = -a_nb) and shared by both components.
+  std::vector<double> a_east_, a_west_, a_north_, a_south_;
+  std::vector<double> a_centre_[2], source_[2];
+  std::vector<double> divergence_before_;  // div of the velocity entering the projection, per owned cell
+
+  Mat momentum_matrix_[2] = {nullptr, nullptr};
+  Mat pressure_matrix_ = nullptr;
+  MatNullSpace pressure_null_space_ = nullptr;
+  Vec rhs_ = nullptr;
+  std::unique_ptr<LinearSolver> momentum_solver_[2];
+  std::unique_ptr<LinearSolver> pressure_solver_;
+  bool has_pressure_boundary_ = false;
+  double dt_ = 0.0;
+};
+
+}  // namespace granflow

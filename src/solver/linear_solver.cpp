@@ -1,0 +1,51 @@
+#include "solver/linear_solver.hpp"
+
+#include <fmt/format.h>
+
+#include <stdexcept>
+
+namespace granflow {
+
+LinearSolver::LinearSolver(MPI_Comm comm, const std::string& prefix, const LinearSolverSettings& s)
+    : prefix_(prefix) {
+  PetscCallAbort(comm, KSPCreate(comm, &ksp_));
+  PetscCallAbort(comm, KSPSetOptionsPrefix(ksp_, (prefix + "_").c_str()));
+  PetscCallAbort(comm, KSPSetType(ksp_, s.ksp_type.c_str()));
+  PC pc;
+  PetscCallAbort(comm, KSPGetPC(ksp_, &pc));
+  PetscCallAbort(comm, PCSetType(pc, s.pc_type.c_str()));
+  PetscCallAbort(comm, KSPSetTolerances(ksp_, s.rtol, s.atol, PETSC_DEFAULT, s.max_iterations));
+  PetscCallAbort(comm, KSPSetInitialGuessNonzero(ksp_, PETSC_TRUE));
+  if (s.pc_type == "hypre") {
+    // BoomerAMG with a symmetric smoother, so that it is a valid preconditioner for CG, and the
+    // cheaper HMIS coarsening; each is only a default that the user's own options override.
+    const std::string p = "-" + prefix + "_pc_hypre_boomeramg_";
+    auto set_default = [&](const std::string& key, const char* value) {
+      PetscBool set;
+      PetscOptionsHasName(nullptr, nullptr, (p + key).c_str(), &set);
+      if (!set) PetscOptionsSetValue(nullptr, (p + key).c_str(), value);
+    };
+    set_default("relax_type_all", "symmetric-SOR/Jacobi");
+    set_default("coarsen_type", "HMIS");
+    set_default("interp_type", "ext+i");
+    set_default("P_max", "4");
+  }
+  PetscCallAbort(comm, KSPSetFromOptions(ksp_));
+}
+
+LinearSolver::~LinearSolver() { KSPDestroy(&ksp_); }
+
+void LinearSolver::set_operator(Mat a) { PetscCallAbort(PETSC_COMM_WORLD, KSPSetOperators(ksp_, a, a)); }
+
+int LinearSolver::solve(Vec b, Vec x) {
+  PetscCallAbort(PETSC_COMM_WORLD, KSPSolve(ksp_, b, x));
+  KSPConvergedReason reason;
+  PetscInt its;
+  KSPGetConvergedReason(ksp_, &reason);
+  KSPGetIterationNumber(ksp_, &its);
+  if (reason < 0 && reason != KSP_DIVERGED_ITS)
+    throw std::runtime_error(fmt::format("linear solver '{}' failed: {}", prefix_, KSPConvergedReasons[reason]));
+  return int(its);
+}
+
+}  // namespace granflow

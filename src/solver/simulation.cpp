@@ -1,0 +1,158 @@
+#include "solver/simulation.hpp"
+
+#include <fmt/format.h>
+#include <fmt/ostream.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+
+#include "io/atomic_file.hpp"
+#include "io/gather.hpp"
+
+namespace granflow {
+
+Simulation::Simulation(MPI_Comm comm, const CaseConfig& config, std::filesystem::path output_dir)
+    : config_(config), out_(std::move(output_dir)) {
+  MPI_Comm_rank(comm, &rank_);
+  grid_ = std::make_unique<Grid>(comm, config.mesh);
+  flow_ = std::make_unique<FlowSolver>(*grid_, config.flow);
+  const PhaseSettings fluid = config.fluid;
+  flow_->set_property_update([fluid](FlowSolver& f) {
+    VecSet(f.density().global(), fluid.density);
+    VecSet(f.viscosity().global(), fluid.viscosity);
+  });
+  flow_->update_properties();
+  flow_->refresh_ghosts();
+  flow_->set_hydrostatic_pressure();
+  if (!out_.empty()) {
+    if (rank_ == 0) std::filesystem::create_directories(out_);
+    MPI_Barrier(comm);
+    series_ = std::make_unique<VtkSeries>(out_, "fields");
+  }
+}
+
+Simulation::~Simulation() = default;
+
+double Simulation::next_output_time() const {
+  double next = config_.time.end;
+  if (config_.output.interval > 0.0) {
+    const double k = std::floor(time_ / config_.output.interval + 1e-9) + 1.0;
+    next = std::min(next, k * config_.output.interval);
+  }
+  for (double t : config_.output.times)
+    if (t > time_ * (1 + 1e-12) + 1e-300) next = std::min(next, t);
+  return next;
+}
+
+double Simulation::choose_dt(double dt_previous) const {
+  const auto& t = config_.time;
+  if (!t.adaptive) return t.dt;
+  const double co = flow_->max_courant(dt_previous);
+  double dt = co > 0.0 ? dt_previous * t.courant / co : dt_previous * t.max_growth;
+  dt = std::min({dt, dt_previous * t.max_growth, t.max_dt});
+  return dt;
+}
+
+void Simulation::write_output() {
+  if (out_.empty()) return;
+  const Grid& g = *grid_;
+  auto u = gather_to_root(g, flow_->velocity(0));
+  auto v = gather_to_root(g, flow_->velocity(1));
+  auto p = gather_to_root(g, flow_->pressure());
+  auto rho = gather_to_root(g, flow_->density());
+  auto mu = gather_to_root(g, flow_->viscosity());
+  if (config_.output.fields) {
+    std::vector<double> vel(u.size() * 3, 0.0);
+    for (size_t k = 0; k < u.size(); ++k) {
+      vel[3 * k] = u[k];
+      vel[3 * k + 1] = v[k];
+    }
+    series_->write(g, time_, {{"velocity", 3, vel}, {"pressure", 1, p}, {"density", 1, rho}, {"viscosity", 1, mu}});
+  }
+  if (rank_ == 0) {
+    for (const auto& line : config_.output.lines) {
+      auto body = [&](std::ostream& out) {
+        fmt::print(out, "# {} at t = {:.9g} s\nx,y,u,v,p\n", line.name, time_);
+        for (int k = 0; k < line.points; ++k) {
+          const double s = double(k) / (line.points - 1);
+          const double x = line.start[0] + s * (line.end[0] - line.start[0]);
+          const double y = line.start[1] + s * (line.end[1] - line.start[1]);
+          fmt::print(out, "{:.9g},{:.9g},{:.12g},{:.12g},{:.12g}\n", x, y, sample_bilinear(g, u, x, y),
+                     sample_bilinear(g, v, x, y), sample_bilinear(g, p, x, y));
+        }
+      };
+      write_file_atomically(out_ / fmt::format("{}_{:05d}.csv", line.name, output_index_), body);
+      write_file_atomically(out_ / fmt::format("{}.csv", line.name), body);
+    }
+  }
+  ++output_index_;
+}
+
+RunSummary Simulation::run() {
+  using clock = std::chrono::steady_clock;
+  const auto start = clock::now();
+  auto last_progress = start;
+  RunSummary summary;
+  const auto& tc = config_.time;
+  double dt = std::min(tc.dt, tc.max_dt);
+  write_output();
+  Vec previous[2];
+  for (int a = 0; a < 2; ++a) VecDuplicate(flow_->velocity(a).global(), &previous[a]);
+  while (time_ < tc.end * (1 - 1e-12) && summary.steps < tc.max_steps) {
+    const double t_out = next_output_time();
+    double step_dt = dt;
+    if (time_ + step_dt > t_out * (1 - 1e-12)) step_dt = t_out - time_;
+    else if (time_ + 1.5 * step_dt > t_out) step_dt = 0.5 * (t_out - time_);  // avoid a sliver step
+    for (int a = 0; a < 2; ++a) VecCopy(flow_->velocity(a).global(), previous[a]);
+    const StepReport r = flow_->step(step_dt);
+    time_ += step_dt;
+    ++summary.steps;
+    summary.outer_iterations += r.outer_iterations;
+    summary.momentum_iterations += r.momentum_iterations;
+    summary.pressure_iterations += r.pressure_iterations;
+    summary.pressure_solves += r.pressure_solves;
+
+    const double speed = flow_->max_speed();
+    if (!std::isfinite(speed) || speed > 1e6)
+      throw DivergenceError(fmt::format("the solution diverged at t = {:.6g} s (step {}): largest speed {:.3g} m/s; "
+                                        "the last good output is kept",
+                                        time_, summary.steps, speed));
+    if (std::abs(time_ - t_out) <= 1e-12 * std::max(1.0, t_out)) {
+      time_ = t_out;
+      write_output();
+    }
+    if (tc.steady_tolerance > 0.0) {
+      double change = 0.0;
+      for (int a = 0; a < 2; ++a) {
+        VecAXPY(previous[a], -1.0, flow_->velocity(a).global());
+        double n;
+        VecNorm(previous[a], NORM_INFINITY, &n);
+        change = std::max(change, n);
+      }
+      if (change / step_dt < tc.steady_tolerance * std::max(speed, 1e-300)) {
+        summary.reached_steady_state = true;
+        break;
+      }
+    }
+    const auto now = clock::now();
+    if (config_.output.progress_seconds > 0 &&
+        std::chrono::duration<double>(now - last_progress).count() >= config_.output.progress_seconds) {
+      last_progress = now;
+      const double wall = std::chrono::duration<double>(now - start).count();
+      const double rate = summary.steps / wall;
+      const double eta = time_ > 0 ? wall * (tc.end - time_) / time_ : 0.0;
+      if (rank_ == 0)
+        fmt::print(stderr, "t = {:.5g} / {:.5g} s  dt = {:.3g} s  step {}  {:.1f} steps/s  {:.0f} s left\n", time_,
+                   tc.end, step_dt, summary.steps, rate, eta);
+    }
+    dt = choose_dt(step_dt == dt ? dt : std::max(dt, step_dt));
+  }
+  for (int a = 0; a < 2; ++a) VecDestroy(&previous[a]);
+  if (summary.reached_steady_state || summary.steps >= tc.max_steps) write_output();
+  summary.time = time_;
+  summary.wall_seconds = std::chrono::duration<double>(clock::now() - start).count();
+  return summary;
+}
+
+}  // namespace granflow

@@ -1,0 +1,58 @@
+#pragma once
+// The time loop of a case: adaptive steps, output at requested times, progress, divergence guard.
+#include <filesystem>
+#include <memory>
+
+#include "io/case_file.hpp"
+#include "io/vtk_series.hpp"
+#include "mesh/grid.hpp"
+#include "solver/flow_solver.hpp"
+
+namespace granflow {
+
+struct RunSummary {
+  long steps = 0;
+  double time = 0.0;
+  double wall_seconds = 0.0;
+  long outer_iterations = 0;
+  long momentum_iterations = 0;
+  long pressure_iterations = 0;
+  long pressure_solves = 0;
+  bool reached_steady_state = false;
+};
+
+// Thrown when the solution stops being finite or bounded; the last output stays as written.
+struct DivergenceError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+class Simulation {
+ public:
+  // output_dir empty: no files are written (tests).
+  Simulation(MPI_Comm comm, const CaseConfig& config, std::filesystem::path output_dir);
+  ~Simulation();
+
+  RunSummary run();
+  const Grid& grid() const { return *grid_; }
+  FlowSolver& flow() { return *flow_; }
+  const CaseConfig& config() const { return config_; }
+  double time() const { return time_; }
+
+  // Writes the field series entry and the line samples for the current state.
+  void write_output();
+
+ private:
+  double next_output_time() const;
+  double choose_dt(double dt_previous) const;
+
+  CaseConfig config_;
+  std::filesystem::path out_;
+  std::unique_ptr<Grid> grid_;
+  std::unique_ptr<FlowSolver> flow_;
+  std::unique_ptr<VtkSeries> series_;
+  double time_ = 0.0;
+  int output_index_ = 0;
+  int rank_ = 0;
+};
+
+}  // namespace granflow

@@ -1,0 +1,47 @@
+// Lid-driven cavity at 128 x 128 against Ghia, Ghia & Shin (1982): the shipped cases, run to steady state.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <fmt/format.h>
+
+#include <cmath>
+
+#include "solver/simulation.hpp"
+#include "test_support.hpp"
+
+namespace granflow {
+namespace {
+
+double largest_deviation(int re) {
+  const CaseConfig config =
+      load_case(test::repo_path(fmt::format("cases/lid_driven_cavity_re{}.toml", re)), {"output.progress_seconds=0"});
+  Simulation sim(PETSC_COMM_WORLD, config, "");
+  const RunSummary s = sim.run();
+  EXPECT_TRUE(s.reached_steady_state) << "Re " << re << " stopped at t = " << s.time;
+  const Grid& g = sim.grid();
+  const auto u = gather_to_root(g, sim.flow().velocity(0));
+  const auto v = gather_to_root(g, sim.flow().velocity(1));
+  auto ref = test::read_csv(test::repo_path(fmt::format("validation/refdata/ghia1982_cavity_re{}.csv", re)));
+  double worst = 0.0;
+  int rank;
+  MPI_Comm_rank(PETSC_COMM_WORLD, &rank);
+  if (rank == 0) {
+    // Ghia's wall points are the boundary conditions themselves; compare the interior ones.
+    for (size_t k = 0; k < ref["y"].size(); ++k)
+      if (ref["y"][k] > 0 && ref["y"][k] < 1)
+        worst = std::max(worst, std::abs(sample_bilinear(g, u, 0.5, ref["y"][k]) - ref["u"][k]));
+    for (size_t k = 0; k < ref["x"].size(); ++k)
+      if (ref["x"][k] > 0 && ref["x"][k] < 1)
+        worst = std::max(worst, std::abs(sample_bilinear(g, v, ref["x"][k], 0.5) - ref["v"][k]));
+  }
+  MPI_Bcast(&worst, 1, MPI_DOUBLE, 0, PETSC_COMM_WORLD);
+  std::printf("cavity Re %d, 128 x 128: largest |deviation| from Ghia et al. = %.4f (%ld steps, %.1f s)\n", re, worst,
+              s.steps, s.wall_seconds);
+  return worst;
+}
+
+TEST(Cavity, Re100MatchesGhia) { EXPECT_LT(largest_deviation(100), 0.02); }
+TEST(Cavity, Re1000MatchesGhia) { EXPECT_LT(largest_deviation(1000), 0.03); }
+
+}  // namespace
+}  // namespace granflow

@@ -1,0 +1,69 @@
+#pragma once
+// Helpers shared by the solver verification tests.
+#include <cmath>
+#include <fstream>
+#include <functional>
+#include <map>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "io/case_file.hpp"
+#include "io/gather.hpp"
+#include "mesh/field.hpp"
+
+namespace granflow::test {
+
+inline std::string repo_path(const std::string& rel) { return std::string(GRANFLOW_SOURCE_DIR) + "/" + rel; }
+
+// Columns of a CSV file with '#' comment lines and one header line.
+inline std::map<std::string, std::vector<double>> read_csv(const std::string& path) {
+  std::ifstream in(path);
+  std::map<std::string, std::vector<double>> cols;
+  std::vector<std::string> header;
+  std::string line;
+  while (std::getline(in, line)) {
+    if (line.empty() || line[0] == '#') continue;
+    std::stringstream ss(line);
+    std::string cell;
+    std::vector<std::string> cells;
+    while (std::getline(ss, cell, ',')) cells.push_back(cell);
+    if (header.empty()) {
+      header = cells;
+      continue;
+    }
+    for (size_t k = 0; k < cells.size() && k < header.size(); ++k) cols[header[k]].push_back(std::stod(cells[k]));
+  }
+  return cols;
+}
+
+// Sets the owned values of a field from f(x, y) at cell centres.
+inline void fill(const Grid& g, Field& field, const std::function<double(double, double)>& f) {
+  FieldArray a(g.field_dm(), field.global());
+  const auto& b = g.owned();
+  for (int j = b.ys; j < b.ye(); ++j)
+    for (int i = b.xs; i < b.xe(); ++i) a[j][i] = f(g.xc(i), g.yc(j));
+}
+
+// Cell-volume weighted L2 norm of (field - f) over the domain, optionally after removing the mean
+// difference (pressure in a closed domain).
+inline double l2_error(const Grid& g, const Field& field, const std::function<double(double, double)>& f,
+                       bool remove_mean = false) {
+  ConstFieldArray a(g.field_dm(), field.global());
+  const auto& b = g.owned();
+  double sums[3] = {0, 0, 0};  // diff*V, diff^2*V, V
+  for (int j = b.ys; j < b.ye(); ++j)
+    for (int i = b.xs; i < b.xe(); ++i) {
+      const double d = a[j][i] - f(g.xc(i), g.yc(j));
+      const double V = g.volume(i, j);
+      sums[0] += d * V;
+      sums[1] += d * d * V;
+      sums[2] += V;
+    }
+  double tot[3];
+  MPI_Allreduce(sums, tot, 3, MPI_DOUBLE, MPI_SUM, g.comm());
+  const double mean = remove_mean ? tot[0] / tot[2] : 0.0;
+  return std::sqrt(std::max(tot[1] / tot[2] - mean * mean, 0.0));
+}
+
+}  // namespace granflow::test
