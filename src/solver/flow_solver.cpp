@@ -106,7 +106,7 @@ void FlowSolver::fill_scalar_ghosts(Field& f) {
   const auto& b = grid_.owned();
   const int nx = grid_.nx(), ny = grid_.ny();
   for (int k = 1; k <= Grid::ghost_width; ++k) {
-    for (int j = b.ys; j < b.ye(); ++j) {
+    for (int j = b.ys - Grid::ghost_width; j < b.ye() + Grid::ghost_width; ++j) {
       if (b.xs == 0) a[j][-k] = a[j][0];
       if (b.xe() == nx) a[j][nx - 1 + k] = a[j][nx - 1];
     }
@@ -137,7 +137,7 @@ void FlowSolver::fill_velocity_ghosts() {
   for (int a = 0; a < 2; ++a) {
     double** f = comp[a];
     for (int k = 1; k <= Grid::ghost_width; ++k) {
-      for (int j = b.ys; j < b.ye(); ++j) {
+      for (int j = b.ys - Grid::ghost_width; j < b.ye() + Grid::ghost_width; ++j) {
         if (b.xs == 0) f[j][-k] = ghost(boundary(settings_.boundaries, Side::west), a, 0, f[j][k - 1], f[j][0]);
         if (b.xe() == nx)
           f[j][nx - 1 + k] = ghost(boundary(settings_.boundaries, Side::east), a, 0, f[j][nx - k], f[j][nx - 1]);
@@ -354,6 +354,29 @@ void FlowSolver::assemble_momentum(double dt) {
         const int in = i + fg.di, jn = j + fg.dj;
         const double area = fg.axis == 0 ? dy : dx;
         const bool is_boundary = in < 0 || in >= nx || jn < 0 || jn >= ny;
+        const double mu_face = is_boundary ? muP : face_mean(num.face_viscosity, muP, mu[jn][in]);
+        // Transpose part of the viscous stress, div(mu grad(v)^T), lagged. It is taken in the form
+        // div(mu grad(v)^T) - grad(mu div v), which is the same for a solenoidal field: what is left
+        // depends on grad mu and vanishes for constant viscosity, so lagging it cannot feed back on the
+        // divergence the pressure step removes. Face terms: c = axis: -(d v_t / d x_t)_f,
+        // c != axis: (d v_axis / d x_c)_f, each mu_f n A; tangential derivatives from cell centres.
+        // Boundary faces use the ghosts, which encode the boundary condition (zero at a resting wall).
+        if (num.transpose_stress) {
+          for (int c = 0; c < 2; ++c) {
+            const int t = 1 - fg.axis;
+            const double* const* q = c == fg.axis ? vel[t] : vel[fg.axis];
+            const double sign = c == fg.axis ? -1.0 : 1.0;
+            double grad;
+            if ((c == fg.axis ? t : c) == 0) {  // an x-derivative at a north/south face
+              grad = 0.5 * ((q[j][i + 1] - q[j][i - 1]) / (grid_.xc(i + 1) - grid_.xc(i - 1)) +
+                            (q[jn][i + 1] - q[jn][i - 1]) / (grid_.xc(i + 1) - grid_.xc(i - 1)));
+            } else {  // a y-derivative at an east/west face
+              grad = 0.5 * ((q[j + 1][i] - q[j - 1][i]) / (grid_.yc(j + 1) - grid_.yc(j - 1)) +
+                            (q[j + 1][in] - q[j - 1][in]) / (grid_.yc(j + 1) - grid_.yc(j - 1)));
+            }
+            src[c] += fg.sign * sign * mu_face * grad * area;
+          }
+        }
         if (is_boundary) {
           const auto& bc = boundary(settings_.boundaries, fg.side);
           const double d_half = 0.5 * (fg.axis == 0 ? dx : dy);
@@ -373,7 +396,7 @@ void FlowSolver::assemble_momentum(double dt) {
                                              : (fg.sign > 0 ? fy[j][i] : fy[j - 1][i]);
         const double flux = fg.sign * face_vel * area;
         const double d = fg.axis == 0 ? std::abs(grid_.xc(in) - grid_.xc(i)) : std::abs(grid_.yc(jn) - grid_.yc(j));
-        const double mu_f = face_mean(num.face_viscosity, muP, mu[jn][in]);
+        const double mu_f = mu_face;
         const double conv = rhoP * std::max(-flux, 0.0);
         a_nb[f] = mu_f * area / d + conv;
         diag += a_nb[f];
@@ -392,27 +415,6 @@ void FlowSolver::assemble_momentum(double dt) {
               uu = q[jn + fg.dj][in + fg.di];
             }
             src[c] -= rhoP * flux * (face_value(num.convection, num.blending, uu, up, dn) - up);
-          }
-        }
-        // Transpose part of the viscous stress, div(mu grad(v)^T), lagged. It is taken in the form
-        // div(mu grad(v)^T) - grad(mu div v), which is the same for a solenoidal field: what is left
-        // depends on grad mu and vanishes for constant viscosity, so lagging it cannot feed back on the
-        // divergence the pressure step removes. Face terms: c = axis: -(d v_t / d x_t)_f,
-        // c != axis: (d v_axis / d x_c)_f, each mu_f n A; tangential derivatives from cell centres.
-        if (num.transpose_stress) {
-          for (int c = 0; c < 2; ++c) {
-            const int t = 1 - fg.axis;
-            const double* const* q = c == fg.axis ? vel[t] : vel[fg.axis];
-            const double sign = c == fg.axis ? -1.0 : 1.0;
-            double grad;
-            if ((c == fg.axis ? t : c) == 0) {  // an x-derivative at a north/south face
-              grad = 0.5 * ((q[j][i + 1] - q[j][i - 1]) / (grid_.xc(i + 1) - grid_.xc(i - 1)) +
-                            (q[jn][i + 1] - q[jn][i - 1]) / (grid_.xc(i + 1) - grid_.xc(i - 1)));
-            } else {  // a y-derivative at an east/west face
-              grad = 0.5 * ((q[j + 1][i] - q[j - 1][i]) / (grid_.yc(j + 1) - grid_.yc(j - 1)) +
-                            (q[j + 1][in] - q[j - 1][in]) / (grid_.yc(j + 1) - grid_.yc(j - 1)));
-            }
-            src[c] += fg.sign * sign * mu_f * grad * area;
           }
         }
       }

@@ -31,6 +31,10 @@ LinearSolver::LinearSolver(MPI_Comm comm, const std::string& prefix, const Linea
     set_default("P_max", "4");
   }
   PetscCallAbort(comm, KSPSetFromOptions(ksp_));
+  // A direct solve (preonly) takes no initial guess; iterative ones start from the last solution.
+  KSPType type;
+  KSPGetType(ksp_, &type);
+  if (std::string(type) == KSPPREONLY) KSPSetInitialGuessNonzero(ksp_, PETSC_FALSE);
 }
 
 LinearSolver::~LinearSolver() { KSPDestroy(&ksp_); }
