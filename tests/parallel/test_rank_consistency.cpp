@@ -1,0 +1,62 @@
+// The same case on all ranks of the communicator and on rank 0 alone must agree to the solver
+// tolerance. Run under mpirun -np 2 (see tests/parallel.cmake).
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include "io/case_file.hpp"
+#include "io/gather.hpp"
+#include "solver/simulation.hpp"
+
+namespace granflow {
+namespace {
+
+struct Snapshot {
+  std::vector<double> u, v, p;
+};
+
+Snapshot run_on(MPI_Comm comm, const CaseConfig& config) {
+  Simulation sim(comm, config, "");
+  sim.run();
+  return {gather_to_root(sim.grid(), sim.flow().velocity(0)), gather_to_root(sim.grid(), sim.flow().velocity(1)),
+          gather_to_root(sim.grid(), sim.flow().pressure())};
+}
+
+double max_difference(const std::vector<double>& a, const std::vector<double>& b) {
+  double d = 0.0;
+  for (size_t k = 0; k < a.size(); ++k) d = std::max(d, std::abs(a[k] - b[k]));
+  return d;
+}
+
+void expect_rank_independent(const std::string& case_file, const std::vector<std::string>& overrides, double tol) {
+  int rank, size;
+  MPI_Comm_rank(PETSC_COMM_WORLD, &rank);
+  MPI_Comm_size(PETSC_COMM_WORLD, &size);
+  ASSERT_GE(size, 2) << "run this test with mpirun -np 2 or more";
+  const CaseConfig config = load_case(std::string(GRANFLOW_SOURCE_DIR) + "/" + case_file, overrides);
+  const Snapshot parallel = run_on(PETSC_COMM_WORLD, config);
+  double diff[3] = {0, 0, 0};
+  if (rank == 0) {
+    const Snapshot serial = run_on(PETSC_COMM_SELF, config);
+    diff[0] = max_difference(parallel.u, serial.u);
+    diff[1] = max_difference(parallel.v, serial.v);
+    diff[2] = max_difference(parallel.p, serial.p);
+    std::printf("%s on %d ranks vs 1: max |du| %.2e  |dv| %.2e  |dp| %.2e\n", case_file.c_str(), size, diff[0], diff[1],
+                diff[2]);
+  }
+  MPI_Bcast(diff, 3, MPI_DOUBLE, 0, PETSC_COMM_WORLD);
+  EXPECT_LT(diff[0], tol);
+  EXPECT_LT(diff[1], tol);
+}
+
+TEST(RankConsistency, CavityOneAndTwoRanksAgree) {
+  expect_rank_independent("cases/lid_driven_cavity_re100.toml",
+                          {"mesh.cells=[48,48]", "time.end=2.0", "time.steady_tolerance=0", "output.progress_seconds=0",
+                           "solver.pressure.rtol=1e-12", "solver.momentum.rtol=1e-12"},
+                          1e-8);
+}
+
+}  // namespace
+}  // namespace granflow
