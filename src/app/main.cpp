@@ -7,6 +7,7 @@
 
 #include "io/case_error.hpp"
 #include "io/case_file.hpp"
+#include "models/rheology/element_test.hpp"
 #include "solver/simulation.hpp"
 
 namespace {
@@ -52,7 +53,24 @@ int main(int argc, char** argv) {
   check->add_option("case", case_file, "case file (TOML)")->required();
   check->add_option("--set", overrides, "override a case key: KEY=VALUE (repeatable)");
 
+  double phi_deg = 36.5;
+  bool csv = false;
+  auto* element = app.add_subcommand("element-test",
+                                     "print the element test of the yield-surface viscosities (Table 1 of Rauter et al. 2020)");
+  element->add_option("--phi", phi_deg, "friction angle in degrees")->check(CLI::Range(0.001, 89.999));
+  element->add_flag("--csv", csv, "print CSV instead of a table");
+
   CLI11_PARSE(app, argc, argv);
+
+  if (*element) {
+    try {
+      fmt::print("{}", granflow::rheology::format_element_test(phi_deg, csv));
+      return 0;
+    } catch (const std::exception& e) {
+      fmt::print(stderr, "error: {}\n", e.what());
+      return 2;
+    }
+  }
 
   if (*check) {
     try {
