@@ -9,6 +9,7 @@
 
 #include "io/case_error.hpp"
 #include "io/table_reader.hpp"
+#include "models/rheology/parameters.hpp"
 
 namespace granflow {
 
@@ -57,6 +58,8 @@ LinearSolverSettings read_linear_solver(TableReader r, LinearSolverSettings d) {
   d.atol = r.number("atol", d.atol);
   r.require_range("atol", d.atol, 0.0, inf);
   d.max_iterations = int(r.integer("max_iterations", d.max_iterations));
+  d.max_reuse = int(r.integer("reuse_preconditioner", d.max_reuse));
+  r.require_range("reuse_preconditioner", d.max_reuse, 1, 1e6);
   r.require_range("max_iterations", d.max_iterations, 1, 1e9);
   r.finish();
   return d;
@@ -75,14 +78,125 @@ BoundaryCondition read_boundary(TableReader r) {
     bc.kind = BoundaryKind::atmosphere;
     bc.pressure = r.number("pressure", 0.0);
     bc.total_pressure = r.choice("pressure_kind", "total", {"total", "static"}) == "total";
+    bc.inflow_soil_fraction = r.number("inflow_soil_fraction", 0.0);
+    r.require_range("inflow_soil_fraction", bc.inflow_soil_fraction, 0.0, 1.0);
   }
   r.finish();
   return bc;
 }
 
+mixture::MixtureInterpolation read_mixing(TableReader& m, const std::string& property) {
+  mixture::MixtureInterpolation mix;
+  const std::string kind = m.choice(property, "linear", {"linear", "arctan"});
+  mixture::parse_interpolation_kind(kind, mix.kind);
+  if (mix.kind == mixture::InterpolationKind::arctan) {
+    mix.M = m.number("arctan_M", 0.0);
+    m.require_range("arctan_M", mix.M, -0.5, 0.5);
+    mix.N = m.number("arctan_N", 1.0);
+    m.require_range("arctan_N", mix.N, 1e-6, 1e6, "positive");
+  }
+  return mix;
+}
+
+template <class Enum, class Parse>
+Enum read_enum(TableReader& r, std::string_view key, Enum fallback, Parse parse, const auto& names) {
+  const std::string text = r.string(key, std::string(rheology::to_string(fallback)));
+  if (auto v = parse(text)) return *v;
+  std::string list;
+  for (auto n : names) list += (list.empty() ? "" : ", ") + std::string(n);
+  throw CaseError(fmt::format("{}: '{}' is not one of: {}", r.key_path(key), text, list));
+}
+
+rheology::RheologyParameters read_rheology(TableReader r, double soil_density) {
+  using namespace rheology;
+  RheologyParameters p;
+  p.density = soil_density;
+  p.model = read_enum(r, "model", p.model, parse_model, model_names);
+  p.friction = read_enum(r, "friction", p.friction, parse_friction_source, friction_source_names);
+  p.regularisation = read_enum(r, "regularisation", p.regularisation, parse_regularisation, regularisation_names);
+  p.matsuoka_nakai_fit =
+      read_enum(r, "matsuoka_nakai_fit", p.matsuoka_nakai_fit, parse_matsuoka_nakai_fit, matsuoka_nakai_fit_names);
+  p.friction_angle_deg = r.number("friction_angle", p.friction_angle_deg);
+  p.cohesion = r.number("cohesion", p.cohesion);
+  p.regularisation_time = r.number("m", p.regularisation_time);
+  p.min_dynamic_viscosity = r.number("mu_min", p.min_dynamic_viscosity);
+  p.min_kinematic_viscosity = r.number("nu_min", p.min_kinematic_viscosity);
+  p.max_kinematic_viscosity = r.number("nu_max", p.max_kinematic_viscosity);
+  p.grain_diameter = r.number("grain_diameter", p.grain_diameter);
+  p.static_friction = r.number("mu_s", p.static_friction);
+  p.limiting_friction = r.number("mu_2", p.limiting_friction);
+  p.reference_inertial_number = r.number("I_0", p.reference_inertial_number);
+  r.finish();
+  if (auto err = validate(p)) throw CaseError(fmt::format("{}: {}", r.path(), *err));
+  return p;
+}
+
+interface::Shape read_shape(TableReader r) {
+  const std::string shape = r.choice("shape", "", {"box", "circle", "polygon"});
+  interface::Shape out;
+  if (shape == "box") {
+    interface::Box b{r.required_pair("lower"), r.required_pair("upper")};
+    if (!(b.upper[0] > b.lower[0] && b.upper[1] > b.lower[1]))
+      throw CaseError(fmt::format("{}.upper: the box is empty (upper must exceed lower in x and y)", r.path()));
+    out = b;
+  } else if (shape == "circle") {
+    interface::Circle c{r.required_pair("centre"), r.required_number("radius")};
+    r.require_range("radius", c.radius, 1e-300, 1e300, "positive");
+    out = c;
+  } else {
+    out = interface::Polygon{r.pairs("points", 3)};
+  }
+  r.finish();
+  return out;
+}
+
+SoilSettings read_soil(TableReader& top) {
+  SoilSettings s;
+  {
+    TableReader a = top.table("air");
+    if (!a.present()) throw CaseError("air: missing table [air] (density and viscosity of the light phase)");
+    s.air_density = a.required_number("density");
+    a.require_range("density", s.air_density, 1e-300, inf, "positive");
+    s.air_viscosity = a.required_number("viscosity");
+    a.require_range("viscosity", s.air_viscosity, 0.0, inf, "zero or positive");
+    a.finish();
+  }
+  {
+    TableReader so = top.table("soil");
+    s.soil_density = so.required_number("density");
+    so.require_range("density", s.soil_density, 1e-300, inf, "positive");
+    TableReader rh = so.table("rheology");
+    if (rh.present()) {
+      s.rheology = read_rheology(rh, s.soil_density);
+    } else {
+      s.soil_viscosity = so.required_number("viscosity");
+      so.require_range("viscosity", s.soil_viscosity, 0.0, inf, "zero or positive");
+    }
+    s.displacement = so.boolean("displacement", s.rheology.has_value());
+    s.failure_strain = so.number("failure_strain", s.failure_strain);
+    so.require_range("failure_strain", s.failure_strain, 1e-6, 10.0);
+    so.finish();
+  }
+  {
+    TableReader m = top.table("mixture");
+    s.density_mixing = read_mixing(m, "density");
+    s.viscosity_mixing = read_mixing(m, "viscosity");
+    m.finish();
+  }
+  {
+    TableReader init = top.table("initial");
+    if (!init.present()) throw CaseError("initial: missing table [[initial.soil]] (where the soil starts)");
+    for (TableReader shape : init.tables("soil")) s.initial_soil.push_back(read_shape(shape));
+    if (s.initial_soil.empty()) throw CaseError("initial.soil: at least one shape is required");
+    init.finish();
+  }
+  return s;
+}
+
 CaseConfig read_case(const toml::table& root, const std::filesystem::path& source) {
   CaseConfig c;
   c.source = source;
+  double interface_courant = 0.45;
   TableReader top(&root, "");
   c.title = top.string("title", source.stem().string());
 
@@ -120,6 +234,8 @@ CaseConfig read_case(const toml::table& root, const std::filesystem::path& sourc
     if (!(c.time.max_dt > 0)) throw CaseError("time.max_dt: must be positive");
     c.time.max_growth = t.number("max_growth", 1.2);
     t.require_range("max_growth", c.time.max_growth, 1.0, 10.0);
+    interface_courant = t.number("interface_courant", 0.45);
+    t.require_range("interface_courant", interface_courant, 1e-3, 0.49, "in (0, 0.49]");
     c.time.steady_tolerance = t.number("steady_tolerance", 0.0);
     t.require_range("steady_tolerance", c.time.steady_tolerance, 0.0, inf);
     c.time.max_steps = t.integer("max_steps", c.time.max_steps);
@@ -131,9 +247,12 @@ CaseConfig read_case(const toml::table& root, const std::filesystem::path& sourc
     c.flow.gravity = p.pair("gravity", {0.0, 0.0});
     p.finish();
   }
-  {
+  if (top.has("soil")) {
+    c.soil = read_soil(top);
+    if (top.has("fluid")) throw CaseError("fluid: a two-phase case ([soil] and [air]) takes no [fluid] table");
+  } else {
     TableReader f = top.table("fluid");
-    if (!f.present()) throw CaseError("fluid: missing table [fluid] (density and viscosity)");
+    if (!f.present()) throw CaseError("fluid: missing table [fluid] (density and viscosity), or [soil] and [air]");
     c.fluid.density = f.required_number("density");
     f.require_range("density", c.fluid.density, 1e-300, inf, "positive");
     c.fluid.viscosity = f.required_number("viscosity");
@@ -206,6 +325,7 @@ CaseConfig read_case(const toml::table& root, const std::filesystem::path& sourc
     o.finish();
   }
   top.finish();
+  if (c.soil) c.soil->interface_courant = interface_courant;
   return c;
 }
 

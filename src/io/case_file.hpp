@@ -1,11 +1,13 @@
 #pragma once
 // A granflow case: everything a run needs, read from a TOML file plus --set overrides.
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "mesh/grid.hpp"
 #include "solver/flow_settings.hpp"
+#include "solver/soil_settings.hpp"
 
 namespace granflow {
 
@@ -45,7 +47,8 @@ struct CaseConfig {
   GridSpec mesh;
   TimeSettings time;
   FlowSettings flow;
-  PhaseSettings fluid;
+  PhaseSettings fluid;              // single-phase runs
+  std::optional<SoilSettings> soil;  // two-phase soil and air runs
   OutputSettings output;
 };
 

@@ -110,6 +110,23 @@ std::array<double, 2> TableReader::required_pair(std::string_view key) {
   return pair(key, {});
 }
 
+std::vector<std::array<double, 2>> TableReader::pairs(std::string_view key, size_t min_size) {
+  const toml::node* n = get(key);
+  if (!n) throw CaseError(fmt::format("{}: missing (a list of [x, y] points is required)", key_path(key)));
+  const toml::array* arr = n->as_array();
+  if (!arr) type_error(key, "a list of [x, y] points");
+  std::vector<std::array<double, 2>> out;
+  for (const auto& e : *arr) {
+    const toml::array* pt = e.as_array();
+    if (!pt || pt->size() != 2) type_error(key, "a list of [x, y] points");
+    auto x = (*pt)[0].value<double>(), y = (*pt)[1].value<double>();
+    if (!x || !y || !std::isfinite(*x) || !std::isfinite(*y)) type_error(key, "a list of [x, y] points");
+    out.push_back({*x, *y});
+  }
+  if (out.size() < min_size) type_error(key, fmt::format("at least {} points", min_size).c_str());
+  return out;
+}
+
 TableReader TableReader::table(std::string_view key) {
   const toml::node* n = get(key);
   if (!n) return TableReader(nullptr, key_path(key));

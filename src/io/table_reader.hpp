@@ -34,6 +34,8 @@ class TableReader {
   std::vector<double> numbers(std::string_view key, std::vector<double> fallback, size_t min_size = 0);
   std::array<double, 2> pair(std::string_view key, std::array<double, 2> fallback);
   std::array<double, 2> required_pair(std::string_view key);
+  // An array of [x, y] pairs, at least min_size of them.
+  std::vector<std::array<double, 2>> pairs(std::string_view key, size_t min_size);
 
   // A sub-table; absent gives a reader with present() == false whose reads return their fallbacks.
   TableReader table(std::string_view key);

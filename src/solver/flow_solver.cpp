@@ -73,8 +73,10 @@ FlowSolver::FlowSolver(const Grid& grid, const FlowSettings& settings) : grid_(g
   pressure_solver_ = std::make_unique<LinearSolver>(comm, "pressure", settings.pressure_solver);
   PetscCallAbort(comm, DMCreateGlobalVector(grid.field_dm(), &rhs_));
 
-  for (Side s : all_sides)
+  for (Side s : all_sides) {
     if (boundary(settings.boundaries, s).kind == BoundaryKind::atmosphere) has_pressure_boundary_ = true;
+    if (boundary(settings.boundaries, s).kind == BoundaryKind::slip) shared_momentum_matrix_ = false;
+  }
   if (!has_pressure_boundary_) {
     PetscCallAbort(comm, MatNullSpaceCreate(comm, PETSC_TRUE, 0, nullptr, &pressure_null_space_));
     PetscCallAbort(comm, MatSetNullSpace(pressure_matrix_, pressure_null_space_));
@@ -335,6 +337,7 @@ void FlowSolver::assemble_momentum(double dt) {
     by = std::make_unique<ConstFieldArray>(grid_.field_dm(), body_force_[1]->global());
   }
 
+  const double stress_factor = num.transpose_stress ? 2.0 : 1.0;  // implicit share, see below
   for (int j = b.ys; j < b.ye(); ++j)
     for (int i = b.xs; i < b.xe(); ++i) {
       const size_t k = size_t(j - b.ys) * b.xm + (i - b.xs);
@@ -355,32 +358,32 @@ void FlowSolver::assemble_momentum(double dt) {
         const double area = fg.axis == 0 ? dy : dx;
         const bool is_boundary = in < 0 || in >= nx || jn < 0 || jn >= ny;
         const double mu_face = is_boundary ? muP : face_mean(num.face_viscosity, muP, mu[jn][in]);
-        // Transpose part of the viscous stress, div(mu grad(v)^T), lagged. It is taken in the form
-        // div(mu grad(v)^T) - grad(mu div v), which is the same for a solenoidal field: what is left
-        // depends on grad mu and vanishes for constant viscosity, so lagging it cannot feed back on the
-        // divergence the pressure step removes. Face terms: c = axis: -(d v_t / d x_t)_f,
-        // c != axis: (d v_axis / d x_c)_f, each mu_f n A; tangential derivatives from cell centres.
-        // Boundary faces use the ghosts, which encode the boundary condition (zero at a resting wall).
+        // Full viscous stress div(mu (grad v + grad v^T)), split as in Jasak & Weller (2000): the
+        // implicit part is 2 mu grad(v_c) on every face, and the lagged remainder on faces tangential
+        // to c is mu [(d v_n / d x_c) - (d v_c / d n)]. The implicit part bounds the lagged one, so the
+        // iteration is stable at any viscosity, and at convergence the stress is exactly the symmetric
+        // one. Boundary faces read the ghosts, which encode the boundary condition.
         if (num.transpose_stress) {
           for (int c = 0; c < 2; ++c) {
-            const int t = 1 - fg.axis;
-            const double* const* q = c == fg.axis ? vel[t] : vel[fg.axis];
-            const double sign = c == fg.axis ? -1.0 : 1.0;
-            double grad;
-            if ((c == fg.axis ? t : c) == 0) {  // an x-derivative at a north/south face
-              grad = 0.5 * ((q[j][i + 1] - q[j][i - 1]) / (grid_.xc(i + 1) - grid_.xc(i - 1)) +
-                            (q[jn][i + 1] - q[jn][i - 1]) / (grid_.xc(i + 1) - grid_.xc(i - 1)));
-            } else {  // a y-derivative at an east/west face
-              grad = 0.5 * ((q[j + 1][i] - q[j - 1][i]) / (grid_.yc(j + 1) - grid_.yc(j - 1)) +
-                            (q[j + 1][in] - q[j - 1][in]) / (grid_.yc(j + 1) - grid_.yc(j - 1)));
-            }
-            src[c] += fg.sign * sign * mu_face * grad * area;
+            if (c == fg.axis) continue;
+            const double* const* qn = vel[fg.axis];  // normal component, differentiated along c
+            const double* const* qc = vel[c];        // component c, differentiated along the normal
+            double tangential;
+            if (c == 0)  // d v_n / dx at a north/south face
+              tangential = 0.5 * ((qn[j][i + 1] - qn[j][i - 1]) / (grid_.xc(i + 1) - grid_.xc(i - 1)) +
+                                  (qn[jn][i + 1] - qn[jn][i - 1]) / (grid_.xc(i + 1) - grid_.xc(i - 1)));
+            else  // d v_n / dy at an east/west face
+              tangential = 0.5 * ((qn[j + 1][i] - qn[j - 1][i]) / (grid_.yc(j + 1) - grid_.yc(j - 1)) +
+                                  (qn[j + 1][in] - qn[j - 1][in]) / (grid_.yc(j + 1) - grid_.yc(j - 1)));
+            const double dn = fg.axis == 0 ? grid_.xc(in) - grid_.xc(i) : grid_.yc(jn) - grid_.yc(j);
+            const double normal = (qc[jn][in] - qc[j][i]) / dn;
+            src[c] += fg.sign * mu_face * (tangential - normal) * area;
           }
         }
         if (is_boundary) {
           const auto& bc = boundary(settings_.boundaries, fg.side);
           const double d_half = 0.5 * (fg.axis == 0 ? dx : dy);
-          const double coeff = muP * area / d_half;
+          const double coeff = stress_factor * muP * area / d_half;
           if (bc.kind == BoundaryKind::wall) {
             for (int c = 0; c < 2; ++c) {
               extra[c] += coeff;
@@ -398,7 +401,7 @@ void FlowSolver::assemble_momentum(double dt) {
         const double d = fg.axis == 0 ? std::abs(grid_.xc(in) - grid_.xc(i)) : std::abs(grid_.yc(jn) - grid_.yc(j));
         const double mu_f = mu_face;
         const double conv = rhoP * std::max(-flux, 0.0);
-        a_nb[f] = mu_f * area / d + conv;
+        a_nb[f] = stress_factor * mu_f * area / d + conv;
         diag += a_nb[f];
         // Deferred correction to the higher-order face value (lagged in the outer iterations).
         if (num.convection != ConvectionScheme::upwind) {
@@ -428,7 +431,7 @@ void FlowSolver::assemble_momentum(double dt) {
       }
     }
 
-  for (int c = 0; c < 2; ++c) {
+  for (int c = 0; c < (shared_momentum_matrix_ ? 1 : 2); ++c) {
     Mat A = momentum_matrix_[c];
     for (int j = b.ys; j < b.ye(); ++j)
       for (int i = b.xs; i < b.xe(); ++i) {
@@ -464,7 +467,8 @@ int FlowSolver::solve_momentum() {
           r[j][i] = source_[c][k] + grid_.volume(i, j) * cell_force(c, i, j, ff.data(), rho.data());
         }
     }
-    iterations += momentum_solver_[c]->solve(rhs_, vel_[c]->global());
+    // Without slip walls both components have the same matrix: one operator, one preconditioner.
+    iterations += momentum_solver_[shared_momentum_matrix_ ? 0 : c]->solve(rhs_, vel_[c]->global());
   }
   fill_velocity_ghosts();
   return iterations;

@@ -109,6 +109,7 @@ class FlowSolver {
   std::unique_ptr<LinearSolver> momentum_solver_[2];
   std::unique_ptr<LinearSolver> pressure_solver_;
   bool has_pressure_boundary_ = false;
+  bool shared_momentum_matrix_ = true;  // no slip walls: u and v share their matrix
   double dt_ = 0.0;
 };
 

@@ -2,12 +2,13 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <stdexcept>
 
 namespace granflow {
 
 LinearSolver::LinearSolver(MPI_Comm comm, const std::string& prefix, const LinearSolverSettings& s)
-    : prefix_(prefix) {
+    : prefix_(prefix), max_reuse_(std::max(1, s.max_reuse)) {
   PetscCallAbort(comm, KSPCreate(comm, &ksp_));
   PetscCallAbort(comm, KSPSetOptionsPrefix(ksp_, (prefix + "_").c_str()));
   PetscCallAbort(comm, KSPSetType(ksp_, s.ksp_type.c_str()));
@@ -42,11 +43,22 @@ LinearSolver::~LinearSolver() { KSPDestroy(&ksp_); }
 void LinearSolver::set_operator(Mat a) { PetscCallAbort(PETSC_COMM_WORLD, KSPSetOperators(ksp_, a, a)); }
 
 int LinearSolver::solve(Vec b, Vec x) {
+  const bool rebuild = !built_ || solves_since_setup_ + 1 >= max_reuse_ ||
+                       last_iterations_ > 2 * std::max(iterations_after_setup_, 2);
+  KSPSetReusePreconditioner(ksp_, rebuild ? PETSC_FALSE : PETSC_TRUE);
   PetscCallAbort(PETSC_COMM_WORLD, KSPSolve(ksp_, b, x));
   KSPConvergedReason reason;
   PetscInt its;
   KSPGetConvergedReason(ksp_, &reason);
   KSPGetIterationNumber(ksp_, &its);
+  if (rebuild) {
+    built_ = true;
+    solves_since_setup_ = 0;
+    iterations_after_setup_ = int(its);
+  } else {
+    ++solves_since_setup_;
+  }
+  last_iterations_ = int(its);
   if (reason < 0 && reason != KSP_DIVERGED_ITS)
     throw std::runtime_error(fmt::format("linear solver '{}' failed: {}", prefix_, KSPConvergedReasons[reason]));
   return int(its);

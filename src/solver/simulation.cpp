@@ -8,6 +8,7 @@
 #include <cmath>
 
 #include "io/atomic_file.hpp"
+#include "io/contour.hpp"
 #include "io/gather.hpp"
 
 namespace granflow {
@@ -17,14 +18,22 @@ Simulation::Simulation(MPI_Comm comm, const CaseConfig& config, std::filesystem:
   MPI_Comm_rank(comm, &rank_);
   grid_ = std::make_unique<Grid>(comm, config.mesh);
   flow_ = std::make_unique<FlowSolver>(*grid_, config.flow);
-  const PhaseSettings fluid = config.fluid;
-  flow_->set_property_update([fluid](FlowSolver& f) {
-    VecSet(f.density().global(), fluid.density);
-    VecSet(f.viscosity().global(), fluid.viscosity);
-  });
+  if (config.soil) {
+    soil_ = std::make_unique<SoilPhase>(*grid_, flow_->settings(), *config.soil);
+    soil_->initialise();
+    flow_->set_property_update([soil = soil_.get()](FlowSolver& f) { soil->update_properties(f); });
+  } else {
+    const PhaseSettings fluid = config.fluid;
+    flow_->set_property_update([fluid](FlowSolver& f) {
+      VecSet(f.density().global(), fluid.density);
+      VecSet(f.viscosity().global(), fluid.viscosity);
+    });
+  }
   flow_->update_properties();
   flow_->refresh_ghosts();
   flow_->set_hydrostatic_pressure();
+  flow_->update_properties();  // the granular viscosity needs the pressure
+  if (soil_) initial_soil_volume_ = soil_->budget(*flow_).soil_volume;
   if (!out_.empty()) {
     if (rank_ == 0) std::filesystem::create_directories(out_);
     MPI_Barrier(comm);
@@ -50,6 +59,10 @@ double Simulation::choose_dt(double dt_previous) const {
   if (!t.adaptive) return t.dt;
   const double co = flow_->max_courant(dt_previous);
   double dt = co > 0.0 ? dt_previous * t.courant / co : dt_previous * t.max_growth;
+  if (soil_) {
+    const double ci = soil_->interface_courant(*flow_, dt_previous);
+    if (ci > 0.0) dt = std::min(dt, dt_previous * soil_->settings().interface_courant / ci);
+  }
   dt = std::min({dt, dt_previous * t.max_growth, t.max_dt});
   return dt;
 }
@@ -68,7 +81,26 @@ void Simulation::write_output() {
       vel[3 * k] = u[k];
       vel[3 * k + 1] = v[k];
     }
-    series_->write(g, time_, {{"velocity", 3, vel}, {"pressure", 1, p}, {"density", 1, rho}, {"viscosity", 1, mu}});
+    std::vector<CellData> data{{"velocity", 3, vel}, {"pressure", 1, p}, {"density", 1, rho}, {"viscosity", 1, mu}};
+    if (soil_) {
+      soil_->compute_diagnostics(*flow_);
+      auto dx = gather_to_root(g, soil_->displacement(0)), dy = gather_to_root(g, soil_->displacement(1));
+      std::vector<double> disp(dx.size() * 3, 0.0);
+      for (size_t k = 0; k < dx.size(); ++k) {
+        disp[3 * k] = dx[k];
+        disp[3 * k + 1] = dy[k];
+      }
+      data.push_back({"soil_fraction", 1, gather_to_root(g, soil_->soil_fraction())});
+      data.push_back({"displacement", 3, disp});
+      data.push_back({"strain_norm", 1, gather_to_root(g, soil_->strain_norm())});
+      data.push_back({"strain_rate_norm", 1, gather_to_root(g, soil_->strain_rate_norm())});
+      data.push_back({"lode_angle", 1, gather_to_root(g, soil_->lode_angle())});
+    }
+    series_->write(g, time_, data);
+  }
+  if (soil_) {
+    write_soil_lines();
+    write_history();
   }
   if (rank_ == 0) {
     for (const auto& line : config_.output.lines) {
@@ -89,6 +121,81 @@ void Simulation::write_output() {
   ++output_index_;
 }
 
+namespace {
+// Toe and wall height of the pile from the column heights h(x) = sum_j c dy (gathered on rank 0).
+struct PileShape {
+  double toe_thickness = 0.0;  // largest x whose column holds at least one cell of soil
+  double wall_height = 0.0;    // soil height in the first column
+};
+PileShape pile_shape(const Grid& g, const std::vector<double>& c) {
+  PileShape s;
+  for (int i = 0; i < g.nx(); ++i) {
+    double h = 0.0;
+    for (int j = 0; j < g.ny(); ++j) h += c[size_t(j) * g.nx() + i] * g.dy(j);
+    if (i == 0) s.wall_height = h;
+    if (h >= g.dy(0)) s.toe_thickness = g.xf(i);
+  }
+  return s;
+}
+double toe_of(const std::vector<Segment>& surface) {
+  double toe = 0.0;
+  for (const auto& seg : surface) toe = std::max({toe, seg.x0, seg.x1});
+  return toe;
+}
+}  // namespace
+
+void Simulation::record_history(double dt) {
+  const SoilBudget b = soil_->budget(*flow_);
+  dissipated_energy_ += b.dissipation_rate * dt;
+  const auto c = gather_to_root(*grid_, soil_->soil_fraction());
+  if (rank_ != 0) return;
+  const PileShape shape = pile_shape(*grid_, c);
+  const double toe_contour = toe_of(iso_line(*grid_, c, 0.5));
+  history_.push_back(fmt::format("{:.9g},{:.6g},{:.15g},{:.15g},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g}", time_, dt,
+                                 b.soil_volume, b.air_volume, b.kinetic_energy, b.potential_energy, dissipated_energy_,
+                                 toe_contour, shape.toe_thickness, shape.wall_height));
+}
+
+void Simulation::write_history() const {
+  if (rank_ != 0) return;
+  write_file_atomically(out_ / "history.csv", [&](std::ostream& out) {
+    fmt::print(out, "time,dt,soil_volume,air_volume,kinetic_energy,potential_energy,dissipated_energy,"
+                    "toe_contour,toe_one_cell,wall_height\n");
+    for (const auto& row : history_) fmt::print(out, "{}\n", row);
+  });
+}
+
+// Soil surface (c = 0.5), column heights and failure line (strain norm at its failure value, inside
+// the soil) at the current time, as CSV.
+void Simulation::write_soil_lines() const {
+  const Grid& g = *grid_;
+  const auto c = gather_to_root(g, soil_->soil_fraction());
+  const auto e = gather_to_root(g, soil_->strain_norm());
+  if (rank_ != 0) return;
+  const std::string stamp = fmt::format("{:05d}", output_index_);
+  auto write_segments = [&](const std::string& name, const std::vector<Segment>& segs) {
+    write_file_atomically(out_ / fmt::format("{}_{}.csv", name, stamp), [&](std::ostream& out) {
+      fmt::print(out, "# {} at t = {:.9g} s\nx0,y0,x1,y1\n", name, time_);
+      for (const auto& s : segs) fmt::print(out, "{:.9g},{:.9g},{:.9g},{:.9g}\n", s.x0, s.y0, s.x1, s.y1);
+    });
+  };
+  write_segments("surface", iso_line(g, c, 0.5));
+  const int nx = g.nx();
+  auto inside = [&](int i, int j) {
+    return c[size_t(j) * nx + i] > 0.5 && c[size_t(j) * nx + i + 1] > 0.5 && c[size_t(j + 1) * nx + i] > 0.5 &&
+           c[size_t(j + 1) * nx + i + 1] > 0.5;
+  };
+  write_segments("failure_line", iso_line(g, e, soil_->settings().failure_strain, inside));
+  write_file_atomically(out_ / fmt::format("column_height_{}.csv", stamp), [&](std::ostream& out) {
+    fmt::print(out, "# soil height per column (sum of c dy) at t = {:.9g} s\nx,height\n", time_);
+    for (int i = 0; i < nx; ++i) {
+      double h = 0.0;
+      for (int j = 0; j < g.ny(); ++j) h += c[size_t(j) * nx + i] * g.dy(j);
+      fmt::print(out, "{:.9g},{:.9g}\n", g.xc(i), h);
+    }
+  });
+}
+
 RunSummary Simulation::run() {
   using clock = std::chrono::steady_clock;
   const auto start = clock::now();
@@ -105,8 +212,11 @@ RunSummary Simulation::run() {
     if (time_ + step_dt > t_out * (1 - 1e-12)) step_dt = t_out - time_;
     else if (time_ + 1.5 * step_dt > t_out) step_dt = 0.5 * (t_out - time_);  // avoid a sliver step
     for (int a = 0; a < 2; ++a) VecCopy(flow_->velocity(a).global(), previous[a]);
+    if (soil_) soil_->advect(*flow_, step_dt);  // explicit interface, then the implicit flow step
     const StepReport r = flow_->step(step_dt);
+    if (soil_) soil_->transport_displacement(*flow_, step_dt);
     time_ += step_dt;
+    if (soil_) record_history(step_dt);
     ++summary.steps;
     summary.outer_iterations += r.outer_iterations;
     summary.momentum_iterations += r.momentum_iterations;
@@ -150,6 +260,8 @@ RunSummary Simulation::run() {
   }
   for (int a = 0; a < 2; ++a) VecDestroy(&previous[a]);
   if (summary.reached_steady_state || summary.steps >= tc.max_steps) write_output();
+  if (soil_ && initial_soil_volume_ > 0.0)
+    summary.soil_volume_error = soil_->budget(*flow_).soil_volume / initial_soil_volume_ - 1.0;
   summary.time = time_;
   summary.wall_seconds = std::chrono::duration<double>(clock::now() - start).count();
   return summary;

@@ -7,10 +7,12 @@
 #include "io/vtk_series.hpp"
 #include "mesh/grid.hpp"
 #include "solver/flow_solver.hpp"
+#include "solver/soil_phase.hpp"
 
 namespace granflow {
 
 struct RunSummary {
+  double soil_volume_error = 0.0;  // relative change of the soil volume over the run
   long steps = 0;
   double time = 0.0;
   double wall_seconds = 0.0;
@@ -35,6 +37,7 @@ class Simulation {
   RunSummary run();
   const Grid& grid() const { return *grid_; }
   FlowSolver& flow() { return *flow_; }
+  SoilPhase* soil() { return soil_.get(); }
   const CaseConfig& config() const { return config_; }
   double time() const { return time_; }
 
@@ -43,13 +46,20 @@ class Simulation {
 
  private:
   double next_output_time() const;
+  void record_history(double dt);
+  void write_history() const;
+  void write_soil_lines() const;
   double choose_dt(double dt_previous) const;
 
   CaseConfig config_;
   std::filesystem::path out_;
   std::unique_ptr<Grid> grid_;
   std::unique_ptr<FlowSolver> flow_;
+  std::unique_ptr<SoilPhase> soil_;
   std::unique_ptr<VtkSeries> series_;
+  std::vector<std::string> history_;  // rows of history.csv, rewritten whole at each output
+  double dissipated_energy_ = 0.0;
+  double initial_soil_volume_ = 0.0;
   double time_ = 0.0;
   int output_index_ = 0;
   int rank_ = 0;

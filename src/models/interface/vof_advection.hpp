@@ -18,12 +18,12 @@
 //   4. vof_sweep(second axis, ...) back into c; alternate the axis order every step.
 #pragma once
 
+#include "mesh/cell_box.hpp"
+
 namespace granflow::interface {
 
 // Owned cells [xs, xs+xm) x [ys, ys+ym) in global indices.
-struct CellBox {
-  int xs, ys, xm, ym;
-};
+using granflow::CellBox;
 
 // One directional sweep (axis 0 = x, 1 = y) of Weymouth & Yue's scheme:
 //   c_new = c + (F_low - F_high)/h + cc * (u_high - u_low) dt/h,

@@ -1,0 +1,116 @@
+#!/usr/bin/python3
+"""Compare a granflow run of bui2008_experiment with the experiment of Bui et al. (2008).
+
+Usage: compare_bui2008.py RUN_DIR [--png FILE] [--json FILE]
+Reads the last output of RUN_DIR (column_height_*.csv, surface_*.csv, failure_line_*.csv) and prints:
+run-out (toe of the c = 0.5 contour and of a one-cell-thick layer) against 0.442 m, the RMS height
+difference at the experiment's surface points, and the mean distance of the experiment's failure
+points from the computed failure line.
+"""
+import argparse
+import glob
+import json
+import os
+import sys
+
+import numpy as np
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+REFDATA = os.path.join(HERE, "..", "validation", "refdata")
+EXPERIMENT_RUNOUT = 0.442
+
+
+def read_csv(path):
+    rows = [l.strip() for l in open(path) if l.strip() and not l.startswith("#")]
+    header = rows[0].split(",")
+    data = np.array([[float(x) for x in r.split(",")] for r in rows[1:]]) if len(rows) > 1 else np.zeros((0, len(header)))
+    return {h: data[:, k] for k, h in enumerate(header)}
+
+
+def last(run_dir, name):
+    files = sorted(glob.glob(os.path.join(run_dir, f"{name}_*.csv")))
+    if not files:
+        sys.exit(f"error: no {name}_*.csv in {run_dir}")
+    return files[-1]
+
+
+def time_of(path):
+    first = open(path).readline()
+    return float(first.split("t =")[1].split()[0]) if "t =" in first else float("nan")
+
+
+def metrics(run_dir):
+    cols = read_csv(last(run_dir, "column_height"))
+    surf = read_csv(last(run_dir, "surface"))
+    fail = read_csv(last(run_dir, "failure_line"))
+    exp_s = read_csv(os.path.join(REFDATA, "bui2008_al_bar_collapse_final_surface.csv"))
+    exp_f = read_csv(os.path.join(REFDATA, "bui2008_al_bar_collapse_failure_line.csv"))
+    x, h = cols["x"], cols["height"]
+    dx = x[1] - x[0]
+    toe_cell = x[h >= dx].max() + 0.5 * dx if np.any(h >= dx) else 0.0
+    toe_contour = max(surf["x0"].max(), surf["x1"].max()) if len(surf["x0"]) else 0.0
+    ex, ey = exp_s["x_m"], exp_s["y_m"]
+    heights = np.interp(ex, x, h)
+    rms = float(np.sqrt(np.mean((heights - ey) ** 2)))
+    fx, fy = exp_f[list(exp_f)[0]], exp_f[list(exp_f)[1]]
+    mean_dist = float("nan")
+    if len(fail["x0"]):
+        p0 = np.stack([fail["x0"], fail["y0"]], 1)
+        p1 = np.stack([fail["x1"], fail["y1"]], 1)
+        d = []
+        for q in np.stack([fx, fy], 1):
+            seg = p1 - p0
+            t = np.clip(np.einsum("ij,ij->i", q - p0, seg) / np.maximum(np.einsum("ij,ij->i", seg, seg), 1e-30), 0, 1)
+            closest = p0 + t[:, None] * seg
+            d.append(np.sqrt(((closest - q) ** 2).sum(1)).min())
+        mean_dist = float(np.mean(d))
+    return {
+        "time": time_of(last(run_dir, "column_height")),
+        "runout_contour_m": float(toe_contour),
+        "runout_one_cell_m": float(toe_cell),
+        "runout_experiment_m": EXPERIMENT_RUNOUT,
+        "runout_error_contour": float(toe_contour / EXPERIMENT_RUNOUT - 1),
+        "runout_error_one_cell": float(toe_cell / EXPERIMENT_RUNOUT - 1),
+        "surface_rms_m": rms,
+        "failure_line_mean_distance_m": mean_dist,
+    }, (x, h, surf, fail, exp_s, exp_f)
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument("run_dir")
+    ap.add_argument("--png")
+    ap.add_argument("--json")
+    a = ap.parse_args()
+    m, (x, h, surf, fail, exp_s, exp_f) = metrics(a.run_dir)
+    for k, v in m.items():
+        print(f"{k} = {v:.4f}" if isinstance(v, float) else f"{k} = {v}")
+    if a.json:
+        json.dump(m, open(a.json, "w"), indent=1)
+    if a.png:
+        import matplotlib
+        matplotlib.use("Agg")
+        import matplotlib.pyplot as plt
+        fig, ax = plt.subplots(figsize=(9, 3.6))
+        for k in range(len(surf["x0"])):
+            ax.plot([surf["x0"][k], surf["x1"][k]], [surf["y0"][k], surf["y1"][k]], "b-", lw=1.5,
+                    label="granflow surface (c = 0.5)" if k == 0 else None)
+        for k in range(len(fail["x0"])):
+            ax.plot([fail["x0"][k], fail["x1"][k]], [fail["y0"][k], fail["y1"][k]], "r-", lw=1.2,
+                    label="granflow failure line (||e|| = 0.3)" if k == 0 else None)
+        ax.plot(exp_s["x_m"], exp_s["y_m"], "ko", mfc="none", ms=4, label="experiment surface")
+        fk = list(exp_f)
+        ax.plot(exp_f[fk[0]], exp_f[fk[1]], "ks", mfc="none", ms=4, label="experiment failure line")
+        ax.plot([0, 0.2, 0.2], [0.1, 0.1, 0], "k:", lw=0.8, label="initial block")
+        ax.set_xlim(0, 0.6); ax.set_ylim(0, 0.12); ax.set_aspect("equal")
+        ax.set_xlabel("x [m]"); ax.set_ylabel("y [m]")
+        ax.set_title(f"Bui et al. (2008) collapse, t = {m['time']:.2f} s: run-out {m['runout_contour_m']:.3f} m "
+                     f"(experiment 0.442), RMS {1000 * m['surface_rms_m']:.1f} mm")
+        ax.legend(fontsize=7, loc="upper right")
+        fig.tight_layout()
+        fig.savefig(a.png, dpi=130)
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,30 @@
+#pragma once
+// Initial soil regions: boxes, circles (cylinders in 2D), polygons, and their union; and the
+// fraction of a cell they cover.
+#include <array>
+#include <variant>
+#include <vector>
+
+namespace granflow::interface {
+
+using Point = std::array<double, 2>;
+struct Box {
+  Point lower, upper;
+};
+struct Circle {
+  Point centre;
+  double radius;
+};
+struct Polygon {
+  std::vector<Point> vertices;  // either orientation, not self-intersecting
+};
+using Shape = std::variant<Box, Circle, Polygon>;
+
+bool contains(const Shape& shape, double x, double y);
+bool union_contains(const std::vector<Shape>& shapes, double x, double y);
+
+// Fraction of the cell [x0,x1] x [y0,y1] inside the union, by samples x samples midpoint sampling
+// (error O(1/samples) only in cells the boundary crosses).
+double union_fraction(const std::vector<Shape>& shapes, double x0, double x1, double y0, double y1, int samples = 32);
+
+}  // namespace granflow::interface

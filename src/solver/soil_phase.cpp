@@ -1,0 +1,262 @@
+#include "solver/soil_phase.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+#include "models/interface/vof_advection.hpp"
+#include "models/rheology/invariants.hpp"
+#include "models/strain/euler_almansi.hpp"
+
+namespace granflow {
+
+namespace {
+double mpi_max(MPI_Comm comm, double v) {
+  double r = v;
+  MPI_Allreduce(&v, &r, 1, MPI_DOUBLE, MPI_MAX, comm);
+  return r;
+}
+}  // namespace
+
+rheology::StrainRate cell_strain_rate(const Grid& g, const double* const* u, const double* const* v, int i, int j) {
+  const double hx = g.xc(i + 1) - g.xc(i - 1), hy = g.yc(j + 1) - g.yc(j - 1);
+  const double dudx = (u[j][i + 1] - u[j][i - 1]) / hx, dudy = (u[j + 1][i] - u[j - 1][i]) / hy;
+  const double dvdx = (v[j][i + 1] - v[j][i - 1]) / hx, dvdy = (v[j + 1][i] - v[j - 1][i]) / hy;
+  return rheology::planar_strain_rate(dudx, dvdy, 0.5 * (dudy + dvdx));
+}
+
+SoilPhase::SoilPhase(const Grid& grid, const FlowSettings& flow, const SoilSettings& settings)
+    : grid_(grid), flow_settings_(flow), settings_(settings) {
+  if (settings.rheology) rheology_.emplace(*settings.rheology);
+  auto make = [&] { return std::make_unique<Field>(grid); };
+  c_ = make();
+  c_tmp_ = make();
+  dilatation_ = make();
+  strain_norm_ = make();
+  rate_norm_ = make();
+  lode_ = make();
+  for (int a = 0; a < 2; ++a) {
+    disp_[a] = make();
+    disp_new_[a] = make();
+    disp_[a]->set(0.0);
+  }
+  for (Field* f : {c_.get(), c_tmp_.get(), dilatation_.get(), strain_norm_.get(), rate_norm_.get(), lode_.get()})
+    f->set(0.0);
+}
+
+void SoilPhase::initialise() {
+  {
+    FieldArray c(grid_.field_dm(), c_->global());
+    const auto& b = grid_.owned();
+    for (int j = b.ys; j < b.ye(); ++j)
+      for (int i = b.xs; i < b.xe(); ++i) {
+        const double x0 = grid_.xc(i) - 0.5 * grid_.dx(i), y0 = grid_.yc(j) - 0.5 * grid_.dy(j);
+        c[j][i] = interface::union_fraction(settings_.initial_soil, x0, x0 + grid_.dx(i), y0, y0 + grid_.dy(j));
+      }
+  }
+  fill_fraction_ghosts(*c_);
+}
+
+// Ghosts of c: soil carried in through an atmosphere boundary has the boundary's inflow fraction;
+// walls mirror, which gives interface normals meeting a wall at right angles.
+void SoilPhase::fill_fraction_ghosts(Field& f) const {
+  f.scatter_to_local();
+  FieldArray a(grid_.field_dm(), f.local());
+  const auto& b = grid_.owned();
+  const int nx = grid_.nx(), ny = grid_.ny(), gw = Grid::ghost_width;
+  auto value = [&](Side s, double mirror) {
+    const auto& bc = boundary(flow_settings_.boundaries, s);
+    return bc.kind == BoundaryKind::atmosphere ? bc.inflow_soil_fraction : mirror;
+  };
+  for (int k = 1; k <= gw; ++k)
+    for (int j = b.ys - gw; j < b.ye() + gw; ++j) {
+      if (b.xs == 0) a[j][-k] = value(Side::west, a[j][k - 1]);
+      if (b.xe() == nx) a[j][nx - 1 + k] = value(Side::east, a[j][nx - k]);
+    }
+  for (int k = 1; k <= gw; ++k)
+    for (int i = b.xs - gw; i < b.xe() + gw; ++i) {
+      if (b.ys == 0) a[-k][i] = value(Side::south, a[k - 1][i]);
+      if (b.ye() == ny) a[ny - 1 + k][i] = value(Side::north, a[ny - k][i]);
+    }
+}
+
+void SoilPhase::fill_displacement_ghosts() {
+  const auto& b = grid_.owned();
+  const int nx = grid_.nx(), ny = grid_.ny(), gw = Grid::ghost_width;
+  for (int a = 0; a < 2; ++a) {
+    disp_[a]->scatter_to_local();
+    FieldArray d(grid_.field_dm(), disp_[a]->local());
+    for (int k = 1; k <= gw; ++k)
+      for (int j = b.ys - gw; j < b.ye() + gw; ++j) {
+        if (b.xs == 0) d[j][-k] = d[j][0];
+        if (b.xe() == nx) d[j][nx - 1 + k] = d[j][nx - 1];
+      }
+    for (int k = 1; k <= gw; ++k)
+      for (int i = b.xs - gw; i < b.xe() + gw; ++i) {
+        if (b.ys == 0) d[-k][i] = d[0][i];
+        if (b.ye() == ny) d[ny - 1 + k][i] = d[ny - 1][i];
+      }
+  }
+}
+
+void SoilPhase::update_properties(FlowSolver& flow) const {
+  const auto& b = grid_.owned();
+  ConstFieldArray c(grid_.field_dm(), c_->global());
+  ConstFieldArray u = local_read(grid_, flow.velocity(0)), v = local_read(grid_, flow.velocity(1));
+  ConstFieldArray p(grid_.field_dm(), flow.pressure().global());
+  FieldArray rho(grid_.field_dm(), flow.density().global()), mu(grid_.field_dm(), flow.viscosity().global());
+  const auto& s = settings_;
+  for (int j = b.ys; j < b.ye(); ++j)
+    for (int i = b.xs; i < b.xe(); ++i) {
+      const double cc = c[j][i];
+      rho[j][i] = s.density_mixing(cc, s.air_density, s.soil_density);
+      double mu_soil = s.soil_viscosity;
+      if (rheology_ && cc > 0.0)
+        mu_soil = rheology_->dynamic_viscosity(cell_strain_rate(grid_, u.data(), v.data(), i, j), p[j][i]);
+      mu[j][i] = s.viscosity_mixing(cc, s.air_viscosity, mu_soil);
+    }
+}
+
+double SoilPhase::interface_courant(const FlowSolver& flow, double dt) const {
+  ConstFieldArray fx = local_read(grid_, flow.face_velocity(0)), fy = local_read(grid_, flow.face_velocity(1));
+  const double co = std::max(
+      interface::max_sweep_courant(0, dt, fx.data(), grid_.dx_data(), grid_.dy_data(), grid_.owned()),
+      interface::max_sweep_courant(1, dt, fy.data(), grid_.dx_data(), grid_.dy_data(), grid_.owned()));
+  return mpi_max(grid_.comm(), co);
+}
+
+void SoilPhase::advect(const FlowSolver& flow, double dt) {
+  const double co = interface_courant(flow, dt);
+  const int substeps = std::max(1, int(std::ceil(co / settings_.interface_courant)));
+  const double h = dt / substeps;
+  const auto& b = grid_.owned();
+  ConstFieldArray fx = local_read(grid_, flow.face_velocity(0)), fy = local_read(grid_, flow.face_velocity(1));
+  const double* const* face[2] = {fx.data(), fy.data()};
+  for (int s = 0; s < substeps; ++s) {
+    const int first = sweep_parity_, second = 1 - sweep_parity_;
+    sweep_parity_ = 1 - sweep_parity_;  // alternate the sweep order (Strang-like symmetry over two steps)
+    {
+      ConstFieldArray c(grid_.field_dm(), c_->local());
+      FieldArray cc(grid_.field_dm(), dilatation_->local());
+      interface::dilatation_indicator(c.data(), b, cc.data());
+      FieldArray tmp(grid_.field_dm(), c_tmp_->global());
+      interface::vof_sweep(first, h, c.data(), face[first], cc.data(), grid_.dx_data(), grid_.dy_data(), b, tmp.data());
+    }
+    fill_fraction_ghosts(*c_tmp_);
+    {
+      ConstFieldArray tmp(grid_.field_dm(), c_tmp_->local());
+      ConstFieldArray cc(grid_.field_dm(), dilatation_->local());
+      FieldArray c(grid_.field_dm(), c_->global());
+      interface::vof_sweep(second, h, tmp.data(), face[second], cc.data(), grid_.dx_data(), grid_.dy_data(), b, c.data());
+    }
+    fill_fraction_ghosts(*c_);
+  }
+}
+
+void SoilPhase::transport_displacement(const FlowSolver& flow, double dt) {
+  if (!settings_.displacement) return;
+  fill_displacement_ghosts();
+  const auto& b = grid_.owned();
+  const int nx = grid_.nx(), ny = grid_.ny();
+  ConstFieldArray c(grid_.field_dm(), c_->local());
+  ConstFieldArray fx = local_read(grid_, flow.face_velocity(0)), fy = local_read(grid_, flow.face_velocity(1));
+  ConstFieldArray u = local_read(grid_, flow.velocity(0)), v = local_read(grid_, flow.velocity(1));
+  const double* const* vel[2] = {u.data(), v.data()};
+  for (int a = 0; a < 2; ++a) {
+    ConstFieldArray d(grid_.field_dm(), disp_[a]->local());
+    FieldArray dn(grid_.field_dm(), disp_new_[a]->global());
+    for (int j = b.ys; j < b.ye(); ++j)
+      for (int i = b.xs; i < b.xe(); ++i) {
+        // Soil flux (c v . n A)_f of each face ([VoF] Eq. 20), donor-cell displacement.
+        auto face_term = [&](double face_vel, int in, int jn, double area, double sign) {
+          const bool outside = in < 0 || in >= nx || jn < 0 || jn >= ny;
+          const double cf = outside ? c[j][i] : 0.5 * (c[j][i] + c[jn][in]);
+          const double flux = sign * face_vel * area * cf;  // outward
+          return flux * (flux >= 0.0 ? d[j][i] : d[jn][in]);
+        };
+        const double out = face_term(fx[j][i], i + 1, j, grid_.dy(j), 1.0) + face_term(fx[j][i - 1], i - 1, j, grid_.dy(j), -1.0) +
+                           face_term(fy[j][i], i, j + 1, grid_.dx(i), 1.0) + face_term(fy[j - 1][i], i, j - 1, grid_.dx(i), -1.0);
+        dn[j][i] = d[j][i] + dt * (c[j][i] * vel[a][j][i] - out / grid_.volume(i, j));
+      }
+  }
+  for (int a = 0; a < 2; ++a) VecCopy(disp_new_[a]->global(), disp_[a]->global());
+}
+
+void SoilPhase::compute_diagnostics(const FlowSolver& flow) {
+  fill_displacement_ghosts();
+  const auto& b = grid_.owned();
+  ConstFieldArray dx(grid_.field_dm(), disp_[0]->local()), dy(grid_.field_dm(), disp_[1]->local());
+  ConstFieldArray u = local_read(grid_, flow.velocity(0)), v = local_read(grid_, flow.velocity(1));
+  FieldArray en(grid_.field_dm(), strain_norm_->global()), rn(grid_.field_dm(), rate_norm_->global()),
+      lo(grid_.field_dm(), lode_->global());
+  for (int j = b.ys; j < b.ye(); ++j)
+    for (int i = b.xs; i < b.xe(); ++i) {
+      const double hx = grid_.xc(i + 1) - grid_.xc(i - 1), hy = grid_.yc(j + 1) - grid_.yc(j - 1);
+      strain::DisplacementGradient g{(dx[j][i + 1] - dx[j][i - 1]) / hx, (dx[j + 1][i] - dx[j - 1][i]) / hy,
+                                     (dy[j][i + 1] - dy[j][i - 1]) / hx, (dy[j + 1][i] - dy[j - 1][i]) / hy};
+      strain::AlmansiStrain e;
+      strain::almansi_strain(g, e);
+      en[j][i] = strain::deviatoric_norm(e);
+      const auto D = cell_strain_rate(grid_, u.data(), v.data(), i, j);
+      rn[j][i] = rheology::norm(rheology::deviatoric(D));
+      lo[j][i] = rheology::lode_angle(D) * 180.0 / std::numbers::pi;
+    }
+}
+
+// 2 D:D of a cell from the velocity differences across its faces, squared face by face and averaged:
+// each derivative is then taken where it is compact (a wall's shear between the wall and the first
+// centre, not across the cell), which is how the discrete viscous operator dissipates energy.
+double SoilPhase::cell_shear_squared(const double* const* u, const double* const* v, int i, int j) const {
+  const int nx = grid_.nx(), ny = grid_.ny();
+  // Derivative of q along axis a across the face on side s (+1 east/north, -1 west/south).
+  auto face_derivative = [&](const double* const* q, int comp, int axis, int s) {
+    const int in = i + (axis == 0 ? s : 0), jn = j + (axis == 1 ? s : 0);
+    const bool outside = in < 0 || in >= nx || jn < 0 || jn >= ny;
+    if (!outside) {
+      const double d = axis == 0 ? grid_.xc(in) - grid_.xc(i) : grid_.yc(jn) - grid_.yc(j);
+      return (q[jn][in] - q[j][i]) / d;
+    }
+    const Side side = axis == 0 ? (s > 0 ? Side::east : Side::west) : (s > 0 ? Side::north : Side::south);
+    const auto& bc = boundary(flow_settings_.boundaries, side);
+    const double half = 0.5 * s * (axis == 0 ? grid_.dx(i) : grid_.dy(j));
+    switch (bc.kind) {
+      case BoundaryKind::wall: return ((comp == axis ? 0.0 : bc.wall_velocity[comp]) - q[j][i]) / half;
+      case BoundaryKind::slip: return comp == axis ? -q[j][i] / half : 0.0;
+      case BoundaryKind::atmosphere: return 0.0;
+    }
+    return 0.0;
+  };
+  auto mean_square = [&](const double* const* q, int comp, int axis) {
+    const double a = face_derivative(q, comp, axis, 1), b = face_derivative(q, comp, axis, -1);
+    return 0.5 * (a * a + b * b);
+  };
+  auto mean = [&](const double* const* q, int comp, int axis) {
+    return 0.5 * (face_derivative(q, comp, axis, 1) + face_derivative(q, comp, axis, -1));
+  };
+  // 2 D:D = 2 (u_x^2 + v_y^2) + (u_y + v_x)^2
+  return 2.0 * (mean_square(u, 0, 0) + mean_square(v, 1, 1)) + mean_square(u, 0, 1) + mean_square(v, 1, 0) +
+         2.0 * mean(u, 0, 1) * mean(v, 1, 0);
+}
+
+SoilBudget SoilPhase::budget(const FlowSolver& flow) const {
+  const auto& b = grid_.owned();
+  const auto& g = flow_settings_.gravity;
+  ConstFieldArray c(grid_.field_dm(), c_->global());
+  ConstFieldArray u = local_read(grid_, flow.velocity(0)), v = local_read(grid_, flow.velocity(1));
+  ConstFieldArray rho(grid_.field_dm(), flow.density().global()), mu(grid_.field_dm(), flow.viscosity().global());
+  double s[5] = {0, 0, 0, 0, 0};
+  for (int j = b.ys; j < b.ye(); ++j)
+    for (int i = b.xs; i < b.xe(); ++i) {
+      const double V = grid_.volume(i, j);
+      s[0] += c[j][i] * V;
+      s[1] += (1.0 - c[j][i]) * V;
+      s[2] += 0.5 * rho[j][i] * (u[j][i] * u[j][i] + v[j][i] * v[j][i]) * V;
+      s[3] -= rho[j][i] * (g[0] * grid_.xc(i) + g[1] * grid_.yc(j)) * V;
+      s[4] += mu[j][i] * cell_shear_squared(u.data(), v.data(), i, j) * V;
+    }
+  double t[5];
+  MPI_Allreduce(s, t, 5, MPI_DOUBLE, MPI_SUM, grid_.comm());
+  return {t[0], t[1], t[2], t[3], t[4]};
+}
+
+}  // namespace granflow

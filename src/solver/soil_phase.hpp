@@ -1,0 +1,68 @@
+#pragma once
+// The soil phase on the grid: its fraction c, carried by geometric VoF advection; the mixture
+// properties and the granular viscosity it gives the flow solver; the Eulerian displacement and
+// the Euler-Almansi strain ([VoF] Eqs. 13-16, 19-20).
+#include <memory>
+#include <optional>
+
+#include "mesh/field.hpp"
+#include "models/rheology/granular_rheology.hpp"
+#include "solver/flow_solver.hpp"
+#include "solver/soil_settings.hpp"
+
+namespace granflow {
+
+struct SoilBudget {
+  double soil_volume = 0, air_volume = 0;
+  double kinetic_energy = 0, potential_energy = 0;  // J per metre depth
+  double dissipation_rate = 0;                      // W per metre depth, int 2 mu D:D dV
+};
+
+class SoilPhase {
+ public:
+  SoilPhase(const Grid& grid, const FlowSettings& flow, const SoilSettings& settings);
+
+  // Soil fraction from the initial shapes.
+  void initialise();
+  // Properties for the flow solver: density and viscosity of the mixture ([VoF] Eq. 1 or App. A),
+  // with the granular viscosity of the soil from the current strain rate and pressure.
+  void update_properties(FlowSolver& flow) const;
+  // Advects c over dt with the flow's (divergence-free) face velocities, in as many sub-steps as the
+  // interface Courant limit needs.
+  void advect(const FlowSolver& flow, double dt);
+  // Eulerian displacement ([VoF] Eq. 16) with the soil velocity c v, explicit upwind.
+  void transport_displacement(const FlowSolver& flow, double dt);
+  // Largest Courant number of one VoF sweep for a step dt.
+  double interface_courant(const FlowSolver& flow, double dt) const;
+
+  // Diagnostic fields at output: ||D|| ([YS] Eq. 8), Lode angle in degrees, strain norm.
+  void compute_diagnostics(const FlowSolver& flow);
+  SoilBudget budget(const FlowSolver& flow) const;
+
+  Field& soil_fraction() { return *c_; }
+  const Field& soil_fraction() const { return *c_; }
+  const Field& displacement(int axis) const { return *disp_[axis]; }
+  const Field& strain_norm() const { return *strain_norm_; }
+  const Field& strain_rate_norm() const { return *rate_norm_; }
+  const Field& lode_angle() const { return *lode_; }
+  const SoilSettings& settings() const { return settings_; }
+
+ private:
+  void fill_fraction_ghosts(Field& f) const;
+  void fill_displacement_ghosts();
+  double cell_shear_squared(const double* const* u, const double* const* v, int i, int j) const;
+
+  const Grid& grid_;
+  const FlowSettings& flow_settings_;
+  SoilSettings settings_;
+  std::optional<rheology::GranularRheology> rheology_;
+  std::unique_ptr<Field> c_, c_tmp_, dilatation_;
+  std::unique_ptr<Field> disp_[2], disp_new_[2];
+  std::unique_ptr<Field> strain_norm_, rate_norm_, lode_;
+  int sweep_parity_ = 0;
+};
+
+// Strain-rate tensor at a cell centre from central differences of ghosted cell velocities.
+rheology::StrainRate cell_strain_rate(const Grid& g, const double* const* u, const double* const* v, int i, int j);
+
+}  // namespace granflow

@@ -1,0 +1,26 @@
+#pragma once
+// Settings of the two-phase (soil and air) model, filled from the case file.
+#include <optional>
+#include <vector>
+
+#include "models/interface/initial_shapes.hpp"
+#include "models/mixture/mixture_interpolation.hpp"
+#include "models/rheology/parameters.hpp"
+
+namespace granflow {
+
+struct SoilSettings {
+  double air_density = 1.0;
+  double air_viscosity = 1.8e-5;   // Pa s
+  double soil_density = 2650.0;
+  double soil_viscosity = 1e-3;    // Pa s, a Newtonian dense phase (water) when no rheology is given
+  std::optional<rheology::RheologyParameters> rheology;  // granular soil
+  mixture::MixtureInterpolation density_mixing;
+  mixture::MixtureInterpolation viscosity_mixing;
+  std::vector<interface::Shape> initial_soil;
+  double interface_courant = 0.45;  // largest Courant number of one VoF sweep (< 0.5 for boundedness)
+  bool displacement = true;         // carry the Eulerian displacement and strain ([VoF] Eq. 16)
+  double failure_strain = 0.3;      // ||e|| of the failure line ([VoF] Sec. 4)
+};
+
+}  // namespace granflow
