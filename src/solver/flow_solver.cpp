@@ -291,7 +291,8 @@ void FlowSolver::compute_face_forces() {
 //    coefficient is dt/rho_f. Stable at any ratio of viscous to inertial stiffness: the pressure step
 //    never overshoots, because dt/rho bounds the inverse momentum operator from above.
 //  - piso: forces are averaged to the cell and the face coefficient is the interpolated V/a_P
-//    (Rhie-Chow); accurate for inertia-dominated flow, but overshoots when viscosity dominates a_P.
+//    (Rhie-Chow). With a momentum predictor it overshoots where viscosity dominates a_P; without one
+//    (velocity from HbyA of the previous iterate) it is stable and keeps rigid regions rigid.
 
 double FlowSolver::cell_force(int axis, int i, int j, const double* const* ff, const double* const* rho) const {
   const int di = axis == 0 ? 1 : 0, dj = 1 - di;
@@ -303,7 +304,9 @@ double FlowSolver::cell_force(int axis, int i, int j, const double* const* ff, c
 
 double FlowSolver::face_coefficient(const double* const* rau, const double* const* rho, int i, int j, int in,
                                     int jn) const {
-  if (settings_.numerics.pressure_coupling == PressureCoupling::piso) return 0.5 * (rau[j][i] + rau[jn][in]);
+  // Harmonic mean: where a cell held by a large viscosity meets a free one, the stiff side governs
+  // how much the face velocity may respond to the pressure, so a rigid block cannot leak at its sides.
+  if (settings_.numerics.pressure_coupling == PressureCoupling::piso) return face_mean(FaceViscosity::harmonic, rau[j][i], rau[jn][in]);
   return dt_ / (0.5 * (rho[j][i] + rho[jn][in]));
 }
 

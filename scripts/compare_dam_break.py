@@ -1,0 +1,122 @@
+#!/usr/bin/python3
+"""Compare a granflow run of water_dam_break with the water-column collapse of Martin & Moyce (1952), n^2 = 2.
+
+Usage: compare_dam_break.py RUN_DIR [--png FILE] [--tmax T] [--a A]
+
+Reads RUN_DIR/history.csv and converts it to the experiment's non-dimensional variables:
+  surge front      T   = t sqrt(2 g / a),  Z = toe_contour / a      (toe of the c = 0.5 contour)
+  residual column  tau = t sqrt(g / a),    H = wall_height / (2 a)  (dense-phase height at the left wall)
+The two tables use different time scales (see the headers of the refdata files: the residual-height
+table is given against tau = t sqrt(g/a), without the factor n = sqrt(2)). The simulation is
+interpolated linearly at the experiment's times with T <= --tmax (default 3, i.e. tau <= 3/sqrt(2) for
+the residual height), and the script prints, for every point and as the largest value, the relative
+front deviation |Z_sim - Z_exp| / Z_exp and the residual-height deviation H_sim - H_exp (absolute, in
+units of the initial height, and relative to H_exp). With --png both are plotted against the data.
+"""
+import argparse
+import os
+import sys
+
+import numpy as np
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+REFDATA = os.path.join(HERE, "..", "validation", "refdata")
+A = 0.05715  # column width a = 2.25 in
+G = 9.81
+
+
+def read_csv(path):
+    rows = [l.strip() for l in open(path) if l.strip() and not l.startswith("#")]
+    header = rows[0].split(",")
+    data = np.array([[float(x) for x in r.split(",")] for r in rows[1:]]) if len(rows) > 1 else np.zeros((0, len(header)))
+    return {h: data[:, k] for k, h in enumerate(header)}
+
+
+def compare(run_dir, a=A, g=G, tmax=3.0):
+    hist = read_csv(os.path.join(run_dir, "history.csv"))
+    t = np.concatenate([[0.0], hist["time"]])
+    # The initial state (t = 0) is not a history row; the column starts at Z = 1, H = 1.
+    z_sim = np.concatenate([[1.0], hist["toe_contour"] / a])
+    h_sim = np.concatenate([[1.0], hist["wall_height"] / (2 * a)])
+    T_sim = t * np.sqrt(2 * g / a)
+    tau_sim = t * np.sqrt(g / a)
+    front = read_csv(os.path.join(REFDATA, "martin_moyce1952_n2_2_surge_front.csv"))
+    resid = read_csv(os.path.join(REFDATA, "martin_moyce1952_n2_2_residual_height.csv"))
+    out = {"T_sim": T_sim, "Z_sim": z_sim, "tau_sim": tau_sim, "H_sim": h_sim, "front": front, "resid": resid}
+    if T_sim[-1] < tmax * (1 - 1e-6):
+        sys.exit(f"error: the run ends at T = {T_sim[-1]:.3f}, before T = {tmax}")
+    sel = front["T"] <= tmax + 1e-12
+    Te, Ze = front["T"][sel], front["Z"][sel]
+    Zs = np.interp(Te, T_sim, z_sim)
+    out["front_points"] = (Te, Ze, Zs, np.abs(Zs - Ze) / Ze)
+    sel = resid["tau"] * np.sqrt(2.0) <= tmax + 1e-12
+    tau_e, He = resid["tau"][sel], resid["H"][sel]
+    Hs = np.interp(tau_e, tau_sim, h_sim)
+    out["resid_points"] = (tau_e, He, Hs, Hs - He)
+    return out
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    ap.add_argument("run_dir")
+    ap.add_argument("--png", help="write the comparison plot to this file")
+    ap.add_argument("--tmax", type=float, default=3.0, help="compare experiment points with T <= TMAX (default 3)")
+    ap.add_argument("--a", type=float, default=A, help=f"column width a in m (default {A})")
+    args = ap.parse_args()
+    r = compare(args.run_dir, a=args.a, tmax=args.tmax)
+
+    Te, Ze, Zs, dz = r["front_points"]
+    print(f"surge front, T = t sqrt(2g/a), Z = toe_contour / a, experiment points with T <= {args.tmax:g}:")
+    print("      T   Z_exp   Z_sim  |dZ|/Z_exp")
+    for k in range(len(Te)):
+        print(f"  {Te[k]:5.2f}  {Ze[k]:6.3f}  {Zs[k]:6.3f}  {dz[k]:9.4f}")
+    kmax = int(np.argmax(dz))
+    print(f"largest relative front deviation: {dz[kmax]:.4f} at T = {Te[kmax]:.2f}"
+          f" (mean {np.mean(dz):.4f}; points with T >= 1.4: largest {dz[Te >= 1.4].max():.4f})")
+
+    tau_e, He, Hs, dh = r["resid_points"]
+    print(f"residual column height, tau = t sqrt(g/a), H = wall_height / (2a), points with T = sqrt(2) tau <= {args.tmax:g}:")
+    print("    tau   H_exp   H_sim  H_sim-H_exp  rel")
+    for k in range(len(tau_e)):
+        print(f"  {tau_e[k]:5.2f}  {He[k]:6.3f}  {Hs[k]:6.3f}  {dh[k]:+10.4f}  {dh[k] / He[k]:+7.4f}")
+    kmax = int(np.argmax(np.abs(dh)))
+    print(f"largest residual-height deviation: {abs(dh[kmax]):.4f} of the initial height"
+          f" ({abs(dh[kmax]) / He[kmax]:.4f} relative) at tau = {tau_e[kmax]:.2f};"
+          f" largest relative {np.max(np.abs(dh) / He):.4f}")
+
+    if args.png:
+        import matplotlib
+
+        matplotlib.use("Agg")
+        import matplotlib.pyplot as plt
+
+        fig, (ax1, ax2) = plt.subplots(1, 2, figsize=(10, 4))
+        fr, rs = r["front"], r["resid"]
+        T_end = r["T_sim"][-1]
+        ax1.plot(r["T_sim"], r["Z_sim"], "-", color="C0", label="granflow (c = 0.5 contour)")
+        ax1.plot(fr["T"], fr["Z"], "o", color="k", mfc="none", label="Martin & Moyce (1952)")
+        ax1.fill_between(fr["T"], 0.9 * fr["Z"], 1.1 * fr["Z"], color="0.85", label="experiment $\\pm$10 %")
+        ax1.axvline(args.tmax, color="0.6", ls=":", lw=1)
+        ax1.set_xlim(0, max(3.6, min(T_end, 4.0)))
+        ax1.set_ylim(1, 4.5)
+        ax1.set_xlabel("$T = t\\,\\sqrt{2g/a}$")
+        ax1.set_ylabel("$Z = x_{front}/a$")
+        ax1.set_title("surge front")
+        ax1.legend(loc="upper left", fontsize=8)
+        ax2.plot(r["tau_sim"], r["H_sim"], "-", color="C0", label="granflow (height at x = 0)")
+        ax2.plot(rs["tau"], rs["H"], "o", color="k", mfc="none", label="Martin & Moyce (1952)")
+        ax2.axvline(args.tmax / np.sqrt(2.0), color="0.6", ls=":", lw=1)
+        ax2.set_xlim(0, max(2.6, min(r["tau_sim"][-1], 3.0)))
+        ax2.set_ylim(0, 1.05)
+        ax2.set_xlabel("$\\tau = t\\,\\sqrt{g/a}$")
+        ax2.set_ylabel("$H = h/(2a)$")
+        ax2.set_title("residual column height")
+        ax2.legend(loc="upper right", fontsize=8)
+        fig.suptitle("Water column collapse, $n^2 = 2$, $a$ = 2.25 in")
+        fig.tight_layout()
+        fig.savefig(args.png, dpi=120)
+        print(f"wrote {args.png}")
+
+
+if __name__ == "__main__":
+    main()

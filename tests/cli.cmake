@@ -1,0 +1,14 @@
+# The command line: bad input gets one clear message and a non-zero exit.
+file(WRITE ${CMAKE_CURRENT_BINARY_DIR}/misspelt.toml "[mesh]\ncells = [4, 4]\nupper = [1.0, 1.0]\nupeer = 3\n")
+add_test(NAME cli_check_misspelt_key COMMAND granflow check ${CMAKE_CURRENT_BINARY_DIR}/misspelt.toml)
+set_tests_properties(cli_check_misspelt_key PROPERTIES LABELS cli WILL_FAIL TRUE)
+add_test(NAME cli_check_misspelt_key_message COMMAND granflow check ${CMAKE_CURRENT_BINARY_DIR}/misspelt.toml)
+set_tests_properties(cli_check_misspelt_key_message PROPERTIES LABELS cli
+                     PASS_REGULAR_EXPRESSION "error: mesh.upeer: unknown key")
+add_test(NAME cli_run_missing_file COMMAND granflow run ${CMAKE_CURRENT_BINARY_DIR}/no_such_case.toml)
+set_tests_properties(cli_run_missing_file PROPERTIES LABELS cli WILL_FAIL TRUE)
+add_test(NAME cli_check_shipped_cases COMMAND granflow check ${CMAKE_SOURCE_DIR}/cases/bui2008_experiment.toml)
+set_tests_properties(cli_check_shipped_cases PROPERTIES LABELS cli PASS_REGULAR_EXPRESSION "valid")
+add_test(NAME cli_element_test_csv COMMAND granflow element-test --csv)
+set_tests_properties(cli_element_test_csv PROPERTIES LABELS cli
+                     PASS_REGULAR_EXPRESSION "deformation,theta_deg,model,eta_norm_D_over_p,norm_Tdev_over_p,relative")

@@ -1,0 +1,137 @@
+// Case files: every key is checked; bad input gets one message naming the key.
+#include <gtest/gtest.h>
+
+#include <string>
+
+#include "io/case_error.hpp"
+#include "io/case_file.hpp"
+
+namespace granflow {
+namespace {
+
+const char* minimal = R"(
+[mesh]
+cells = [8, 8]
+upper = [1.0, 1.0]
+[time]
+end = 1.0
+[fluid]
+density = 1.0
+viscosity = 0.01
+[boundary]
+west = { type = "wall" }
+east = { type = "wall" }
+south = { type = "wall" }
+north = { type = "wall", velocity = [1.0, 0.0] }
+)";
+
+// The message of the CaseError thrown for `text` with `overrides`, or "" if none.
+std::string error_of(const std::string& text, const std::vector<std::string>& overrides = {}) {
+  try {
+    parse_case(text, overrides);
+  } catch (const CaseError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(CaseFile, MinimalCaseIsValid) {
+  const CaseConfig c = parse_case(minimal);
+  EXPECT_EQ(c.mesh.cells[0], 8);
+  EXPECT_DOUBLE_EQ(c.fluid.viscosity, 0.01);
+  EXPECT_DOUBLE_EQ(c.flow.boundaries[int(Side::north)].wall_velocity[0], 1.0);
+}
+
+TEST(CaseFile, MisspeltKeyIsNamed) {
+  const std::string e = error_of(std::string(minimal) + "[numerics]\nconvection_scheme = \"quick\"\n");
+  EXPECT_NE(e.find("numerics.convection_scheme"), std::string::npos) << e;
+  EXPECT_NE(e.find("unknown key"), std::string::npos) << e;
+}
+
+TEST(CaseFile, UnknownTableIsNamed) {
+  const std::string e = error_of(std::string(minimal) + "[numerix]\n");
+  EXPECT_NE(e.find("numerix"), std::string::npos) << e;
+}
+
+TEST(CaseFile, NegativeDensityIsRejected) {
+  const std::string e = error_of(minimal, {"fluid.density=-1"});
+  EXPECT_NE(e.find("fluid.density"), std::string::npos) << e;
+}
+
+TEST(CaseFile, EmptyDomainIsRejected) {
+  const std::string e = error_of(minimal, {"mesh.upper=[0.0, 1.0]"});
+  EXPECT_NE(e.find("mesh.upper"), std::string::npos) << e;
+  EXPECT_NE(e.find("empty"), std::string::npos) << e;
+}
+
+TEST(CaseFile, WrongTypeIsNamed) {
+  const std::string e = error_of(minimal, {"time.end=\"soon\""});
+  EXPECT_NE(e.find("time.end"), std::string::npos) << e;
+}
+
+TEST(CaseFile, BadChoiceListsTheAllowedValues) {
+  const std::string e = error_of(minimal, {"numerics.convection=superbee"});
+  EXPECT_NE(e.find("numerics.convection"), std::string::npos) << e;
+  EXPECT_NE(e.find("quick"), std::string::npos) << e;
+}
+
+TEST(CaseFile, SetOverridesAnyKey) {
+  const CaseConfig c = parse_case(minimal, {"mesh.cells=[16,4]", "time.end=2.5", "numerics.convection=upwind"});
+  EXPECT_EQ(c.mesh.cells[0], 16);
+  EXPECT_EQ(c.mesh.cells[1], 4);
+  EXPECT_DOUBLE_EQ(c.time.end, 2.5);
+  EXPECT_EQ(c.flow.numerics.convection, ConvectionScheme::upwind);
+}
+
+TEST(CaseFile, MissingSideIsNamed) {
+  std::string text = minimal;
+  text.erase(text.find("south ="), std::string("south = { type = \"wall\" }\n").size());
+  const std::string e = error_of(text);
+  EXPECT_NE(e.find("boundary.south"), std::string::npos) << e;
+}
+
+TEST(CaseFile, SyntaxErrorGivesLine) {
+  const std::string e = error_of("[mesh\ncells = 3");
+  EXPECT_NE(e.find(":1:"), std::string::npos) << e;
+}
+
+TEST(CaseFile, RheologyParametersAreValidated) {
+  const std::string two_phase = R"(
+[mesh]
+cells = [8, 8]
+upper = [1.0, 1.0]
+[time]
+end = 1.0
+[air]
+density = 1.0
+viscosity = 1e-5
+[soil]
+density = 2650.0
+[soil.rheology]
+model = "drucker_prager_bingham"
+friction_angle = 95.0
+[[initial.soil]]
+shape = "box"
+lower = [0.0, 0.0]
+upper = [0.5, 0.5]
+[boundary]
+west = { type = "wall" }
+east = { type = "wall" }
+south = { type = "wall" }
+north = { type = "atmosphere" }
+)";
+  const std::string e = error_of(two_phase);
+  EXPECT_NE(e.find("soil.rheology"), std::string::npos) << e;
+  EXPECT_NE(e.find("friction_angle"), std::string::npos) << e;
+  const std::string model = error_of(two_phase, {"soil.rheology.friction_angle=30", "soil.rheology.model=coulomb"});
+  EXPECT_NE(model.find("soil.rheology.model"), std::string::npos) << model;
+  EXPECT_NO_THROW(parse_case(two_phase, {"soil.rheology.friction_angle=30"}));
+}
+
+TEST(CaseFile, ShippedCasesAreValid) {
+  for (const char* name : {"lid_driven_cavity_re100", "lid_driven_cavity_re1000", "bui2008_experiment"})
+    EXPECT_NO_THROW(load_case(std::string(GRANFLOW_SOURCE_DIR) + "/cases/" + name + ".toml")) << name;
+}
+
+}  // namespace
+}  // namespace granflow

@@ -1,0 +1,88 @@
+// Mixture interpolation ([VoF] Eq. 1, App. A) and the Euler-Almansi strain ([VoF] Eqs. 13-14).
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "models/interface/initial_shapes.hpp"
+#include "models/mixture/mixture_interpolation.hpp"
+#include "models/strain/euler_almansi.hpp"
+
+namespace granflow {
+namespace {
+
+using mixture::InterpolationKind;
+using mixture::MixtureInterpolation;
+
+TEST(Mixture, LinearIsEquationOne) {
+  const MixtureInterpolation lin;
+  EXPECT_DOUBLE_EQ(lin(0.25, 1.0, 2651.0), 0.75 * 1.0 + 0.25 * 2651.0);
+}
+
+TEST(Mixture, ArctanHitsBothPhasesAndIsMonotone) {
+  for (auto [M, N] : {std::pair{-0.45, 25.0}, std::pair{0.0, 5.0}, std::pair{0.3, 10.0}}) {
+    const MixtureInterpolation a{InterpolationKind::arctan, M, N};
+    EXPECT_NEAR(a(0.0, 1.0, 2650.0), 1.0, 1e-9 * 2650) << M << " " << N;
+    EXPECT_NEAR(a(1.0, 1.0, 2650.0), 2650.0, 1e-9 * 2650) << M << " " << N;
+    double last = a(0.0, 1.0, 2650.0);
+    for (int k = 1; k <= 100; ++k) {
+      const double v = a(k / 100.0, 1.0, 2650.0);
+      EXPECT_GE(v, last - 1e-9);
+      last = v;
+    }
+  }
+}
+
+TEST(Mixture, ArctanShiftMovesTheTransitionTowardsAir) {
+  // M = -0.45 (the [VoF] Sec. 4.1 setting) gives a cell that is 10 % soil most of the soil's value,
+  // which is the point of the interpolation: interface cells keep their strength.
+  const MixtureInterpolation a{InterpolationKind::arctan, -0.45, 25.0};
+  EXPECT_GT(a(0.1, 0.0, 1.0), 0.5);
+  const MixtureInterpolation sym{InterpolationKind::arctan, 0.0, 5.0};
+  EXPECT_NEAR(sym(0.5, 0.0, 1.0), 0.5, 1e-12);
+}
+
+TEST(EulerAlmansi, ZeroDisplacementGradientIsUnstrained) {
+  strain::AlmansiStrain e;
+  ASSERT_TRUE(strain::almansi_strain({}, e));
+  EXPECT_DOUBLE_EQ(strain::deviatoric_norm(e), 0.0);
+}
+
+TEST(EulerAlmansi, SimpleShearMatchesClosedForm) {
+  // Eulerian displacement of simple shear x = X + g Y: u = x - X = g y, so grad u = [[0, g], [0, 0]],
+  // F = I - grad u = [[1, -g], [0, 1]], G = [[1, g], [0, 1]], e = (I - G G^T)/2 = [[-g^2/2, -g/2], [-g/2, 0]].
+  const double g = 0.3;
+  strain::AlmansiStrain e;
+  ASSERT_TRUE(strain::almansi_strain({0.0, g, 0.0, 0.0}, e));
+  EXPECT_NEAR(e.xx, -0.5 * g * g, 1e-15);
+  EXPECT_NEAR(e.xy, -0.5 * g, 1e-15);
+  EXPECT_NEAR(e.yy, 0.0, 1e-15);
+  const double mean = e.xx / 3.0;
+  const double expected = std::sqrt(std::pow(e.xx - mean, 2) + 2 * mean * mean + 2 * e.xy * e.xy);
+  EXPECT_NEAR(strain::deviatoric_norm(e), expected, 1e-15);
+}
+
+TEST(EulerAlmansi, RigidTranslationAndSingularGradient) {
+  strain::AlmansiStrain e;
+  EXPECT_TRUE(strain::almansi_strain({0.0, 0.0, 0.0, 0.0}, e));
+  EXPECT_FALSE(strain::almansi_strain({1.0, 0.0, 0.0, 1.0}, e));  // F = 0
+  EXPECT_DOUBLE_EQ(strain::deviatoric_norm(e), 0.0);
+}
+
+TEST(InitialShapes, BoxCircleAndPolygonFractions) {
+  using namespace interface;
+  const std::vector<Shape> box{Box{{0.0, 0.0}, {0.2, 0.1}}};
+  EXPECT_DOUBLE_EQ(union_fraction(box, 0.0, 0.01, 0.0, 0.01), 1.0);
+  EXPECT_DOUBLE_EQ(union_fraction(box, 0.2, 0.21, 0.0, 0.01), 0.0);
+  EXPECT_NEAR(union_fraction(box, 0.195, 0.205, 0.0, 0.01), 0.5, 1e-12);
+  const std::vector<Shape> circle{Circle{{0.0, 0.0}, 1.0}};
+  double area = 0.0;  // quarter of the unit disc on a 64 x 64 grid
+  for (int i = 0; i < 64; ++i)
+    for (int j = 0; j < 64; ++j) area += union_fraction(circle, i / 64.0, (i + 1) / 64.0, j / 64.0, (j + 1) / 64.0) / 4096.0;
+  EXPECT_NEAR(area, M_PI / 4, 2e-4);
+  const std::vector<Shape> triangle{Polygon{{{0.0, 0.0}, {1.0, 0.0}, {0.0, 1.0}}}};
+  EXPECT_NEAR(union_fraction(triangle, 0.0, 1.0, 0.0, 1.0, 200), 0.5, 1e-2);
+  EXPECT_TRUE(union_contains({box[0], circle[0]}, 0.5, 0.5));
+}
+
+}  // namespace
+}  // namespace granflow

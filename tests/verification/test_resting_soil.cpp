@@ -1,0 +1,107 @@
+// Soil at rest must stay at rest on the discrete level: a heavy layer under air (density ratio
+// 2650:1, viscosity ratio 1e8), and a granular block too strong to fail.
+#include <gtest/gtest.h>
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "solver/simulation.hpp"
+#include "test_support.hpp"
+
+namespace granflow {
+namespace {
+
+TEST(RestingSoil, FlatHeavyLayerStaysAtRestWithHydrostaticPressure) {
+  // The layer top cuts a row of cells at c = 0.4, so the interface is not aligned with faces.
+  const CaseConfig config = parse_case(R"(
+[mesh]
+cells = [32, 32]
+upper = [0.2, 0.2]
+[time]
+end = 1e9
+dt = 1e-3
+adaptive = false
+max_steps = 1000
+[physics]
+gravity = [0.0, -9.81]
+[air]
+density = 1.0
+viscosity = 1e-5
+[soil]
+density = 2650.0
+viscosity = 1e3
+[mixture]
+density = "linear"
+viscosity = "linear"
+[[initial.soil]]
+shape = "box"
+lower = [-1.0, -1.0]
+upper = [1.0, 0.1025]
+[boundary]
+west = { type = "wall" }
+east = { type = "wall" }
+south = { type = "wall" }
+north = { type = "atmosphere" }
+[solver.momentum]
+pc_type = "hypre"
+[output]
+progress_seconds = 0
+)");
+  Simulation sim(PETSC_COMM_WORLD, config, "");
+  Vec p0;
+  VecDuplicate(sim.flow().pressure().global(), &p0);
+  VecCopy(sim.flow().pressure().global(), p0);
+  const RunSummary s = sim.run();
+  EXPECT_EQ(s.steps, 1000);
+  const double speed = sim.flow().max_speed();
+  double p_scale, p_change;
+  VecNorm(p0, NORM_INFINITY, &p_scale);
+  VecAXPY(p0, -1.0, sim.flow().pressure().global());
+  VecNorm(p0, NORM_INFINITY, &p_change);
+  VecDestroy(&p0);
+  std::printf("resting layer after %ld steps: max |v| = %.3e m/s, max |p - p_hydrostatic| / max p = %.3e\n", s.steps,
+              speed, p_change / p_scale);
+  EXPECT_LT(speed, 1e-8);
+  EXPECT_LT(p_change / p_scale, 1e-10);
+}
+
+// Column heights sum_j c dy and row widths sum_i c dx of the soil, gathered on every rank.
+std::vector<double> extents(const Grid& g, const Field& c_field) {
+  auto c = gather_to_root(g, c_field);
+  c.resize(size_t(g.nx()) * g.ny());
+  MPI_Bcast(c.data(), int(c.size()), MPI_DOUBLE, 0, g.comm());
+  std::vector<double> e(g.nx() + g.ny(), 0.0);
+  for (int j = 0; j < g.ny(); ++j)
+    for (int i = 0; i < g.nx(); ++i) {
+      e[i] += c[size_t(j) * g.nx() + i] * g.dy(j);
+      e[g.nx() + j] += c[size_t(j) * g.nx() + i] * g.dx(i);
+    }
+  return e;
+}
+
+// Disabled: with the projection coupling the face velocities at the side of a rigid block respond to
+// the pressure jump there without the viscous stiffness, so the block leaks (see docs/method.md,
+// "Known limitations"). Kept so that the fix can be shown: run with --gtest_also_run_disabled_tests.
+TEST(RestingSoil, DISABLED_CohesiveBlockThatCannotFailStaysPut) {
+  // The Bui et al. block with a cohesion far above rho g h: the yield stress is never reached.
+  const CaseConfig config = load_case(test::repo_path("cases/bui2008_experiment.toml"),
+                                      {"mesh.cells=[150,50]", "time.end=1.0", "time.max_dt=0.01",
+                                       "soil.rheology.cohesion=1e5", "output.progress_seconds=0"});
+  Simulation sim(PETSC_COMM_WORLD, config, "");
+  const Grid& g = sim.grid();
+  const auto before = extents(g, sim.soil()->soil_fraction());
+  sim.run();
+  const auto after = extents(g, sim.soil()->soil_fraction());
+  double worst = 0.0;  // in cells
+  for (size_t k = 0; k < before.size(); ++k) {
+    const double h = k < size_t(g.nx()) ? g.dy(0) : g.dx(0);
+    worst = std::max(worst, std::abs(after[k] - before[k]) / h);
+  }
+  std::printf("cohesive block after 1 s: largest surface displacement %.3e cells, max |v| %.3e m/s\n", worst,
+              sim.flow().max_speed());
+  EXPECT_LT(worst, 0.1);
+}
+
+}  // namespace
+}  // namespace granflow
