@@ -1,0 +1,136 @@
+// Water column collapse against Martin & Moyce (1952), n^2 = 2: the shipped case
+// cases/water_dam_break.toml run to T = t sqrt(2g/a) = 3.06, its history compared with the tabulated
+// surge front Z(T) and residual column height H(tau) (validation/refdata/martin_moyce1952_n2_2_*.csv).
+//
+// Surge front: the points with 0.8 < T < 1.7 (Z_exp = 1.22 ... 1.89) are not held to 10 %. There the
+// computed front runs ahead of the experiment by 0.2 - 0.25 in T (it reaches each Z about 11-13 ms
+// early), 10 - 15 % in Z. This is not a resolution effect: on 294 x 126 cells (a/48) the deviations
+// are the same within 1 % of Z, and they grow slightly as the time step goes to zero (courant 0.1 and
+// dt <= 2e-4 s: 15.6 % at T = 1.19, 10.4 % at T = 1.63, 9.1 % at T = 1.83), so the model's instantaneous
+// release of the column, not the discretisation, sets it. Other Navier-Stokes/VoF comparisons with these
+// data shift the simulated time by about 0.175 in T to match the early points.
+// For those points the test checks that the front is ahead of the experiment and within 16 %.
+// T = 1.63 is in that window too: the shipped settings give 9.7 % there, but the time-step-converged
+// value is above 10 %, so a 10 % bound at that point would only hold through the time-step error.
+// Every other point with T <= 3, the first (T = 0.41, Z - 1 = 2.7 cells) included, must be within 10 %.
+//
+// Residual height: the table's H is read on a 1/4-inch grid, steps of 1/18 = 0.056 of the initial
+// height, so the readings carry +-0.028; the computed H (height of water in the first column) must be
+// within that at every point with T = sqrt(2) tau <= 3.
+#include <gtest/gtest.h>
+#include <mpi.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "solver/simulation.hpp"
+#include "test_support.hpp"
+
+namespace granflow {
+namespace {
+
+constexpr double a = 0.05715;  // column width, 2.25 in
+constexpr double g = 9.81;
+
+// Linear interpolation of y(x) at xq, x increasing.
+double interp(const std::vector<double>& x, const std::vector<double>& y, double xq) {
+  if (xq <= x.front()) return y.front();
+  if (xq >= x.back()) return y.back();
+  const auto k = size_t(std::upper_bound(x.begin(), x.end(), xq) - x.begin());
+  const double w = (xq - x[k - 1]) / (x[k] - x[k - 1]);
+  return (1 - w) * y[k - 1] + w * y[k];
+}
+
+TEST(DamBreak, MartinMoyceColumnCollapse) {
+  int rank = 0, pid = int(getpid());
+  MPI_Comm_rank(PETSC_COMM_WORLD, &rank);
+  MPI_Bcast(&pid, 1, MPI_INT, 0, PETSC_COMM_WORLD);
+  const auto out = std::filesystem::temp_directory_path() / ("granflow_dam_break_" + std::to_string(pid));
+  // T = 3.06 at t = 0.165 s; no field files, only the history.
+  const CaseConfig config = load_case(test::repo_path("cases/water_dam_break.toml"),
+                                      {"output.progress_seconds=0", "time.end=0.165", "output.fields=false"});
+  RunSummary s;
+  {
+    Simulation sim(PETSC_COMM_WORLD, config, out);
+    s = sim.run();
+  }
+  MPI_Barrier(PETSC_COMM_WORLD);
+  auto hist = test::read_csv((out / "history.csv").string());
+  MPI_Barrier(PETSC_COMM_WORLD);
+  if (rank == 0) std::filesystem::remove_all(out);
+  // Each rank reads the history and checks it; only rank 0 prints.
+  auto say = [rank](const char* format, auto... args) {
+    if (rank == 0) std::printf(format, args...);
+  };
+  ASSERT_GT(hist["time"].size(), 10u);
+  ASSERT_NEAR(s.time, 0.165, 1e-9);
+
+  // The column starts at Z = 1, H = 1 (t = 0 is not a history row).
+  std::vector<double> T{0.0}, tau{0.0}, Z{1.0}, H{1.0};
+  for (size_t k = 0; k < hist["time"].size(); ++k) {
+    T.push_back(hist["time"][k] * std::sqrt(2 * g / a));
+    tau.push_back(hist["time"][k] * std::sqrt(g / a));
+    Z.push_back(hist["toe_contour"][k] / a);
+    H.push_back(hist["wall_height"][k] / (2 * a));
+  }
+
+  // Dense-phase volume over the run (initial volume a * 2a: the column's edges lie on cell faces).
+  const auto& vol = hist["soil_volume"];
+  double drift = 0.0;
+  for (double v : vol) drift = std::max(drift, std::abs(v / vol.front() - 1.0));
+  say("dam break: %ld steps, %.1f s wall, t = %.3f s (T = %.2f)\n", s.steps, s.wall_seconds, s.time, T.back());
+  say("water volume %.12e m^2 (a * 2a = %.12e), largest relative drift %.2e, end %.2e\n", vol.front(),
+              a * 2 * a, drift, s.soil_volume_error);
+  EXPECT_LT(drift, 1e-10);
+  EXPECT_LT(std::abs(s.soil_volume_error), 1e-10);
+  EXPECT_NEAR(vol.front(), a * 2 * a, 1e-12 * a * a);
+
+  auto front = test::read_csv(test::repo_path("validation/refdata/martin_moyce1952_n2_2_surge_front.csv"));
+  say("     T  Z_exp  Z_sim  |dZ|/Z_exp  lead in T  bound\n");
+  double worst_strict = 0.0, worst_early = 0.0;
+  int compared = 0;
+  for (size_t k = 0; k < front["T"].size(); ++k) {
+    const double Te = front["T"][k], Ze = front["Z"][k];
+    if (Te > 3.0) continue;
+    ++compared;
+    const double Zs = interp(T, Z, Te);
+    const double dev = std::abs(Zs - Ze) / Ze;
+    const double lead = Te - interp(Z, T, Ze);  // Z is increasing over this range
+    const bool early = Te > 0.8 && Te < 1.7;
+    say("  %4.2f  %5.2f  %5.3f  %9.4f  %9.3f  %s\n", Te, Ze, Zs, dev, lead, early ? "16 %, ahead" : "10 %");
+    if (early) {
+      worst_early = std::max(worst_early, dev);
+      EXPECT_LT(dev, 0.16) << "T = " << Te;
+      EXPECT_GT(Zs, Ze) << "T = " << Te << ": the early front should run ahead of the experiment";
+    } else {
+      worst_strict = std::max(worst_strict, dev);
+      EXPECT_LT(dev, 0.10) << "T = " << Te;
+    }
+  }
+  EXPECT_EQ(compared, 13);
+  say("surge front: largest |dZ|/Z_exp %.4f on the 9 points held to 10 %%, %.4f on the 4 early points\n",
+              worst_strict, worst_early);
+
+  auto resid = test::read_csv(test::repo_path("validation/refdata/martin_moyce1952_n2_2_residual_height.csv"));
+  say("   tau  H_exp  H_sim  H_sim-H_exp\n");
+  double worst_h = 0.0, worst_h_rel = 0.0;
+  for (size_t k = 0; k < resid["tau"].size(); ++k) {
+    const double te = resid["tau"][k], He = resid["H"][k];
+    if (std::sqrt(2.0) * te > 3.0) continue;
+    const double Hs = interp(tau, H, te);
+    say("  %4.2f  %5.2f  %5.3f  %+9.4f\n", te, He, Hs, Hs - He);
+    worst_h = std::max(worst_h, std::abs(Hs - He));
+    worst_h_rel = std::max(worst_h_rel, std::abs(Hs - He) / He);
+    EXPECT_LT(std::abs(Hs - He), 0.5 / 18.0) << "tau = " << te;
+  }
+  say("residual height: largest |H_sim - H_exp| %.4f of the initial height (%.4f relative)\n", worst_h,
+              worst_h_rel);
+}
+
+}  // namespace
+}  // namespace granflow
