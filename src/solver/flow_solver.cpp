@@ -304,9 +304,7 @@ double FlowSolver::cell_force(int axis, int i, int j, const double* const* ff, c
 
 double FlowSolver::face_coefficient(const double* const* rau, const double* const* rho, int i, int j, int in,
                                     int jn) const {
-  // Harmonic mean: where a cell held by a large viscosity meets a free one, the stiff side governs
-  // how much the face velocity may respond to the pressure, so a rigid block cannot leak at its sides.
-  if (settings_.numerics.pressure_coupling == PressureCoupling::piso) return face_mean(FaceViscosity::harmonic, rau[j][i], rau[jn][in]);
+  if (settings_.numerics.pressure_coupling == PressureCoupling::piso) return 0.5 * (rau[j][i] + rau[jn][in]);
   return dt_ / (0.5 * (rho[j][i] + rho[jn][in]));
 }
 
