@@ -1,0 +1,39 @@
+#!/usr/bin/env bash
+# Whole-run benchmarks of granflow on 1 and 2 MPI ranks (wall seconds, steps, iterations).
+# Usage: bench/run_benchmarks.sh [cavity|bui2008|dam_break|all] [repetitions]
+# Prints one Markdown table row per run; docs/benchmarks.md holds the figures and this command.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
+which="${1:-all}"
+reps="${2:-1}"
+run() {  # name ranks case overrides...
+  local name=$1 ranks=$2 case=$3
+  shift 3
+  for r in $(seq "$reps"); do
+    local out log
+    out=$(mktemp -d)
+    log="$out/log"
+    local start end
+    start=$(date +%s.%N)
+    mpirun -np "$ranks" --oversubscribe build/granflow run "$case" -o "$out" --set output.progress_seconds=0 \
+      --set output.fields=false "$@" > "$log" 2>&1
+    end=$(date +%s.%N)
+    local steps its
+    steps=$(grep -oP 'in \K[0-9]+(?= steps)' "$log")
+    its=$(grep -oP 'outer iterations \K[0-9]+, momentum iterations [0-9]+, pressure solves [0-9]+ \([0-9.]+' "$log" | tr -d '(')
+    printf "| %s | %d | %.1f | %s | %s |\n" "$name" "$ranks" "$(echo "$end - $start" | bc)" "$steps" "$its"
+    rm -rf "$out"
+  done
+}
+echo "| run | ranks | wall s | steps | outer its, momentum its, pressure solves, pressure its/solve |"
+echo "|---|---|---|---|---|"
+if [[ $which == cavity || $which == all ]]; then
+  for n in 1 2; do run "cavity Re 1000, 256 x 256, to steady state" $n cases/lid_driven_cavity_re1000.toml "--set" "mesh.cells=[256,256]" "--set" "time.end=400"; done
+fi
+if [[ $which == bui2008 || $which == all ]]; then
+  for n in 1 2; do run "bui2008_experiment 300 x 100 to t = 1 s" $n cases/bui2008_experiment.toml "--set" "time.end=1.0"; done
+fi
+if [[ $which == dam_break || $which == all ]]; then
+  for n in 1 2; do run "water_dam_break to t = 0.2 s" $n cases/water_dam_break.toml; done
+fi
