@@ -173,6 +173,7 @@ SoilSettings read_soil(TableReader& top) {
       so.require_range("viscosity", s.soil_viscosity, 0.0, inf, "zero or positive");
     }
     s.displacement = so.boolean("displacement", s.rheology.has_value());
+    s.lithostatic_floor = so.choice("yield_pressure", "solver", {"solver", "lithostatic_floor"}) == "lithostatic_floor";
     s.failure_strain = so.number("failure_strain", s.failure_strain);
     so.require_range("failure_strain", s.failure_strain, 1e-6, 10.0);
     so.finish();
@@ -230,6 +231,7 @@ CaseConfig read_case(const toml::table& root, const std::filesystem::path& sourc
     c.time.adaptive = t.boolean("adaptive", true);
     c.time.courant = t.number("courant", 0.5);
     t.require_range("courant", c.time.courant, 1e-6, 1e3);
+    c.time.courant_region = t.choice("courant_region", "all", {"all", "soil"}) == "soil" ? CourantRegion::soil : CourantRegion::all;
     c.time.max_dt = t.number("max_dt", inf);
     if (!(c.time.max_dt > 0)) throw CaseError("time.max_dt: must be positive");
     c.time.max_growth = t.number("max_growth", 1.2);

@@ -11,11 +11,16 @@
 
 namespace granflow {
 
+// Where the flow Courant number limits the step: everywhere, or only in and next to the soil (the
+// interface Courant limit still applies everywhere; air far from the soil is integrated implicitly).
+enum class CourantRegion { all, soil };
+
 struct TimeSettings {
   double end = 1.0;
   double dt = 1e-3;          // initial step, or the fixed step when not adaptive
   bool adaptive = true;
   double courant = 0.5;      // largest flow Courant number
+  CourantRegion courant_region = CourantRegion::all;
   double max_dt = 1e30;
   double max_growth = 1.2;   // largest ratio of successive steps
   double steady_tolerance = 0.0;  // > 0: stop when max|dv/dt| / max|v| falls below it (1/s)

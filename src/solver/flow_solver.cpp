@@ -747,12 +747,20 @@ StepReport FlowSolver::step(double dt) {
   return report;
 }
 
-double FlowSolver::max_courant(double dt) const {
+double FlowSolver::max_courant(double dt, const Field* region) const {
   const auto& b = grid_.owned();
   ConstFieldArray fx = local_read(grid_, *face_[0]), fy = local_read(grid_, *face_[1]);
+  std::unique_ptr<ConstFieldArray> mask;
+  if (region) mask = std::make_unique<ConstFieldArray>(grid_.field_dm(), region->local());
   double co = 0.0;
   for (int j = b.ys; j < b.ye(); ++j)
     for (int i = b.xs; i < b.xe(); ++i) {
+      if (mask) {  // only cells with some of the region in their 3 x 3 neighbourhood
+        double m = 0.0;
+        for (int dj = -1; dj <= 1; ++dj)
+          for (int di = -1; di <= 1; ++di) m = std::max(m, (*mask)[j + dj][i + di]);
+        if (m < 1e-6) continue;
+      }
       co = std::max(co, (std::abs(fx[j][i]) + std::abs(fx[j][i - 1])) * 0.5 * dt / grid_.dx(i) +
                             (std::abs(fy[j][i]) + std::abs(fy[j - 1][i])) * 0.5 * dt / grid_.dy(j));
     }

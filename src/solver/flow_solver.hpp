@@ -68,8 +68,9 @@ class FlowSolver {
 
   StepReport step(double dt);
 
-  // Largest |u| dt / h over faces, for the Courant condition.
-  double max_courant(double dt) const;
+  // Largest |u| dt / h over cells, for the Courant condition; with a region (a ghosted fraction
+  // field), only over cells whose 3 x 3 neighbourhood holds some of it.
+  double max_courant(double dt, const Field* region = nullptr) const;
   double max_speed() const;
   // Largest |div v| * V over owned cells, from the face velocities (volumetric imbalance, m^2/s in 2D).
   double max_divergence() const;

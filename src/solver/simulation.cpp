@@ -21,6 +21,7 @@ Simulation::Simulation(MPI_Comm comm, const CaseConfig& config, std::filesystem:
   if (config.soil) {
     soil_ = std::make_unique<SoilPhase>(*grid_, flow_->settings(), *config.soil);
     soil_->initialise();
+    soil_->refresh(*flow_);
     flow_->set_property_update([soil = soil_.get()](FlowSolver& f) { soil->update_properties(f); });
   } else {
     const PhaseSettings fluid = config.fluid;
@@ -57,7 +58,8 @@ double Simulation::next_output_time() const {
 double Simulation::choose_dt(double dt_previous) const {
   const auto& t = config_.time;
   if (!t.adaptive) return t.dt;
-  const double co = flow_->max_courant(dt_previous);
+  const bool soil_only = soil_ && t.courant_region == CourantRegion::soil;
+  const double co = flow_->max_courant(dt_previous, soil_only ? &soil_->soil_fraction() : nullptr);
   double dt = co > 0.0 ? dt_previous * t.courant / co : dt_previous * t.max_growth;
   if (soil_) {
     const double ci = soil_->interface_courant(*flow_, dt_previous);
@@ -212,7 +214,10 @@ RunSummary Simulation::run() {
     if (time_ + step_dt > t_out * (1 - 1e-12)) step_dt = t_out - time_;
     else if (time_ + 1.5 * step_dt > t_out) step_dt = 0.5 * (t_out - time_);  // avoid a sliver step
     for (int a = 0; a < 2; ++a) VecCopy(flow_->velocity(a).global(), previous[a]);
-    if (soil_) soil_->advect(*flow_, step_dt);  // explicit interface, then the implicit flow step
+    if (soil_) {  // explicit interface, then the implicit flow step
+      soil_->advect(*flow_, step_dt);
+      soil_->refresh(*flow_);
+    }
     const StepReport r = flow_->step(step_dt);
     if (soil_) soil_->transport_displacement(*flow_, step_dt);
     time_ += step_dt;

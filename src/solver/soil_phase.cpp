@@ -33,6 +33,7 @@ SoilPhase::SoilPhase(const Grid& grid, const FlowSettings& flow, const SoilSetti
   c_tmp_ = make();
   dilatation_ = make();
   strain_norm_ = make();
+  overburden_ = make();
   rate_norm_ = make();
   lode_ = make();
   for (int a = 0; a < 2; ++a) {
@@ -40,7 +41,8 @@ SoilPhase::SoilPhase(const Grid& grid, const FlowSettings& flow, const SoilSetti
     disp_new_[a] = make();
     disp_[a]->set(0.0);
   }
-  for (Field* f : {c_.get(), c_tmp_.get(), dilatation_.get(), strain_norm_.get(), rate_norm_.get(), lode_.get()})
+  for (Field* f : {c_.get(), c_tmp_.get(), dilatation_.get(), strain_norm_.get(), rate_norm_.get(), lode_.get(),
+                   overburden_.get()})
     f->set(0.0);
 }
 
@@ -105,16 +107,58 @@ void SoilPhase::update_properties(FlowSolver& flow) const {
   ConstFieldArray u = local_read(grid_, flow.velocity(0)), v = local_read(grid_, flow.velocity(1));
   ConstFieldArray p(grid_.field_dm(), flow.pressure().global());
   FieldArray rho(grid_.field_dm(), flow.density().global()), mu(grid_.field_dm(), flow.viscosity().global());
+  std::unique_ptr<ConstFieldArray> overburden;
+  if (settings_.lithostatic_floor) overburden = std::make_unique<ConstFieldArray>(grid_.field_dm(), overburden_->global());
   const auto& s = settings_;
   for (int j = b.ys; j < b.ye(); ++j)
     for (int i = b.xs; i < b.xe(); ++i) {
       const double cc = c[j][i];
       rho[j][i] = s.density_mixing(cc, s.air_density, s.soil_density);
       double mu_soil = s.soil_viscosity;
-      if (rheology_ && cc > 0.0)
-        mu_soil = rheology_->dynamic_viscosity(cell_strain_rate(grid_, u.data(), v.data(), i, j), p[j][i]);
+      if (rheology_ && cc > 0.0) {
+        const double pressure = s.lithostatic_floor ? std::max(p[j][i], (*overburden)[j][i]) : p[j][i];
+        mu_soil = rheology_->dynamic_viscosity(cell_strain_rate(grid_, u.data(), v.data(), i, j), pressure);
+      }
       mu[j][i] = s.viscosity_mixing(cc, s.air_viscosity, mu_soil);
     }
+}
+
+void SoilPhase::refresh(const FlowSolver& flow) {
+  if (settings_.lithostatic_floor) compute_overburden(flow.settings().gravity);
+}
+
+// Depth of soil above each cell centre, sum of c dy over the cells above plus half the cell's own,
+// times rho_s |g|. Columns cross ranks, so the soil fraction is gathered whole (once per step).
+void SoilPhase::compute_overburden(const std::array<double, 2>& gravity) {
+  Vec natural, all;
+  VecScatter to_all;
+  DM dm = grid_.field_dm();
+  PetscCallAbort(grid_.comm(), DMDACreateNaturalVector(dm, &natural));
+  PetscCallAbort(grid_.comm(), DMDAGlobalToNaturalBegin(dm, c_->global(), INSERT_VALUES, natural));
+  PetscCallAbort(grid_.comm(), DMDAGlobalToNaturalEnd(dm, c_->global(), INSERT_VALUES, natural));
+  PetscCallAbort(grid_.comm(), VecScatterCreateToAll(natural, &to_all, &all));
+  PetscCallAbort(grid_.comm(), VecScatterBegin(to_all, natural, all, INSERT_VALUES, SCATTER_FORWARD));
+  PetscCallAbort(grid_.comm(), VecScatterEnd(to_all, natural, all, INSERT_VALUES, SCATTER_FORWARD));
+  const double* c;
+  VecGetArrayRead(all, &c);
+  const int nx = grid_.nx(), ny = grid_.ny();
+  const double weight = settings_.soil_density * std::abs(gravity[1]);
+  const auto& b = grid_.owned();
+  {
+    FieldArray o(dm, overburden_->global());
+    for (int i = b.xs; i < b.xe(); ++i) {
+      double depth = 0.0;
+      for (int j = ny - 1; j >= b.ys; --j) {
+        const double cj = c[size_t(j) * nx + i] * grid_.dy(j);
+        if (j < b.ye()) o[j][i] = weight * (depth + 0.5 * cj);
+        depth += cj;
+      }
+    }
+  }
+  VecRestoreArrayRead(all, &c);
+  VecScatterDestroy(&to_all);
+  VecDestroy(&all);
+  VecDestroy(&natural);
 }
 
 double SoilPhase::interface_courant(const FlowSolver& flow, double dt) const {

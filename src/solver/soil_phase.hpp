@@ -2,6 +2,7 @@
 // The soil phase on the grid: its fraction c, carried by geometric VoF advection; the mixture
 // properties and the granular viscosity it gives the flow solver; the Eulerian displacement and
 // the Euler-Almansi strain ([VoF] Eqs. 13-16, 19-20).
+#include <array>
 #include <memory>
 #include <optional>
 
@@ -30,6 +31,8 @@ class SoilPhase {
   // Advects c over dt with the flow's (divergence-free) face velocities, in as many sub-steps as the
   // interface Courant limit needs.
   void advect(const FlowSolver& flow, double dt);
+  // Refreshes what depends on c alone (the overburden pressure), after initialise() or advect().
+  void refresh(const FlowSolver& flow);
   // Eulerian displacement ([VoF] Eq. 16) with the soil velocity c v, explicit upwind.
   void transport_displacement(const FlowSolver& flow, double dt);
   // Largest Courant number of one VoF sweep for a step dt.
@@ -59,6 +62,8 @@ class SoilPhase {
   std::unique_ptr<Field> c_, c_tmp_, dilatation_;
   std::unique_ptr<Field> disp_[2], disp_new_[2];
   std::unique_ptr<Field> strain_norm_, rate_norm_, lode_;
+  std::unique_ptr<Field> overburden_;  // rho_s g times the soil depth above each centre (Pa)
+  void compute_overburden(const std::array<double, 2>& gravity);
   int sweep_parity_ = 0;
 };
 

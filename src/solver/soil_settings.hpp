@@ -21,6 +21,10 @@ struct SoilSettings {
   double interface_courant = 0.45;  // largest Courant number of one VoF sweep (< 0.5 for boundedness)
   bool displacement = true;         // carry the Eulerian displacement and strain ([VoF] Eq. 16)
   double failure_strain = 0.3;      // ||e|| of the failure line ([VoF] Sec. 4)
+  // Pressure entering the yield stress: the solver's own (clipped at zero), or at least the weight
+  // of the soil above the cell in its column (rho_s g depth), so that thin layers and cells near the
+  // surface keep the strength their overburden gives them where the solver's pressure is near zero.
+  bool lithostatic_floor = false;
 };
 
 }  // namespace granflow
