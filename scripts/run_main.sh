@@ -1,9 +1,10 @@
 #!/usr/bin/env bash
-# The main job: the lid-driven cavity at Re 1000 (128 x 128) to steady state, with its comparison
-# against Ghia, Ghia & Shin (1982) as a PNG. Output in out/lid_driven_cavity_re1000/.
+# The main job: the bui2008_experiment collapse at the paper's resolution (300 x 100 cells) to
+# t = 2 s, with its comparison against the experiment of Bui et al. (2008) as a PNG.
+# Output in out/bui2008_experiment/ (fields.pvd for ParaView, surfaces, failure lines, history).
 set -euo pipefail
 cd "$(dirname "$0")/.."
-out=out/lid_driven_cavity_re1000
-build/granflow run cases/lid_driven_cavity_re1000.toml -o "$out"
-/usr/bin/python3 scripts/compare_cavity.py "$out" 1000 --png "$out/comparison_ghia1982.png"
-echo "main job: results in $out (fields.pvd for ParaView, comparison_ghia1982.png)"
+out=out/bui2008_experiment
+build/granflow run cases/bui2008_experiment.toml -o "$out"
+/usr/bin/python3 scripts/compare_bui2008.py "$out" --png "$out/comparison_bui2008.png" --json "$out/comparison.json"
+echo "main job: results in $out (fields.pvd for ParaView, comparison_bui2008.png)"
