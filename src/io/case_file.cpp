@@ -278,9 +278,10 @@ CaseConfig read_case(const toml::table& root, const std::filesystem::path& sourc
     auto& num = c.flow.numerics;
     const std::string conv = n.choice("convection", "quick", {"upwind", "central", "blended", "quick"});
     parse_convection_scheme(conv, num.convection);
-    num.pressure_coupling = n.choice("pressure_coupling", "projection", {"projection", "piso"}) == "projection"
-                                ? PressureCoupling::projection
-                                : PressureCoupling::piso;
+    const std::string coupling = n.choice("pressure_coupling", "projection", {"projection", "piso", "coupled"});
+    num.pressure_coupling = coupling == "projection" ? PressureCoupling::projection
+                            : coupling == "piso"     ? PressureCoupling::piso
+                                                     : PressureCoupling::coupled;
     num.rotational_coefficient = n.number("rotational_coefficient", num.rotational_coefficient);
     n.require_range("rotational_coefficient", num.rotational_coefficient, 0.0, 2.0);
     num.blending = n.number("blending", num.blending);
@@ -301,6 +302,7 @@ CaseConfig read_case(const toml::table& root, const std::filesystem::path& sourc
     TableReader s = top.table("solver");
     c.flow.momentum_solver = read_linear_solver(s.table("momentum"), c.flow.momentum_solver);
     c.flow.pressure_solver = read_linear_solver(s.table("pressure"), c.flow.pressure_solver);
+    c.flow.coupled_solver = read_linear_solver(s.table("coupled"), c.flow.coupled_solver);
     s.finish();
   }
   {

@@ -10,7 +10,7 @@
 namespace granflow {
 
 // How the pressure step couples to momentum (see FlowSolver::cell_force).
-enum class PressureCoupling { projection, piso };
+enum class PressureCoupling { projection, piso, coupled };
 
 struct NumericsSettings {
   PressureCoupling pressure_coupling = PressureCoupling::projection;
@@ -33,6 +33,7 @@ struct FlowSettings {
   NumericsSettings numerics{};
   LinearSolverSettings momentum_solver{"bcgs", "bjacobi", 1e-8, 1e-14, 1000};
   LinearSolverSettings pressure_solver{"cg", "hypre", 1e-10, 1e-14, 2000};
+  LinearSolverSettings coupled_solver{"preonly", "lu", 1e-10, 1e-14, 1};
 };
 
 }  // namespace granflow

@@ -77,6 +77,11 @@ FlowSolver::FlowSolver(const Grid& grid, const FlowSettings& settings) : grid_(g
     if (boundary(settings.boundaries, s).kind == BoundaryKind::atmosphere) has_pressure_boundary_ = true;
     if (boundary(settings.boundaries, s).kind == BoundaryKind::slip) shared_momentum_matrix_ = false;
   }
+  if (settings.numerics.pressure_coupling == PressureCoupling::coupled) {
+    if (!has_pressure_boundary_)
+      throw std::invalid_argument("numerics.pressure_coupling = \"coupled\" needs an atmosphere boundary to fix the pressure level");
+    create_coupled_system();
+  }
   if (!has_pressure_boundary_) {
     PetscCallAbort(comm, MatNullSpaceCreate(comm, PETSC_TRUE, 0, nullptr, &pressure_null_space_));
     PetscCallAbort(comm, MatSetNullSpace(pressure_matrix_, pressure_null_space_));
@@ -92,6 +97,7 @@ void FlowSolver::enable_body_force() {
 }
 
 FlowSolver::~FlowSolver() {
+  destroy_coupled_system();
   for (auto& m : momentum_matrix_) MatDestroy(&m);
   MatDestroy(&pressure_matrix_);
   MatNullSpaceDestroy(&pressure_null_space_);
@@ -229,7 +235,6 @@ void FlowSolver::set_hydrostatic_pressure() {
 // Face forces -grad(p) + rho_f g on faces. Wall faces carry none (their entries stay zero);
 // atmosphere faces use the boundary pressure.
 
-namespace {
 double atmosphere_pressure(const BoundaryCondition& bc, const std::array<double, 2>& gravity, double rho,
                            double x, double y, double y_top, double outward_velocity, double speed2) {
   // Hydrostatic in the adjacent cell's density, referred to the top of the domain, where p = p0.
@@ -237,7 +242,6 @@ double atmosphere_pressure(const BoundaryCondition& bc, const std::array<double,
   if (bc.total_pressure && outward_velocity < 0.0) p -= 0.5 * rho * speed2;  // inflow: total pressure p0
   return p;
 }
-}  // namespace
 
 void FlowSolver::compute_face_forces() {
   const auto& b = grid_.owned();
@@ -717,6 +721,10 @@ StepReport FlowSolver::step(double dt) {
     for (int a = 0; a < 2; ++a) VecCopy(vel_[a]->global(), u_start[a]);
     update_properties();
     assemble_momentum(dt);
+    if (num.pressure_coupling == PressureCoupling::coupled) {
+      report.pressure_iterations += solve_coupled();
+      ++report.pressure_solves;
+    } else {
     const bool projection = num.pressure_coupling == PressureCoupling::projection;
     if (num.momentum_predictor || projection) report.momentum_iterations += solve_momentum();
     compute_hbya();
@@ -727,6 +735,7 @@ StepReport FlowSolver::step(double dt) {
       if (corr > 0) compute_hbya();
       report.pressure_iterations += solve_pressure(dt);
       ++report.pressure_solves;
+    }
     }
     ++report.outer_iterations;
     // Convergence of the outer loop: largest velocity change relative to the largest velocity.

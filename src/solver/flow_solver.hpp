@@ -82,6 +82,12 @@ class FlowSolver {
   void compute_face_forces();
   int solve_momentum();
   void compute_hbya();
+  // Coupled velocity-pressure solve (coupled_step.cpp).
+  void create_coupled_system();
+  void destroy_coupled_system();
+  void store_cell_forces();
+  int solve_coupled();
+  double coupled_mobility(const double* const* rau, int i, int j, int in, int jn) const;
   double local_min_viscosity(const double* const* mu, int i, int j) const;
   double cell_force(int axis, int i, int j, const double* const* ff, const double* const* rho) const;
   double face_coefficient(const double* const* rau, const double* const* rho, int i, int j, int in, int jn) const;
@@ -109,6 +115,11 @@ class FlowSolver {
   Vec rhs_ = nullptr;
   std::unique_ptr<LinearSolver> momentum_solver_[2];
   std::unique_ptr<LinearSolver> pressure_solver_;
+  DM coupled_dm_ = nullptr;  // (u, v, p) per cell, same layout as the grid
+  Mat coupled_matrix_ = nullptr;
+  Vec coupled_rhs_ = nullptr, coupled_solution_ = nullptr;
+  std::unique_ptr<LinearSolver> coupled_solver_;
+  std::unique_ptr<Field> cell_force_[2];  // lagged balanced cell force of the Rhie-Chow flux
   bool has_pressure_boundary_ = false;
   bool shared_momentum_matrix_ = true;  // no slip walls: u and v share their matrix
   double dt_ = 0.0;

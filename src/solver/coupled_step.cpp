@@ -1,0 +1,266 @@
+// The coupled velocity-pressure solve of FlowSolver: momentum and continuity of one outer iteration
+// as one linear system in (u, v, p), so that no splitting error decides how a face responds to a
+// pressure jump. Faces carry Rhie-Chow fluxes with the mobility V/a_P (harmonic between the two
+// cells): where viscosity holds a cell, its faces barely respond to pressure, so a rigid block next
+// to air stays rigid; solved together with momentum, this small mobility cannot overshoot the way it
+// does in a segregated (SIMPLE/PISO) pressure step.
+#include <algorithm>
+#include <cmath>
+
+#include "operators/face_interpolation.hpp"
+#include "solver/flow_solver.hpp"
+
+namespace granflow {
+
+namespace {
+enum Unknown { U = 0, V = 1, P = 2 };
+}  // namespace
+
+void FlowSolver::create_coupled_system() {
+  MPI_Comm comm = grid_.comm();
+  PetscInt m, n;
+  const PetscInt *lx, *ly;
+  DMDAGetInfo(grid_.field_dm(), nullptr, nullptr, nullptr, nullptr, &m, &n, nullptr, nullptr, nullptr, nullptr,
+              nullptr, nullptr, nullptr);
+  DMDAGetOwnershipRanges(grid_.field_dm(), &lx, &ly, nullptr);
+  PetscCallAbort(comm, DMDACreate2d(comm, DM_BOUNDARY_NONE, DM_BOUNDARY_NONE, DMDA_STENCIL_STAR, grid_.nx(),
+                                    grid_.ny(), m, n, 3, 1, lx, ly, &coupled_dm_));
+  PetscCallAbort(comm, DMSetUp(coupled_dm_));
+  PetscCallAbort(comm, DMCreateMatrix(coupled_dm_, &coupled_matrix_));
+  PetscCallAbort(comm, MatSetOption(coupled_matrix_, MAT_NEW_NONZERO_ALLOCATION_ERR, PETSC_TRUE));
+  PetscCallAbort(comm, DMCreateGlobalVector(coupled_dm_, &coupled_rhs_));
+  PetscCallAbort(comm, VecDuplicate(coupled_rhs_, &coupled_solution_));
+  coupled_solver_ = std::make_unique<LinearSolver>(comm, "coupled", settings_.coupled_solver);
+  for (int a = 0; a < 2; ++a) {
+    cell_force_[a] = std::make_unique<Field>(grid_);
+    cell_force_[a]->set(0.0);
+  }
+}
+
+void FlowSolver::destroy_coupled_system() {
+  MatDestroy(&coupled_matrix_);
+  VecDestroy(&coupled_rhs_);
+  VecDestroy(&coupled_solution_);
+  DMDestroy(&coupled_dm_);
+}
+
+// Rhie-Chow mobility of the face between (i,j) and (in,jn) along `axis`: harmonic mean of V/a_P.
+double FlowSolver::coupled_mobility(const double* const* rau, int i, int j, int in, int jn) const {
+  return face_mean(FaceViscosity::harmonic, rau[j][i], rau[jn][in]);
+}
+
+// Balanced cell force rho_P mean(f_face / rho_face) from the current pressure, kept for the lagged
+// part of the Rhie-Chow flux (which would otherwise widen the stencil).
+void FlowSolver::store_cell_forces() {
+  compute_face_forces();
+  const auto& b = grid_.owned();
+  ConstFieldArray rho = local_read(grid_, *rho_);
+  for (int c = 0; c < 2; ++c) {
+    ConstFieldArray ff = local_read(grid_, *face_force_[c]);
+    FieldArray fc(grid_.field_dm(), cell_force_[c]->global());
+    for (int j = b.ys; j < b.ye(); ++j)
+      for (int i = b.xs; i < b.xe(); ++i) fc[j][i] = cell_force(c, i, j, ff.data(), rho.data());
+  }
+  for (int c = 0; c < 2; ++c) cell_force_[c]->scatter_to_local();
+}
+
+int FlowSolver::solve_coupled() {
+  const auto& b = grid_.owned();
+  const int nx = grid_.nx(), ny = grid_.ny();
+  const auto& g = settings_.gravity;
+  const double y_top = grid_.spec().upper[1];
+  // V / a_P per component, with ghosts, for the face mobilities.
+  {
+    for (int c = 0; c < 2; ++c) {
+      FieldArray r(grid_.field_dm(), rau_[c]->global());
+      for (int j = b.ys; j < b.ye(); ++j)
+        for (int i = b.xs; i < b.xe(); ++i)
+          r[j][i] = grid_.volume(i, j) / a_centre_[c][size_t(j - b.ys) * b.xm + (i - b.xs)];
+    }
+    for (int c = 0; c < 2; ++c) rau_[c]->scatter_to_local();
+  }
+  store_cell_forces();
+  {
+    ConstFieldArray rho = local_read(grid_, *rho_), u = local_read(grid_, *vel_[0]), v = local_read(grid_, *vel_[1]);
+    ConstFieldArray fxv = local_read(grid_, *face_[0]), fyv = local_read(grid_, *face_[1]);
+    ConstFieldArray rx = local_read(grid_, *rau_[0]), ry = local_read(grid_, *rau_[1]);
+    ConstFieldArray fcx = local_read(grid_, *cell_force_[0]), fcy = local_read(grid_, *cell_force_[1]);
+    const double* const* rau[2] = {rx.data(), ry.data()};
+    const double* const* fcell[2] = {fcx.data(), fcy.data()};
+    PetscScalar*** rhs;
+    DMDAVecGetArrayDOF(coupled_dm_, coupled_rhs_, &rhs);
+    for (int j = b.ys; j < b.ye(); ++j)
+      for (int i = b.xs; i < b.xe(); ++i) {
+        const size_t k = size_t(j - b.ys) * b.xm + (i - b.xs);
+        const double Vol = grid_.volume(i, j), rhoP = rho[j][i];
+        // Momentum rows: a_P v_P - sum a_nb v_nb - V f_cell(p) = source.
+        for (int c = 0; c < 2; ++c) {
+          MatStencil row{0, j, i, c};
+          MatStencil cols[8];
+          double vals[8];
+          int n = 0;
+          cols[n] = row;
+          vals[n++] = a_centre_[c][k];
+          const int di[4] = {1, -1, 0, 0}, dj[4] = {0, 0, 1, -1};
+          const double anb[4] = {a_east_[k], a_west_[k], a_north_[k], a_south_[k]};
+          for (int f = 0; f < 4; ++f) {
+            const int in = i + di[f], jn = j + dj[f];
+            if (in < 0 || in >= nx || jn < 0 || jn >= ny) continue;
+            cols[n] = MatStencil{0, jn, in, c};
+            vals[n++] = -anb[f];
+          }
+          double r = source_[c][k];
+          double p_centre = 0.0;
+          for (int side = 0; side < 2; ++side) {  // high then low face along c
+            const int s = side == 0 ? 1 : -1;
+            const int in = i + (c == 0 ? s : 0), jn = j + (c == 1 ? s : 0);
+            if (in < 0 || in >= nx || jn < 0 || jn >= ny) {
+              const Side bs = c == 0 ? (s > 0 ? Side::east : Side::west) : (s > 0 ? Side::north : Side::south);
+              const auto& bc = boundary(settings_.boundaries, bs);
+              if (bc.kind != BoundaryKind::atmosphere) continue;  // walls carry no face force
+              const double d = 0.5 * (c == 0 ? grid_.dx(i) : grid_.dy(j));
+              const double xb = grid_.xc(i) + (c == 0 ? s * d : 0.0), yb = grid_.yc(j) + (c == 1 ? s * d : 0.0);
+              const double face_vel = c == 0 ? (s > 0 ? fxv[j][i] : fxv[j][i - 1]) : (s > 0 ? fyv[j][i] : fyv[j - 1][i]);
+              const double pb = atmosphere_pressure(bc, g, rhoP, xb, yb, y_top, s * face_vel,
+                                                    u[j][i] * u[j][i] + v[j][i] * v[j][i]);
+              // -V/2 f_b with f_b = -s (p_b - p_P)/d + rho_P g_c: p_b enters like a neighbour pressure.
+              const double w = Vol / (2 * d);
+              p_centre += -s * w;
+              r += -s * w * pb + 0.5 * Vol * rhoP * g[c];
+              continue;
+            }
+            const double d = c == 0 ? std::abs(grid_.xc(in) - grid_.xc(i)) : std::abs(grid_.yc(jn) - grid_.yc(j));
+            const double rho_f = 0.5 * (rhoP + rho[jn][in]);
+            const double w = Vol * rhoP / (2 * rho_f * d);  // -V rho_P/(2 rho_f) * (-s (p_N - p_P)/d)
+            cols[n] = MatStencil{0, jn, in, P};
+            vals[n++] = s * w;
+            p_centre += -s * w;
+            r += 0.5 * Vol * rhoP * g[c];
+          }
+          cols[n] = MatStencil{0, j, i, P};
+          vals[n++] = p_centre;
+          MatSetValuesStencil(coupled_matrix_, 1, &row, n, cols, vals, INSERT_VALUES);
+          rhs[j][i][c] = r;
+        }
+        // Continuity row: sum_f s A U_f = 0, U_f = mean(v_n) + m_f (f_f(p) - mean(f_cell)_lagged).
+        {
+          MatStencil row{0, j, i, P};
+          MatStencil cols[12];
+          double vals[12];
+          int n = 0;
+          double u_centre[2] = {0.0, 0.0}, p_centre = 0.0, r = 0.0;
+          for (int f = 0; f < 4; ++f) {
+            const int axis = f < 2 ? 0 : 1;
+            const int s = (f % 2 == 0) ? 1 : -1;
+            const int in = i + (axis == 0 ? s : 0), jn = j + (axis == 1 ? s : 0);
+            const double area = axis == 0 ? grid_.dy(j) : grid_.dx(i);
+            if (in < 0 || in >= nx || jn < 0 || jn >= ny) {
+              const Side bs = axis == 0 ? (s > 0 ? Side::east : Side::west) : (s > 0 ? Side::north : Side::south);
+              const auto& bc = boundary(settings_.boundaries, bs);
+              if (bc.kind != BoundaryKind::atmosphere) continue;
+              const double d = 0.5 * (axis == 0 ? grid_.dx(i) : grid_.dy(j));
+              const double xb = grid_.xc(i) + (axis == 0 ? s * d : 0.0), yb = grid_.yc(j) + (axis == 1 ? s * d : 0.0);
+              const double face_vel = axis == 0 ? (s > 0 ? fxv[j][i] : fxv[j][i - 1]) : (s > 0 ? fyv[j][i] : fyv[j - 1][i]);
+              const double pb = atmosphere_pressure(bc, g, rhoP, xb, yb, y_top, s * face_vel,
+                                                    u[j][i] * u[j][i] + v[j][i] * v[j][i]);
+              const double m = rau[axis][j][i];
+              u_centre[axis] += s * area;
+              p_centre += m * area / d;
+              r += m * area / d * pb - s * area * m * rhoP * g[axis] + s * area * m * fcell[axis][j][i];
+              continue;
+            }
+            const double d = axis == 0 ? std::abs(grid_.xc(in) - grid_.xc(i)) : std::abs(grid_.yc(jn) - grid_.yc(j));
+            const double m = coupled_mobility(rau[axis], i, j, in, jn);
+            const double rho_f = 0.5 * (rhoP + rho[jn][in]);
+            u_centre[axis] += 0.5 * s * area;
+            cols[n] = MatStencil{0, jn, in, axis};
+            vals[n++] = 0.5 * s * area;
+            p_centre += m * area / d;
+            cols[n] = MatStencil{0, jn, in, P};
+            vals[n++] = -m * area / d;
+            r += -s * area * m * rho_f * g[axis] + s * area * m * 0.5 * (fcell[axis][j][i] + fcell[axis][jn][in]);
+          }
+          cols[n] = MatStencil{0, j, i, U};
+          vals[n++] = u_centre[0];
+          cols[n] = MatStencil{0, j, i, V};
+          vals[n++] = u_centre[1];
+          cols[n] = row;
+          vals[n++] = p_centre;
+          MatSetValuesStencil(coupled_matrix_, 1, &row, n, cols, vals, INSERT_VALUES);
+          rhs[j][i][P] = r;
+        }
+      }
+    DMDAVecRestoreArrayDOF(coupled_dm_, coupled_rhs_, &rhs);
+  }
+  PetscCallAbort(grid_.comm(), MatAssemblyBegin(coupled_matrix_, MAT_FINAL_ASSEMBLY));
+  PetscCallAbort(grid_.comm(), MatAssemblyEnd(coupled_matrix_, MAT_FINAL_ASSEMBLY));
+  coupled_solver_->set_operator(coupled_matrix_);
+  // Initial guess: the current state.
+  {
+    PetscScalar*** x;
+    DMDAVecGetArrayDOF(coupled_dm_, coupled_solution_, &x);
+    ConstFieldArray u(grid_.field_dm(), vel_[0]->global()), v(grid_.field_dm(), vel_[1]->global()),
+        p(grid_.field_dm(), p_->global());
+    for (int j = b.ys; j < b.ye(); ++j)
+      for (int i = b.xs; i < b.xe(); ++i) {
+        x[j][i][U] = u[j][i];
+        x[j][i][V] = v[j][i];
+        x[j][i][P] = p[j][i];
+      }
+    DMDAVecRestoreArrayDOF(coupled_dm_, coupled_solution_, &x);
+  }
+  const int iterations = coupled_solver_->solve(coupled_rhs_, coupled_solution_);
+  {
+    PetscScalar*** x;
+    DMDAVecGetArrayDOF(coupled_dm_, coupled_solution_, &x);
+    FieldArray u(grid_.field_dm(), vel_[0]->global()), v(grid_.field_dm(), vel_[1]->global()),
+        p(grid_.field_dm(), p_->global());
+    for (int j = b.ys; j < b.ye(); ++j)
+      for (int i = b.xs; i < b.xe(); ++i) {
+        u[j][i] = x[j][i][U];
+        v[j][i] = x[j][i][V];
+        p[j][i] = x[j][i][P];
+      }
+    DMDAVecRestoreArrayDOF(coupled_dm_, coupled_solution_, &x);
+  }
+  fill_velocity_ghosts();
+  fill_scalar_ghosts(*p_);
+  // Face velocities with exactly the flux of the continuity rows (divergence-free to the tolerance).
+  compute_face_forces();
+  {
+    ConstFieldArray u = local_read(grid_, *vel_[0]), v = local_read(grid_, *vel_[1]);
+    ConstFieldArray rx = local_read(grid_, *rau_[0]), ry = local_read(grid_, *rau_[1]);
+    ConstFieldArray fcx = local_read(grid_, *cell_force_[0]), fcy = local_read(grid_, *cell_force_[1]);
+    ConstFieldArray ffx = local_read(grid_, *face_force_[0]), ffy = local_read(grid_, *face_force_[1]);
+    FieldArray fxv = local_array(grid_, *face_[0]), fyv = local_array(grid_, *face_[1]);
+    for (int j = b.ys; j < b.ye(); ++j)
+      for (int i = b.xs - 1; i < b.xe(); ++i) {
+        if (i == -1 || i == nx - 1) {
+          const Side s = i == -1 ? Side::west : Side::east;
+          const int ic = i == -1 ? 0 : i;
+          fxv[j][i] = boundary(settings_.boundaries, s).kind == BoundaryKind::atmosphere
+                          ? u[j][ic] + rx[j][ic] * (ffx[j][i] - fcx[j][ic])
+                          : 0.0;
+          continue;
+        }
+        fxv[j][i] = 0.5 * (u[j][i] + u[j][i + 1]) +
+                    coupled_mobility(rx.data(), i, j, i + 1, j) * (ffx[j][i] - 0.5 * (fcx[j][i] + fcx[j][i + 1]));
+      }
+    for (int j = b.ys - 1; j < b.ye(); ++j)
+      for (int i = b.xs; i < b.xe(); ++i) {
+        if (j == -1 || j == ny - 1) {
+          const Side s = j == -1 ? Side::south : Side::north;
+          const int jc = j == -1 ? 0 : j;
+          fyv[j][i] = boundary(settings_.boundaries, s).kind == BoundaryKind::atmosphere
+                          ? v[jc][i] + ry[jc][i] * (ffy[j][i] - fcy[jc][i])
+                          : 0.0;
+          continue;
+        }
+        fyv[j][i] = 0.5 * (v[j][i] + v[j + 1][i]) +
+                    coupled_mobility(ry.data(), i, j, i, j + 1) * (ffy[j][i] - 0.5 * (fcy[j][i] + fcy[j + 1][i]));
+      }
+  }
+  return iterations;
+}
+
+}  // namespace granflow
