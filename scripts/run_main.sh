@@ -2,9 +2,15 @@
 # The main job: the bui2008_experiment collapse at the paper's resolution (300 x 100 cells) to
 # t = 2 s, with its comparison against the experiment of Bui et al. (2008) as a PNG.
 # Output in out/bui2008_experiment/ (fields.pvd for ParaView, surfaces, failure lines, history).
-set -euo pipefail
+# If the run stops early (divergence keeps the last good output), the comparison is drawn for the
+# last output written and the job says so; see docs/validation.md for where the case stands.
+set -uo pipefail
 cd "$(dirname "$0")/.."
 out=out/bui2008_experiment
 build/granflow run cases/bui2008_experiment.toml -o "$out"
-/usr/bin/python3 scripts/compare_bui2008.py "$out" --png "$out/comparison_bui2008.png" --json "$out/comparison.json"
+status=$?
+/usr/bin/python3 scripts/compare_bui2008.py "$out" --png "$out/comparison_bui2008.png" --json "$out/comparison.json" || exit 1
+if [ $status -ne 0 ]; then
+  echo "main job: the run stopped early (status $status); the comparison shows its last output (docs/validation.md)"
+fi
 echo "main job: results in $out (fields.pvd for ParaView, comparison_bui2008.png)"
