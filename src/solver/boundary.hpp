@@ -39,7 +39,7 @@ inline int normal_axis(Side s) { return (s == Side::west || s == Side::east) ? 0
 
 // Pressure at an atmosphere face: p0 at the top of the domain, hydrostatic below it in the adjacent
 // density rho, minus rho |v|^2 / 2 where air flows in (total pressure) unless the boundary is static.
-double atmosphere_pressure(const BoundaryCondition& bc, const std::array<double, 2>& gravity, double rho, double x,
-                           double y, double y_top, double outward_velocity, double speed2);
+double atmosphere_pressure(const BoundaryCondition& bc, const std::array<double, 2>& gravity, double rho, double y,
+                           double y_top, double outward_velocity, double speed2);
 
 }  // namespace granflow

@@ -119,9 +119,9 @@ int FlowSolver::solve_coupled() {
               const auto& bc = boundary(settings_.boundaries, bs);
               if (bc.kind != BoundaryKind::atmosphere) continue;  // walls carry no face force
               const double d = 0.5 * (c == 0 ? grid_.dx(i) : grid_.dy(j));
-              const double xb = grid_.xc(i) + (c == 0 ? s * d : 0.0), yb = grid_.yc(j) + (c == 1 ? s * d : 0.0);
+              const double yb = grid_.yc(j) + (c == 1 ? s * d : 0.0);
               const double face_vel = c == 0 ? (s > 0 ? fxv[j][i] : fxv[j][i - 1]) : (s > 0 ? fyv[j][i] : fyv[j - 1][i]);
-              const double pb = atmosphere_pressure(bc, g, rhoP, xb, yb, y_top, s * face_vel,
+              const double pb = atmosphere_pressure(bc, g, rhoP, yb, y_top, s * face_vel,
                                                     u[j][i] * u[j][i] + v[j][i] * v[j][i]);
               // -V/2 f_b with f_b = -s (p_b - p_P)/d + rho_P g_c: p_b enters like a neighbour pressure.
               const double w = Vol / (2 * d);
@@ -159,9 +159,9 @@ int FlowSolver::solve_coupled() {
               const auto& bc = boundary(settings_.boundaries, bs);
               if (bc.kind != BoundaryKind::atmosphere) continue;
               const double d = 0.5 * (axis == 0 ? grid_.dx(i) : grid_.dy(j));
-              const double xb = grid_.xc(i) + (axis == 0 ? s * d : 0.0), yb = grid_.yc(j) + (axis == 1 ? s * d : 0.0);
+              const double yb = grid_.yc(j) + (axis == 1 ? s * d : 0.0);
               const double face_vel = axis == 0 ? (s > 0 ? fxv[j][i] : fxv[j][i - 1]) : (s > 0 ? fyv[j][i] : fyv[j - 1][i]);
-              const double pb = atmosphere_pressure(bc, g, rhoP, xb, yb, y_top, s * face_vel,
+              const double pb = atmosphere_pressure(bc, g, rhoP, yb, y_top, s * face_vel,
                                                     u[j][i] * u[j][i] + v[j][i] * v[j][i]);
               const double m = rau[axis][j][i];
               u_centre[axis] += s * area;

@@ -236,9 +236,9 @@ void FlowSolver::set_hydrostatic_pressure() {
 // atmosphere faces use the boundary pressure.
 
 double atmosphere_pressure(const BoundaryCondition& bc, const std::array<double, 2>& gravity, double rho,
-                           double x, double y, double y_top, double outward_velocity, double speed2) {
+                           double y, double y_top, double outward_velocity, double speed2) {
   // Hydrostatic in the adjacent cell's density, referred to the top of the domain, where p = p0.
-  double p = bc.pressure + rho * gravity[1] * (y - y_top) + 0.0 * x;
+  double p = bc.pressure + rho * gravity[1] * (y - y_top);
   if (bc.total_pressure && outward_velocity < 0.0) p -= 0.5 * rho * speed2;  // inflow: total pressure p0
   return p;
 }
@@ -257,9 +257,8 @@ void FlowSolver::compute_face_forces() {
     const int axis = normal_axis(s);
     const double sign = outward_normal(s, axis);
     const double d = 0.5 * (axis == 0 ? grid_.dx(i) : grid_.dy(j));
-    const double xb = grid_.xc(i) + (axis == 0 ? sign * d : 0.0);
     const double yb = grid_.yc(j) + (axis == 1 ? sign * d : 0.0);
-    const double pb = atmosphere_pressure(bc, g, rho[j][i], xb, yb, y_top, sign * face_vel,
+    const double pb = atmosphere_pressure(bc, g, rho[j][i], yb, y_top, sign * face_vel,
                                           u[j][i] * u[j][i] + v[j][i] * v[j][i]);
     return -sign * (pb - p[j][i]) / d + rho[j][i] * g[axis];
   };
@@ -604,11 +603,10 @@ int FlowSolver::solve_pressure(double) {
             const auto& bc = boundary(settings_.boundaries, fg.side);
             if (bc.kind != BoundaryKind::atmosphere) continue;  // walls: no flux
             const double d_half = 0.5 * (fg.axis == 0 ? grid_.dx(i) : grid_.dy(j));
-            const double xb = grid_.xc(i) + (fg.axis == 0 ? fg.sign * d_half : 0.0);
             const double yb = grid_.yc(j) + (fg.axis == 1 ? fg.sign * d_half : 0.0);
             const double face_vel = fg.axis == 0 ? (fg.sign > 0 ? fxv[j][i] : fxv[j][i - 1])
                                                  : (fg.sign > 0 ? fyv[j][i] : fyv[j - 1][i]);
-            const double pb = atmosphere_pressure(bc, g, rho[j][i], xb, yb, y_top, fg.sign * face_vel,
+            const double pb = atmosphere_pressure(bc, g, rho[j][i], yb, y_top, fg.sign * face_vel,
                                                   u[j][i] * u[j][i] + v[j][i] * v[j][i]);
             const double K = ra[j][i] * area / d_half;
             rhs -= fg.sign * (h[j][i] + ra[j][i] * rho[j][i] * g[fg.axis]) * area;
