@@ -53,7 +53,7 @@ class SoilPhase {
  private:
   void fill_fraction_ghosts(Field& f) const;
   void fill_displacement_ghosts();
-  double cell_shear_squared(const double* const* u, const double* const* v, int i, int j) const;
+  double dissipation_rate(const FlowSolver& flow) const;
 
   const Grid& grid_;
   const FlowSettings& flow_settings_;
