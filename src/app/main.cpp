@@ -24,8 +24,8 @@ int run_case(const std::string& case_file, const std::vector<std::string>& overr
                config.mesh.cells[1], config.time.end, out_dir);
   const RunSummary s = sim.run();
   if (rank == 0) {
-    fmt::print("done: t = {:.6g} s in {} steps, {:.2f} s wall ({:.3g} cell-steps/s){}\n", s.time, s.steps,
-               s.wall_seconds, double(sim.grid().cell_count()) * s.steps / s.wall_seconds,
+    fmt::print("done: t = {:.6g} s in {} steps ({} taken again with a smaller step), {:.2f} s wall ({:.3g} cell-steps/s){}\n",
+               s.time, s.steps, s.retried_steps, s.wall_seconds, double(sim.grid().cell_count()) * s.steps / s.wall_seconds,
                s.reached_steady_state ? ", steady state reached" : "");
     fmt::print("outer iterations {}, momentum iterations {}, pressure solves {} ({:.1f} iterations each)\n",
                s.outer_iterations, s.momentum_iterations, s.pressure_solves,

@@ -37,9 +37,10 @@ inline double outward_normal(Side s, int axis) {
 }
 inline int normal_axis(Side s) { return (s == Side::west || s == Side::east) ? 0 : 1; }
 
-// Pressure at an atmosphere face: p0 at the top of the domain, hydrostatic below it in the adjacent
-// density rho, minus rho |v|^2 / 2 where air flows in (total pressure) unless the boundary is static.
-double atmosphere_pressure(const BoundaryCondition& bc, const std::array<double, 2>& gravity, double rho, double y,
-                           double y_top, double outward_velocity, double speed2);
+// Pressure at an atmosphere face: p0 plus the hydrostatic head below the top of the domain
+// (hydrostatic_head, Pa), minus rho |v|^2 / 2 where fluid flows in (total pressure) unless the
+// boundary is static; rho is the density of the adjacent cell.
+double atmosphere_pressure(const BoundaryCondition& bc, double hydrostatic_head, double rho, double outward_velocity,
+                           double speed2);
 
 }  // namespace granflow

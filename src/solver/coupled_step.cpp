@@ -68,7 +68,6 @@ int FlowSolver::solve_coupled() {
   const auto& b = grid_.owned();
   const int nx = grid_.nx(), ny = grid_.ny();
   const auto& g = settings_.gravity;
-  const double y_top = grid_.spec().upper[1];
   // V / a_P per component, with ghosts, for the face mobilities.
   {
     for (int c = 0; c < 2; ++c) {
@@ -121,7 +120,7 @@ int FlowSolver::solve_coupled() {
               const double d = 0.5 * (c == 0 ? grid_.dx(i) : grid_.dy(j));
               const double yb = grid_.yc(j) + (c == 1 ? s * d : 0.0);
               const double face_vel = c == 0 ? (s > 0 ? fxv[j][i] : fxv[j][i - 1]) : (s > 0 ? fyv[j][i] : fyv[j - 1][i]);
-              const double pb = atmosphere_pressure(bc, g, rhoP, yb, y_top, s * face_vel,
+              const double pb = atmosphere_pressure(bc, boundary_head(bs, j, rhoP, yb), rhoP, s * face_vel,
                                                     u[j][i] * u[j][i] + v[j][i] * v[j][i]);
               // -V/2 f_b with f_b = -s (p_b - p_P)/d + rho_P g_c: p_b enters like a neighbour pressure.
               const double w = Vol / (2 * d);
@@ -161,7 +160,7 @@ int FlowSolver::solve_coupled() {
               const double d = 0.5 * (axis == 0 ? grid_.dx(i) : grid_.dy(j));
               const double yb = grid_.yc(j) + (axis == 1 ? s * d : 0.0);
               const double face_vel = axis == 0 ? (s > 0 ? fxv[j][i] : fxv[j][i - 1]) : (s > 0 ? fyv[j][i] : fyv[j - 1][i]);
-              const double pb = atmosphere_pressure(bc, g, rhoP, yb, y_top, s * face_vel,
+              const double pb = atmosphere_pressure(bc, boundary_head(bs, j, rhoP, yb), rhoP, s * face_vel,
                                                     u[j][i] * u[j][i] + v[j][i] * v[j][i]);
               const double m = rau[axis][j][i];
               u_centre[axis] += s * area;

@@ -82,6 +82,7 @@ FlowSolver::FlowSolver(const Grid& grid, const FlowSettings& settings) : grid_(g
       throw std::invalid_argument("numerics.pressure_coupling = \"coupled\" needs an atmosphere boundary to fix the pressure level");
     create_coupled_system();
   }
+  update_boundary_heads();
   if (!has_pressure_boundary_) {
     PetscCallAbort(comm, MatNullSpaceCreate(comm, PETSC_TRUE, 0, nullptr, &pressure_null_space_));
     PetscCallAbort(comm, MatSetNullSpace(pressure_matrix_, pressure_null_space_));
@@ -97,6 +98,7 @@ void FlowSolver::enable_body_force() {
 }
 
 FlowSolver::~FlowSolver() {
+  for (Vec& v : saved_) VecDestroy(&v);
   destroy_coupled_system();
   for (auto& m : momentum_matrix_) MatDestroy(&m);
   MatDestroy(&pressure_matrix_);
@@ -172,6 +174,7 @@ void FlowSolver::update_properties() {
   if (property_update_) property_update_(*this);
   fill_scalar_ghosts(*rho_);
   fill_scalar_ghosts(*mu_);
+  update_boundary_heads();
 }
 
 void FlowSolver::sync_velocity_from_cells() {
@@ -226,6 +229,7 @@ void FlowSolver::set_hydrostatic_pressure() {
   VecDestroy(&all);
   VecDestroy(&natural);
   fill_scalar_ghosts(*p_);
+  update_boundary_heads();
   // Face forces of the resting state: zero at walls (no flux), from the pressure elsewhere.
   for (int a = 0; a < 2; ++a) face_force_[a]->set(0.0);
   compute_face_forces();
@@ -235,19 +239,49 @@ void FlowSolver::set_hydrostatic_pressure() {
 // Face forces -grad(p) + rho_f g on faces. Wall faces carry none (their entries stay zero);
 // atmosphere faces use the boundary pressure.
 
-double atmosphere_pressure(const BoundaryCondition& bc, const std::array<double, 2>& gravity, double rho,
-                           double y, double y_top, double outward_velocity, double speed2) {
-  // Hydrostatic in the adjacent cell's density, referred to the top of the domain, where p = p0.
-  double p = bc.pressure + rho * gravity[1] * (y - y_top);
+double atmosphere_pressure(const BoundaryCondition& bc, double hydrostatic_head, double rho, double outward_velocity,
+                           double speed2) {
+  double p = bc.pressure + hydrostatic_head;
   if (bc.total_pressure && outward_velocity < 0.0) p -= 0.5 * rho * speed2;  // inflow: total pressure p0
   return p;
+}
+
+// Hydrostatic head of the fluid in the boundary columns of the west and east sides, integrated down
+// from the top like the initial pressure. An open side then carries the weight of what actually lies
+// in its column: soil leaving through it is not pushed back by a column of soil reaching to the top
+// (which the adjacent cell's density would imply), and a layer at rest across it stays at rest.
+void FlowSolver::update_boundary_heads() {
+  const int nx = grid_.nx(), ny = grid_.ny();
+  const auto& b = grid_.owned();
+  const double gy = settings_.gravity[1];
+  std::vector<double> rho_column(2 * size_t(ny), 0.0), all(2 * size_t(ny), 0.0);
+  {
+    ConstFieldArray rho(grid_.field_dm(), rho_->global());
+    for (int j = b.ys; j < b.ye(); ++j) {
+      if (b.xs == 0) rho_column[j] = rho[j][0];
+      if (b.xe() == nx) rho_column[ny + j] = rho[j][nx - 1];
+    }
+  }
+  MPI_Allreduce(rho_column.data(), all.data(), 2 * ny, MPI_DOUBLE, MPI_SUM, grid_.comm());
+  for (int s = 0; s < 2; ++s) {
+    const double* r = all.data() + size_t(s) * ny;
+    auto& head = side_head_[s];
+    head.resize(ny);
+    head[ny - 1] = -r[ny - 1] * gy * 0.5 * grid_.dy(ny - 1);
+    for (int j = ny - 2; j >= 0; --j) head[j] = head[j + 1] - 0.5 * (r[j] + r[j + 1]) * gy * (grid_.yc(j + 1) - grid_.yc(j));
+  }
+}
+
+double FlowSolver::boundary_head(Side s, int j, double rho, double y_face) const {
+  if (s == Side::west) return side_head_[0][j];
+  if (s == Side::east) return side_head_[1][j];
+  return rho * settings_.gravity[1] * (y_face - grid_.spec().upper[1]);
 }
 
 void FlowSolver::compute_face_forces() {
   const auto& b = grid_.owned();
   const int nx = grid_.nx(), ny = grid_.ny();
   const auto& g = settings_.gravity;
-  const double y_top = grid_.spec().upper[1];
   ConstFieldArray p = local_read(grid_, *p_), rho = local_read(grid_, *rho_);
   ConstFieldArray u = local_read(grid_, *vel_[0]), v = local_read(grid_, *vel_[1]);
   ConstFieldArray fx_vel = local_read(grid_, *face_[0]), fy_vel = local_read(grid_, *face_[1]);
@@ -258,7 +292,7 @@ void FlowSolver::compute_face_forces() {
     const double sign = outward_normal(s, axis);
     const double d = 0.5 * (axis == 0 ? grid_.dx(i) : grid_.dy(j));
     const double yb = grid_.yc(j) + (axis == 1 ? sign * d : 0.0);
-    const double pb = atmosphere_pressure(bc, g, rho[j][i], yb, y_top, sign * face_vel,
+    const double pb = atmosphere_pressure(bc, boundary_head(s, j, rho[j][i], yb), rho[j][i], sign * face_vel,
                                           u[j][i] * u[j][i] + v[j][i] * v[j][i]);
     return -sign * (pb - p[j][i]) / d + rho[j][i] * g[axis];
   };
@@ -570,7 +604,6 @@ int FlowSolver::solve_pressure(double) {
   const auto& b = grid_.owned();
   const int nx = grid_.nx(), ny = grid_.ny();
   const auto& g = settings_.gravity;
-  const double y_top = grid_.spec().upper[1];
   int iterations = 0;
   // Predicted face velocity (Rhie-Chow) along `axis` between P=(i,j) and N=(i+di, j+dj): interpolated
   // HbyA plus the old-time-level correction that keeps the steady state independent of dt.
@@ -606,8 +639,8 @@ int FlowSolver::solve_pressure(double) {
             const double yb = grid_.yc(j) + (fg.axis == 1 ? fg.sign * d_half : 0.0);
             const double face_vel = fg.axis == 0 ? (fg.sign > 0 ? fxv[j][i] : fxv[j][i - 1])
                                                  : (fg.sign > 0 ? fyv[j][i] : fyv[j - 1][i]);
-            const double pb = atmosphere_pressure(bc, g, rho[j][i], yb, y_top, fg.sign * face_vel,
-                                                  u[j][i] * u[j][i] + v[j][i] * v[j][i]);
+            const double pb = atmosphere_pressure(bc, boundary_head(fg.side, j, rho[j][i], yb), rho[j][i],
+                                                  fg.sign * face_vel, u[j][i] * u[j][i] + v[j][i] * v[j][i]);
             const double K = ra[j][i] * area / d_half;
             rhs -= fg.sign * (h[j][i] + ra[j][i] * rho[j][i] * g[fg.axis]) * area;
             rhs += K * pb;
@@ -704,6 +737,44 @@ int FlowSolver::solve_pressure(double) {
 }
 
 // ---------------------------------------------------------------------------------------------
+
+namespace {
+template <class F>
+void for_each_state_field(FlowSolver& f, std::unique_ptr<Field>* face, std::unique_ptr<Field>* force,
+                          std::unique_ptr<Field>* cell_force, F&& fn) {
+  fn(f.velocity(0));
+  fn(f.velocity(1));
+  fn(*face[0]);
+  fn(*face[1]);
+  fn(*force[0]);
+  fn(*force[1]);
+  fn(f.pressure());
+  if (cell_force[0]) {
+    fn(*cell_force[0]);
+    fn(*cell_force[1]);
+  }
+}
+}  // namespace
+
+void FlowSolver::save_state() {
+  size_t k = 0;
+  for_each_state_field(*this, face_, face_force_, cell_force_, [&](Field& f) {
+    if (k == saved_.size()) {
+      Vec copy;
+      VecDuplicate(f.local(), &copy);
+      saved_.push_back(copy);
+    }
+    VecCopy(f.local(), saved_[k++]);  // local vectors hold the ghosts (boundary conditions) too
+  });
+}
+
+void FlowSolver::restore_state() {
+  size_t k = 0;
+  for_each_state_field(*this, face_, face_force_, cell_force_, [&](Field& f) {
+    VecCopy(saved_.at(k++), f.local());
+    f.gather_from_local();
+  });
+}
 
 StepReport FlowSolver::step(double dt) {
   dt_ = dt;

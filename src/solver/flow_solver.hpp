@@ -67,6 +67,10 @@ class FlowSolver {
   void refresh_ghosts();
 
   StepReport step(double dt);
+  // Snapshot of the state a step starts from (velocities, face velocities and forces, pressure), so
+  // that a step that went wrong can be taken again with a smaller time step.
+  void save_state();
+  void restore_state();
 
   // Largest |u| dt / h over cells, for the Courant condition; with a region (a ghosted fraction
   // field), only over cells whose 3 x 3 neighbourhood holds some of it.
@@ -77,6 +81,9 @@ class FlowSolver {
 
  private:
   void fill_velocity_ghosts();
+  void update_boundary_heads();
+  // Hydrostatic head below the top at an atmosphere face of side s in row j (y_face: the face's height).
+  double boundary_head(Side s, int j, double rho, double y_face) const;
   void fill_scalar_ghosts(Field& f);
   void assemble_momentum(double dt);
   void compute_face_forces();
@@ -101,6 +108,7 @@ class FlowSolver {
   std::unique_ptr<Field> vel_[2], vel_old_[2], face_[2], face_old_[2], face_force_[2];
   std::unique_ptr<Field> p_, rho_, mu_;
   std::unique_ptr<Field> body_force_[2];
+  std::vector<Vec> saved_;  // save_state(): u, v, face u, face v, face forces x, y, p, cell forces x, y
   std::unique_ptr<Field> hbya_[2], rau_[2], time_weight_[2];
 
   // Momentum coefficients of the owned cells (row-major over the owned box). Off-diagonal
@@ -120,6 +128,7 @@ class FlowSolver {
   Vec coupled_rhs_ = nullptr, coupled_solution_ = nullptr;
   std::unique_ptr<LinearSolver> coupled_solver_;
   std::unique_ptr<Field> cell_force_[2];  // lagged balanced cell force of the Rhie-Chow flux
+  std::vector<double> side_head_[2];  // west, east: hydrostatic head of the boundary column per row
   bool has_pressure_boundary_ = false;
   bool shared_momentum_matrix_ = true;  // no slip walls: u and v share their matrix
   double dt_ = 0.0;

@@ -55,6 +55,11 @@ double Simulation::next_output_time() const {
   return next;
 }
 
+double Simulation::courant_after(double dt) const {
+  const bool soil_only = soil_ && config_.time.courant_region == CourantRegion::soil;
+  return flow_->max_courant(dt, soil_only ? &soil_->soil_fraction() : nullptr);
+}
+
 double Simulation::choose_dt(double dt_previous) const {
   const auto& t = config_.time;
   if (!t.adaptive) return t.dt;
@@ -214,11 +219,31 @@ RunSummary Simulation::run() {
     if (time_ + step_dt > t_out * (1 - 1e-12)) step_dt = t_out - time_;
     else if (time_ + 1.5 * step_dt > t_out) step_dt = 0.5 * (t_out - time_);  // avoid a sliver step
     for (int a = 0; a < 2; ++a) VecCopy(flow_->velocity(a).global(), previous[a]);
-    if (soil_) {  // explicit interface, then the implicit flow step
-      soil_->advect(*flow_, step_dt);
-      soil_->refresh(*flow_);
+    // A step whose velocities come out far above the Courant limit it was sized for (a splash, a
+    // sudden yield) is taken again from the saved state with a step sized for the velocities it
+    // produced: the step size lags the flow by one step, and an implicit step can survive a Courant
+    // number of a few but not of hundreds.
+    StepReport r;
+    const bool may_retry = tc.adaptive;
+    if (may_retry) {
+      flow_->save_state();
+      if (soil_) soil_->save_state();
     }
-    const StepReport r = flow_->step(step_dt);
+    for (int attempt = 0;; ++attempt) {
+      if (soil_) {  // explicit interface, then the implicit flow step
+        soil_->advect(*flow_, step_dt);
+        soil_->refresh(*flow_);
+      }
+      r = flow_->step(step_dt);
+      if (!may_retry || attempt == max_step_retries) break;
+      const double co = courant_after(step_dt);
+      if (std::isfinite(co) && co <= retry_courant_factor * tc.courant) break;
+      flow_->restore_state();
+      if (soil_) soil_->restore_state();
+      const double smaller = std::isfinite(co) ? step_dt * tc.courant / co : 0.1 * step_dt;
+      step_dt = std::clamp(smaller, 1e-3 * step_dt, 0.5 * step_dt);
+      ++summary.retried_steps;
+    }
     if (soil_) soil_->transport_displacement(*flow_, step_dt);
     time_ += step_dt;
     if (soil_) record_history(step_dt);

@@ -14,6 +14,7 @@ namespace granflow {
 struct RunSummary {
   double soil_volume_error = 0.0;  // relative change of the soil volume over the run
   long steps = 0;
+  long retried_steps = 0;  // steps taken again with a smaller time step
   double time = 0.0;
   double wall_seconds = 0.0;
   long outer_iterations = 0;
@@ -50,6 +51,10 @@ class Simulation {
   void write_history() const;
   void write_soil_lines() const;
   double choose_dt(double dt_previous) const;
+  double courant_after(double dt) const;  // flow Courant number of the current velocities over dt
+
+  static constexpr int max_step_retries = 4;
+  static constexpr double retry_courant_factor = 4.0;  // retry a step above this multiple of the target
 
   CaseConfig config_;
   std::filesystem::path out_;

@@ -47,6 +47,31 @@ SoilPhase::SoilPhase(const Grid& grid, const FlowSettings& flow, const SoilSetti
     f->set(0.0);
 }
 
+SoilPhase::~SoilPhase() {
+  for (Vec& v : saved_) VecDestroy(&v);
+}
+
+void SoilPhase::save_state() {
+  Field* fields[3] = {c_.get(), disp_[0].get(), disp_[1].get()};
+  if (saved_.empty())
+    for (Field* f : fields) {
+      Vec copy;
+      VecDuplicate(f->local(), &copy);
+      saved_.push_back(copy);
+    }
+  for (int k = 0; k < 3; ++k) VecCopy(fields[k]->local(), saved_[k]);
+  saved_parity_ = sweep_parity_;
+}
+
+void SoilPhase::restore_state() {
+  Field* fields[3] = {c_.get(), disp_[0].get(), disp_[1].get()};
+  for (int k = 0; k < 3; ++k) {
+    VecCopy(saved_[k], fields[k]->local());
+    fields[k]->gather_from_local();
+  }
+  sweep_parity_ = saved_parity_;
+}
+
 void SoilPhase::initialise() {
   {
     FieldArray c(grid_.field_dm(), c_->global());

@@ -22,6 +22,9 @@ struct SoilBudget {
 class SoilPhase {
  public:
   SoilPhase(const Grid& grid, const FlowSettings& flow, const SoilSettings& settings);
+  ~SoilPhase();
+  SoilPhase(const SoilPhase&) = delete;
+  SoilPhase& operator=(const SoilPhase&) = delete;
 
   // Soil fraction from the initial shapes.
   void initialise();
@@ -52,12 +55,19 @@ class SoilPhase {
 
  private:
   void fill_fraction_ghosts(Field& f) const;
+ public:
+  // Snapshot of c and the displacement, for a step taken again (FlowSolver::save_state).
+  void save_state();
+  void restore_state();
+ private:
   void fill_displacement_ghosts();
   double dissipation_rate(const FlowSolver& flow) const;
 
   const Grid& grid_;
   const FlowSettings& flow_settings_;
   SoilSettings settings_;
+  std::vector<Vec> saved_;
+  int saved_parity_ = 0;
   std::optional<rheology::GranularRheology> rheology_;
   std::unique_ptr<Field> c_, c_tmp_, dilatation_;
   std::unique_ptr<Field> disp_[2], disp_new_[2];
