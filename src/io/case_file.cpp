@@ -65,11 +65,14 @@ LinearSolverSettings read_linear_solver(TableReader r, LinearSolverSettings d) {
   return d;
 }
 
-BoundaryCondition read_boundary(TableReader r) {
+BoundaryCondition read_boundary(TableReader r, bool& is_axis) {
   if (!r.present()) throw CaseError(fmt::format("{}: missing (every side needs a boundary type)", r.path()));
   BoundaryCondition bc;
-  const std::string type = r.choice("type", "", {"wall", "slip", "atmosphere"});
-  if (type == "wall") {
+  const std::string type = r.choice("type", "", {"wall", "slip", "atmosphere", "axis"});
+  is_axis = type == "axis";
+  if (type == "axis") {
+    bc.kind = BoundaryKind::slip;  // symmetry: u_r = 0, no shear; the face at r = 0 has no area
+  } else if (type == "wall") {
     bc.kind = BoundaryKind::wall;
     bc.wall_velocity = r.pair("velocity", {0.0, 0.0});
   } else if (type == "slip") {
@@ -216,6 +219,9 @@ CaseConfig read_case(const toml::table& root, const std::filesystem::path& sourc
       if (!(c.mesh.upper[a] > c.mesh.lower[a]))
         throw CaseError(fmt::format("mesh.upper: the domain is empty along {} (upper {} <= lower {})",
                                     a == 0 ? "x" : "y", c.mesh.upper[a], c.mesh.lower[a]));
+    c.mesh.axisymmetric = m.choice("geometry", "planar", {"planar", "axisymmetric"}) == "axisymmetric";
+    if (c.mesh.axisymmetric && c.mesh.lower[0] < 0.0)
+      throw CaseError(fmt::format("mesh.lower: an axisymmetric mesh needs r >= 0 (x = r), got {}", c.mesh.lower[0]));
     c.mesh.grading = m.pair("grading", {1.0, 1.0});
     for (double g : c.mesh.grading) m.require_range("grading", g, 1e-3, 1e3);
     m.finish();
@@ -264,7 +270,15 @@ CaseConfig read_case(const toml::table& root, const std::filesystem::path& sourc
   {
     TableReader b = top.table("boundary");
     if (!b.present()) throw CaseError("boundary: missing table [boundary] (west, east, south, north)");
-    for (Side s : all_sides) c.flow.boundaries[int(s)] = read_boundary(b.table(side_name(s)));
+    for (Side s : all_sides) {
+      bool is_axis = false;
+      c.flow.boundaries[int(s)] = read_boundary(b.table(side_name(s)), is_axis);
+      if (is_axis && !(s == Side::west && c.mesh.axisymmetric && c.mesh.lower[0] == 0.0))
+        throw CaseError(fmt::format("boundary.{}.type: \"axis\" is the west side at r = 0 of an axisymmetric mesh "
+                                    "(mesh.geometry = \"axisymmetric\", mesh.lower[0] = 0)", side_name(s)));
+      if (!is_axis && s == Side::west && c.mesh.axisymmetric && c.mesh.lower[0] == 0.0)
+        throw CaseError("boundary.west.type: an axisymmetric mesh starting at r = 0 needs type = \"axis\" there");
+    }
     b.finish();
     for (Side s : all_sides) {
       const auto& bc = c.flow.boundaries[int(s)];

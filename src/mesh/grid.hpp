@@ -27,6 +27,9 @@ struct GridSpec {
   std::array<double, 2> upper{1.0, 1.0};
   // Ratio of the last to the first cell width per axis (1 = uniform); geometric progression.
   std::array<double, 2> grading{1.0, 1.0};
+  // Axisymmetric (r-z): x is the radius r >= 0, y the axial coordinate z. Areas and volumes are per
+  // radian: a face at radius r has area r dz, a cell volume r_c dr dz.
+  bool axisymmetric = false;
 };
 
 class Grid {
@@ -55,7 +58,15 @@ class Grid {
   // Face coordinate between cells i and i+1 (east face of cell i).
   double xf(int i) const { return xc(i) + 0.5 * dx(i); }
   double yf(int j) const { return yc(j) + 0.5 * dy(j); }
-  double volume(int i, int j) const { return dx(i) * dy(j); }
+  bool axisymmetric() const { return spec_.axisymmetric; }
+  // Radius weight of cell i's centre and of its east face (1 in planar geometry).
+  double radius_c(int i) const { return spec_.axisymmetric ? xc(i) : 1.0; }
+  double radius_f(int i) const { return spec_.axisymmetric ? xf(i) : 1.0; }
+  double volume(int i, int j) const { return dx(i) * dy(j) * radius_c(i); }
+  // Area of the face of cell (i, j) normal to `axis` on the high (sign > 0) or low side.
+  double face_area(int axis, int i, int j, double sign) const {
+    return axis == 0 ? dy(j) * radius_f(sign > 0 ? i : i - 1) : dx(i) * radius_c(i);
+  }
   // Raw pointers offset so that p[-2] is the first ghost; for kernels working on plain arrays.
   const double* dx_data() const { return width_[0].data() + ghost_width; }
   const double* dy_data() const { return width_[1].data() + ghost_width; }

@@ -152,7 +152,7 @@ int FlowSolver::solve_coupled() {
             const int axis = f < 2 ? 0 : 1;
             const int s = (f % 2 == 0) ? 1 : -1;
             const int in = i + (axis == 0 ? s : 0), jn = j + (axis == 1 ? s : 0);
-            const double area = axis == 0 ? grid_.dy(j) : grid_.dx(i);
+            const double area = grid_.face_area(axis, i, j, s);
             if (in < 0 || in >= nx || jn < 0 || jn >= ny) {
               const Side bs = axis == 0 ? (s > 0 ? Side::east : Side::west) : (s > 0 ? Side::north : Side::south);
               const auto& bc = boundary(settings_.boundaries, bs);

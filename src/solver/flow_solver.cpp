@@ -379,7 +379,7 @@ void FlowSolver::assemble_momentum(double dt) {
   for (int j = b.ys; j < b.ye(); ++j)
     for (int i = b.xs; i < b.xe(); ++i) {
       const size_t k = size_t(j - b.ys) * b.xm + (i - b.xs);
-      const double dx = grid_.dx(i), dy = grid_.dy(j), V = dx * dy;
+      const double dx = grid_.dx(i), dy = grid_.dy(j), V = grid_.volume(i, j);
       const double rhoP = rho[j][i], muP = mu[j][i];
       const double a_time = rhoP * V / dt;
       double a_nb[4] = {0, 0, 0, 0};
@@ -393,7 +393,7 @@ void FlowSolver::assemble_momentum(double dt) {
       for (int f = 0; f < 4; ++f) {
         const FaceGeometry& fg = faces_of_cell[f];
         const int in = i + fg.di, jn = j + fg.dj;
-        const double area = fg.axis == 0 ? dy : dx;
+        const double area = grid_.face_area(fg.axis, i, j, fg.sign);
         const bool is_boundary = in < 0 || in >= nx || jn < 0 || jn >= ny;
         const double mu_face = is_boundary ? muP : face_mean(num.face_viscosity, muP, mu[jn][in]);
         // Full viscous stress div(mu (grad v + grad v^T)), split as in Jasak & Weller (2000): the
@@ -459,6 +459,8 @@ void FlowSolver::assemble_momentum(double dt) {
           }
         }
       }
+      // Hoop stress of the radial momentum, -2 mu u_r / r^2 per volume ([YS] Sec. 4), implicit.
+      if (grid_.axisymmetric()) extra[0] += 2.0 * muP * V / (grid_.xc(i) * grid_.xc(i));
       a_east_[k] = a_nb[0];
       a_west_[k] = a_nb[1];
       a_north_[k] = a_nb[2];
@@ -577,7 +579,7 @@ void FlowSolver::assemble_pressure_matrix(double) {
       double diag = 0.0;
       for (const auto& fg : faces_of_cell) {
         const int in = i + fg.di, jn = j + fg.dj;
-        const double area = fg.axis == 0 ? grid_.dy(j) : grid_.dx(i);
+        const double area = grid_.face_area(fg.axis, i, j, fg.sign);
         const double* const* r = fg.axis == 0 ? rx.data() : ry.data();
         if (in < 0 || in >= nx || jn < 0 || jn >= ny) {
           if (boundary(settings_.boundaries, fg.side).kind == BoundaryKind::atmosphere) {
@@ -629,7 +631,7 @@ int FlowSolver::solve_pressure(double) {
         double outflow = 0.0;
         for (const auto& fg : faces_of_cell) {
           const int in = i + fg.di, jn = j + fg.dj;
-          const double area = fg.axis == 0 ? grid_.dy(j) : grid_.dx(i);
+          const double area = grid_.face_area(fg.axis, i, j, fg.sign);
           const double* const* h = fg.axis == 0 ? hx.data() : hy.data();
           const double* const* ra = fg.axis == 0 ? rx.data() : ry.data();
           if (in < 0 || in >= nx || jn < 0 || jn >= ny) {
@@ -861,7 +863,8 @@ double FlowSolver::max_divergence() const {
   double m = 0.0;
   for (int j = b.ys; j < b.ye(); ++j)
     for (int i = b.xs; i < b.xe(); ++i) {
-      const double div = (fx[j][i] - fx[j][i - 1]) * grid_.dy(j) + (fy[j][i] - fy[j - 1][i]) * grid_.dx(i);
+      const double div = fx[j][i] * grid_.face_area(0, i, j, 1) - fx[j][i - 1] * grid_.face_area(0, i, j, -1) +
+                         (fy[j][i] - fy[j - 1][i]) * grid_.face_area(1, i, j, 1);
       m = std::max(m, std::abs(div));
     }
   return mpi_max(grid_.comm(), m);

@@ -1,0 +1,86 @@
+// Axisymmetric verification: Hagen-Poiseuille flow in a pipe of radius R, driven by fixed static
+// pressures at its ends, against w(r) = G (R^2 - r^2) / (4 mu). The radial viscous flux r dw/dr is
+// exact for the parabola on interior faces, so the error comes from the wall closure alone and falls
+// at second order.
+#include <gtest/gtest.h>
+#include <fmt/format.h>
+
+#include <cmath>
+
+#include "solver/simulation.hpp"
+#include "test_support.hpp"
+
+namespace granflow {
+namespace {
+
+constexpr double R = 0.5, L = 0.01, G = 8.0, mu = 2.0;  // radius, length, -dp/dz, viscosity
+double exact(double r) { return G * (R * R - r * r) / (4 * mu); }
+
+// Largest |w - w_exact| over cell centres relative to the centre-line velocity.
+double pipe_error(int nr) {
+  const std::string text = fmt::format(R"(
+[mesh]
+geometry = "axisymmetric"
+cells = [{}, 2]
+upper = [{}, {}]
+[time]
+end = 1e9
+dt = 1.0
+adaptive = false
+steady_tolerance = 1e-12
+max_steps = 400
+[fluid]
+density = 1.0
+viscosity = {}
+[boundary]
+west = {{ type = "axis" }}
+east = {{ type = "wall" }}
+south = {{ type = "atmosphere", pressure = {}, pressure_kind = "static" }}
+north = {{ type = "atmosphere", pressure = 0.0, pressure_kind = "static" }}
+[numerics]
+convection = "upwind"
+outer_iterations = 4
+outer_tolerance = 1e-12
+[solver.momentum]
+ksp_type = "preonly"
+pc_type = "lu"
+[solver.pressure]
+ksp_type = "preonly"
+pc_type = "lu"
+[output]
+progress_seconds = 0
+)",
+                                       nr, R, L, mu, G * L);
+  Simulation sim(PETSC_COMM_WORLD, parse_case(text), "");
+  const RunSummary s = sim.run();
+  EXPECT_TRUE(s.reached_steady_state) << s.steps << " steps";
+  const Grid& g = sim.grid();
+  const auto w = gather_to_root(g, sim.flow().velocity(1));
+  const auto u = gather_to_root(g, sim.flow().velocity(0));
+  double worst = 0.0, radial = 0.0;
+  int rank;
+  MPI_Comm_rank(PETSC_COMM_WORLD, &rank);
+  if (rank == 0)
+    for (int j = 0; j < g.ny(); ++j)
+      for (int i = 0; i < g.nx(); ++i) {
+        worst = std::max(worst, std::abs(w[size_t(j) * g.nx() + i] - exact(g.xc(i))));
+        radial = std::max(radial, std::abs(u[size_t(j) * g.nx() + i]));
+      }
+  MPI_Bcast(&worst, 1, MPI_DOUBLE, 0, PETSC_COMM_WORLD);
+  MPI_Bcast(&radial, 1, MPI_DOUBLE, 0, PETSC_COMM_WORLD);
+  std::printf("pipe flow, %d radial cells: max |w - w_exact| / w(0) = %.3e, max |u_r| = %.1e\n", nr, worst / exact(0),
+              radial);
+  EXPECT_LT(radial, 1e-10 * exact(0));
+  return worst / exact(0);
+}
+
+TEST(PipeFlow, HagenPoiseuilleSecondOrder) {
+  const double coarse = pipe_error(32), fine = pipe_error(128);
+  const double order = std::log2(coarse / fine) / 2.0;
+  std::printf("pipe flow: observed order %.3f between 32 and 128 radial cells\n", order);
+  EXPECT_GT(order, 1.9);
+  EXPECT_LT(fine, 1e-4);
+}
+
+}  // namespace
+}  // namespace granflow
