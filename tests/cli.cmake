@@ -12,3 +12,10 @@ set_tests_properties(cli_check_shipped_cases PROPERTIES LABELS cli PASS_REGULAR_
 add_test(NAME cli_element_test_csv COMMAND granflow element-test --csv)
 set_tests_properties(cli_element_test_csv PROPERTIES LABELS cli
                      PASS_REGULAR_EXPRESSION "deformation,theta_deg,model,eta_norm_D_over_p,norm_Tdev_over_p,relative")
+# Every shipped case file validates.
+file(GLOB GRANFLOW_SHIPPED_CASES CONFIGURE_DEPENDS ${CMAKE_SOURCE_DIR}/cases/*.toml)
+foreach(case_file ${GRANFLOW_SHIPPED_CASES})
+  get_filename_component(case_name ${case_file} NAME_WE)
+  add_test(NAME cli_check_case_${case_name} COMMAND granflow check ${case_file})
+  set_tests_properties(cli_check_case_${case_name} PROPERTIES LABELS cli PASS_REGULAR_EXPRESSION "valid")
+endforeach()
