@@ -17,5 +17,5 @@ file(GLOB GRANFLOW_SHIPPED_CASES CONFIGURE_DEPENDS ${CMAKE_SOURCE_DIR}/cases/*.t
 foreach(case_file ${GRANFLOW_SHIPPED_CASES})
   get_filename_component(case_name ${case_file} NAME_WE)
   add_test(NAME cli_check_case_${case_name} COMMAND granflow check ${case_file})
-  set_tests_properties(cli_check_case_${case_name} PROPERTIES LABELS cli PASS_REGULAR_EXPRESSION "valid")
+  set_tests_properties(cli_check_case_${case_name} PROPERTIES LABELS cli PASS_REGULAR_EXPRESSION ": valid [(]")
 endforeach()
