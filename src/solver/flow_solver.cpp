@@ -27,6 +27,15 @@ constexpr FaceGeometry faces_of_cell[4] = {
 
 std::unique_ptr<Field> make_field(const Grid& g) { return std::make_unique<Field>(g); }
 
+// Pressure at the cell centres of one column, hydrostatic below p_top at the top of the domain:
+// the trapezoidal rule between centres, which is exactly what the face forces balance.
+template <class Density>
+void hydrostatic_column(const Grid& g, double gy, double p_top, Density rho, std::vector<double>& p) {
+  const int ny = g.ny();
+  p[ny - 1] = p_top - rho(ny - 1) * gy * 0.5 * g.dy(ny - 1);
+  for (int j = ny - 2; j >= 0; --j) p[j] = p[j + 1] - 0.5 * (rho(j) + rho(j + 1)) * gy * (g.yc(j + 1) - g.yc(j));
+}
+
 double mpi_max(MPI_Comm comm, double v) {
   double r = v;
   MPI_Allreduce(&v, &r, 1, MPI_DOUBLE, MPI_MAX, comm);
@@ -98,7 +107,6 @@ void FlowSolver::enable_body_force() {
 }
 
 FlowSolver::~FlowSolver() {
-  for (Vec& v : saved_) VecDestroy(&v);
   destroy_coupled_system();
   for (auto& m : momentum_matrix_) MatDestroy(&m);
   MatDestroy(&pressure_matrix_);
@@ -218,9 +226,7 @@ void FlowSolver::set_hydrostatic_pressure() {
   {
     FieldArray p(grid_.field_dm(), p_->global());
     for (int i = b.xs; i < b.xe(); ++i) {
-      column[ny - 1] = p_top - rho_at(i, ny - 1) * gy * 0.5 * grid_.dy(ny - 1);
-      for (int j = ny - 2; j >= 0; --j)
-        column[j] = column[j + 1] - 0.5 * (rho_at(i, j) + rho_at(i, j + 1)) * gy * (grid_.yc(j + 1) - grid_.yc(j));
+      hydrostatic_column(grid_, gy, p_top, [&](int j) { return rho_at(i, j); }, column);
       for (int j = b.ys; j < b.ye(); ++j) p[j][i] = column[j];
     }
   }
@@ -265,10 +271,8 @@ void FlowSolver::update_boundary_heads() {
   MPI_Allreduce(rho_column.data(), all.data(), 2 * ny, MPI_DOUBLE, MPI_SUM, grid_.comm());
   for (int s = 0; s < 2; ++s) {
     const double* r = all.data() + size_t(s) * ny;
-    auto& head = side_head_[s];
-    head.resize(ny);
-    head[ny - 1] = -r[ny - 1] * gy * 0.5 * grid_.dy(ny - 1);
-    for (int j = ny - 2; j >= 0; --j) head[j] = head[j + 1] - 0.5 * (r[j] + r[j + 1]) * gy * (grid_.yc(j + 1) - grid_.yc(j));
+    side_head_[s].resize(ny);
+    hydrostatic_column(grid_, gy, 0.0, [r](int j) { return r[j]; }, side_head_[s]);
   }
 }
 
@@ -740,43 +744,15 @@ int FlowSolver::solve_pressure(double) {
 
 // ---------------------------------------------------------------------------------------------
 
-namespace {
-template <class F>
-void for_each_state_field(FlowSolver& f, std::unique_ptr<Field>* face, std::unique_ptr<Field>* force,
-                          std::unique_ptr<Field>* cell_force, F&& fn) {
-  fn(f.velocity(0));
-  fn(f.velocity(1));
-  fn(*face[0]);
-  fn(*face[1]);
-  fn(*force[0]);
-  fn(*force[1]);
-  fn(f.pressure());
-  if (cell_force[0]) {
-    fn(*cell_force[0]);
-    fn(*cell_force[1]);
-  }
-}
-}  // namespace
-
-void FlowSolver::save_state() {
-  size_t k = 0;
-  for_each_state_field(*this, face_, face_force_, cell_force_, [&](Field& f) {
-    if (k == saved_.size()) {
-      Vec copy;
-      VecDuplicate(f.local(), &copy);
-      saved_.push_back(copy);
-    }
-    VecCopy(f.local(), saved_[k++]);  // local vectors hold the ghosts (boundary conditions) too
-  });
+std::vector<Field*> FlowSolver::state_fields() {
+  std::vector<Field*> f{vel_[0].get(), vel_[1].get(), face_[0].get(), face_[1].get(),
+                        face_force_[0].get(), face_force_[1].get(), p_.get()};
+  if (cell_force_[0]) f.insert(f.end(), {cell_force_[0].get(), cell_force_[1].get()});
+  return f;
 }
 
-void FlowSolver::restore_state() {
-  size_t k = 0;
-  for_each_state_field(*this, face_, face_force_, cell_force_, [&](Field& f) {
-    VecCopy(saved_.at(k++), f.local());
-    f.gather_from_local();
-  });
-}
+void FlowSolver::save_state() { saved_.save(state_fields()); }
+void FlowSolver::restore_state() { saved_.restore(state_fields()); }
 
 StepReport FlowSolver::step(double dt) {
   dt_ = dt;

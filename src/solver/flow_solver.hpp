@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "mesh/field.hpp"
+#include "mesh/field_snapshot.hpp"
 #include "mesh/grid.hpp"
 #include "solver/flow_settings.hpp"
 #include "solver/linear_solver.hpp"
@@ -81,6 +82,7 @@ class FlowSolver {
 
  private:
   void fill_velocity_ghosts();
+  std::vector<Field*> state_fields();  // what a step starts from: velocities, face velocities and forces, p
   void update_boundary_heads();
   // Hydrostatic head below the top at an atmosphere face of side s in row j (y_face: the face's height).
   double boundary_head(Side s, int j, double rho, double y_face) const;
@@ -108,7 +110,7 @@ class FlowSolver {
   std::unique_ptr<Field> vel_[2], vel_old_[2], face_[2], face_old_[2], face_force_[2];
   std::unique_ptr<Field> p_, rho_, mu_;
   std::unique_ptr<Field> body_force_[2];
-  std::vector<Vec> saved_;  // save_state(): u, v, face u, face v, face forces x, y, p, cell forces x, y
+  FieldSnapshot saved_;  // save_state()
   std::unique_ptr<Field> hbya_[2], rau_[2], time_weight_[2];
 
   // Momentum coefficients of the owned cells (row-major over the owned box). Off-diagonal

@@ -1,6 +1,7 @@
 #include "solver/soil_phase.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <numbers>
 
@@ -47,28 +48,13 @@ SoilPhase::SoilPhase(const Grid& grid, const FlowSettings& flow, const SoilSetti
     f->set(0.0);
 }
 
-SoilPhase::~SoilPhase() {
-  for (Vec& v : saved_) VecDestroy(&v);
-}
-
 void SoilPhase::save_state() {
-  Field* fields[3] = {c_.get(), disp_[0].get(), disp_[1].get()};
-  if (saved_.empty())
-    for (Field* f : fields) {
-      Vec copy;
-      VecDuplicate(f->local(), &copy);
-      saved_.push_back(copy);
-    }
-  for (int k = 0; k < 3; ++k) VecCopy(fields[k]->local(), saved_[k]);
+  saved_.save(std::array<Field*, 3>{c_.get(), disp_[0].get(), disp_[1].get()});
   saved_parity_ = sweep_parity_;
 }
 
 void SoilPhase::restore_state() {
-  Field* fields[3] = {c_.get(), disp_[0].get(), disp_[1].get()};
-  for (int k = 0; k < 3; ++k) {
-    VecCopy(saved_[k], fields[k]->local());
-    fields[k]->gather_from_local();
-  }
+  saved_.restore(std::array<Field*, 3>{c_.get(), disp_[0].get(), disp_[1].get()});
   sweep_parity_ = saved_parity_;
 }
 

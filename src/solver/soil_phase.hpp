@@ -7,6 +7,7 @@
 #include <optional>
 
 #include "mesh/field.hpp"
+#include "mesh/field_snapshot.hpp"
 #include "models/rheology/granular_rheology.hpp"
 #include "solver/flow_solver.hpp"
 #include "solver/soil_settings.hpp"
@@ -22,9 +23,6 @@ struct SoilBudget {
 class SoilPhase {
  public:
   SoilPhase(const Grid& grid, const FlowSettings& flow, const SoilSettings& settings);
-  ~SoilPhase();
-  SoilPhase(const SoilPhase&) = delete;
-  SoilPhase& operator=(const SoilPhase&) = delete;
 
   // Soil fraction from the initial shapes.
   void initialise();
@@ -66,7 +64,7 @@ class SoilPhase {
   const Grid& grid_;
   const FlowSettings& flow_settings_;
   SoilSettings settings_;
-  std::vector<Vec> saved_;
+  FieldSnapshot saved_;
   int saved_parity_ = 0;
   std::optional<rheology::GranularRheology> rheology_;
   std::unique_ptr<Field> c_, c_tmp_, dilatation_;

@@ -1,0 +1,43 @@
+#pragma once
+// Copies of a fixed list of fields, ghosts included, to take a step again from where it started.
+#include <span>
+#include <vector>
+
+#include "mesh/field.hpp"
+
+namespace granflow {
+
+class FieldSnapshot {
+ public:
+  FieldSnapshot() = default;
+  FieldSnapshot(const FieldSnapshot&) = delete;
+  FieldSnapshot& operator=(const FieldSnapshot&) = delete;
+  ~FieldSnapshot() {
+    for (Vec& v : copies_) VecDestroy(&v);
+  }
+
+  // The same fields, in the same order, on every save and restore.
+  void save(std::span<Field* const> fields) {
+    size_t k = 0;
+    for (const Field* f : fields) {
+      if (k == copies_.size()) {
+        Vec copy;
+        VecDuplicate(f->local(), &copy);
+        copies_.push_back(copy);
+      }
+      VecCopy(f->local(), copies_[k++]);  // local vectors hold the ghosts (boundary conditions) too
+    }
+  }
+  void restore(std::span<Field* const> fields) const {
+    size_t k = 0;
+    for (Field* f : fields) {
+      VecCopy(copies_.at(k++), f->local());
+      f->gather_from_local();
+    }
+  }
+
+ private:
+  std::vector<Vec> copies_;
+};
+
+}  // namespace granflow
