@@ -62,6 +62,8 @@ Grid::Grid(MPI_Comm comm, const GridSpec& spec) : comm_(comm), spec_(spec) {
   owned_ = CellBox{int(xs), int(ys), int(xm), int(ym)};
   for (int a = 0; a < 2; ++a)
     axis_geometry(spec.cells[a], spec.lower[a], spec.upper[a], spec.grading[a], width_[a], centre_[a]);
+  radius_face_.resize(width_[0].size());
+  for (size_t k = 0; k < width_[0].size(); ++k) radius_face_[k] = centre_[0][k] + 0.5 * width_[0][k];
 }
 
 Grid::~Grid() {

@@ -102,12 +102,19 @@ void Simulation::write_output() {
       data.push_back({"strain_norm", 1, gather_to_root(g, soil_->strain_norm())});
       data.push_back({"strain_rate_norm", 1, gather_to_root(g, soil_->strain_rate_norm())});
       data.push_back({"lode_angle", 1, gather_to_root(g, soil_->lode_angle())});
+      if (config_.soil->rheology)
+        data.push_back({"stress_ratio_to_drucker_prager", 1, gather_to_root(g, soil_->stress_ratio_to_drucker_prager())});
+      auto w = gather_to_root(g, soil_->dissipation());
+      for (int j = 0; j < g.ny(); ++j)
+        for (int i = 0; i < g.nx(); ++i) w[size_t(j) * g.nx() + i] /= g.volume(i, j);
+      data.push_back({"dissipation_rate", 1, w});
     }
     series_->write(g, time_, data);
   }
   if (soil_) {
     write_soil_lines();
     write_history();
+    write_lode_energy();
   }
   if (rank_ == 0) {
     for (const auto& line : config_.output.lines) {
@@ -154,6 +161,7 @@ double toe_of(const std::vector<Segment>& surface) {
 void Simulation::record_history(double dt) {
   const SoilBudget b = soil_->budget(*flow_);
   dissipated_energy_ += b.dissipation_rate * dt;
+  soil_->accumulate_lode_energy(dt);
   const auto c = gather_to_root(*grid_, soil_->soil_fraction());
   if (rank_ != 0) return;
   const PileShape shape = pile_shape(*grid_, c);
@@ -169,6 +177,20 @@ void Simulation::write_history() const {
     fmt::print(out, "time,dt,soil_volume,air_volume,kinetic_energy,potential_energy,dissipated_energy,"
                     "toe_contour,toe_one_cell,wall_height\n");
     for (const auto& row : history_) fmt::print(out, "{}\n", row);
+  });
+}
+
+// Dissipated energy so far binned by the Lode angle of the cell that dissipated it ([YS] Fig. 17).
+void Simulation::write_lode_energy() const {
+  const auto h = soil_->lode_energy();
+  if (rank_ != 0) return;
+  write_file_atomically(out_ / "lode_dissipation.csv", [&](std::ostream& out) {
+    fmt::print(out, "# energy dissipated up to t = {:.9g} s by Lode angle (J per {})\n", time_,
+               grid_->axisymmetric() ? "radian" : "metre depth");
+    fmt::print(out, "theta_deg,theta_low_deg,theta_high_deg,energy\n");
+    for (int k = 0; k < h.bins(); ++k)
+      fmt::print(out, "{:.6g},{:.6g},{:.6g},{:.9g}\n", h.centre_deg(k), h.lower_edge_deg(k), h.lower_edge_deg(k + 1),
+                 h.energy(k));
   });
 }
 

@@ -50,6 +50,7 @@ class Simulation {
   void record_history(double dt);
   void write_history() const;
   void write_soil_lines() const;
+  void write_lode_energy() const;
   double choose_dt(double dt_previous) const;
   double courant_after(double dt) const;  // flow Courant number of the current velocities over dt
 

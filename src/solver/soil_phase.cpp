@@ -24,6 +24,8 @@ rheology::StrainRate cell_strain_rate(const Grid& g, const double* const* u, con
   const double hx = g.xc(i + 1) - g.xc(i - 1), hy = g.yc(j + 1) - g.yc(j - 1);
   const double dudx = (u[j][i + 1] - u[j][i - 1]) / hx, dudy = (u[j + 1][i] - u[j - 1][i]) / hy;
   const double dvdx = (v[j][i + 1] - v[j][i - 1]) / hx, dvdy = (v[j + 1][i] - v[j - 1][i]) / hy;
+  // Axisymmetric: the hoop rate D_thth = u_r / r enters ||D|| and the Lode angle ([YS] Sec. 4).
+  if (g.axisymmetric()) return rheology::axisymmetric_strain_rate(dudx, dvdy, 0.5 * (dudy + dvdx), u[j][i] / g.xc(i));
   return rheology::planar_strain_rate(dudx, dvdy, 0.5 * (dudy + dvdx));
 }
 
@@ -38,12 +40,14 @@ SoilPhase::SoilPhase(const Grid& grid, const FlowSettings& flow, const SoilSetti
   overburden_ = make();
   rate_norm_ = make();
   lode_ = make();
+  stress_ratio_ = make();
+  dissipation_ = make();
   for (int a = 0; a < 2; ++a) {
     disp_[a] = make();
     disp_new_[a] = make();
     disp_[a]->set(0.0);
   }
-  for (Field* f : {c_.get(), c_tmp_.get(), dilatation_.get(), strain_norm_.get(), rate_norm_.get(), lode_.get(),
+  for (Field* f : {c_.get(), c_tmp_.get(), dilatation_.get(), strain_norm_.get(), rate_norm_.get(), lode_.get(), stress_ratio_.get(), dissipation_.get(),
                    overburden_.get()})
     f->set(0.0);
 }
@@ -176,7 +180,7 @@ void SoilPhase::compute_overburden(const std::array<double, 2>& gravity) {
 double SoilPhase::interface_courant(const FlowSolver& flow, double dt) const {
   ConstFieldArray fx = local_read(grid_, flow.face_velocity(0)), fy = local_read(grid_, flow.face_velocity(1));
   const double co = std::max(
-      interface::max_sweep_courant(0, dt, fx.data(), grid_.dx_data(), grid_.dy_data(), grid_.owned()),
+      interface::max_sweep_courant(0, dt, fx.data(), grid_.dx_data(), grid_.dy_data(), grid_.owned(), radial_weights()),
       interface::max_sweep_courant(1, dt, fy.data(), grid_.dx_data(), grid_.dy_data(), grid_.owned()));
   return mpi_max(grid_.comm(), co);
 }
@@ -188,6 +192,7 @@ void SoilPhase::advect(const FlowSolver& flow, double dt) {
   const auto& b = grid_.owned();
   ConstFieldArray fx = local_read(grid_, flow.face_velocity(0)), fy = local_read(grid_, flow.face_velocity(1));
   const double* const* face[2] = {fx.data(), fy.data()};
+  const interface::RadialWeights radial = radial_weights();
   for (int s = 0; s < substeps; ++s) {
     const int first = sweep_parity_, second = 1 - sweep_parity_;
     sweep_parity_ = 1 - sweep_parity_;  // alternate the sweep order (Strang-like symmetry over two steps)
@@ -196,14 +201,14 @@ void SoilPhase::advect(const FlowSolver& flow, double dt) {
       FieldArray cc(grid_.field_dm(), dilatation_->local());
       interface::dilatation_indicator(c.data(), b, cc.data());
       FieldArray tmp(grid_.field_dm(), c_tmp_->global());
-      interface::vof_sweep(first, h, c.data(), face[first], cc.data(), grid_.dx_data(), grid_.dy_data(), b, tmp.data());
+      interface::vof_sweep(first, h, c.data(), face[first], cc.data(), grid_.dx_data(), grid_.dy_data(), b, tmp.data(), radial);
     }
     fill_fraction_ghosts(*c_tmp_);
     {
       ConstFieldArray tmp(grid_.field_dm(), c_tmp_->local());
       ConstFieldArray cc(grid_.field_dm(), dilatation_->local());
       FieldArray c(grid_.field_dm(), c_->global());
-      interface::vof_sweep(second, h, tmp.data(), face[second], cc.data(), grid_.dx_data(), grid_.dy_data(), b, c.data());
+      interface::vof_sweep(second, h, tmp.data(), face[second], cc.data(), grid_.dx_data(), grid_.dy_data(), b, c.data(), radial);
     }
     fill_fraction_ghosts(*c_);
   }
@@ -230,8 +235,12 @@ void SoilPhase::transport_displacement(const FlowSolver& flow, double dt) {
           const double flux = sign * face_vel * area * cf;  // outward
           return flux * (flux >= 0.0 ? d[j][i] : d[jn][in]);
         };
-        const double out = face_term(fx[j][i], i + 1, j, grid_.dy(j), 1.0) + face_term(fx[j][i - 1], i - 1, j, grid_.dy(j), -1.0) +
-                           face_term(fy[j][i], i, j + 1, grid_.dx(i), 1.0) + face_term(fy[j - 1][i], i, j - 1, grid_.dx(i), -1.0);
+        // Face areas carry the radius in axisymmetric geometry; with no swirl the r-component of
+        // div(c v u) has no extra hoop term, so the planar form holds component by component.
+        const double out = face_term(fx[j][i], i + 1, j, grid_.face_area(0, i, j, 1.0), 1.0) +
+                           face_term(fx[j][i - 1], i - 1, j, grid_.face_area(0, i, j, -1.0), -1.0) +
+                           face_term(fy[j][i], i, j + 1, grid_.face_area(1, i, j, 1.0), 1.0) +
+                           face_term(fy[j - 1][i], i, j - 1, grid_.face_area(1, i, j, -1.0), -1.0);
         dn[j][i] = d[j][i] + dt * (c[j][i] * vel[a][j][i] - out / grid_.volume(i, j));
       }
   }
@@ -244,33 +253,40 @@ void SoilPhase::compute_diagnostics(const FlowSolver& flow) {
   ConstFieldArray dx(grid_.field_dm(), disp_[0]->local()), dy(grid_.field_dm(), disp_[1]->local());
   ConstFieldArray u = local_read(grid_, flow.velocity(0)), v = local_read(grid_, flow.velocity(1));
   FieldArray en(grid_.field_dm(), strain_norm_->global()), rn(grid_.field_dm(), rate_norm_->global()),
-      lo(grid_.field_dm(), lode_->global());
+      lo(grid_.field_dm(), lode_->global()), ratio(grid_.field_dm(), stress_ratio_->global());
   for (int j = b.ys; j < b.ye(); ++j)
     for (int i = b.xs; i < b.xe(); ++i) {
       const double hx = grid_.xc(i + 1) - grid_.xc(i - 1), hy = grid_.yc(j + 1) - grid_.yc(j - 1);
       strain::DisplacementGradient g{(dx[j][i + 1] - dx[j][i - 1]) / hx, (dx[j + 1][i] - dx[j - 1][i]) / hy,
                                      (dy[j][i + 1] - dy[j][i - 1]) / hx, (dy[j + 1][i] - dy[j - 1][i]) / hy};
+      if (grid_.axisymmetric()) g.hoop = dx[j][i] / grid_.xc(i);  // u_r / r
       strain::AlmansiStrain e;
       strain::almansi_strain(g, e);
       en[j][i] = strain::deviatoric_norm(e);
       const auto D = cell_strain_rate(grid_, u.data(), v.data(), i, j);
       rn[j][i] = rheology::norm(rheology::deviatoric(D));
       lo[j][i] = rheology::lode_angle(D) * 180.0 / std::numbers::pi;
+      ratio[j][i] = rheology_ ? rheology_->stress_ratio_to_drucker_prager(D) : 1.0;
     }
 }
 
-// Rate of viscous dissipation, integral of 2 mu D:D, summed face by face exactly as the discrete
-// viscous operator does its work: the face viscosity is the operator's face mean (harmonic by
-// default), the normal derivatives are compact differences across the face and the tangential one is
-// the operator's average of the two cells' central differences. A cell-centred mu 2 D:D instead
-// weights a soft layer's shear with its stiff neighbour's viscosity and overstates the dissipation
-// by the viscosity contrast wherever the soil yields next to rigid soil.
-double SoilPhase::dissipation_rate(const FlowSolver& flow) const {
+// Rate of viscous dissipation, integral of 2 mu D:D, per cell, from the work the discrete viscous
+// operator does face by face: the face viscosity is the operator's face mean (harmonic by default),
+// the normal derivatives are compact differences across the face and the tangential one is the
+// operator's average of the two cells' central differences; each interior face gives half its work to
+// either cell, a wall face all of it to its cell. Axisymmetric: face areas carry the radius, and the
+// hoop stress adds 2 mu (u_r/r)^2 per unit volume. A cell-centred mu 2 D:D instead weights a soft
+// layer's shear with its stiff neighbour's viscosity and overstates the dissipation by the viscosity
+// contrast wherever the soil yields next to rigid soil.
+// Fills dissipation_ (W per metre depth, or per radian) and the local Lode-binned rates; returns the
+// rank's sum.
+double SoilPhase::compute_dissipation(const FlowSolver& flow) {
   const auto& b = grid_.owned();
   const int nx = grid_.nx(), ny = grid_.ny();
   const auto kind = flow_settings_.numerics.face_viscosity;
   ConstFieldArray u = local_read(grid_, flow.velocity(0)), v = local_read(grid_, flow.velocity(1));
   ConstFieldArray mu = local_read(grid_, flow.viscosity());
+  FieldArray out(grid_.field_dm(), dissipation_->global());
   const double* const* q[2] = {u.data(), v.data()};
   // Work rate of a wall face of cell (i, j) on side s, with half-cell distance d and area A.
   auto wall_face = [&](Side s, int i, int j, double A, double d) {
@@ -282,41 +298,63 @@ double SoilPhase::dissipation_rate(const FlowSolver& flow) const {
     const double dt = (bc.wall_velocity[t] - q[t][j][i]) / d;
     return mu[j][i] * A * d * (2.0 * dn * dn + dt * dt);
   };
+  // Work rate of the interior face between (i, j) and (i+1, j).
+  auto east_face = [&](int i, int j) {
+    const double d = grid_.xc(i + 1) - grid_.xc(i), A = grid_.face_area(0, i, j, 1.0);
+    const double hy = grid_.yc(j + 1) - grid_.yc(j - 1);
+    const double g_nn = (u[j][i + 1] - u[j][i]) / d, g_tn = (v[j][i + 1] - v[j][i]) / d;
+    const double g_nt = 0.5 * ((u[j + 1][i] - u[j - 1][i]) + (u[j + 1][i + 1] - u[j - 1][i + 1])) / hy;
+    return face_mean(kind, mu[j][i], mu[j][i + 1]) * A * d * (2.0 * g_nn * g_nn + g_tn * (g_tn + g_nt));
+  };
+  // ... and between (i, j) and (i, j+1).
+  auto north_face = [&](int i, int j) {
+    const double d = grid_.yc(j + 1) - grid_.yc(j), A = grid_.face_area(1, i, j, 1.0);
+    const double hx = grid_.xc(i + 1) - grid_.xc(i - 1);
+    const double g_nn = (v[j + 1][i] - v[j][i]) / d, g_tn = (u[j + 1][i] - u[j][i]) / d;
+    const double g_nt = 0.5 * ((v[j][i + 1] - v[j][i - 1]) + (v[j + 1][i + 1] - v[j + 1][i - 1])) / hx;
+    return face_mean(kind, mu[j][i], mu[j + 1][i]) * A * d * (2.0 * g_nn * g_nn + g_tn * (g_tn + g_nt));
+  };
+  std::fill(lode_rate_.values().begin(), lode_rate_.values().end(), 0.0);
   double rate = 0.0;
   for (int j = b.ys; j < b.ye(); ++j)
     for (int i = b.xs; i < b.xe(); ++i) {
-      // east face (normal x): normal component u, tangential v
-      if (i + 1 < nx) {
-        const double d = grid_.xc(i + 1) - grid_.xc(i), A = grid_.dy(j);
-        const double hy = grid_.yc(j + 1) - grid_.yc(j - 1);
-        const double g_nn = (u[j][i + 1] - u[j][i]) / d, g_tn = (v[j][i + 1] - v[j][i]) / d;
-        const double g_nt = 0.5 * ((u[j + 1][i] - u[j - 1][i]) + (u[j + 1][i + 1] - u[j - 1][i + 1])) / hy;
-        rate += face_mean(kind, mu[j][i], mu[j][i + 1]) * A * d * (2.0 * g_nn * g_nn + g_tn * (g_tn + g_nt));
-      } else {
-        rate += wall_face(Side::east, i, j, grid_.dy(j), 0.5 * grid_.dx(i));
+      const double hx = 0.5 * grid_.dx(i), hy = 0.5 * grid_.dy(j);
+      double w = 0.0;
+      w += i + 1 < nx ? 0.5 * east_face(i, j) : wall_face(Side::east, i, j, grid_.face_area(0, i, j, 1.0), hx);
+      w += i > 0 ? 0.5 * east_face(i - 1, j) : wall_face(Side::west, i, j, grid_.face_area(0, i, j, -1.0), hx);
+      w += j + 1 < ny ? 0.5 * north_face(i, j) : wall_face(Side::north, i, j, grid_.face_area(1, i, j, 1.0), hy);
+      w += j > 0 ? 0.5 * north_face(i, j - 1) : wall_face(Side::south, i, j, grid_.face_area(1, i, j, -1.0), hy);
+      if (grid_.axisymmetric()) {
+        const double hoop = u[j][i] / grid_.xc(i);
+        w += 2.0 * mu[j][i] * hoop * hoop * grid_.volume(i, j);
       }
-      if (j + 1 < ny) {
-        const double d = grid_.yc(j + 1) - grid_.yc(j), A = grid_.dx(i);
-        const double hx = grid_.xc(i + 1) - grid_.xc(i - 1);
-        const double g_nn = (v[j + 1][i] - v[j][i]) / d, g_tn = (u[j + 1][i] - u[j][i]) / d;
-        const double g_nt = 0.5 * ((v[j][i + 1] - v[j][i - 1]) + (v[j + 1][i + 1] - v[j + 1][i - 1])) / hx;
-        rate += face_mean(kind, mu[j][i], mu[j + 1][i]) * A * d * (2.0 * g_nn * g_nn + g_tn * (g_tn + g_nt));
-      } else {
-        rate += wall_face(Side::north, i, j, grid_.dx(i), 0.5 * grid_.dy(j));
-      }
-      if (i == 0) rate += wall_face(Side::west, i, j, grid_.dy(j), 0.5 * grid_.dx(i));
-      if (j == 0) rate += wall_face(Side::south, i, j, grid_.dx(i), 0.5 * grid_.dy(j));
+      out[j][i] = w;
+      rate += w;
+      const double theta = rheology::lode_angle(cell_strain_rate(grid_, u.data(), v.data(), i, j));
+      lode_rate_.add(theta * 180.0 / std::numbers::pi, w);
     }
-  return rate;  // owned faces only; the caller sums over ranks
+  return rate;  // owned cells only; the caller sums over ranks
 }
 
-SoilBudget SoilPhase::budget(const FlowSolver& flow) const {
+void SoilPhase::accumulate_lode_energy(double dt) {
+  auto& e = lode_energy_.values();
+  const auto& r = lode_rate_.values();
+  for (size_t k = 0; k < e.size(); ++k) e[k] += r[k] * dt;
+}
+
+rheology::LodeHistogram SoilPhase::lode_energy() const {
+  rheology::LodeHistogram all(lode_energy_.bins());
+  MPI_Allreduce(lode_energy_.values().data(), all.values().data(), all.bins(), MPI_DOUBLE, MPI_SUM, grid_.comm());
+  return all;
+}
+
+SoilBudget SoilPhase::budget(const FlowSolver& flow) {
   const auto& b = grid_.owned();
   const auto& g = flow_settings_.gravity;
   ConstFieldArray c(grid_.field_dm(), c_->global());
   ConstFieldArray u = local_read(grid_, flow.velocity(0)), v = local_read(grid_, flow.velocity(1));
   ConstFieldArray rho(grid_.field_dm(), flow.density().global());
-  double s[5] = {0, 0, 0, 0, dissipation_rate(flow)};
+  double s[5] = {0, 0, 0, 0, compute_dissipation(flow)};
   for (int j = b.ys; j < b.ye(); ++j)
     for (int i = b.xs; i < b.xe(); ++i) {
       const double V = grid_.volume(i, j);

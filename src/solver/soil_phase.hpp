@@ -8,7 +8,9 @@
 
 #include "mesh/field.hpp"
 #include "mesh/field_snapshot.hpp"
+#include "models/interface/vof_advection.hpp"
 #include "models/rheology/granular_rheology.hpp"
+#include "models/rheology/lode_histogram.hpp"
 #include "solver/flow_solver.hpp"
 #include "solver/soil_settings.hpp"
 
@@ -41,7 +43,12 @@ class SoilPhase {
 
   // Diagnostic fields at output: ||D|| ([YS] Eq. 8), Lode angle in degrees, strain norm.
   void compute_diagnostics(const FlowSolver& flow);
-  SoilBudget budget(const FlowSolver& flow) const;
+  // Volumes, energies and the dissipation rate now; also refreshes the per-cell dissipation and its
+  // Lode-angle bins, which accumulate_lode_energy(dt) then adds up over the step.
+  SoilBudget budget(const FlowSolver& flow);
+  void accumulate_lode_energy(double dt);
+  // Dissipated energy so far, binned by Lode angle ([YS] Fig. 17), summed over ranks (collective).
+  rheology::LodeHistogram lode_energy() const;
 
   Field& soil_fraction() { return *c_; }
   const Field& soil_fraction() const { return *c_; }
@@ -49,6 +56,8 @@ class SoilPhase {
   const Field& strain_norm() const { return *strain_norm_; }
   const Field& strain_rate_norm() const { return *rate_norm_; }
   const Field& lode_angle() const { return *lode_; }
+  const Field& stress_ratio_to_drucker_prager() const { return *stress_ratio_; }
+  const Field& dissipation() const { return *dissipation_; }  // per cell, from the last budget()
   const SoilSettings& settings() const { return settings_; }
 
  private:
@@ -59,7 +68,8 @@ class SoilPhase {
   void restore_state();
  private:
   void fill_displacement_ghosts();
-  double dissipation_rate(const FlowSolver& flow) const;
+  interface::RadialWeights radial_weights() const { return {grid_.radius_face_data(), grid_.radius_centre_data()}; }
+  double compute_dissipation(const FlowSolver& flow);
 
   const Grid& grid_;
   const FlowSettings& flow_settings_;
@@ -69,7 +79,8 @@ class SoilPhase {
   std::optional<rheology::GranularRheology> rheology_;
   std::unique_ptr<Field> c_, c_tmp_, dilatation_;
   std::unique_ptr<Field> disp_[2], disp_new_[2];
-  std::unique_ptr<Field> strain_norm_, rate_norm_, lode_;
+  std::unique_ptr<Field> strain_norm_, rate_norm_, lode_, stress_ratio_, dissipation_;
+  rheology::LodeHistogram lode_rate_, lode_energy_;  // this rank's cells: W and J per bin
   std::unique_ptr<Field> overburden_;  // rho_s g times the soil depth above each centre (Pa)
   void compute_overburden(const std::array<double, 2>& gravity);
   int sweep_parity_ = 0;

@@ -75,6 +75,25 @@ void SerialVofField::fill_ghosts(GhostedArray2& a) const {
   }
 }
 
+void SerialVofField::set_axisymmetric(bool on) {
+  r_face_.clear();
+  r_centre_.clear();
+  if (!on) return;
+  for (int i = -g; i < mx_ + g; ++i) {
+    r_face_.push_back(x_face(i + 1));
+    r_centre_.push_back(x_centre(i));
+  }
+}
+
+RadialWeights SerialVofField::radial() const {
+  if (r_face_.empty()) return {};
+  return {r_face_.data() + g, r_centre_.data() + g};
+}
+
+double SerialVofField::volume(int i, int j) const {
+  return dx()[i] * dy()[j] * (r_centre_.empty() ? 1.0 : r_centre_[i + g]);
+}
+
 void SerialVofField::set_velocity_from_stream_function(
     const std::function<double(double, double)>& psi) {
   for (int j = -g; j < my_ + g; ++j) {
@@ -83,14 +102,17 @@ void SerialVofField::set_velocity_from_stream_function(
       const double p_se = psi(x_face(i + 1), y_face(j));
       const double p_ne = psi(x_face(i + 1), y_face(j + 1));
       const double p_nw = psi(x_face(i), y_face(j + 1));
-      ux_(i, j) = (p_ne - p_se) / dy()[j];
-      uy_(i, j) = -(p_ne - p_nw) / dx()[i];
+      // Axisymmetric: the face fluxes r_f u dz and r_c v dr are the differences of psi.
+      const double r_east = r_face_.empty() ? 1.0 : x_face(i + 1);
+      const double r_mid = r_face_.empty() ? 1.0 : x_centre(i);
+      ux_(i, j) = r_east != 0.0 ? (p_ne - p_se) / (dy()[j] * r_east) : 0.0;
+      uy_(i, j) = -(p_ne - p_nw) / (dx()[i] * r_mid);
     }
   }
 }
 
 double SerialVofField::max_courant(double dt) const {
-  return std::max(max_sweep_courant(0, dt, ux_.rows(), dx(), dy(), owned()),
+  return std::max(max_sweep_courant(0, dt, ux_.rows(), dx(), dy(), owned(), radial()),
                   max_sweep_courant(1, dt, uy_.rows(), dx(), dy(), owned()));
 }
 
@@ -102,9 +124,9 @@ void SerialVofField::step(double dt) {
   const int first = steps_ % 2 == 0 ? 0 : 1;
   const int second = 1 - first;
   const auto velocity = [this](int axis) { return axis == 0 ? ux_.rows() : uy_.rows(); };
-  vof_sweep(first, dt, c_.rows(), velocity(first), cc_.rows(), dx(), dy(), owned(), tmp_.rows());
+  vof_sweep(first, dt, c_.rows(), velocity(first), cc_.rows(), dx(), dy(), owned(), tmp_.rows(), radial());
   fill_ghosts(tmp_);
-  vof_sweep(second, dt, tmp_.rows(), velocity(second), cc_.rows(), dx(), dy(), owned(), c_.rows());
+  vof_sweep(second, dt, tmp_.rows(), velocity(second), cc_.rows(), dx(), dy(), owned(), c_.rows(), radial());
   fill_ghosts(c_);
   ++steps_;
 }
@@ -112,7 +134,7 @@ void SerialVofField::step(double dt) {
 double SerialVofField::total_volume() const {
   double v = 0.0;
   for (int j = 0; j < my_; ++j)
-    for (int i = 0; i < mx_; ++i) v += c_(i, j) * dx()[i] * dy()[j];
+    for (int i = 0; i < mx_; ++i) v += c_(i, j) * volume(i, j);
   return v;
 }
 

@@ -48,6 +48,9 @@ class SerialVofField {
   GhostedArray2& uy() { return uy_; }  // uy(i, j): y-velocity on the face between j and j+1
 
   void set_boundary(VofBoundary bc) { bc_ = bc; }
+  // Axisymmetric (x = r >= 0, y = z): radius-weighted x-fluxes and volumes; the stream function of
+  // set_velocity_from_stream_function is then Stokes's (r u_r = dpsi/dz, r u_z = -dpsi/dr).
+  void set_axisymmetric(bool on);
   void fill_ghosts() { fill_ghosts(c_); }
 
   // Face velocities u = dpsi/dy, v = -dpsi/dx from psi sampled at cell corners: the discrete
@@ -64,7 +67,7 @@ class SerialVofField {
   // c after the first sweep of the last step (with ghosts), e.g. to check intermediate bounds.
   const GhostedArray2& intermediate() const { return tmp_; }
 
-  double total_volume() const;  // sum of c * cell area over owned cells
+  double total_volume() const;  // sum of c * cell area (times r_c when axisymmetric) over owned cells
   double min_fraction() const;
   double max_fraction() const;
 
@@ -75,6 +78,9 @@ class SerialVofField {
   std::vector<double> dx_, dy_, xf_, yf_;
   GhostedArray2 c_, tmp_, cc_, ux_, uy_;
   VofBoundary bc_ = VofBoundary::ZeroGradient;
+  std::vector<double> r_face_, r_centre_;  // empty in planar geometry
+  RadialWeights radial() const;
+  double volume(int i, int j) const;
   long steps_ = 0;
 };
 

@@ -78,17 +78,22 @@ inline FaceFlux face_flux_y(const double* const* c, double v, double dt, const d
 // drifting by round-off, which keeps the pure-cell fast path effective.
 void vof_sweep(int axis, double dt, const double* const* c, const double* const* u,
                const double* const* cc, const double* dx, const double* dy, CellBox o,
-               double** c_new) {
+               double** c_new, RadialWeights radial) {
   const int i_end = o.xs + o.xm;
   const int j_end = o.ys + o.ym;
   if (axis == 0) {
+    const bool weighted = radial.face != nullptr;
     for (int j = o.ys; j < j_end; ++j) {
       FaceFlux low = face_flux_x(c, u[j][o.xs - 1], dt, dx, dy, o.xs - 1, j);
+      double r_low = weighted ? radial.face[o.xs - 1] : 1.0;
       for (int i = o.xs; i < i_end; ++i) {
         const FaceFlux high = face_flux_x(c, u[j][i], dt, dx, dy, i, j);
-        c_new[j][i] = cc[j][i] > 0.5 ? c[j][i] + (high.g - low.g) / dx[i]
-                                     : c[j][i] + (low.f - high.f) / dx[i];
+        const double r_high = weighted ? radial.face[i] : 1.0;
+        const double h = weighted ? dx[i] * radial.centre[i] : dx[i];
+        c_new[j][i] = cc[j][i] > 0.5 ? c[j][i] + (r_high * high.g - r_low * low.g) / h
+                                     : c[j][i] + (r_low * low.f - r_high * high.f) / h;
         low = high;
+        r_low = r_high;
       }
     }
     return;
@@ -117,12 +122,18 @@ void dilatation_indicator(const double* const* c, CellBox o, double** cc) {
 }
 
 double max_sweep_courant(int axis, double dt, const double* const* u, const double* dx,
-                         const double* dy, CellBox o) {
+                         const double* dy, CellBox o, RadialWeights radial) {
   double cmax = 0.0;
   if (axis == 0) {
     for (int j = o.ys; j < o.ys + o.ym; ++j)
-      for (int i = o.xs - 1; i < o.xs + o.xm; ++i)
-        cmax = std::max(cmax, std::abs(u[j][i]) * dt / std::min(dx[i], dx[i + 1]));
+      for (int i = o.xs - 1; i < o.xs + o.xm; ++i) {
+        double h = std::min(dx[i], dx[i + 1]);
+        // The face's swept volume relative to each neighbour's volume: r_f / r_c, the larger of
+        // the two (the inner cell's, whose centre lies at the smaller radius).
+        if (radial.face != nullptr && radial.centre[i] > 0.0)
+          h = std::min(dx[i] * radial.centre[i], dx[i + 1] * radial.centre[i + 1]) / radial.face[i];
+        cmax = std::max(cmax, std::abs(u[j][i]) * dt / h);
+      }
   } else {
     for (int j = o.ys - 1; j < o.ys + o.ym; ++j)
       for (int i = o.xs; i < o.xs + o.xm; ++i)

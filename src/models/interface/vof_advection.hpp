@@ -25,24 +25,39 @@ namespace granflow::interface {
 // Owned cells [xs, xs+xm) x [ys, ys+ym) in global indices.
 using granflow::CellBox;
 
+// Radius weights of an axisymmetric (r-z, x = r) mesh, ghost-offset like dx: face[i] is the radius of
+// cell i's east face, centre[i] that of its centre. Fluxes through x-faces are multiplied by the face
+// radius and the update divided by the centre radius (the cell volume is r_c dr dz per radian), which
+// keeps sum(c r_c dr dz) conserved; the flux polygon itself is the planar one (as in Basilisk's axi).
+// Both null: planar.
+struct RadialWeights {
+  const double* face = nullptr;
+  const double* centre = nullptr;
+};
+
 // One directional sweep (axis 0 = x, 1 = y) of Weymouth & Yue's scheme:
 //   c_new = c + (F_low - F_high)/h + cc * (u_high - u_low) dt/h,
 // with F the volume (per unit face area) of the upwind cell's PLIC polygon swept through a face
 // in dt. Writes c_new on owned cells only; c_new must not alias c.
 // Reads c on owned cells plus two ghost layers along `axis` and one across it (corners included),
 // face_velocity on the faces bounding owned cells along `axis`, and cc on owned cells.
-// Requires max_sweep_courant(axis, ...) < 0.5 for boundedness.
+// Requires max_sweep_courant(axis, ...) < 0.5 for boundedness. With radial weights the x-sweep
+// reads c_new = c + (r_low F_low - r_high F_high)/(r_c h) + cc (r_high u_high - r_low u_low) dt/(r_c h);
+// the y-sweep is unchanged (its faces and cells share the radius r_c).
 void vof_sweep(int axis, double dt, const double* const* c, const double* const* face_velocity,
                const double* const* cc, const double* dx, const double* dy,
-               CellBox owned, double** c_new);
+               CellBox owned, double** c_new, RadialWeights radial = {});
 
 // cc = 1 where c > 0.5, else 0, on owned cells. Evaluate once per time step, before the first
 // sweep. Any cc array holding 0/1 values works (cc > 0.5 selects the correction).
 void dilatation_indicator(const double* const* c, CellBox owned, double** cc);
 
 // Largest |u| dt / h over the faces bounding owned cells along `axis`, with h the smaller of the
-// two adjacent cell widths. Local to this rank: reduce with MPI_MAX in parallel.
+// two adjacent cell widths (with radial weights, |u| dt r_f / (h r_c), the larger over the two
+// cells: next to the axis a face at r = dr bounds a cell of centre dr/2). Local to this rank:
+// reduce with MPI_MAX in parallel.
 double max_sweep_courant(int axis, double dt, const double* const* face_velocity,
-                         const double* dx, const double* dy, CellBox owned);
+                         const double* dx, const double* dy, CellBox owned,
+                         RadialWeights radial = {});
 
 }  // namespace granflow::interface

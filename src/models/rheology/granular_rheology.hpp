@@ -79,6 +79,17 @@ class GranularRheology {
     return dynamic_viscosity(strain_rate, pressure) * inverse_density_;
   }
 
+  // The model's yield stress over Drucker-Prager's at the same strain rate and pressure: the stress
+  // ratio of [YS] Figs. 8, 11 and 15. It depends on the Lode angle alone (1 at theta = 0, where all
+  // surfaces are calibrated); exactly 1 for the Drucker-Prager models and at rest.
+  [[nodiscard]] double stress_ratio_to_drucker_prager(const StrainRate& strain_rate) const noexcept {
+    if (yield_surface_of(model_) == YieldSurface::drucker_prager) return 1.0;
+    const DeformationState state = deformation_state(strain_rate);
+    if (!(state.strain_rate_norm > 0.0)) return 1.0;
+    const double friction = friction_coefficient(state.strain_rate_norm, 1.0);
+    return yield_stress(friction, state.sin_three_lode, 1.0) / drucker_prager_yield_stress(friction, 1.0);
+  }
+
   // sin(phi) for a constant friction angle, mu(I) otherwise ([YS] Eq. 25).
   [[nodiscard]] double friction_coefficient(double strain_rate_norm,
                                             double yield_pressure) const noexcept {

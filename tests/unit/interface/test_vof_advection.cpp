@@ -208,10 +208,13 @@ RunResult run_zalesak(int n, double cfl) {
 // LeVeque's reversing single vortex, psi = sin^2(pi x) sin^2(pi y) cos(pi t/T)/pi, circle r = 0.15
 // at (0.5, 0.75); at t = T the exact solution is the initial one. The time factor is applied to
 // fixed divergence-free face velocities (evaluated at mid-step), which keeps them divergence-free.
-RunResult run_vortex(SerialVofField& f, double period, double cfl) {
+// Axisymmetric (set_axisymmetric before the call): the same psi as Stokes's stream function, whose
+// r u_r = dpsi/dz stays regular at the axis since psi ~ r^2 there; the circle is then the section of
+// a torus, or of a sphere when centred on the axis (x_centre = 0).
+RunResult run_vortex(SerialVofField& f, double period, double cfl, double x_centre = 0.5) {
   f.set_boundary(VofBoundary::Empty);
-  const auto inside = [](double x, double y) { return test::circle_inside(x, y, 0.5, 0.75, 0.15); };
-  const auto c0 = init_shape(f, inside, 0.34, 0.66, 0.59, 0.91);
+  const auto inside = [x_centre](double x, double y) { return test::circle_inside(x, y, x_centre, 0.75, 0.15); };
+  const auto c0 = init_shape(f, inside, x_centre - 0.16, x_centre + 0.16, 0.59, 0.91);
   f.set_velocity_from_stream_function([](double x, double y) {
     const double sx = std::sin(kPi * x), sy = std::sin(kPi * y);
     return sx * sx * sy * sy / kPi;
@@ -281,6 +284,35 @@ TEST(VofAdvection, ReversingSingleVortex) {
   const RunResult near_limit = run_vortex(f, 4.0, 0.49);
   report("reversing single vortex T = 4, CFL 0.49 per sweep", {near_limit});
   check({near_limit});
+}
+
+// Axisymmetric sweeps (radius-weighted x-fluxes, the flux polygon planar as in Basilisk's axi):
+// exactly conservative in sum(c r dr dz), and the torus converges at second order. The bounds hold
+// to a tolerance only, which falls with the cell size: the planar swept fraction is not the
+// radius-weighted one, so a cell whose soil sits at its outer edge can give away a little more than
+// it holds (by about dr / 2r of its content); measured 6.5e-3 at 32 cells, 1.6e-3 at 128.
+TEST(VofAdvection, AxisymmetricReversingVortex) {
+  for (const double x_centre : {0.5, 0.0}) {
+    std::vector<RunResult> runs;
+    for (const int n : {32, 64, 128}) {
+      SerialVofField f(n, n, 1.0, 1.0);
+      f.set_axisymmetric(true);
+      runs.push_back(run_vortex(f, 2.0, 0.4, x_centre));
+    }
+    const bool torus = x_centre > 0.0;
+    report(torus ? "axisymmetric reversing vortex, torus about r = 0.5, T = 2, CFL 0.4"
+                 : "axisymmetric reversing vortex, sphere on the axis, T = 2, CFL 0.4",
+           runs);
+    const auto overshoot = [](const RunResult& r) { return std::max(-r.cmin, r.cmax - 1.0); };
+    for (std::size_t k = 0; k < runs.size(); ++k) {
+      EXPECT_LT(runs[k].volume_error, 1e-12) << "n = " << runs[k].n;
+      EXPECT_LT(overshoot(runs[k]), 1e-2) << "n = " << runs[k].n;
+      // Second order for the torus; the sphere is drawn out along the axis into a filament of a
+      // few cells, which converges more slowly.
+      if (k > 0) EXPECT_LT(runs[k].l1, (torus ? 0.3 : 0.8) * runs[k - 1].l1) << "n = " << runs[k].n;
+    }
+    if (torus) EXPECT_LT(overshoot(runs.back()), 0.5 * overshoot(runs.front()));
+  }
 }
 
 // Geometric grading (last/first width ratio 2 in x, 1/2 in y): still exactly conservative and

@@ -68,6 +68,24 @@ TEST(EulerAlmansi, RigidTranslationAndSingularGradient) {
   EXPECT_DOUBLE_EQ(strain::deviatoric_norm(e), 0.0);
 }
 
+TEST(EulerAlmansi, AxisymmetricRadialStretchHasHoopStrain) {
+  // Uniform radial expansion r = (1 + k) R, Eulerian displacement u_r = r - R = r k / (1 + k): d u_r/dr
+  // and the hoop entry u_r/r are both k/(1+k), so F = diag(1/(1+k), 1, 1/(1+k)) and
+  // e = (I - F^-2)/2 = diag((1 - (1+k)^2)/2, 0, (1 - (1+k)^2)/2).
+  const double k = 0.2, q = k / (1 + k), e_rr = 0.5 * (1.0 - (1 + k) * (1 + k));
+  strain::AlmansiStrain e;
+  strain::DisplacementGradient g{q, 0.0, 0.0, 0.0};
+  g.hoop = q;
+  ASSERT_TRUE(strain::almansi_strain(g, e));
+  EXPECT_NEAR(e.xx, e_rr, 1e-15);
+  EXPECT_NEAR(e.hoop, e_rr, 1e-15);
+  EXPECT_NEAR(e.yy, 0.0, 1e-15);
+  // Deviator of diag(a, 0, a): (a/3, -2a/3, a/3), norm |a| sqrt(2/3).
+  EXPECT_NEAR(strain::deviatoric_norm(e), std::abs(e_rr) * std::sqrt(2.0 / 3.0), 1e-15);
+  g.hoop = 1.0;  // F_thth = 0: singular
+  EXPECT_FALSE(strain::almansi_strain(g, e));
+}
+
 TEST(InitialShapes, BoxCircleAndPolygonFractions) {
   using namespace interface;
   const std::vector<Shape> box{Box{{0.0, 0.0}, {0.2, 0.1}}};

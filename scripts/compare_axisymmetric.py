@@ -1,0 +1,356 @@
+#!/usr/bin/python3
+"""Draw and compare the axisymmetric collapses of [YS] Sec. 4 (cylinders of Lube et al. 2004 and a ring).
+
+Usage: /usr/bin/python3 scripts/compare_axisymmetric.py OUT [--json FILE]
+OUT holds one run per case and yield surface, OUT/<case>_<model>/ (as scripts/run_axisymmetric.sh
+writes them); missing runs are skipped with a note. x is the radius r (axis at r = 0), y the height z.
+Writes into OUT (PNG):
+- <case>_sections.png: the c = 0.5 surface at t = 0.1 (dotted), 0.2 (dash-dot), 0.5 s (dashed), one
+  colour per model, the initial shape in grey; for the cylinders the final run-out r_inf of the law of
+  Lube et al. (2004) (and h_inf = h0 for a < 0.74) as black crosses ([YS] Figs. 6, 9, 13);
+- <case>_lode_rate.png: Lode angle and log10 ||D|| of the Matsuoka-Nakai run ([YS] Figs. 7, 10, 14);
+- <case>_stress_ratio.png: yield stress ratio to Drucker-Prager of the MN and MC runs ([YS] Figs. 8, 11, 15);
+- lode_dissipation.png: each run's share of its dissipated energy per 2-degree Lode-angle bin ([YS] Fig. 17).
+and the numbers at the last output (t = 0.5 s) to OUT/axisymmetric.json (or --json FILE), with a table
+on stdout. Run-out "one cell" is the outer edge of the outermost column holding at least one cell
+height of soil (sum c dy >= dy); run-out "contour" is the largest r of the c = 0.5 contour.
+"""
+import argparse
+import glob
+import json
+import os
+import re
+import sys
+
+import numpy as np
+
+MODELS = {"drucker_prager": ("Drucker-Prager", "C0", "-"), "mohr_coulomb": ("Mohr-Coulomb", "C3", "--"),
+          "matsuoka_nakai": ("Matsuoka-Nakai", "C2", ":")}  # label, colour, line style (lode_dissipation.png)
+# h0, r0 of the cylinders (a = h0 / r0); the time of the Lode-angle and stress-ratio figures.
+CASES = {"lube2004_a05": dict(h0=0.1, r0=0.2, t_field=0.2, label="cylinder a = 0.5", colour="C0"),
+         "lube2004_a2": dict(h0=0.2, r0=0.1, t_field=0.1, label="cylinder a = 2", colour="C3"),
+         "ring_collapse": dict(h0=0.1, r0=None, t_field=0.2, label="ring", colour="C2")}
+SECTION_TIMES = {0.1: ":", 0.2: "-.", 0.5: "--"}
+
+
+def read_csv(path):
+    rows = [l.strip() for l in open(path) if l.strip() and not l.startswith("#")]
+    header = rows[0].split(",")
+    data = np.array([[float(v) for v in r.split(",")] for r in rows[1:]]).reshape(-1, len(header))
+    return {h: data[:, k] for k, h in enumerate(header)}
+
+
+def output_times(run):
+    """Output stamp ('00003') -> time, from fields.pvd, else from the surface files' comment lines."""
+    pvd = os.path.join(run, "fields.pvd")
+    if os.path.exists(pvd):
+        pairs = re.findall(r'timestep="([^"]+)"\s+file="fields_(\d{5})\.vtr"', open(pvd).read())
+        if pairs:
+            return {s: float(t) for t, s in pairs}
+    times = {}
+    for f in sorted(glob.glob(os.path.join(run, "surface_[0-9]*.csv"))):
+        m = re.search(r"t = ([-+0-9.eE]+)", open(f).readline())
+        if m:
+            times[os.path.basename(f)[8:13]] = float(m.group(1))
+    return times
+
+
+def stamp_at(times, t):
+    """The output nearest to time t (None if none within 1 ms)."""
+    s = min(times, key=lambda k: abs(times[k] - t), default=None)
+    return s if s is not None and abs(times[s] - t) < 1e-3 else None
+
+
+def read_vtr(path):
+    """ASCII VTK RectilinearGrid: node coordinates x, y and cell arrays shaped (ny, nx[, ncomp])."""
+    text = open(path).read()
+    arrays = {}
+    for attrs, body in re.findall(r"<DataArray([^>]*)>([^<]*)</DataArray>", text):
+        if 'format="ascii"' not in attrs:
+            raise ValueError(f"{path}: only ASCII data arrays are read")
+        name = re.search(r'Name="([^"]+)"', attrs).group(1)
+        ncomp = int((re.search(r'NumberOfComponents="(\d+)"', attrs) or [0, 1])[1])
+        arrays[name] = (np.array(body.split(), dtype=float), ncomp)
+    x, y = arrays.pop("x")[0], arrays.pop("y")[0]
+    nx, ny = len(x) - 1, len(y) - 1
+    cells = {n: v.reshape(ny, nx, c) if c > 1 else v.reshape(ny, nx)
+             for n, (v, c) in arrays.items() if v.size == nx * ny * c}
+    return x, y, cells
+
+
+def polylines(seg, tol=1e-7):
+    """Join the segments x0,y0,x1,y1 sharing end points into ordered polylines (lists of (x, y))."""
+    key = lambda x, y: (round(x / tol), round(y / tol))
+    pts = [((seg["x0"][k], seg["y0"][k]), (seg["x1"][k], seg["y1"][k])) for k in range(len(seg["x0"]))]
+    at = {}
+    for k, (p, q) in enumerate(pts):
+        at.setdefault(key(*p), []).append(k)
+        at.setdefault(key(*q), []).append(k)
+    unused, lines = set(range(len(pts))), []
+    # Start at open ends first, so that open lines come out whole; closed loops after.
+    starts = [k for k, (p, q) in enumerate(pts) if len(at[key(*p)]) == 1 or len(at[key(*q)]) == 1]
+    for k0 in starts + list(range(len(pts))):
+        if k0 not in unused:
+            continue
+        p, q = pts[k0]
+        if len(at[key(*q)]) == 1:
+            p, q = q, p
+        line, k = [p, q], k0
+        unused.discard(k)
+        while True:
+            nxt = [n for n in at[key(*line[-1])] if n in unused]
+            if not nxt:
+                break
+            k = nxt[0]
+            unused.discard(k)
+            a, b = pts[k]
+            line.append(b if key(*a) == key(*line[-1]) else a)
+        lines.append(np.array(line))
+    return lines
+
+
+def lube_runout(h0, r0):
+    a = h0 / r0
+    return r0 * (1 + 1.24 * a) if a < 1.7 else r0 * (1 + 1.6 * a ** 0.5)
+
+
+def measure(run, case, times):
+    """The numbers of one run at its last output."""
+    last = max(times, key=times.get)
+    cols = read_csv(os.path.join(run, f"column_height_{last}.csv"))
+    surf = read_csv(os.path.join(run, f"surface_{last}.csv"))
+    x, h = cols["x"], cols["height"]
+    dx = x[1] - x[0]
+    gx, gy, cells = read_vtr(os.path.join(run, f"fields_{last}.vtr"))
+    dy = gy[1] - gy[0]
+    thick = h >= dy * (1 - 1e-9)
+    m = {"time_s": times[last],
+         "runout_one_cell_m": float(x[thick].max() + 0.5 * dx) if thick.any() else 0.0,
+         "runout_contour_m": float(max(surf["x0"].max(), surf["x1"].max())) if len(surf["x0"]) else 0.0}
+    if CASES[case]["r0"] is None:  # ring: the highest column, and the inner front
+        k = int(np.argmax(h))
+        m.update(max_height_m=float(h[k]), max_height_radius_m=float(x[k]),
+                 inner_front_one_cell_m=float(x[thick].min() - 0.5 * dx) if thick.any() else None)
+    else:
+        m["central_height_m"] = float(h[0])
+    hist = read_csv(os.path.join(run, "history.csv"))
+    m.update(soil_volume_change=float(hist["soil_volume"][-1] / hist["soil_volume"][0] - 1),
+             kinetic_energy_end_J_per_rad=float(hist["kinetic_energy"][-1]),
+             dissipated_energy_end_J_per_rad=float(hist["dissipated_energy"][-1]))
+    c = cells.get("soil_fraction")
+    m["soil_fraction_range"] = [float(np.nanmin(c)), float(np.nanmax(c))] if c is not None else None
+    m["fields_with_nan"] = sorted(n for n, v in cells.items() if not np.all(np.isfinite(v)))
+    lode = os.path.join(run, "lode_dissipation.csv")
+    if os.path.exists(lode):
+        d = read_csv(lode)
+        th, e = d["theta_deg"], d["energy"]
+        total = e.sum()
+        share = lambda sel: float(e[sel].sum() / total) if total > 0 else None
+        m.update(lode_peak_theta_deg=float(th[np.argmax(e)]), lode_share_below_minus5=share(th <= -5),
+                 lode_share_within_5=share(np.abs(th) < 5), lode_share_above_plus5=share(th >= 5))
+    return m, (x, h)
+
+
+def compare(results, columns):
+    """Differences of MC and MN from DP, and the cylinders' deviations from the law of Lube et al."""
+    for case, runs in results.items():
+        p = CASES[case]
+        if p["r0"] is not None:
+            r_inf = lube_runout(p["h0"], p["r0"])
+            for m in runs.values():
+                m["lube_runout_m"] = r_inf
+                m["runout_one_cell_deviation_from_lube"] = m["runout_one_cell_m"] / r_inf - 1
+                if p["h0"] / p["r0"] < 0.74:
+                    m["lube_central_height_m"] = p["h0"]
+                    m["central_height_deviation_from_lube"] = m["central_height_m"] / p["h0"] - 1
+        if "drucker_prager" not in runs:
+            continue
+        dp, (xd, hd) = runs["drucker_prager"], columns[case]["drucker_prager"]
+        for model in ("mohr_coulomb", "matsuoka_nakai"):
+            if model not in runs:
+                continue
+            m, (x, h) = runs[model], columns[case][model]
+            h = np.interp(xd, x, h, right=0.0)
+            m["runout_one_cell_diff_from_dp"] = m["runout_one_cell_m"] / dp["runout_one_cell_m"] - 1
+            m["runout_contour_diff_from_dp"] = m["runout_contour_m"] / dp["runout_contour_m"] - 1
+            m["shape_diff_from_dp"] = float(np.sum(np.abs(h - hd) * xd) / np.sum(hd * xd))
+
+
+def draw_segments(ax, seg, **kw):
+    for k, line in enumerate(polylines(seg)):
+        ax.plot(line[:, 0], line[:, 1], **kw)
+        kw.pop("label", None)
+
+
+def frame(ax, gx, gy):
+    ax.set_xlim(gx[0], gx[-1]); ax.set_ylim(gy[0], gy[-1]); ax.set_aspect("equal")
+    ax.set_xlabel("r [m]"); ax.set_ylabel("z [m]")
+
+
+def figures(out, runs, times, results):
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    from matplotlib.lines import Line2D
+
+    def save(fig, name):
+        fig.savefig(os.path.join(out, name), dpi=110)
+        plt.close(fig)
+        print(f"wrote {os.path.join(out, name)}")
+
+    for case, p in CASES.items():
+        have = {m: runs[(case, m)] for m in MODELS if (case, m) in runs}
+        if not have:
+            continue
+        any_run = next(iter(have.values()))
+        gx, gy, _ = read_vtr(os.path.join(any_run, f"fields_{min(times[any_run])}.vtr"))
+        width = 10
+        height = width * (gy[-1] - gy[0]) / (gx[-1] - gx[0])
+        # 1. Sections.
+        fig, ax = plt.subplots(figsize=(width, height + 1.6))
+        t0 = stamp_at(times[any_run], 0.0)
+        if t0:
+            draw_segments(ax, read_csv(os.path.join(any_run, f"surface_{t0}.csv")), color="0.6", lw=0.8)
+        for model, run in have.items():
+            for t, ls in SECTION_TIMES.items():
+                s = stamp_at(times[run], t)
+                if s:
+                    draw_segments(ax, read_csv(os.path.join(run, f"surface_{s}.csv")), color=MODELS[model][1],
+                                  ls=ls, lw=1.3)
+        handles = [Line2D([], [], color=MODELS[m][1], label=MODELS[m][0]) for m in have]
+        handles += [Line2D([], [], color="k", ls=ls, label=f"t = {t:g} s") for t, ls in SECTION_TIMES.items()]
+        handles.append(Line2D([], [], color="0.6", lw=0.8, label="t = 0"))
+        if p["r0"] is not None:
+            r_inf = lube_runout(p["h0"], p["r0"])
+            ax.plot([r_inf], [0], "kx", ms=10, mew=2, clip_on=False)
+            label = f"Lube et al. (2004): r_inf = {r_inf:.3f} m"
+            if p["h0"] / p["r0"] < 0.74:
+                ax.plot([0], [p["h0"]], "kx", ms=10, mew=2, clip_on=False)
+                label += f", h_inf = {p['h0']:g} m"
+            handles.append(Line2D([], [], color="k", marker="x", ls="", mew=2, label=label))
+        frame(ax, gx, gy)
+        ax.legend(handles=handles, fontsize=8, loc="upper right", ncol=2)
+        ax.set_title(f"{case} ({p['label']}): c = 0.5 sections ([YS] Fig. "
+                     f"{ {'lube2004_a05': 6, 'lube2004_a2': 9, 'ring_collapse': 13}[case]})", fontsize=10)
+        fig.tight_layout()
+        save(fig, f"{case}_sections.png")
+
+        # 2. and 3. Fields at t_field.
+        def field_panel(ax, run, name, transform, cmap, vmin, vmax):
+            s = stamp_at(times[run], p["t_field"])
+            if s is None:
+                return None
+            fx, fy, cells = read_vtr(os.path.join(run, f"fields_{s}.vtr"))
+            v = np.ma.masked_where(~(cells["soil_fraction"] > 0.5), transform(cells[name]))
+            im = ax.pcolormesh(fx, fy, v, cmap=cmap, vmin=vmin, vmax=vmax, shading="flat")
+            draw_segments(ax, read_csv(os.path.join(run, f"surface_{s}.csv")), color="k", lw=1.0)
+            frame(ax, fx, fy)
+            return im, times[run][s]
+
+        def field_figure(panels, fname):
+            fig, axes = plt.subplots(len(panels), 1, figsize=(width + 1.5, 2 * height + 1.4), squeeze=False)
+            for ax, (run, name, tr, cmap, vmin, vmax, title, cbar) in zip(axes[:, 0], panels):
+                drawn = field_panel(ax, run, name, tr, cmap, vmin, vmax)
+                if drawn:
+                    fig.colorbar(drawn[0], ax=ax, label=cbar, shrink=0.9)
+                    ax.set_title(f"{title}, t = {drawn[1]:g} s", fontsize=10)
+            fig.tight_layout()
+            save(fig, fname)
+
+        mn, mc = have.get("matsuoka_nakai"), have.get("mohr_coulomb")
+        log_rate = lambda d: np.log10(np.maximum(d, 1e-6))
+        if mn:
+            field_figure([(mn, "lode_angle", lambda v: v, "RdBu_r", -30, 30,
+                           f"{case}, Matsuoka-Nakai: Lode angle", "theta [deg]"),
+                          (mn, "strain_rate_norm", log_rate, "viridis", -2, 2,
+                           f"{case}, Matsuoka-Nakai: strain rate", "log10 ||D|| [1/s]")], f"{case}_lode_rate.png")
+        ratio = [(r, lab) for r, lab in ((mn, "Matsuoka-Nakai"), (mc, "Mohr-Coulomb")) if r]
+        if ratio:
+            # One colour range for both panels, from the soil cells of both runs.
+            vals = []
+            for r, _ in ratio:
+                s = stamp_at(times[r], p["t_field"])
+                if s:
+                    _, _, cells = read_vtr(os.path.join(r, f"fields_{s}.vtr"))
+                    vals.append(cells["stress_ratio_to_drucker_prager"][cells["soil_fraction"] > 0.5])
+            vals = np.concatenate(vals) if vals else np.array([1.0])
+            lo, hi = np.nanpercentile(vals, [0.5, 99.5]) if vals.size else (0.8, 1.2)
+            field_figure([(r, "stress_ratio_to_drucker_prager", lambda v: v, "viridis", lo, hi,
+                           f"{case}, {lab} / Drucker-Prager", "yield stress ratio to DP") for r, lab in ratio],
+                         f"{case}_stress_ratio.png")
+
+    # 4. Dissipated energy by Lode angle.
+    fig, ax = plt.subplots(figsize=(8, 4.5))
+    for (case, model), run in runs.items():
+        path = os.path.join(run, "lode_dissipation.csv")
+        if not os.path.exists(path):
+            continue
+        d = read_csv(path)
+        total = d["energy"].sum()
+        if total > 0:
+            ax.plot(d["theta_deg"], d["energy"] / total, color=CASES[case]["colour"], ls=MODELS[model][2],
+                    marker=".", lw=1.3, label=f"{CASES[case]['label']}, {MODELS[model][0]}")
+    ax.set_xlim(-31, 31)
+    ax.set_xlabel("Lode angle theta [deg] (2-degree bins)")
+    ax.set_ylabel("share of the run's dissipated energy")
+    ax.set_title("Dissipated energy up to t = 0.5 s by Lode angle ([YS] Fig. 17)", fontsize=10)
+    ax.grid(alpha=0.3)
+    ax.legend(fontsize=7)
+    fig.tight_layout()
+    save(fig, "lode_dissipation.png")
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    ap.add_argument("out", help="directory holding <case>_<model>/ runs; the PNGs go here")
+    ap.add_argument("--json", help="default OUT/axisymmetric.json")
+    a = ap.parse_args()
+    runs, times, results, columns = {}, {}, {}, {}
+    for case in CASES:
+        for model in MODELS:
+            run = os.path.join(a.out, f"{case}_{model}")
+            t = output_times(run) if os.path.isdir(run) else {}
+            if not t:
+                print(f"note: {run}: missing or no outputs, skipped")
+                continue
+            try:
+                m, cols = measure(run, case, t)
+            except (OSError, ValueError, IndexError, KeyError) as e:
+                print(f"note: {run}: skipped ({type(e).__name__}: {e})")
+                continue
+            runs[(case, model)], times[run] = run, t
+            results.setdefault(case, {})[model] = m
+            columns.setdefault(case, {})[model] = cols
+    if not runs:
+        sys.exit(f"error: no runs in {a.out}")
+    compare(results, columns)
+
+    print(f"{'case':14} {'model':15} {'t':>4} {'ro 1cell':>8} {'ro c.5':>7} {'height':>7} {'dV/V':>8} "
+          f"{'KE end':>8} {'diss':>7} {'dRo1/DP':>8} {'shape':>7} {'vs Lube':>8} {'peak':>5} "
+          f"{'<=-5':>5} {'|.|<5':>5} {'>=5':>5}")
+    f = lambda v, fmt: format(v, fmt) if isinstance(v, (int, float)) else "-"
+    for case, ms in results.items():
+        for model, m in ms.items():
+            height = m.get("central_height_m", m.get("max_height_m"))
+            print(f"{case:14} {model:15} {m['time_s']:4.2g} {m['runout_one_cell_m']:8.4f} "
+                  f"{m['runout_contour_m']:7.4f} {height:7.4f} {m['soil_volume_change']:8.1e} "
+                  f"{m['kinetic_energy_end_J_per_rad']:8.2e} {m['dissipated_energy_end_J_per_rad']:7.4f} "
+                  f"{f(m.get('runout_one_cell_diff_from_dp'), '+8.4f'):>8} {f(m.get('shape_diff_from_dp'), '7.4f'):>7} "
+                  f"{f(m.get('runout_one_cell_deviation_from_lube'), '+8.3f'):>8} "
+                  f"{f(m.get('lode_peak_theta_deg'), '5.0f'):>5} {f(m.get('lode_share_below_minus5'), '5.2f'):>5} "
+                  f"{f(m.get('lode_share_within_5'), '5.2f'):>5} {f(m.get('lode_share_above_plus5'), '5.2f'):>5}")
+            if m["fields_with_nan"] or not (-1e-6 <= m["soil_fraction_range"][0] <= m["soil_fraction_range"][1] <= 1 + 1e-6):
+                print(f"  warning: NaN in {m['fields_with_nan']}, soil fraction in {m['soil_fraction_range']}")
+    print("height: central column (ring: highest column, radius in the JSON); ro = run-out [m]; "
+          "dRo1/DP, shape: MC/MN vs DP; vs Lube: one-cell run-out / r_inf - 1; last 4: Lode-angle peak [deg] "
+          "and shares of dissipated energy")
+    path = a.json or os.path.join(a.out, "axisymmetric.json")
+    with open(path, "w") as fh:
+        json.dump({"out": a.out, "cases": results}, fh, indent=1)
+    print(f"wrote {path}")
+    figures(a.out, runs, times, results)
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
