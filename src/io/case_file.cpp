@@ -310,6 +310,7 @@ CaseConfig read_case(const toml::table& root, const std::filesystem::path& sourc
     num.transpose_stress = n.boolean("transpose_stress", num.transpose_stress);
     const std::string fv = n.choice("face_viscosity", "harmonic", {"harmonic", "arithmetic"});
     num.face_viscosity = fv == "harmonic" ? FaceViscosity::harmonic : FaceViscosity::arithmetic;
+    num.quadratic_wall_gradient = n.choice("wall_gradient", "two_point", {"two_point", "quadratic"}) == "quadratic";
     n.finish();
   }
   {

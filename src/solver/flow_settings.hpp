@@ -25,6 +25,10 @@ struct NumericsSettings {
   bool momentum_predictor = true;
   bool transpose_stress = true;  // explicit div(mu grad(v)^T) term
   FaceViscosity face_viscosity = FaceViscosity::harmonic;
+  // Velocity gradient at a wall: from the wall and the first cell (two_point, first order in the
+  // flux, second in the solution), or quadratic through the wall and the first two cells, added as a
+  // deferred correction (exact for parabolic profiles: Poiseuille flow is then exact).
+  bool quadratic_wall_gradient = false;
 };
 
 struct FlowSettings {

@@ -434,6 +434,23 @@ void FlowSolver::assemble_momentum(double dt) {
           } else if (bc.kind == BoundaryKind::slip) {
             extra[fg.axis] += coeff;  // impermeable: normal component zero; no shear
           }
+          if (num.quadratic_wall_gradient && bc.kind != BoundaryKind::atmosphere) {
+            // Deferred correction from the two-point wall gradient (u_1 - u_w)/s1 to the quadratic one
+            // through the wall and the first two cell centres (at s1 and s2 from the wall). The net
+            // two-point stress is mu per tangential and stress_factor mu for the normal component.
+            const double h1 = fg.axis == 0 ? dx : dy;
+            const double h2 = fg.axis == 0 ? grid_.dx(i - fg.di) : grid_.dy(j - fg.dj);
+            const double s1 = 0.5 * h1, s2 = h1 + 0.5 * h2;
+            for (int c = 0; c < 2; ++c) {
+              if (bc.kind == BoundaryKind::slip && c != fg.axis) continue;  // no shear at a slip wall
+              const double uw = c == fg.axis ? 0.0 : bc.wall_velocity[c];
+              const double u1 = vel[c][j][i], u2 = vel[c][j - fg.dj][i - fg.di];
+              const double quadratic = ((u1 - uw) * s2 / s1 - (u2 - uw) * s1 / s2) / (s2 - s1);
+              const double two_point = (u1 - uw) / s1;
+              const double factor = c == fg.axis ? stress_factor : 1.0;
+              src[c] -= factor * muP * area * (quadratic - two_point);
+            }
+          }
           continue;  // atmosphere: zero gradient, no viscous flux; convection has no correction
         }
         // Outward face velocity and flux.
