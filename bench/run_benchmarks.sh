@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Whole-run benchmarks of granflow on 1 and 2 MPI ranks (wall seconds, steps, iterations).
-# Usage: bench/run_benchmarks.sh [cavity|bui2008|dam_break|all] [repetitions]
+# Usage: bench/run_benchmarks.sh [cavity|bui2008|dam_break|lube2004|all] [repetitions]
 # Prints one Markdown table row per run; docs/benchmarks.md holds the figures and this command.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -34,6 +34,10 @@ fi
 if [[ $which == bui2008 || $which == all ]]; then
   # to t = 1 s, as SPEC 5b compares with OpenFOAM's 115 s
   for n in 1 2; do run "bui2008_experiment 300 x 100 to t = 1 s" $n cases/bui2008_experiment.toml "--set" "time.end=1.0"; done
+fi
+if [[ $which == lube2004 || $which == all ]]; then
+  # [YS] Sec. 4.1 at the paper's 1.67 mm cells to t = 0.5 s (the paper's steps were about 1e-6 s)
+  for n in 1 2; do run "lube2004_a05 300 x 120 to t = 0.5 s" $n cases/lube2004_a05.toml; done
 fi
 if [[ $which == dam_break || $which == all ]]; then
   for n in 1 2; do run "water_dam_break to t = 0.2 s" $n cases/water_dam_break.toml; done
