@@ -314,24 +314,43 @@ double SoilPhase::compute_dissipation(const FlowSolver& flow) {
     const double g_nt = 0.5 * ((v[j][i + 1] - v[j][i - 1]) + (v[j + 1][i + 1] - v[j + 1][i - 1])) / hx;
     return face_mean(kind, mu[j][i], mu[j + 1][i]) * A * d * (2.0 * g_nn * g_nn + g_tn * (g_tn + g_nt));
   };
+  // Each face once: an owned cell takes its east and north faces and gives the neighbour its half;
+  // faces on the rank's low edges are the other rank's too, which takes its own half of them.
+  for (int j = b.ys; j < b.ye(); ++j)
+    for (int i = b.xs; i < b.xe(); ++i) out[j][i] = 0.0;
+  for (int j = b.ys; j < b.ye(); ++j)
+    for (int i = b.xs; i < b.xe(); ++i) {
+      const double hx = 0.5 * grid_.dx(i), hy = 0.5 * grid_.dy(j);
+      if (i + 1 < nx) {
+        const double w = 0.5 * east_face(i, j);
+        out[j][i] += w;
+        if (i + 1 < b.xe()) out[j][i + 1] += w;
+      } else {
+        out[j][i] += wall_face(Side::east, i, j, grid_.face_area(0, i, j, 1.0), hx);
+      }
+      if (i == 0) out[j][i] += wall_face(Side::west, i, j, grid_.face_area(0, i, j, -1.0), hx);
+      else if (i == b.xs) out[j][i] += 0.5 * east_face(i - 1, j);
+      if (j + 1 < ny) {
+        const double w = 0.5 * north_face(i, j);
+        out[j][i] += w;
+        if (j + 1 < b.ye()) out[j + 1][i] += w;
+      } else {
+        out[j][i] += wall_face(Side::north, i, j, grid_.face_area(1, i, j, 1.0), hy);
+      }
+      if (j == 0) out[j][i] += wall_face(Side::south, i, j, grid_.face_area(1, i, j, -1.0), hy);
+      else if (j == b.ys) out[j][i] += 0.5 * north_face(i, j - 1);
+    }
   std::fill(lode_rate_.values().begin(), lode_rate_.values().end(), 0.0);
   double rate = 0.0;
   for (int j = b.ys; j < b.ye(); ++j)
     for (int i = b.xs; i < b.xe(); ++i) {
-      const double hx = 0.5 * grid_.dx(i), hy = 0.5 * grid_.dy(j);
-      double w = 0.0;
-      w += i + 1 < nx ? 0.5 * east_face(i, j) : wall_face(Side::east, i, j, grid_.face_area(0, i, j, 1.0), hx);
-      w += i > 0 ? 0.5 * east_face(i - 1, j) : wall_face(Side::west, i, j, grid_.face_area(0, i, j, -1.0), hx);
-      w += j + 1 < ny ? 0.5 * north_face(i, j) : wall_face(Side::north, i, j, grid_.face_area(1, i, j, 1.0), hy);
-      w += j > 0 ? 0.5 * north_face(i, j - 1) : wall_face(Side::south, i, j, grid_.face_area(1, i, j, -1.0), hy);
       if (grid_.axisymmetric()) {
         const double hoop = u[j][i] / grid_.xc(i);
-        w += 2.0 * mu[j][i] * hoop * hoop * grid_.volume(i, j);
+        out[j][i] += 2.0 * mu[j][i] * hoop * hoop * grid_.volume(i, j);
       }
-      out[j][i] = w;
-      rate += w;
+      rate += out[j][i];
       const double theta = rheology::lode_angle(cell_strain_rate(grid_, u.data(), v.data(), i, j));
-      lode_rate_.add(theta * 180.0 / std::numbers::pi, w);
+      lode_rate_.add(theta * 180.0 / std::numbers::pi, out[j][i]);
     }
   return rate;  // owned cells only; the caller sums over ranks
 }
