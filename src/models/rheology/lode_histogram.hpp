@@ -12,7 +12,7 @@ namespace granflow::rheology {
 
 class LodeHistogram {
  public:
-  // bins >= 2 and odd, so that one bin is centred on 0.
+  // At least 3 bins, made odd, so that one bin is centred on 0.
   explicit LodeHistogram(int bins = 31) : energy_(std::max(bins | 1, 3), 0.0) {}
 
   int bins() const { return int(energy_.size()); }
