@@ -176,7 +176,9 @@ SoilSettings read_soil(TableReader& top) {
       so.require_range("viscosity", s.soil_viscosity, 0.0, inf, "zero or positive");
     }
     s.displacement = so.boolean("displacement", s.rheology.has_value());
-    s.lithostatic_floor = so.choice("yield_pressure", "solver", {"solver", "lithostatic_floor"}) == "lithostatic_floor";
+    const std::string yp = so.choice("yield_pressure", "cell", {"cell", "face", "lithostatic_floor"});
+    s.yield_pressure = yp == "face" ? YieldPressure::face
+                       : yp == "lithostatic_floor" ? YieldPressure::lithostatic_floor : YieldPressure::cell;
     s.failure_strain = so.number("failure_strain", s.failure_strain);
     so.require_range("failure_strain", s.failure_strain, 1e-6, 10.0);
     so.finish();

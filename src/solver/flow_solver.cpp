@@ -65,6 +65,10 @@ FlowSolver::FlowSolver(const Grid& grid, const FlowSettings& settings) : grid_(g
   p_->set(0.0);
   rho_->set(1.0);
   mu_->set(1.0);
+  for (auto& f : face_mu_) {
+    f = make_field(grid);
+    f->set(1.0);
+  }
 
   const auto& box = grid.owned();
   const size_t n = size_t(box.xm) * box.ym;
@@ -182,7 +186,29 @@ void FlowSolver::update_properties() {
   if (property_update_) property_update_(*this);
   fill_scalar_ghosts(*rho_);
   fill_scalar_ghosts(*mu_);
+  if (face_viscosity_update_) face_viscosity_update_(*this);
+  else face_viscosity_from_cells();
   update_boundary_heads();
+}
+
+// Face viscosity as the mean of the two cells' (numerics.face_viscosity); a boundary face takes its
+// cell's. Covers the faces of the owned cells, reading the ghosts of mu.
+void FlowSolver::face_viscosity_from_cells() {
+  const auto& b = grid_.owned();
+  const int nx = grid_.nx(), ny = grid_.ny();
+  const auto kind = settings_.numerics.face_viscosity;
+  ConstFieldArray mu = local_read(grid_, *mu_);
+  FieldArray fx = local_array(grid_, *face_mu_[0]), fy = local_array(grid_, *face_mu_[1]);
+  for (int j = b.ys; j < b.ye(); ++j) {
+    if (b.xs == 0) fx[j][-1] = mu[j][0];
+    for (int i = std::max(b.xs - 1, 0); i < b.xe(); ++i)
+      fx[j][i] = i + 1 == nx ? mu[j][i] : face_mean(kind, mu[j][i], mu[j][i + 1]);
+  }
+  for (int i = b.xs; i < b.xe(); ++i) {
+    if (b.ys == 0) fy[-1][i] = mu[0][i];
+    for (int j = std::max(b.ys - 1, 0); j < b.ye(); ++j)
+      fy[j][i] = j + 1 == ny ? mu[j][i] : face_mean(kind, mu[j][i], mu[j + 1][i]);
+  }
 }
 
 void FlowSolver::sync_velocity_from_cells() {
@@ -372,6 +398,7 @@ void FlowSolver::assemble_momentum(double dt) {
   ConstFieldArray u0 = local_read(grid_, *vel_old_[0]), v0 = local_read(grid_, *vel_old_[1]);
   ConstFieldArray fx = local_read(grid_, *face_[0]), fy = local_read(grid_, *face_[1]);
   ConstFieldArray rho = local_read(grid_, *rho_), mu = local_read(grid_, *mu_);
+  ConstFieldArray fmx = local_read(grid_, *face_mu_[0]), fmy = local_read(grid_, *face_mu_[1]);
   const double* const* vel[2] = {u.data(), v.data()};
   std::unique_ptr<ConstFieldArray> bx, by;
   if (body_force_[0]) {
@@ -399,7 +426,7 @@ void FlowSolver::assemble_momentum(double dt) {
         const int in = i + fg.di, jn = j + fg.dj;
         const double area = grid_.face_area(fg.axis, i, j, fg.sign);
         const bool is_boundary = in < 0 || in >= nx || jn < 0 || jn >= ny;
-        const double mu_face = is_boundary ? muP : face_mean(num.face_viscosity, muP, mu[jn][in]);
+        const double mu_face = fg.axis == 0 ? fmx[j][fg.sign > 0 ? i : i - 1] : fmy[fg.sign > 0 ? j : j - 1][i];
         // Full viscous stress div(mu (grad v + grad v^T)), split as in Jasak & Weller (2000): the
         // implicit part is 2 mu grad(v_c) on every face, and the lagged remainder on faces tangential
         // to c is mu [(d v_n / d x_c) - (d v_c / d n)]. The implicit part bounds the lagged one, so the
@@ -425,7 +452,7 @@ void FlowSolver::assemble_momentum(double dt) {
         if (is_boundary) {
           const auto& bc = boundary(settings_.boundaries, fg.side);
           const double d_half = 0.5 * (fg.axis == 0 ? dx : dy);
-          const double coeff = stress_factor * muP * area / d_half;
+          const double coeff = stress_factor * mu_face * area / d_half;
           if (bc.kind == BoundaryKind::wall) {
             for (int c = 0; c < 2; ++c) {
               extra[c] += coeff;
@@ -448,7 +475,7 @@ void FlowSolver::assemble_momentum(double dt) {
               const double quadratic = ((u1 - uw) * s2 / s1 - (u2 - uw) * s1 / s2) / (s2 - s1);
               const double two_point = (u1 - uw) / s1;
               const double factor = c == fg.axis ? stress_factor : 1.0;
-              src[c] -= factor * muP * area * (quadratic - two_point);
+              src[c] -= factor * mu_face * area * (quadratic - two_point);
             }
           }
           continue;  // atmosphere: zero gradient, no viscous flux; convection has no correction
@@ -792,7 +819,9 @@ StepReport FlowSolver::step(double dt) {
     const bool projection = num.pressure_coupling == PressureCoupling::projection;
     if (num.momentum_predictor || projection) report.momentum_iterations += solve_momentum();
     compute_hbya();
-    assemble_pressure_matrix(dt);
+    // The projection's pressure operator has coefficients dt / rho_f, which the outer iterations do
+    // not change: one assembly and one preconditioner set-up per step. PISO's hold 1 / a_P.
+    if (!projection || outer == 0) assemble_pressure_matrix(dt);
     // The projection is exact in one solve; PISO repeats the correction with updated neighbours.
     const int correctors = projection ? 1 : num.pressure_correctors;
     for (int corr = 0; corr < correctors; ++corr) {
@@ -848,6 +877,26 @@ double FlowSolver::max_speed() const {
     s = std::max(s, n);
   }
   return s;
+}
+
+FlowSolver::FastestCell FlowSolver::fastest_cell() const {
+  const auto& b = grid_.owned();
+  ConstFieldArray u = local_read(grid_, *vel_[0]), v = local_read(grid_, *vel_[1]);
+  FastestCell f;
+  for (int j = b.ys; j < b.ye(); ++j)
+    for (int i = b.xs; i < b.xe(); ++i) {
+      const double s = std::hypot(u[j][i], v[j][i]);
+      if (!(s <= f.speed)) f = {s, grid_.xc(i), grid_.yc(j)};  // NaN wins, so it is found
+    }
+  struct {
+    double speed;
+    int rank;
+  } mine{std::isfinite(f.speed) ? f.speed : HUGE_VAL, 0}, top{};
+  MPI_Comm_rank(grid_.comm(), &mine.rank);
+  MPI_Allreduce(&mine, &top, 1, MPI_DOUBLE_INT, MPI_MAXLOC, grid_.comm());
+  double where[3] = {f.speed, f.x, f.y};
+  MPI_Bcast(where, 3, MPI_DOUBLE, top.rank, grid_.comm());
+  return {where[0], where[1], where[2]};
 }
 
 double FlowSolver::max_divergence() const {

@@ -46,6 +46,11 @@ class FlowSolver {
   const Field& density() const { return *rho_; }
   Field& viscosity() { return *mu_; }
   const Field& viscosity() const { return *mu_; }
+  // Viscosity on the faces, read and written in the local (ghosted) array: [j][i] of axis 0 is the
+  // face between cells (i, j) and (i+1, j), [j][-1] and [j][nx-1] the west and east boundary faces;
+  // axis 1 likewise in j. Holds the faces of the owned cells.
+  Field& face_viscosity(int axis) { return *face_mu_[axis]; }
+  const Field& face_viscosity(int axis) const { return *face_mu_[axis]; }
   // Normal velocity at the east (axis 0) or north (axis 1) face of each cell; the west/south faces
   // of the owned block (global index -1 at the domain boundary) are held in the ghost entries.
   Field& face_velocity(int axis) { return *face_[axis]; }
@@ -56,6 +61,9 @@ class FlowSolver {
   const Field& face_velocity(int axis) const { return *face_[axis]; }
 
   void set_property_update(PropertyUpdate f) { property_update_ = std::move(f); }
+  // Fills face_viscosity() after the cell properties and their ghosts; without it the faces take
+  // the mean of their cells' viscosities (numerics.face_viscosity).
+  void set_face_viscosity_update(PropertyUpdate f) { face_viscosity_update_ = std::move(f); }
   // Applies the property update and refreshes ghosts of density and viscosity.
   void update_properties();
   // Pressure in hydrostatic balance with the current density: integrated down each column from the
@@ -77,6 +85,11 @@ class FlowSolver {
   // field), only over cells whose 3 x 3 neighbourhood holds some of it.
   double max_courant(double dt, const Field* region = nullptr) const;
   double max_speed() const;
+  // The cell with the largest speed (a NaN counts as largest), on every rank.
+  struct FastestCell {
+    double speed = 0.0, x = 0.0, y = 0.0;
+  };
+  FastestCell fastest_cell() const;
   // Largest |div v| * V over owned cells, from the face velocities (volumetric imbalance, m^2/s in 2D).
   double max_divergence() const;
 
@@ -87,6 +100,7 @@ class FlowSolver {
   // Hydrostatic head below the top at an atmosphere face of side s in row j (y_face: the face's height).
   double boundary_head(Side s, int j, double rho, double y_face) const;
   void fill_scalar_ghosts(Field& f);
+  void face_viscosity_from_cells();
   void assemble_momentum(double dt);
   void compute_face_forces();
   int solve_momentum();
@@ -106,9 +120,10 @@ class FlowSolver {
   const Grid& grid_;
   FlowSettings settings_;
   PropertyUpdate property_update_;
+  PropertyUpdate face_viscosity_update_;
 
   std::unique_ptr<Field> vel_[2], vel_old_[2], face_[2], face_old_[2], face_force_[2];
-  std::unique_ptr<Field> p_, rho_, mu_;
+  std::unique_ptr<Field> p_, rho_, mu_, face_mu_[2];
   std::unique_ptr<Field> body_force_[2];
   FieldSnapshot saved_;  // save_state()
   std::unique_ptr<Field> hbya_[2], rau_[2], time_weight_[2];

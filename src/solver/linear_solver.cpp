@@ -46,11 +46,15 @@ LinearSolver::LinearSolver(MPI_Comm comm, const std::string& prefix, const Linea
 
 LinearSolver::~LinearSolver() { KSPDestroy(&ksp_); }
 
-void LinearSolver::set_operator(Mat a) { PetscCallAbort(PETSC_COMM_WORLD, KSPSetOperators(ksp_, a, a)); }
+void LinearSolver::set_operator(Mat a) {
+  PetscCallAbort(PETSC_COMM_WORLD, KSPSetOperators(ksp_, a, a));
+  ++changes_since_setup_;
+}
 
 int LinearSolver::solve(Vec b, Vec x) {
-  const bool rebuild = !built_ || solves_since_setup_ + 1 >= max_reuse_ ||
-                       last_iterations_ > 2 * std::max(iterations_after_setup_, 2);
+  // Solves with an unchanged operator keep the preconditioner anyway; only changes count.
+  const bool rebuild = !built_ || (changes_since_setup_ > 0 && (changes_since_setup_ >= max_reuse_ ||
+                                   last_iterations_ > 2 * std::max(iterations_after_setup_, 2)));
   KSPSetReusePreconditioner(ksp_, rebuild ? PETSC_FALSE : PETSC_TRUE);
   PetscCallAbort(PETSC_COMM_WORLD, KSPSolve(ksp_, b, x));
   KSPConvergedReason reason;
@@ -59,10 +63,8 @@ int LinearSolver::solve(Vec b, Vec x) {
   KSPGetIterationNumber(ksp_, &its);
   if (rebuild) {
     built_ = true;
-    solves_since_setup_ = 0;
+    changes_since_setup_ = 0;
     iterations_after_setup_ = int(its);
-  } else {
-    ++solves_since_setup_;
   }
   last_iterations_ = int(its);
   if (reason < 0 && reason != KSP_DIVERGED_ITS)

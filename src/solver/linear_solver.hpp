@@ -13,9 +13,9 @@ struct LinearSolverSettings {
   double rtol = 1e-8;
   double atol = 1e-14;
   int max_iterations = 1000;
-  // Reuse the preconditioner over up to this many solves while the operator changes (1: rebuild at
-  // every change); it is rebuilt earlier when a solve needs more than twice the iterations it took
-  // right after the last rebuild. AMG set-up is most of the cost of a solve.
+  // Keep the preconditioner over up to this many changes of the operator (1: rebuild at every
+  // change); it is rebuilt earlier when a solve needs more than twice the iterations it took right
+  // after the last rebuild. AMG set-up is most of the cost of a solve.
   int max_reuse = 1;
 };
 
@@ -38,7 +38,7 @@ class LinearSolver {
   std::string prefix_;
   int max_reuse_ = 1;
   bool built_ = false;
-  int solves_since_setup_ = 0;
+  int changes_since_setup_ = 0;  // operator changes since the preconditioner was built
   int iterations_after_setup_ = 0;
   int last_iterations_ = 0;
 };

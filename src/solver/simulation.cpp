@@ -23,6 +23,8 @@ Simulation::Simulation(MPI_Comm comm, const CaseConfig& config, std::filesystem:
     soil_->initialise();
     soil_->refresh(*flow_);
     flow_->set_property_update([soil = soil_.get()](FlowSolver& f) { soil->update_properties(f); });
+    if (config_.soil->rheology && config_.soil->yield_pressure == YieldPressure::face)
+      flow_->set_face_viscosity_update([soil = soil_.get()](FlowSolver& f) { soil->update_face_viscosity(f); });
   } else {
     const PhaseSettings fluid = config.fluid;
     flow_->set_property_update([fluid](FlowSolver& f) {
@@ -276,10 +278,13 @@ RunSummary Simulation::run() {
     summary.pressure_solves += r.pressure_solves;
 
     const double speed = flow_->max_speed();
-    if (!std::isfinite(speed) || speed > 1e6)
-      throw DivergenceError(fmt::format("the solution diverged at t = {:.6g} s (step {}): largest speed {:.3g} m/s; "
-                                        "the last good output is kept",
-                                        time_, summary.steps, speed));
+    if (!std::isfinite(speed) || speed > 1e6) {
+      if (soil_) write_history();  // the steps up to the failure, for finding where it began
+      const auto f = flow_->fastest_cell();
+      throw DivergenceError(fmt::format("the solution diverged at t = {:.6g} s (step {}): largest speed {:.3g} m/s "
+                                        "at x = {:.4g} m, y = {:.4g} m; the last good output is kept",
+                                        time_, summary.steps, f.speed, f.x, f.y));
+    }
     if (std::abs(time_ - t_out) <= 1e-12 * std::max(1.0, t_out)) {
       time_ = t_out;
       write_output();

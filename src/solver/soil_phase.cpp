@@ -123,8 +123,9 @@ void SoilPhase::update_properties(FlowSolver& flow) const {
   ConstFieldArray u = local_read(grid_, flow.velocity(0)), v = local_read(grid_, flow.velocity(1));
   ConstFieldArray p(grid_.field_dm(), flow.pressure().global());
   FieldArray rho(grid_.field_dm(), flow.density().global()), mu(grid_.field_dm(), flow.viscosity().global());
+  const bool floor = settings_.yield_pressure == YieldPressure::lithostatic_floor;
   std::unique_ptr<ConstFieldArray> overburden;
-  if (settings_.lithostatic_floor) overburden = std::make_unique<ConstFieldArray>(grid_.field_dm(), overburden_->global());
+  if (floor) overburden = std::make_unique<ConstFieldArray>(grid_.field_dm(), overburden_->global());
   const auto& s = settings_;
   for (int j = b.ys; j < b.ye(); ++j)
     for (int i = b.xs; i < b.xe(); ++i) {
@@ -132,15 +133,66 @@ void SoilPhase::update_properties(FlowSolver& flow) const {
       rho[j][i] = s.density_mixing(cc, s.air_density, s.soil_density);
       double mu_soil = s.soil_viscosity;
       if (rheology_ && cc > 0.0) {
-        const double pressure = s.lithostatic_floor ? std::max(p[j][i], (*overburden)[j][i]) : p[j][i];
+        const double pressure = floor ? std::max(p[j][i], (*overburden)[j][i]) : p[j][i];
         mu_soil = rheology_->dynamic_viscosity(cell_strain_rate(grid_, u.data(), v.data(), i, j), pressure);
       }
       mu[j][i] = s.viscosity_mixing(cc, s.air_viscosity, mu_soil);
     }
 }
 
+// Face viscosities with the yield stress taken at the face ([VoF] Eqs. 8-9 with p on the face): each
+// side is the mixture of its own cell (its c and D) at the face's pressure, and the face takes their
+// mean as the operator does for cell values. Fills the faces of owned cells, including those shared
+// with the ghost column or row on the low side, so that the operator needs no exchange. Needs the
+// ghosts of c and p (current after the advection and the pressure solve).
+void SoilPhase::update_face_viscosity(FlowSolver& flow) const {
+  const auto& b = grid_.owned();
+  const int nx = grid_.nx(), ny = grid_.ny();
+  const auto& s = settings_;
+  const auto kind = flow_settings_.numerics.face_viscosity;
+  const auto& g = flow_settings_.gravity;
+  ConstFieldArray c = local_read(grid_, *c_);
+  ConstFieldArray u = local_read(grid_, flow.velocity(0)), v = local_read(grid_, flow.velocity(1));
+  ConstFieldArray p = local_read(grid_, flow.pressure()), rho = local_read(grid_, flow.density());
+  FieldArray fx = local_array(grid_, flow.face_viscosity(0)), fy = local_array(grid_, flow.face_viscosity(1));
+  auto side = [&](int i, int j, double pressure) {
+    const double cc = c[j][i];
+    const double mu_soil =
+        cc > 0.0 ? rheology_->dynamic_viscosity(cell_strain_rate(grid_, u.data(), v.data(), i, j), pressure)
+                 : s.soil_viscosity;
+    return s.viscosity_mixing(cc, s.air_viscosity, mu_soil);
+  };
+  // A wall face: the cell's pressure carried hydrostatically to the wall, p + rho g.(x_wall - x_P).
+  auto wall = [&](int i, int j, int axis, int sign) {
+    const double half = 0.5 * sign * (axis == 0 ? grid_.dx(i) : grid_.dy(j));
+    return side(i, j, p[j][i] + rho[j][i] * g[axis] * half);
+  };
+  for (int j = b.ys; j < b.ye(); ++j) {
+    if (b.xs == 0) fx[j][-1] = wall(0, j, 0, -1);
+    for (int i = std::max(b.xs - 1, 0); i < b.xe(); ++i) {
+      if (i + 1 == nx) {
+        fx[j][i] = wall(i, j, 0, 1);
+        continue;
+      }
+      const double pf = 0.5 * (p[j][i] + p[j][i + 1]);
+      fx[j][i] = face_mean(kind, side(i, j, pf), side(i + 1, j, pf));
+    }
+  }
+  for (int i = b.xs; i < b.xe(); ++i) {
+    if (b.ys == 0) fy[-1][i] = wall(i, 0, 1, -1);
+    for (int j = std::max(b.ys - 1, 0); j < b.ye(); ++j) {
+      if (j + 1 == ny) {
+        fy[j][i] = wall(i, j, 1, 1);
+        continue;
+      }
+      const double pf = 0.5 * (p[j][i] + p[j + 1][i]);
+      fy[j][i] = face_mean(kind, side(i, j, pf), side(i, j + 1, pf));
+    }
+  }
+}
+
 void SoilPhase::refresh(const FlowSolver& flow) {
-  if (settings_.lithostatic_floor) compute_overburden(flow.settings().gravity);
+  if ((settings_.yield_pressure == YieldPressure::lithostatic_floor)) compute_overburden(flow.settings().gravity);
 }
 
 // Depth of soil above each cell centre, sum of c dy over the cells above plus half the cell's own,
@@ -283,9 +335,9 @@ void SoilPhase::compute_diagnostics(const FlowSolver& flow) {
 double SoilPhase::compute_dissipation(const FlowSolver& flow) {
   const auto& b = grid_.owned();
   const int nx = grid_.nx(), ny = grid_.ny();
-  const auto kind = flow_settings_.numerics.face_viscosity;
   ConstFieldArray u = local_read(grid_, flow.velocity(0)), v = local_read(grid_, flow.velocity(1));
   ConstFieldArray mu = local_read(grid_, flow.viscosity());
+  ConstFieldArray fmx = local_read(grid_, flow.face_viscosity(0)), fmy = local_read(grid_, flow.face_viscosity(1));
   FieldArray out(grid_.field_dm(), dissipation_->global());
   const double* const* q[2] = {u.data(), v.data()};
   // Work rate of a wall face of cell (i, j) on side s, with half-cell distance d and area A.
@@ -293,10 +345,12 @@ double SoilPhase::compute_dissipation(const FlowSolver& flow) {
     const auto& bc = boundary(flow_settings_.boundaries, s);
     const int n = normal_axis(s), t = 1 - n;
     if (bc.kind == BoundaryKind::atmosphere) return 0.0;
+    const double mu_f = s == Side::west ? fmx[j][i - 1] : s == Side::east ? fmx[j][i]
+                      : s == Side::south ? fmy[j - 1][i] : fmy[j][i];
     const double dn = (0.0 - q[n][j][i]) / d;
-    if (bc.kind == BoundaryKind::slip) return mu[j][i] * A * d * 2.0 * dn * dn;
+    if (bc.kind == BoundaryKind::slip) return mu_f * A * d * 2.0 * dn * dn;
     const double dt = (bc.wall_velocity[t] - q[t][j][i]) / d;
-    return mu[j][i] * A * d * (2.0 * dn * dn + dt * dt);
+    return mu_f * A * d * (2.0 * dn * dn + dt * dt);
   };
   // Work rate of the interior face between (i, j) and (i+1, j).
   auto east_face = [&](int i, int j) {
@@ -304,7 +358,7 @@ double SoilPhase::compute_dissipation(const FlowSolver& flow) {
     const double hy = grid_.yc(j + 1) - grid_.yc(j - 1);
     const double g_nn = (u[j][i + 1] - u[j][i]) / d, g_tn = (v[j][i + 1] - v[j][i]) / d;
     const double g_nt = 0.5 * ((u[j + 1][i] - u[j - 1][i]) + (u[j + 1][i + 1] - u[j - 1][i + 1])) / hy;
-    return face_mean(kind, mu[j][i], mu[j][i + 1]) * A * d * (2.0 * g_nn * g_nn + g_tn * (g_tn + g_nt));
+    return fmx[j][i] * A * d * (2.0 * g_nn * g_nn + g_tn * (g_tn + g_nt));
   };
   // ... and between (i, j) and (i, j+1).
   auto north_face = [&](int i, int j) {
@@ -312,7 +366,7 @@ double SoilPhase::compute_dissipation(const FlowSolver& flow) {
     const double hx = grid_.xc(i + 1) - grid_.xc(i - 1);
     const double g_nn = (v[j + 1][i] - v[j][i]) / d, g_tn = (u[j + 1][i] - u[j][i]) / d;
     const double g_nt = 0.5 * ((v[j][i + 1] - v[j][i - 1]) + (v[j + 1][i + 1] - v[j + 1][i - 1])) / hx;
-    return face_mean(kind, mu[j][i], mu[j + 1][i]) * A * d * (2.0 * g_nn * g_nn + g_tn * (g_tn + g_nt));
+    return fmy[j][i] * A * d * (2.0 * g_nn * g_nn + g_tn * (g_tn + g_nt));
   };
   // Each face once: an owned cell takes its east and north faces and gives the neighbour its half;
   // faces on the rank's low edges are the other rank's too, which takes its own half of them.

@@ -31,6 +31,8 @@ class SoilPhase {
   // Properties for the flow solver: density and viscosity of the mixture ([VoF] Eq. 1 or App. A),
   // with the granular viscosity of the soil from the current strain rate and pressure.
   void update_properties(FlowSolver& flow) const;
+  // Face viscosities from the face pressure (soil.yield_pressure = "face").
+  void update_face_viscosity(FlowSolver& flow) const;
   // Advects c over dt with the flow's (divergence-free) face velocities, in as many sub-steps as the
   // interface Courant limit needs.
   void advect(const FlowSolver& flow, double dt);

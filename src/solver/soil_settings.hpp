@@ -9,6 +9,8 @@
 
 namespace granflow {
 
+enum class YieldPressure { cell, face, lithostatic_floor };
+
 struct SoilSettings {
   double air_density = 1.0;
   double air_viscosity = 1.8e-5;   // Pa s
@@ -21,10 +23,14 @@ struct SoilSettings {
   double interface_courant = 0.45;  // largest Courant number of one VoF sweep (< 0.5 for boundedness)
   bool displacement = true;         // carry the Eulerian displacement and strain ([VoF] Eq. 16)
   double failure_strain = 0.3;      // ||e|| of the failure line ([VoF] Sec. 4)
-  // Pressure entering the yield stress: the solver's own (clipped at zero), or at least the weight
-  // of the soil above the cell in its column (rho_s g depth), so that thin layers and cells near the
-  // surface keep the strength their overburden gives them where the solver's pressure is near zero.
-  bool lithostatic_floor = false;
+  // Pressure entering the yield stress ([VoF] Sec. 2.2: the solver's own, clipped at zero):
+  // - cell: the pressure at the cell centre, one viscosity per cell, faces take the mean of two cells';
+  // - face: each face's viscosity from the pressure on that face (mean of its two cells', or the
+  //   hydrostatic extrapolation to a wall), so that a layer one cell thick at the surface, whose centre
+  //   pressure is about zero, still rubs on the soil below with the friction its weight gives;
+  // - lithostatic_floor: the cell pressure, but at least the weight of the soil above the cell in its
+  //   column (rho_s g depth).
+  YieldPressure yield_pressure = YieldPressure::cell;
 };
 
 }  // namespace granflow
