@@ -58,5 +58,15 @@ TEST(RankConsistency, CavityOneAndTwoRanksAgree) {
                           1e-8);
 }
 
+// The collapse with the yield stress taken on faces: face viscosities of the faces shared with the
+// neighbouring rank come from ghost cells, so a missing ghost shows up here. The ranks split the
+// block at x = 0.12-0.13 m.
+TEST(RankConsistency, CollapseWithFaceYieldPressureOneAndTwoRanksAgree) {
+  expect_rank_independent("cases/bui2008_experiment.toml",
+                          {"mesh.cells=[25,20]", "mesh.upper=[0.25,0.2]", "time.end=0.1", "output.progress_seconds=0",
+                           "soil.yield_pressure=face", "solver.pressure.rtol=1e-12", "solver.momentum.rtol=1e-12"},
+                          1e-7);
+}
+
 }  // namespace
 }  // namespace granflow
