@@ -1,5 +1,7 @@
 #include "solver/flow_solver.hpp"
 
+#include "mesh/face_loop.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
@@ -194,21 +196,12 @@ void FlowSolver::update_properties() {
 // Face viscosity as the mean of the two cells' (numerics.face_viscosity); a boundary face takes its
 // cell's. Covers the faces of the owned cells, reading the ghosts of mu.
 void FlowSolver::face_viscosity_from_cells() {
-  const auto& b = grid_.owned();
-  const int nx = grid_.nx(), ny = grid_.ny();
   const auto kind = settings_.numerics.face_viscosity;
   ConstFieldArray mu = local_read(grid_, *mu_);
-  FieldArray fx = local_array(grid_, *face_mu_[0]), fy = local_array(grid_, *face_mu_[1]);
-  for (int j = b.ys; j < b.ye(); ++j) {
-    if (b.xs == 0) fx[j][-1] = mu[j][0];
-    for (int i = std::max(b.xs - 1, 0); i < b.xe(); ++i)
-      fx[j][i] = i + 1 == nx ? mu[j][i] : face_mean(kind, mu[j][i], mu[j][i + 1]);
-  }
-  for (int i = b.xs; i < b.xe(); ++i) {
-    if (b.ys == 0) fy[-1][i] = mu[0][i];
-    for (int j = std::max(b.ys - 1, 0); j < b.ye(); ++j)
-      fy[j][i] = j + 1 == ny ? mu[j][i] : face_mean(kind, mu[j][i], mu[j + 1][i]);
-  }
+  fill_owned_faces(
+      grid_, *face_mu_[0], *face_mu_[1],
+      [&](int axis, int i, int j) { return face_mean(kind, mu[j][i], axis == 0 ? mu[j][i + 1] : mu[j + 1][i]); },
+      [&](int, int i, int j, int) { return mu[j][i]; });
 }
 
 void FlowSolver::sync_velocity_from_cells() {

@@ -1,5 +1,7 @@
 #include "solver/soil_phase.hpp"
 
+#include "mesh/face_loop.hpp"
+
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -146,15 +148,12 @@ void SoilPhase::update_properties(FlowSolver& flow) const {
 // with the ghost column or row on the low side, so that the operator needs no exchange. Needs the
 // ghosts of c and p (current after the advection and the pressure solve).
 void SoilPhase::update_face_viscosity(FlowSolver& flow) const {
-  const auto& b = grid_.owned();
-  const int nx = grid_.nx(), ny = grid_.ny();
   const auto& s = settings_;
   const auto kind = flow_settings_.numerics.face_viscosity;
   const auto& g = flow_settings_.gravity;
   ConstFieldArray c = local_read(grid_, *c_);
   ConstFieldArray u = local_read(grid_, flow.velocity(0)), v = local_read(grid_, flow.velocity(1));
   ConstFieldArray p = local_read(grid_, flow.pressure()), rho = local_read(grid_, flow.density());
-  FieldArray fx = local_array(grid_, flow.face_viscosity(0)), fy = local_array(grid_, flow.face_viscosity(1));
   auto side = [&](int i, int j, double pressure) {
     const double cc = c[j][i];
     const double mu_soil =
@@ -162,37 +161,21 @@ void SoilPhase::update_face_viscosity(FlowSolver& flow) const {
                  : s.soil_viscosity;
     return s.viscosity_mixing(cc, s.air_viscosity, mu_soil);
   };
-  // A wall face: the cell's pressure carried hydrostatically to the wall, p + rho g.(x_wall - x_P).
-  auto wall = [&](int i, int j, int axis, int sign) {
-    const double half = 0.5 * sign * (axis == 0 ? grid_.dx(i) : grid_.dy(j));
-    return side(i, j, p[j][i] + rho[j][i] * g[axis] * half);
-  };
-  for (int j = b.ys; j < b.ye(); ++j) {
-    if (b.xs == 0) fx[j][-1] = wall(0, j, 0, -1);
-    for (int i = std::max(b.xs - 1, 0); i < b.xe(); ++i) {
-      if (i + 1 == nx) {
-        fx[j][i] = wall(i, j, 0, 1);
-        continue;
-      }
-      const double pf = 0.5 * (p[j][i] + p[j][i + 1]);
-      fx[j][i] = face_mean(kind, side(i, j, pf), side(i + 1, j, pf));
-    }
-  }
-  for (int i = b.xs; i < b.xe(); ++i) {
-    if (b.ys == 0) fy[-1][i] = wall(i, 0, 1, -1);
-    for (int j = std::max(b.ys - 1, 0); j < b.ye(); ++j) {
-      if (j + 1 == ny) {
-        fy[j][i] = wall(i, j, 1, 1);
-        continue;
-      }
-      const double pf = 0.5 * (p[j][i] + p[j + 1][i]);
-      fy[j][i] = face_mean(kind, side(i, j, pf), side(i, j + 1, pf));
-    }
-  }
+  fill_owned_faces(
+      grid_, flow.face_viscosity(0), flow.face_viscosity(1),
+      [&](int axis, int i, int j) {
+        const int in = i + (axis == 0), jn = j + (axis == 1);
+        const double pf = 0.5 * (p[j][i] + p[jn][in]);
+        return face_mean(kind, side(i, j, pf), side(in, jn, pf));
+      },
+      [&](int axis, int i, int j, int sign) {  // the cell's pressure carried hydrostatically to the wall
+        const double half = 0.5 * sign * (axis == 0 ? grid_.dx(i) : grid_.dy(j));
+        return side(i, j, p[j][i] + rho[j][i] * g[axis] * half);
+      });
 }
 
 void SoilPhase::refresh(const FlowSolver& flow) {
-  if ((settings_.yield_pressure == YieldPressure::lithostatic_floor)) compute_overburden(flow.settings().gravity);
+  if (settings_.yield_pressure == YieldPressure::lithostatic_floor) compute_overburden(flow.settings().gravity);
 }
 
 // Depth of soil above each cell centre, sum of c dy over the cells above plus half the cell's own,

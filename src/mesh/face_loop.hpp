@@ -1,0 +1,32 @@
+#pragma once
+// Visits every face of the owned cells of a face field, in the layout of FlowSolver's face fields:
+// [j][i] of axis 0 is the face between cells (i, j) and (i+1, j), [j][-1] and [j][nx-1] the west and
+// east boundary faces; axis 1 likewise in j. Faces shared with the ghost column or row on the low
+// side are visited too, so that a stencil over the owned cells needs no exchange.
+#include <algorithm>
+
+#include "mesh/field.hpp"
+#include "mesh/grid.hpp"
+
+namespace granflow {
+
+// interior(axis, i, j): value of the face between (i, j) and its neighbour at +1 along axis;
+// boundary(axis, i, j, sign): value of the boundary face of cell (i, j) on its sign side.
+template <class Interior, class Boundary>
+void fill_owned_faces(const Grid& g, Field& x_faces, Field& y_faces, Interior interior, Boundary boundary) {
+  const auto& b = g.owned();
+  const int nx = g.nx(), ny = g.ny();
+  FieldArray fx = local_array(g, x_faces), fy = local_array(g, y_faces);
+  for (int j = b.ys; j < b.ye(); ++j) {
+    if (b.xs == 0) fx[j][-1] = boundary(0, 0, j, -1);
+    for (int i = std::max(b.xs - 1, 0); i < b.xe(); ++i)
+      fx[j][i] = i + 1 == nx ? boundary(0, i, j, 1) : interior(0, i, j);
+  }
+  for (int i = b.xs; i < b.xe(); ++i) {
+    if (b.ys == 0) fy[-1][i] = boundary(1, i, 0, -1);
+    for (int j = std::max(b.ys - 1, 0); j < b.ye(); ++j)
+      fy[j][i] = j + 1 == ny ? boundary(1, i, j, 1) : interior(1, i, j);
+  }
+}
+
+}  // namespace granflow
