@@ -119,6 +119,17 @@ void SoilPhase::fill_displacement_ghosts() {
   }
 }
 
+// Viscosity of the mixture in cell (i, j) at soil fraction c: the soil's from the rheology at the
+// given pressure and the cell's strain rate (or its Newtonian value), mixed with the air's.
+double SoilPhase::mixture_viscosity(double c, double pressure, const double* const* u, const double* const* v, int i,
+                                    int j) const {
+  const auto& s = settings_;
+  const double mu_soil = rheology_ && c > 0.0
+                             ? rheology_->dynamic_viscosity(cell_strain_rate(grid_, u, v, i, j), pressure)
+                             : s.soil_viscosity;
+  return s.viscosity_mixing(c, s.air_viscosity, mu_soil);
+}
+
 void SoilPhase::update_properties(FlowSolver& flow) const {
   const auto& b = grid_.owned();
   ConstFieldArray c(grid_.field_dm(), c_->global());
@@ -133,12 +144,8 @@ void SoilPhase::update_properties(FlowSolver& flow) const {
     for (int i = b.xs; i < b.xe(); ++i) {
       const double cc = c[j][i];
       rho[j][i] = s.density_mixing(cc, s.air_density, s.soil_density);
-      double mu_soil = s.soil_viscosity;
-      if (rheology_ && cc > 0.0) {
-        const double pressure = floor ? std::max(p[j][i], (*overburden)[j][i]) : p[j][i];
-        mu_soil = rheology_->dynamic_viscosity(cell_strain_rate(grid_, u.data(), v.data(), i, j), pressure);
-      }
-      mu[j][i] = s.viscosity_mixing(cc, s.air_viscosity, mu_soil);
+      const double pressure = floor ? std::max(p[j][i], (*overburden)[j][i]) : p[j][i];
+      mu[j][i] = mixture_viscosity(cc, pressure, u.data(), v.data(), i, j);
     }
 }
 
@@ -148,19 +155,12 @@ void SoilPhase::update_properties(FlowSolver& flow) const {
 // with the ghost column or row on the low side, so that the operator needs no exchange. Needs the
 // ghosts of c and p (current after the advection and the pressure solve).
 void SoilPhase::update_face_viscosity(FlowSolver& flow) const {
-  const auto& s = settings_;
   const auto kind = flow_settings_.numerics.face_viscosity;
   const auto& g = flow_settings_.gravity;
   ConstFieldArray c = local_read(grid_, *c_);
   ConstFieldArray u = local_read(grid_, flow.velocity(0)), v = local_read(grid_, flow.velocity(1));
   ConstFieldArray p = local_read(grid_, flow.pressure()), rho = local_read(grid_, flow.density());
-  auto side = [&](int i, int j, double pressure) {
-    const double cc = c[j][i];
-    const double mu_soil =
-        cc > 0.0 ? rheology_->dynamic_viscosity(cell_strain_rate(grid_, u.data(), v.data(), i, j), pressure)
-                 : s.soil_viscosity;
-    return s.viscosity_mixing(cc, s.air_viscosity, mu_soil);
-  };
+  auto side = [&](int i, int j, double pressure) { return mixture_viscosity(c[j][i], pressure, u.data(), v.data(), i, j); };
   fill_owned_faces(
       grid_, flow.face_viscosity(0), flow.face_viscosity(1),
       [&](int axis, int i, int j) {

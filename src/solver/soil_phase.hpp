@@ -72,6 +72,8 @@ class SoilPhase {
   void fill_displacement_ghosts();
   interface::RadialWeights radial_weights() const { return {grid_.radius_face_data(), grid_.radius_centre_data()}; }
   double compute_dissipation(const FlowSolver& flow);
+  double mixture_viscosity(double c, double pressure, const double* const* u, const double* const* v, int i,
+                           int j) const;
 
   const Grid& grid_;
   const FlowSettings& flow_settings_;
