@@ -179,6 +179,10 @@ SoilSettings read_soil(TableReader& top) {
     const std::string yp = so.choice("yield_pressure", "cell", {"cell", "face", "lithostatic_floor"});
     s.yield_pressure = yp == "face" ? YieldPressure::face
                        : yp == "lithostatic_floor" ? YieldPressure::lithostatic_floor : YieldPressure::cell;
+    const std::string sr = so.choice("strain_rate", "cell", {"cell", "face"});
+    s.strain_rate = sr == "face" ? StrainRateAt::face : StrainRateAt::cell;
+    if (s.strain_rate == StrainRateAt::face && s.yield_pressure != YieldPressure::face)
+      throw CaseError("soil.strain_rate = \"face\" needs soil.yield_pressure = \"face\" (the viscosity is then taken on faces)");
     s.failure_strain = so.number("failure_strain", s.failure_strain);
     so.require_range("failure_strain", s.failure_strain, 1e-6, 10.0);
     so.finish();

@@ -11,6 +11,7 @@
 #include "models/rheology/invariants.hpp"
 #include "models/strain/euler_almansi.hpp"
 #include "operators/face_interpolation.hpp"
+#include "operators/strain_rate.hpp"
 
 namespace granflow {
 
@@ -21,15 +22,6 @@ double mpi_max(MPI_Comm comm, double v) {
   return r;
 }
 }  // namespace
-
-rheology::StrainRate cell_strain_rate(const Grid& g, const double* const* u, const double* const* v, int i, int j) {
-  const double hx = g.xc(i + 1) - g.xc(i - 1), hy = g.yc(j + 1) - g.yc(j - 1);
-  const double dudx = (u[j][i + 1] - u[j][i - 1]) / hx, dudy = (u[j + 1][i] - u[j - 1][i]) / hy;
-  const double dvdx = (v[j][i + 1] - v[j][i - 1]) / hx, dvdy = (v[j + 1][i] - v[j - 1][i]) / hy;
-  // Axisymmetric: the hoop rate D_thth = u_r / r enters ||D|| and the Lode angle ([YS] Sec. 4).
-  if (g.axisymmetric()) return rheology::axisymmetric_strain_rate(dudx, dvdy, 0.5 * (dudy + dvdx), u[j][i] / g.xc(i));
-  return rheology::planar_strain_rate(dudx, dvdy, 0.5 * (dudy + dvdx));
-}
 
 SoilPhase::SoilPhase(const Grid& grid, const FlowSettings& flow, const SoilSettings& settings)
     : grid_(grid), flow_settings_(flow), settings_(settings) {
@@ -119,14 +111,11 @@ void SoilPhase::fill_displacement_ghosts() {
   }
 }
 
-// Viscosity of the mixture in cell (i, j) at soil fraction c: the soil's from the rheology at the
-// given pressure and the cell's strain rate (or its Newtonian value), mixed with the air's.
-double SoilPhase::mixture_viscosity(double c, double pressure, const double* const* u, const double* const* v, int i,
-                                    int j) const {
+// Viscosity of a mixture at soil fraction c: the soil's from the rheology at the given pressure and
+// strain rate (or its Newtonian value), mixed with the air's.
+double SoilPhase::mixture_viscosity(double c, double pressure, const rheology::StrainRate& rate) const {
   const auto& s = settings_;
-  const double mu_soil = rheology_ && c > 0.0
-                             ? rheology_->dynamic_viscosity(cell_strain_rate(grid_, u, v, i, j), pressure)
-                             : s.soil_viscosity;
+  const double mu_soil = rheology_ && c > 0.0 ? rheology_->dynamic_viscosity(rate, pressure) : s.soil_viscosity;
   return s.viscosity_mixing(c, s.air_viscosity, mu_soil);
 }
 
@@ -145,7 +134,7 @@ void SoilPhase::update_properties(FlowSolver& flow) const {
       const double cc = c[j][i];
       rho[j][i] = s.density_mixing(cc, s.air_density, s.soil_density);
       const double pressure = floor ? std::max(p[j][i], (*overburden)[j][i]) : p[j][i];
-      mu[j][i] = mixture_viscosity(cc, pressure, u.data(), v.data(), i, j);
+      mu[j][i] = mixture_viscosity(cc, pressure, cell_strain_rate(grid_, u.data(), v.data(), i, j));
     }
 }
 
@@ -157,20 +146,34 @@ void SoilPhase::update_properties(FlowSolver& flow) const {
 void SoilPhase::update_face_viscosity(FlowSolver& flow) const {
   const auto kind = flow_settings_.numerics.face_viscosity;
   const auto& g = flow_settings_.gravity;
+  const bool at_face = settings_.strain_rate == StrainRateAt::face;
   ConstFieldArray c = local_read(grid_, *c_);
   ConstFieldArray u = local_read(grid_, flow.velocity(0)), v = local_read(grid_, flow.velocity(1));
   ConstFieldArray p = local_read(grid_, flow.pressure()), rho = local_read(grid_, flow.density());
-  auto side = [&](int i, int j, double pressure) { return mixture_viscosity(c[j][i], pressure, u.data(), v.data(), i, j); };
+  // Face (axis, i, j) lies between cell (i, j) and its neighbour at +1 along axis.
+  auto face = [&](int axis, int i, int j, double pressure) {
+    const int in = i + (axis == 0), jn = j + (axis == 1);
+    if (at_face) {
+      const auto rate = face_strain_rate(grid_, u.data(), v.data(), axis, i, j);
+      return face_mean(kind, mixture_viscosity(c[j][i], pressure, rate), mixture_viscosity(c[jn][in], pressure, rate));
+    }
+    return face_mean(kind, mixture_viscosity(c[j][i], pressure, cell_strain_rate(grid_, u.data(), v.data(), i, j)),
+                     mixture_viscosity(c[jn][in], pressure, cell_strain_rate(grid_, u.data(), v.data(), in, jn)));
+  };
   fill_owned_faces(
       grid_, flow.face_viscosity(0), flow.face_viscosity(1),
       [&](int axis, int i, int j) {
         const int in = i + (axis == 0), jn = j + (axis == 1);
-        const double pf = 0.5 * (p[j][i] + p[jn][in]);
-        return face_mean(kind, side(i, j, pf), side(in, jn, pf));
+        return face(axis, i, j, 0.5 * (p[j][i] + p[jn][in]));
       },
       [&](int axis, int i, int j, int sign) {  // the cell's pressure carried hydrostatically to the wall
         const double half = 0.5 * sign * (axis == 0 ? grid_.dx(i) : grid_.dy(j));
-        return side(i, j, p[j][i] + rho[j][i] * g[axis] * half);
+        const double pressure = p[j][i] + rho[j][i] * g[axis] * half;
+        if (at_face) {  // the face between the ghost and the cell, the ghost's velocity encoding the wall
+          const int il = sign < 0 ? i - (axis == 0) : i, jl = sign < 0 ? j - (axis == 1) : j;
+          return mixture_viscosity(c[j][i], pressure, face_strain_rate(grid_, u.data(), v.data(), axis, il, jl));
+        }
+        return mixture_viscosity(c[j][i], pressure, cell_strain_rate(grid_, u.data(), v.data(), i, j));
       });
 }
 

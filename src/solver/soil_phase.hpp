@@ -72,8 +72,7 @@ class SoilPhase {
   void fill_displacement_ghosts();
   interface::RadialWeights radial_weights() const { return {grid_.radius_face_data(), grid_.radius_centre_data()}; }
   double compute_dissipation(const FlowSolver& flow);
-  double mixture_viscosity(double c, double pressure, const double* const* u, const double* const* v, int i,
-                           int j) const;
+  double mixture_viscosity(double c, double pressure, const rheology::StrainRate& rate) const;
 
   const Grid& grid_;
   const FlowSettings& flow_settings_;
@@ -89,8 +88,5 @@ class SoilPhase {
   void compute_overburden(const std::array<double, 2>& gravity);
   int sweep_parity_ = 0;
 };
-
-// Strain-rate tensor at a cell centre from central differences of ghosted cell velocities.
-rheology::StrainRate cell_strain_rate(const Grid& g, const double* const* u, const double* const* v, int i, int j);
 
 }  // namespace granflow

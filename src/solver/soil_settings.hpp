@@ -10,6 +10,7 @@
 namespace granflow {
 
 enum class YieldPressure { cell, face, lithostatic_floor };
+enum class StrainRateAt { cell, face };
 
 struct SoilSettings {
   double air_density = 1.0;
@@ -31,6 +32,9 @@ struct SoilSettings {
   // - lithostatic_floor: the cell pressure, but at least the weight of the soil above the cell in its
   //   column (rho_s g depth).
   YieldPressure yield_pressure = YieldPressure::cell;
+  // Strain rate in the face viscosities (with yield_pressure = face): each side's cell centre rate
+  // (cell), or the rate on the face itself (face), the one its viscous stress multiplies.
+  StrainRateAt strain_rate = StrainRateAt::cell;
 };
 
 }  // namespace granflow

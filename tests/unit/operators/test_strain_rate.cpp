@@ -1,0 +1,74 @@
+// The discrete strain rate at cell centres and on faces: exact for a linear velocity field on a graded
+// grid (boundary faces to the ghosts included), and on faces the rate the face's stress multiplies.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <vector>
+
+#include "mesh/grid.hpp"
+#include "operators/strain_rate.hpp"
+
+namespace granflow {
+namespace {
+
+// A ghosted cell array [j][i], i in -2 .. nx+1, j in -2 .. ny+1, filled from f(x, y) at the centres.
+struct GhostedArray {
+  std::vector<double> data;
+  std::vector<double*> rows;
+  template <class F>
+  GhostedArray(const Grid& g, F f) {
+    const int w = Grid::ghost_width, mx = g.nx() + 2 * w, my = g.ny() + 2 * w;
+    data.resize(size_t(mx) * my);
+    for (int j = -w; j < g.ny() + w; ++j)
+      for (int i = -w; i < g.nx() + w; ++i) data[size_t(j + w) * mx + (i + w)] = f(g.xc(i), g.yc(j));
+    for (int j = 0; j < my; ++j) rows.push_back(data.data() + size_t(j) * mx + w);
+  }
+  const double* const* get() const { return rows.data() + Grid::ghost_width; }
+};
+
+TEST(StrainRate, ExactForALinearVelocityAtCentresAndOnEveryFace) {
+  GridSpec spec;
+  spec.cells = {6, 5};
+  spec.upper = {0.3, 0.2};
+  spec.grading = {1.4, 0.7};
+  Grid g(PETSC_COMM_SELF, spec);
+  const double a = 0.3, b = -1.7, c = 2.1, d = -0.3;  // u = a x + b y, v = c x + d y
+  GhostedArray u(g, [&](double x, double y) { return a * x + b * y; });
+  GhostedArray v(g, [&](double x, double y) { return c * x + d * y; });
+  auto expect_exact = [&](const rheology::StrainRate& D) {
+    EXPECT_NEAR(D.xx, a, 1e-12);
+    EXPECT_NEAR(D.yy, d, 1e-12);
+    EXPECT_NEAR(D.xy, 0.5 * (b + c), 1e-12);
+    EXPECT_EQ(D.zz, 0.0);
+  };
+  for (int j = 0; j < g.ny(); ++j)
+    for (int i = 0; i < g.nx(); ++i) expect_exact(cell_strain_rate(g, u.get(), v.get(), i, j));
+  // Faces from the west boundary face (i = -1, between the ghost and cell 0) to the east one.
+  for (int j = 0; j < g.ny(); ++j)
+    for (int i = -1; i < g.nx(); ++i) expect_exact(face_strain_rate(g, u.get(), v.get(), 0, i, j));
+  for (int j = -1; j < g.ny(); ++j)
+    for (int i = 0; i < g.nx(); ++i) expect_exact(face_strain_rate(g, u.get(), v.get(), 1, i, j));
+}
+
+// A layer sheared at the grid scale, u = exp(k y): the shear rate on a face is the compact difference
+// (u_N - u_P) / dy across it, which lies between the two cells' central rates.
+TEST(StrainRate, FaceShearIsTheCompactDifferenceAcrossTheFace) {
+  GridSpec spec;
+  spec.cells = {4, 8};
+  spec.upper = {0.04, 0.08};
+  Grid g(PETSC_COMM_SELF, spec);
+  const double k = std::log(3.0) / 0.01;  // three-fold per cell
+  GhostedArray u(g, [&](double, double y) { return std::exp(k * y); });
+  GhostedArray v(g, [](double, double) { return 0.0; });
+  for (int j = 0; j + 1 < g.ny(); ++j) {
+    const double compact = (std::exp(k * g.yc(j + 1)) - std::exp(k * g.yc(j))) / 0.01;
+    const auto D = face_strain_rate(g, u.get(), v.get(), 1, 1, j);
+    EXPECT_NEAR(2.0 * D.xy, compact, 1e-12 * compact);
+    // The centre rates straddle it: the lower cell's is smaller, the upper cell's larger.
+    EXPECT_LT(2.0 * cell_strain_rate(g, u.get(), v.get(), 1, j).xy, compact);
+    EXPECT_GT(2.0 * cell_strain_rate(g, u.get(), v.get(), 1, j + 1).xy, compact);
+  }
+}
+
+}  // namespace
+}  // namespace granflow
