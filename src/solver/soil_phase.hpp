@@ -18,8 +18,9 @@ namespace granflow {
 
 struct SoilBudget {
   double soil_volume = 0, air_volume = 0;
-  double kinetic_energy = 0, potential_energy = 0;  // J per metre depth
+  double kinetic_energy = 0, potential_energy = 0;  // J per metre depth, with the phases' masses
   double dissipation_rate = 0;                      // W per metre depth, int 2 mu D:D dV
+  double mixture_mass = 0;                          // kg per metre depth, int rho dV of the mixture
 };
 
 class SoilPhase {

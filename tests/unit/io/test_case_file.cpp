@@ -126,6 +126,11 @@ north = { type = "atmosphere" }
   const std::string model = error_of(two_phase, {"soil.rheology.friction_angle=30", "soil.rheology.model=coulomb"});
   EXPECT_NE(model.find("soil.rheology.model"), std::string::npos) << model;
   EXPECT_NO_THROW(parse_case(two_phase, {"soil.rheology.friction_angle=30"}));
+  // The strain rate on faces belongs to the face viscosities, which only yield_pressure = face builds.
+  const std::string rate = error_of(two_phase, {"soil.rheology.friction_angle=30", "soil.strain_rate=face"});
+  EXPECT_NE(rate.find("soil.strain_rate"), std::string::npos) << rate;
+  EXPECT_NE(rate.find("yield_pressure"), std::string::npos) << rate;
+  EXPECT_NO_THROW(parse_case(two_phase, {"soil.rheology.friction_angle=30", "soil.strain_rate=face", "soil.yield_pressure=face"}));
 }
 
 TEST(CaseFile, ShippedCasesAreValid) {
