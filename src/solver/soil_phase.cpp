@@ -49,11 +49,13 @@ SoilPhase::SoilPhase(const Grid& grid, const FlowSettings& flow, const SoilSetti
 void SoilPhase::save_state() {
   saved_.save(std::array<Field*, 3>{c_.get(), disp_[0].get(), disp_[1].get()});
   saved_parity_ = sweep_parity_;
+  saved_outflow_ = outflow_;
 }
 
 void SoilPhase::restore_state() {
   saved_.restore(std::array<Field*, 3>{c_.get(), disp_[0].get(), disp_[1].get()});
   sweep_parity_ = saved_parity_;
+  outflow_ = saved_outflow_;
 }
 
 void SoilPhase::initialise() {
@@ -240,6 +242,8 @@ void SoilPhase::advect(const FlowSolver& flow, double dt) {
       interface::dilatation_indicator(c.data(), b, cc.data());
       FieldArray tmp(grid_.field_dm(), c_tmp_->global());
       interface::vof_sweep(first, h, c.data(), face[first], cc.data(), grid_.dx_data(), grid_.dy_data(), b, tmp.data(), radial);
+      outflow_ += interface::boundary_outflow(first, h, c.data(), face[first], grid_.dx_data(), grid_.dy_data(), b,
+                                              grid_.nx(), grid_.ny(), radial);
     }
     fill_fraction_ghosts(*c_tmp_);
     {
@@ -247,6 +251,8 @@ void SoilPhase::advect(const FlowSolver& flow, double dt) {
       ConstFieldArray cc(grid_.field_dm(), dilatation_->local());
       FieldArray c(grid_.field_dm(), c_->global());
       interface::vof_sweep(second, h, tmp.data(), face[second], cc.data(), grid_.dx_data(), grid_.dy_data(), b, c.data(), radial);
+      outflow_ += interface::boundary_outflow(second, h, tmp.data(), face[second], grid_.dx_data(), grid_.dy_data(), b,
+                                              grid_.nx(), grid_.ny(), radial);
     }
     fill_fraction_ghosts(*c_);
   }
@@ -418,7 +424,7 @@ SoilBudget SoilPhase::budget(const FlowSolver& flow) {
   ConstFieldArray c(grid_.field_dm(), c_->global());
   ConstFieldArray u = local_read(grid_, flow.velocity(0)), v = local_read(grid_, flow.velocity(1));
   ConstFieldArray rho(grid_.field_dm(), flow.density().global());
-  double s[6] = {0, 0, 0, 0, compute_dissipation(flow), 0};
+  double s[7] = {0, 0, 0, 0, compute_dissipation(flow), 0, outflow_};
   for (int j = b.ys; j < b.ye(); ++j)
     for (int i = b.xs; i < b.xe(); ++i) {
       const double V = grid_.volume(i, j);
@@ -429,9 +435,9 @@ SoilBudget SoilPhase::budget(const FlowSolver& flow) {
       s[3] -= phase_density * (g[0] * grid_.xc(i) + g[1] * grid_.yc(j)) * V;
       s[5] += rho[j][i] * V;
     }
-  double t[6];
-  MPI_Allreduce(s, t, 6, MPI_DOUBLE, MPI_SUM, grid_.comm());
-  return {t[0], t[1], t[2], t[3], t[4], t[5]};
+  double t[7];
+  MPI_Allreduce(s, t, 7, MPI_DOUBLE, MPI_SUM, grid_.comm());
+  return {t[0], t[1], t[2], t[3], t[4], t[5], t[6]};
 }
 
 }  // namespace granflow

@@ -21,6 +21,7 @@ struct SoilBudget {
   double kinetic_energy = 0, potential_energy = 0;  // J per metre depth, with the phases' masses
   double dissipation_rate = 0;                      // W per metre depth, int 2 mu D:D dV
   double mixture_mass = 0;                          // kg per metre depth, int rho dV of the mixture
+  double soil_outflow = 0;                          // soil volume carried out through open sides so far
 };
 
 class SoilPhase {
@@ -80,6 +81,7 @@ class SoilPhase {
   SoilSettings settings_;
   FieldSnapshot saved_;
   int saved_parity_ = 0;
+  double outflow_ = 0.0, saved_outflow_ = 0.0;  // this rank's soil volume carried out of the domain
   std::optional<rheology::GranularRheology> rheology_;
   std::unique_ptr<Field> c_, c_tmp_, dilatation_;
   std::unique_ptr<Field> disp_[2], disp_new_[2];

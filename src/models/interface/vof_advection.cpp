@@ -116,6 +116,27 @@ void vof_sweep(int axis, double dt, const double* const* c, const double* const*
   }
 }
 
+double boundary_outflow(int axis, double dt, const double* const* c, const double* const* u, const double* dx,
+                        const double* dy, CellBox o, int nx, int ny, RadialWeights radial) {
+  double out = 0.0;
+  const int i_end = o.xs + o.xm, j_end = o.ys + o.ym;
+  if (axis == 0) {
+    const bool weighted = radial.face != nullptr;
+    for (int j = o.ys; j < j_end; ++j) {
+      if (o.xs == 0) out -= (weighted ? radial.face[-1] : 1.0) * face_flux_x(c, u[j][-1], dt, dx, dy, -1, j).f * dy[j];
+      if (i_end == nx)
+        out += (weighted ? radial.face[nx - 1] : 1.0) * face_flux_x(c, u[j][nx - 1], dt, dx, dy, nx - 1, j).f * dy[j];
+    }
+    return out;
+  }
+  for (int i = o.xs; i < i_end; ++i) {
+    const double area = dx[i] * (radial.centre != nullptr ? radial.centre[i] : 1.0);
+    if (o.ys == 0) out -= face_flux_y(c, u[-1][i], dt, dx, dy, i, -1).f * area;
+    if (j_end == ny) out += face_flux_y(c, u[ny - 1][i], dt, dx, dy, i, ny - 1).f * area;
+  }
+  return out;
+}
+
 void dilatation_indicator(const double* const* c, CellBox o, double** cc) {
   for (int j = o.ys; j < o.ys + o.ym; ++j)
     for (int i = o.xs; i < o.xs + o.xm; ++i) cc[j][i] = c[j][i] > 0.5 ? 1.0 : 0.0;

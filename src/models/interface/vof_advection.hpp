@@ -48,6 +48,12 @@ void vof_sweep(int axis, double dt, const double* const* c, const double* const*
                const double* const* cc, const double* dx, const double* dy,
                CellBox owned, double** c_new, RadialWeights radial = {});
 
+// Soil volume (per unit depth, per radian with radial weights) that the sweep of `axis` carries out
+// of the domain of nx x ny cells through the boundary faces of the owned cells; negative for inflow.
+// The same face fluxes as vof_sweep, so that the soil in the domain plus the outflow is conserved.
+double boundary_outflow(int axis, double dt, const double* const* c, const double* const* face_velocity,
+                        const double* dx, const double* dy, CellBox owned, int nx, int ny, RadialWeights radial = {});
+
 // cc = 1 where c > 0.5, else 0, on owned cells. Evaluate once per time step, before the first
 // sweep. Any cc array holding 0/1 values works (cc > 0.5 selects the correction).
 void dilatation_indicator(const double* const* c, CellBox owned, double** cc);
