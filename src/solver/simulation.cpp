@@ -106,9 +106,10 @@ void Simulation::write_output() {
       data.push_back({"lode_angle", 1, gather_to_root(g, soil_->lode_angle())});
       if (config_.soil->rheology)
         data.push_back({"stress_ratio_to_drucker_prager", 1, gather_to_root(g, soil_->stress_ratio_to_drucker_prager())});
-      auto w = gather_to_root(g, soil_->dissipation());
-      for (int j = 0; j < g.ny(); ++j)
-        for (int i = 0; i < g.nx(); ++i) w[size_t(j) * g.nx() + i] /= g.volume(i, j);
+      auto w = gather_to_root(g, soil_->dissipation());  // empty on ranks other than the root
+      if (!w.empty())
+        for (int j = 0; j < g.ny(); ++j)
+          for (int i = 0; i < g.nx(); ++i) w[size_t(j) * g.nx() + i] /= g.volume(i, j);
       data.push_back({"dissipation_rate", 1, w});
     }
     series_->write(g, time_, data);
