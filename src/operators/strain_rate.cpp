@@ -35,7 +35,7 @@ rheology::StrainRate face_strain_rate(const Grid& g, const double* const* u, con
     dudy = 0.5 * (central_y(u, i, j) + central_y(u, in, j));
     dvdy = 0.5 * (central_y(v, i, j) + central_y(v, in, j));
     if (g.axisymmetric()) {
-      const double r = g.xc(i) + 0.5 * g.dx(i);
+      const double r = g.xf(i);
       hoop = r > 0.0 ? 0.5 * (u[j][i] + u[j][in]) / r : dudx;  // u_r / r -> du_r/dr on the axis
     }
   } else {

@@ -157,7 +157,9 @@ void SoilPhase::update_face_viscosity(FlowSolver& flow) const {
     const int in = i + (axis == 0), jn = j + (axis == 1);
     if (at_face) {
       const auto rate = face_strain_rate(grid_, u.data(), v.data(), axis, i, j);
-      return face_mean(kind, mixture_viscosity(c[j][i], pressure, rate), mixture_viscosity(c[jn][in], pressure, rate));
+      const double low = mixture_viscosity(c[j][i], pressure, rate);
+      if (c[jn][in] == c[j][i]) return low;  // the same mixture on both sides (all of the bulk): one evaluation
+      return face_mean(kind, low, mixture_viscosity(c[jn][in], pressure, rate));
     }
     return face_mean(kind, mixture_viscosity(c[j][i], pressure, cell_strain_rate(grid_, u.data(), v.data(), i, j)),
                      mixture_viscosity(c[jn][in], pressure, cell_strain_rate(grid_, u.data(), v.data(), in, jn)));
