@@ -183,6 +183,10 @@ SoilSettings read_soil(TableReader& top) {
     s.strain_rate = sr == "face" ? StrainRateAt::face : StrainRateAt::cell;
     if (s.strain_rate == StrainRateAt::face && s.yield_pressure != YieldPressure::face)
       throw CaseError("soil.strain_rate = \"face\" needs soil.yield_pressure = \"face\" (the viscosity is then taken on faces)");
+    const std::string ff = so.choice("face_fraction", "cells", {"cells", "face"});
+    s.face_fraction = ff == "face" ? FaceFraction::face : FaceFraction::cells;
+    if (s.face_fraction == FaceFraction::face && s.strain_rate != StrainRateAt::face)
+      throw CaseError("soil.face_fraction = \"face\" needs soil.strain_rate = \"face\" (one evaluation on the face)");
     s.failure_strain = so.number("failure_strain", s.failure_strain);
     so.require_range("failure_strain", s.failure_strain, 1e-6, 10.0);
     so.finish();

@@ -149,6 +149,7 @@ void SoilPhase::update_face_viscosity(FlowSolver& flow) const {
   const auto kind = flow_settings_.numerics.face_viscosity;
   const auto& g = flow_settings_.gravity;
   const bool at_face = settings_.strain_rate == StrainRateAt::face;
+  const bool face_fraction = settings_.face_fraction == FaceFraction::face;
   ConstFieldArray c = local_read(grid_, *c_);
   ConstFieldArray u = local_read(grid_, flow.velocity(0)), v = local_read(grid_, flow.velocity(1));
   ConstFieldArray p = local_read(grid_, flow.pressure()), rho = local_read(grid_, flow.density());
@@ -159,6 +160,7 @@ void SoilPhase::update_face_viscosity(FlowSolver& flow) const {
       const auto rate = face_strain_rate(grid_, u.data(), v.data(), axis, i, j);
       const double low = mixture_viscosity(c[j][i], pressure, rate);
       if (c[jn][in] == c[j][i]) return low;  // the same mixture on both sides (all of the bulk): one evaluation
+      if (face_fraction) return mixture_viscosity(0.5 * (c[j][i] + c[jn][in]), pressure, rate);
       return face_mean(kind, low, mixture_viscosity(c[jn][in], pressure, rate));
     }
     return face_mean(kind, mixture_viscosity(c[j][i], pressure, cell_strain_rate(grid_, u.data(), v.data(), i, j)),

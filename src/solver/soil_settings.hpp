@@ -11,6 +11,7 @@ namespace granflow {
 
 enum class YieldPressure { cell, face, lithostatic_floor };
 enum class StrainRateAt { cell, face };
+enum class FaceFraction { cells, face };
 
 struct SoilSettings {
   double air_density = 1.0;
@@ -35,6 +36,11 @@ struct SoilSettings {
   // Strain rate in the face viscosities (with yield_pressure = face): each side's cell centre rate
   // (cell), or the rate on the face itself (face), the one its viscous stress multiplies.
   StrainRateAt strain_rate = StrainRateAt::cell;
+  // Soil fraction of the mixture in the face viscosities (with strain_rate = face): each side its own
+  // cell's, the face taking the mean of the two viscosities (cells), or the face's own, the mean of
+  // the two cells' c, in one evaluation (face). With `face` a face between soil and air carries the
+  // soil's plastic viscosity at the face's pressure: air in contact with the soil sticks to it.
+  FaceFraction face_fraction = FaceFraction::cells;
 };
 
 }  // namespace granflow

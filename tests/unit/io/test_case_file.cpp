@@ -131,6 +131,13 @@ north = { type = "atmosphere" }
   EXPECT_NE(rate.find("soil.strain_rate"), std::string::npos) << rate;
   EXPECT_NE(rate.find("yield_pressure"), std::string::npos) << rate;
   EXPECT_NO_THROW(parse_case(two_phase, {"soil.rheology.friction_angle=30", "soil.strain_rate=face", "soil.yield_pressure=face"}));
+  // The face's own soil fraction needs the one evaluation on the face, which strain_rate = face makes.
+  const std::string fraction = error_of(two_phase, {"soil.rheology.friction_angle=30", "soil.yield_pressure=face",
+                                                    "soil.face_fraction=face"});
+  EXPECT_NE(fraction.find("soil.face_fraction"), std::string::npos) << fraction;
+  EXPECT_NE(fraction.find("strain_rate"), std::string::npos) << fraction;
+  EXPECT_NO_THROW(parse_case(two_phase, {"soil.rheology.friction_angle=30", "soil.strain_rate=face",
+                                         "soil.yield_pressure=face", "soil.face_fraction=face"}));
 }
 
 TEST(CaseFile, ShippedCasesAreValid) {
