@@ -158,10 +158,9 @@ void SoilPhase::update_face_viscosity(FlowSolver& flow) const {
     const int in = i + (axis == 0), jn = j + (axis == 1);
     if (at_face) {
       const auto rate = face_strain_rate(grid_, u.data(), v.data(), axis, i, j);
-      const double low = mixture_viscosity(c[j][i], pressure, rate);
-      if (c[jn][in] == c[j][i]) return low;  // the same mixture on both sides (all of the bulk): one evaluation
-      if (face_fraction) return mixture_viscosity(0.5 * (c[j][i] + c[jn][in]), pressure, rate);
-      return face_mean(kind, low, mixture_viscosity(c[jn][in], pressure, rate));
+      // One evaluation at the face's soil fraction; also where both sides hold the same mixture (the bulk).
+      if (face_fraction || c[jn][in] == c[j][i]) return mixture_viscosity(0.5 * (c[j][i] + c[jn][in]), pressure, rate);
+      return face_mean(kind, mixture_viscosity(c[j][i], pressure, rate), mixture_viscosity(c[jn][in], pressure, rate));
     }
     return face_mean(kind, mixture_viscosity(c[j][i], pressure, cell_strain_rate(grid_, u.data(), v.data(), i, j)),
                      mixture_viscosity(c[jn][in], pressure, cell_strain_rate(grid_, u.data(), v.data(), in, jn)));
