@@ -254,6 +254,8 @@ CaseConfig read_case(const toml::table& root, const std::filesystem::path& sourc
     t.require_range("max_growth", c.time.max_growth, 1.0, 10.0);
     interface_courant = t.number("interface_courant", 0.45);
     t.require_range("interface_courant", interface_courant, 1e-3, 0.49, "in (0, 0.49]");
+    c.time.interface_substeps = int(t.integer("interface_substeps", 1));
+    t.require_range("interface_substeps", double(c.time.interface_substeps), 1, 100);
     c.time.steady_tolerance = t.number("steady_tolerance", 0.0);
     t.require_range("steady_tolerance", c.time.steady_tolerance, 0.0, inf);
     c.time.max_steps = t.integer("max_steps", c.time.max_steps);

@@ -23,6 +23,9 @@ struct TimeSettings {
   CourantRegion courant_region = CourantRegion::all;
   double max_dt = 1e30;
   double max_growth = 1.2;   // largest ratio of successive steps
+  // VoF sweeps one flow step may take: the step is limited to this many times the interface Courant
+  // number of one sweep, and the advection sub-cycles. 1 sizes the step by one sweep.
+  int interface_substeps = 1;
   double steady_tolerance = 0.0;  // > 0: stop when max|dv/dt| / max|v| falls below it (1/s)
   long max_steps = 100000000;
 };

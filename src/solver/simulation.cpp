@@ -70,7 +70,8 @@ double Simulation::choose_dt(double dt_previous) const {
   double dt = co > 0.0 ? dt_previous * t.courant / co : dt_previous * t.max_growth;
   if (soil_) {
     const double ci = soil_->interface_courant(*flow_, dt_previous);
-    if (ci > 0.0) dt = std::min(dt, dt_previous * soil_->settings().interface_courant / ci);
+    const double limit = t.interface_substeps * soil_->settings().interface_courant;
+    if (ci > 0.0) dt = std::min(dt, dt_previous * limit / ci);
   }
   dt = std::min({dt, dt_previous * t.max_growth, t.max_dt});
   return dt;
