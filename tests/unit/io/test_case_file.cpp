@@ -83,6 +83,15 @@ TEST(CaseFile, SetOverridesAnyKey) {
   EXPECT_EQ(c.flow.numerics.convection, ConvectionScheme::upwind);
 }
 
+TEST(CaseFile, InterfaceSubstepsMustBeAPositiveWholeNumber) {
+  EXPECT_EQ(parse_case(minimal, {"time.interface_substeps=3"}).time.interface_substeps, 3);
+  EXPECT_EQ(parse_case(minimal).time.interface_substeps, 1);
+  for (const char* bad : {"time.interface_substeps=0", "time.interface_substeps=1.5"}) {
+    const std::string e = error_of(minimal, {bad});
+    EXPECT_NE(e.find("time.interface_substeps"), std::string::npos) << bad << ": " << e;
+  }
+}
+
 TEST(CaseFile, MissingSideIsNamed) {
   std::string text = minimal;
   text.erase(text.find("south ="), std::string("south = { type = \"wall\" }\n").size());
