@@ -1,6 +1,7 @@
-// Validation: the aluminium-bar collapse of Bui et al. (2008), the shipped case, against the
-// experiment's final surface (validation/refdata/bui2008_*.csv): at half the paper's resolution in
-// the suite (about 2 minutes), at the paper's 300 x 100 on demand (about 14 minutes).
+// Validation: the aluminium-bar collapse of Bui et al. (2008) against the experiment's final surface
+// (validation/refdata/bui2008_*.csv), with the paper's rheology (bui2008_experiment) and with mu(I)
+// friction (bui2008_experiment_mu_of_i): at half the paper's resolution in the suite (about 1.5
+// minutes each), at the paper's 300 x 100 on demand (about 10-14 minutes each).
 #include <gtest/gtest.h>
 #include <fmt/format.h>
 
@@ -17,19 +18,19 @@ namespace {
 
 constexpr double experiment_runout = 0.442;
 
-// The shipped case run to t = 2 s on nx x nx/3 cells, measured as the issue asks.
+// A shipped case run to t = 2 s on nx x nx/3 cells, measured as the issue asks.
 struct Bui2008Run {
   double dx = 0;
   double toe_contour = 0, toe_cell = 0, rms = 0, contour_drift = 0, cell_drift = 0, volume_error = 0, outflow = 0;
   double released = 0, accounted = 0, soil_speed = 0;
 };
 
-Bui2008Run run_bui2008(int nx) {
+Bui2008Run run_bui2008(int nx, const std::string& case_name = "bui2008_experiment") {
   Bui2008Run r;
   r.dx = 0.6 / nx;
-  const auto out = std::filesystem::temp_directory_path() / fmt::format("granflow_bui2008_experiment_{}", nx);
+  const auto out = std::filesystem::temp_directory_path() / fmt::format("granflow_{}_{}", case_name, nx);
   std::filesystem::remove_all(out);
-  const CaseConfig config = load_case(test::repo_path("cases/bui2008_experiment.toml"),
+  const CaseConfig config = load_case(test::repo_path("cases/" + case_name + ".toml"),
                                       {"output.progress_seconds=0", "output.interval=0.5",
                                        fmt::format("mesh.cells=[{},{}]", nx, nx / 3)});
   Simulation sim(PETSC_COMM_WORLD, config, out);
@@ -83,12 +84,12 @@ Bui2008Run run_bui2008(int nx) {
   }
   r.rms = std::sqrt(sum2 / exp_surface["x_m"].size());
   std::printf(
-      "bui2008_experiment %d x %d to t = %.2f s: %ld steps, %.1f s wall\n"
+      "%s %d x %d to t = %.2f s: %ld steps, %.1f s wall\n"
       "  run-out %.4f m (contour), %.4f m (one cell) vs 0.442: %+.1f %% / %+.1f %%\n"
       "  surface RMS %.2f mm; run-out drift between t = 1 s and the end %.2f cells (contour), %.0f (one cell)\n"
       "  soil volume error %.2e, with %.2e of it carried out through the open side\n"
       "  energy: released %.4f J/m, kinetic + dissipated %.4f J/m (%+.1f %%); largest soil speed at the end %.2e m/s\n",
-      nx, nx / 3, run.time, run.steps, run.wall_seconds, r.toe_contour, r.toe_cell, 100 * (r.toe_contour / experiment_runout - 1),
+      case_name.c_str(), nx, nx / 3, run.time, run.steps, run.wall_seconds, r.toe_contour, r.toe_cell, 100 * (r.toe_contour / experiment_runout - 1),
       100 * (r.toe_cell / experiment_runout - 1), 1000 * r.rms, r.contour_drift / r.dx, r.cell_drift / r.dx,
       r.volume_error, r.outflow / history["soil_volume"][0], r.released,
       r.accounted, 100 * (r.accounted / r.released - 1), r.soil_speed);
@@ -126,6 +127,38 @@ TEST(Bui2008Experiment, DISABLED_PaperResolutionAgainstExperiment) {
   EXPECT_LT(r.soil_speed, 1e-3);
   EXPECT_LT(std::abs(r.toe_cell / experiment_runout - 1), 0.05);
   EXPECT_LT(r.rms, 0.004);
+}
+
+// The same collapse with the friction rate-dependent, mu(I) in place of sin(phi) ([YS] Eq. 25), and
+// no constant fitted to the experiment (cases/bui2008_experiment_mu_of_i.toml). 150 x 50 gave RMS
+// 1.4 mm, contour run-out -8 %, one cell -11 % (a cell of 4 mm reads a thicker layer than the
+// experiment's tip), energy +7 %. At rest but for the half-full tip cell, which creeps at 1.2 mm/s
+// on this mesh (the contour moves 0.03 cells between t = 1 and 2 s; at 300 x 100, 9e-5 m/s).
+TEST(Bui2008MuOfI, HalfResolutionSurfaceRunOutAndRest) {
+  const Bui2008Run r = run_bui2008(150, "bui2008_experiment_mu_of_i");
+  if (!is_root()) return;
+  EXPECT_LT(r.volume_error, 1e-10);
+  EXPECT_LT(std::abs(r.accounted / r.released - 1.0), 0.10);
+  EXPECT_LT(r.contour_drift, 0.2 * r.dx);
+  EXPECT_LT(r.soil_speed, 2e-3);
+  EXPECT_LT(r.rms, 0.002);
+  EXPECT_LT(std::abs(r.toe_contour / experiment_runout - 1), 0.10);
+  EXPECT_LT(std::abs(r.toe_cell / experiment_runout - 1), 0.15);
+}
+
+// What the issue asks of the paper's resolution, for the mu(I) case. Measured: RMS 1.35 mm, contour
+// run-out -2.9 %, energy +3.3 %, soil speed 9e-5 m/s; the one-cell run-out is -7.7 %, so this fails
+// on it. About 8 minutes on two ranks; run with --gtest_also_run_disabled_tests.
+TEST(Bui2008MuOfI, DISABLED_PaperResolutionAgainstExperiment) {
+  const Bui2008Run r = run_bui2008(300, "bui2008_experiment_mu_of_i");
+  if (!is_root()) return;
+  EXPECT_LT(r.volume_error, 1e-10);
+  EXPECT_LT(std::abs(r.accounted / r.released - 1.0), 0.05);
+  EXPECT_LT(r.contour_drift, r.dx);
+  EXPECT_LT(r.soil_speed, 1e-3);
+  EXPECT_LT(r.rms, 0.004);
+  EXPECT_LT(std::abs(r.toe_contour / experiment_runout - 1), 0.05);
+  EXPECT_LT(std::abs(r.toe_cell / experiment_runout - 1), 0.05);
 }
 
 }  // namespace
