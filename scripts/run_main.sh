@@ -4,17 +4,24 @@
 # Output in out/bui2008_experiment/ (fields.pvd for ParaView, surfaces, failure lines, history).
 # If the run stops early (divergence keeps the last good output), the comparison is drawn for the
 # last output written and the job says so; see docs/validation.md for where the case stands.
+# Usage: scripts/run_main.sh [CASE]; CASE = bui2008_experiment (default, the paper's rheology) or
+# bui2008_experiment_mu_of_i (the same collapse with mu(I) friction).
 set -uo pipefail
 cd "$(dirname "$0")/.."
-out=out/bui2008_experiment
+case_name=${1:-bui2008_experiment}
+case $case_name in
+  bui2008_experiment | bui2008_experiment_mu_of_i) ;;
+  *) echo "error: run_main.sh takes bui2008_experiment or bui2008_experiment_mu_of_i, not '$case_name'" >&2; exit 2 ;;
+esac
+out=out/$case_name
 # Two ranks where there are two cores: the coupled solve's factorisation is 1.5x faster on two, and
 # the result is the one-rank result (docs/validation.md).
 ranks=$(( $(nproc) >= 2 ? 2 : 1 ))
 if [ "$ranks" -gt 1 ]; then
   export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
-  mpirun -np "$ranks" build/granflow run cases/bui2008_experiment.toml -o "$out"
+  mpirun -np "$ranks" build/granflow run "cases/$case_name.toml" -o "$out"
 else
-  build/granflow run cases/bui2008_experiment.toml -o "$out"
+  build/granflow run "cases/$case_name.toml" -o "$out"
 fi
 status=$?
 /usr/bin/python3 scripts/compare_bui2008.py "$out" --png "$out/comparison_bui2008.png" --json "$out/comparison.json" || exit 1
