@@ -34,9 +34,7 @@ CollapseResult run_collapse(const std::string& case_name, const std::string& mod
   const RunSummary run = sim.run();
   const auto lode = sim.soil()->lode_energy();
   CollapseResult r;
-  int rank;
-  MPI_Comm_rank(PETSC_COMM_WORLD, &rank);
-  if (rank != 0) return r;
+  if (!test::is_root()) return r;
   auto h = test::read_csv((out / "history.csv").string());
   const size_t n = h["time"].size();
   const double released = h["potential_energy"][0] - h["potential_energy"][n - 1];
@@ -72,12 +70,6 @@ void expect_conserving(const CollapseResult& r) {
   EXPECT_NEAR(r.lode_total_vs_history, 1.0, 1e-7);  // the bins account for all the dissipated energy
 }
 
-bool is_root() {
-  int rank;
-  MPI_Comm_rank(PETSC_COMM_WORLD, &rank);
-  return rank == 0;
-}
-
 double lube_runout(double h0, double r0) {
   const double a = h0 / r0;
   return r0 * (a < 1.7 ? 1.0 + 1.24 * a : 1.0 + 1.6 * std::sqrt(a));
@@ -89,7 +81,7 @@ TEST(AxisymmetricCollapse, LowCylinderYieldSurfacesAgree) {
   const auto dp = run_collapse("lube2004_a05", "drucker_prager", "[150, 60]");
   const auto mc = run_collapse("lube2004_a05", "mohr_coulomb", "[150, 60]");
   const auto mn = run_collapse("lube2004_a05", "matsuoka_nakai", "[150, 60]");
-  if (!is_root()) return;
+  if (!test::is_root()) return;
   for (const auto* r : {&dp, &mc, &mn}) expect_conserving(*r);
   EXPECT_LE(std::abs(dp.lode_peak_deg), 2.0);
   EXPECT_LT(dp.share_compression, 0.35);
@@ -108,7 +100,7 @@ TEST(AxisymmetricCollapse, LowCylinderYieldSurfacesAgree) {
 TEST(AxisymmetricCollapse, TallCylinderYieldSurfacesDiffer) {
   const auto dp = run_collapse("lube2004_a2", "drucker_prager", "[120, 90]");
   const auto mn = run_collapse("lube2004_a2", "matsuoka_nakai", "[120, 90]");
-  if (!is_root()) return;
+  if (!test::is_root()) return;
   for (const auto* r : {&dp, &mn}) expect_conserving(*r);
   EXPECT_GT(dp.share_compression, 0.45);
   EXPECT_NEAR(dp.runout_one_cell / lube_runout(0.2, 0.1), 1.0, 0.10);
@@ -122,7 +114,7 @@ TEST(AxisymmetricCollapse, TallCylinderYieldSurfacesDiffer) {
 // The ring spreads both ways as a surface avalanche: its dissipation is shear-dominated ([YS] Fig. 17).
 TEST(AxisymmetricCollapse, RingDissipatesInShear) {
   const auto dp = run_collapse("ring_collapse", "drucker_prager", "[180, 45]");
-  if (!is_root()) return;
+  if (!test::is_root()) return;
   expect_conserving(dp);
   EXPECT_LE(std::abs(dp.lode_peak_deg), 2.0);
   EXPECT_GT(dp.share_shear, 0.8);

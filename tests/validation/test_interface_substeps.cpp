@@ -31,9 +31,7 @@ Outcome run_collapse(int substeps, double courant) {
   Simulation sim(PETSC_COMM_WORLD, config, out);
   const RunSummary run = sim.run();
   Outcome o{run.steps, run.soil_volume_error, 0.0};
-  int rank;
-  MPI_Comm_rank(PETSC_COMM_WORLD, &rank);
-  if (rank == 0) {
+  if (test::is_root()) {
     auto history = test::read_csv((out / "history.csv").string());
     o.toe = history["toe_contour"].back();
   }
@@ -49,9 +47,7 @@ TEST(InterfaceSubsteps, TwoSweepsPerStepHalveTheStepsAndKeepTheFront) {
               two.volume_error);
   EXPECT_LT(double(two.steps), 0.6 * double(one.steps));
   EXPECT_LT(std::abs(two.volume_error), 1e-12);
-  int rank;
-  MPI_Comm_rank(PETSC_COMM_WORLD, &rank);
-  if (rank == 0) EXPECT_LT(std::abs(two.toe - one.toe), dx);
+  if (test::is_root()) EXPECT_LT(std::abs(two.toe - one.toe), dx);
 }
 
 }  // namespace

@@ -16,6 +16,13 @@ namespace granflow::test {
 
 inline std::string repo_path(const std::string& rel) { return std::string(GRANFLOW_SOURCE_DIR) + "/" + rel; }
 
+// True on rank 0 of PETSC_COMM_WORLD, where the tests read output files and assert.
+inline bool is_root() {
+  int rank;
+  MPI_Comm_rank(PETSC_COMM_WORLD, &rank);
+  return rank == 0;
+}
+
 // Columns of a CSV file with '#' comment lines and one header line.
 inline std::map<std::string, std::vector<double>> read_csv(const std::string& path) {
   std::ifstream in(path);
