@@ -69,7 +69,7 @@ double Simulation::choose_dt(double dt_previous) const {
   const double co = flow_->max_courant(dt_previous, soil_only ? &soil_->soil_fraction() : nullptr);
   double dt = co > 0.0 ? dt_previous * t.courant / co : dt_previous * t.max_growth;
   if (soil_) {
-    const double ci = soil_->interface_courant(*flow_, dt_previous);
+    const double ci = soil_->interface_courant(*flow_, dt_previous, t.interface_substeps);
     const double limit = t.interface_substeps * soil_->settings().interface_courant;
     if (ci > 0.0) dt = std::min(dt, dt_previous * limit / ci);
   }

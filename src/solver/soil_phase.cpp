@@ -30,6 +30,8 @@ SoilPhase::SoilPhase(const Grid& grid, const FlowSettings& flow, const SoilSetti
   c_ = make();
   c_tmp_ = make();
   dilatation_ = make();
+  region_[0] = make();
+  region_[1] = make();
   strain_norm_ = make();
   overburden_ = make();
   rate_norm_ = make();
@@ -41,7 +43,7 @@ SoilPhase::SoilPhase(const Grid& grid, const FlowSettings& flow, const SoilSetti
     disp_new_[a] = make();
     disp_[a]->set(0.0);
   }
-  for (Field* f : {c_.get(), c_tmp_.get(), dilatation_.get(), strain_norm_.get(), rate_norm_.get(), lode_.get(), stress_ratio_.get(), dissipation_.get(),
+  for (Field* f : {c_.get(), c_tmp_.get(), dilatation_.get(), region_[0].get(), region_[1].get(), strain_norm_.get(), rate_norm_.get(), lode_.get(), stress_ratio_.get(), dissipation_.get(),
                    overburden_.get()})
     f->set(0.0);
 }
@@ -220,20 +222,46 @@ void SoilPhase::compute_overburden(const std::array<double, 2>& gravity) {
   VecDestroy(&natural);
 }
 
-double SoilPhase::interface_courant(const FlowSolver& flow, double dt) const {
+const Field& SoilPhase::soil_region(int reach) const {
+  // c's ghosts are current: every change of c ends with fill_fraction_ghosts. The region's own
+  // domain-boundary ghosts stay 0 (set at construction); soil coming in through a boundary is in c's.
+  const Field* in = c_.get();
+  for (int k = 0; k < std::max(reach, 1); ++k) {
+    Field& out = *region_[k % 2];
+    {
+      ConstFieldArray a(grid_.field_dm(), in->local());
+      FieldArray r(grid_.field_dm(), out.global());
+      interface::soil_region(a.data(), grid_.owned(), r.data());
+    }
+    out.scatter_to_local();
+    in = &out;
+  }
+  return *in;
+}
+
+double SoilPhase::interface_courant(const FlowSolver& flow, double dt, int substeps) const {
   ConstFieldArray fx = local_read(grid_, flow.face_velocity(0)), fy = local_read(grid_, flow.face_velocity(1));
+  ConstFieldArray region(grid_.field_dm(), soil_region(substeps).local());
   const double co = std::max(
-      interface::max_sweep_courant(0, dt, fx.data(), grid_.dx_data(), grid_.dy_data(), grid_.owned(), radial_weights()),
-      interface::max_sweep_courant(1, dt, fy.data(), grid_.dx_data(), grid_.dy_data(), grid_.owned()));
+      interface::max_sweep_courant(0, dt, fx.data(), grid_.dx_data(), grid_.dy_data(), grid_.owned(), radial_weights(),
+                                   region.data()),
+      interface::max_sweep_courant(1, dt, fy.data(), grid_.dx_data(), grid_.dy_data(), grid_.owned(), {},
+                                   region.data()));
   return mpi_max(grid_.comm(), co);
 }
 
 void SoilPhase::advect(const FlowSolver& flow, double dt) {
-  const double co = interface_courant(flow, dt);
   // A step sized by this limit from these same face velocities lands on it up to round-off, which
   // differs between rank layouts; without the allowance ceil() would take one sweep or two by chance.
   constexpr double allowance = 1e-9;
-  const int substeps = std::max(1, int(std::ceil(co / settings_.interface_courant - allowance)));
+  auto substeps_for = [&](double co) { return std::max(1, int(std::ceil(co / settings_.interface_courant - allowance))); };
+  // The faces that can carry soil depend on how many sub-steps it moves in: widen the region until
+  // it covers them (once at most, in practice).
+  int substeps = substeps_for(interface_courant(flow, dt, 1));
+  for (int reach = 1; substeps > reach;) {
+    reach = substeps;
+    substeps = std::max(substeps, substeps_for(interface_courant(flow, dt, reach)));
+  }
   const double h = dt / substeps;
   const auto& b = grid_.owned();
   ConstFieldArray fx = local_read(grid_, flow.face_velocity(0)), fy = local_read(grid_, flow.face_velocity(1));

@@ -42,8 +42,9 @@ class SoilPhase {
   void refresh(const FlowSolver& flow);
   // Eulerian displacement ([VoF] Eq. 16) with the soil velocity c v, explicit upwind.
   void transport_displacement(const FlowSolver& flow, double dt);
-  // Largest Courant number of one VoF sweep for a step dt.
-  double interface_courant(const FlowSolver& flow, double dt) const;
+  // Largest Courant number of one VoF sweep for a step dt, over the faces that can carry soil in
+  // `substeps` sub-steps: those within that many cells of it (interface::soil_region).
+  double interface_courant(const FlowSolver& flow, double dt, int substeps = 1) const;
 
   // Diagnostic fields at output: ||D|| ([YS] Eq. 8), Lode angle in degrees, strain norm.
   void compute_diagnostics(const FlowSolver& flow);
@@ -72,6 +73,8 @@ class SoilPhase {
   void restore_state();
  private:
   void fill_displacement_ghosts();
+  // The cells within `reach` cells of any soil (1 there, else 0), ghosts filled.
+  const Field& soil_region(int reach) const;
   interface::RadialWeights radial_weights() const { return {grid_.radius_face_data(), grid_.radius_centre_data()}; }
   double compute_dissipation(const FlowSolver& flow);
   double mixture_viscosity(double c, double pressure, const rheology::StrainRate& rate) const;
@@ -84,6 +87,7 @@ class SoilPhase {
   double outflow_ = 0.0, saved_outflow_ = 0.0;  // this rank's soil volume carried out of the domain
   std::optional<rheology::GranularRheology> rheology_;
   std::unique_ptr<Field> c_, c_tmp_, dilatation_;
+  std::unique_ptr<Field> region_[2];  // scratch of soil_region
   std::unique_ptr<Field> disp_[2], disp_new_[2];
   std::unique_ptr<Field> strain_norm_, rate_norm_, lode_, stress_ratio_, dissipation_;
   rheology::LodeHistogram lode_rate_, lode_energy_;  // this rank's cells: W and J per bin

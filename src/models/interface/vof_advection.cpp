@@ -143,11 +143,12 @@ void dilatation_indicator(const double* const* c, CellBox o, double** cc) {
 }
 
 double max_sweep_courant(int axis, double dt, const double* const* u, const double* dx,
-                         const double* dy, CellBox o, RadialWeights radial) {
+                         const double* dy, CellBox o, RadialWeights radial, const double* const* region) {
   double cmax = 0.0;
   if (axis == 0) {
     for (int j = o.ys; j < o.ys + o.ym; ++j)
       for (int i = o.xs - 1; i < o.xs + o.xm; ++i) {
+        if (region != nullptr && region[j][i] == 0.0 && region[j][i + 1] == 0.0) continue;
         double h = std::min(dx[i], dx[i + 1]);
         // The face's swept volume relative to each neighbour's volume: r_f / r_c, the larger of
         // the two (the inner cell's, whose centre lies at the smaller radius).
@@ -157,10 +158,22 @@ double max_sweep_courant(int axis, double dt, const double* const* u, const doub
       }
   } else {
     for (int j = o.ys - 1; j < o.ys + o.ym; ++j)
-      for (int i = o.xs; i < o.xs + o.xm; ++i)
+      for (int i = o.xs; i < o.xs + o.xm; ++i) {
+        if (region != nullptr && region[j][i] == 0.0 && region[j + 1][i] == 0.0) continue;
         cmax = std::max(cmax, std::abs(u[j][i]) * dt / std::min(dy[j], dy[j + 1]));
+      }
   }
   return cmax;
+}
+
+void soil_region(const double* const* in, CellBox o, double** region) {
+  for (int j = o.ys; j < o.ys + o.ym; ++j)
+    for (int i = o.xs; i < o.xs + o.xm; ++i) {
+      bool any = false;
+      for (int dj = -1; dj <= 1; ++dj)
+        for (int di = -1; di <= 1; ++di) any = any || in[j + dj][i + di] != 0.0;
+      region[j][i] = any ? 1.0 : 0.0;
+    }
 }
 
 }  // namespace granflow::interface
