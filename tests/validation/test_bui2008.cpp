@@ -95,8 +95,10 @@ Bui2008Run run_bui2008(int nx, const std::string& case_name = "bui2008_experimen
 }
 
 // The suite's run, 150 x 50: what the issue asks of the paper's resolution where the coarse mesh
-// meets it too (soil volume, rest); the energy budget (+7.5 % here, +3.8 % at 300 x 100), run-out
-// (+4 %) and RMS (4.0 mm) held to looser guards.
+// meets it too (soil volume, rest); the energy budget (+7.8 % here, +3.8 % at 300 x 100), run-out
+// (+4 %) and RMS (4.0 mm) held to looser guards. A fragment of the paper's model's thin tongue may
+// reach the open side here: 2.9e-5 of the soil leaves in this run, which the volume check counts
+// (what is in the domain plus what went out); none leaves at 300 x 100.
 TEST(Bui2008Experiment, HalfResolutionVolumeEnergyRestAndPile) {
   const Bui2008Run r = run_bui2008(150);
   if (!test::is_root()) return;
@@ -108,8 +110,9 @@ TEST(Bui2008Experiment, HalfResolutionVolumeEnergyRestAndPile) {
   EXPECT_LT(r.rms, 0.005);
 }
 
-// Everything the issue asks of the paper's resolution. Not met yet (docs/validation.md): run-out
-// +11.8 % and RMS 4.3 mm. About 14 minutes; run with --gtest_also_run_disabled_tests.
+// Everything the issue asks of the paper's resolution. Not met (docs/validation.md): one-cell
+// run-out +15.8 % (a detached lump at 0.51 m; the pile's own toe is at 0.494 m, +11.8 %) and RMS
+// 4.3 mm. About 13 minutes on one rank; run with --gtest_also_run_disabled_tests.
 TEST(Bui2008Experiment, DISABLED_PaperResolutionAgainstExperiment) {
   const Bui2008Run r = run_bui2008(300);
   if (!test::is_root()) return;
@@ -122,25 +125,24 @@ TEST(Bui2008Experiment, DISABLED_PaperResolutionAgainstExperiment) {
 }
 
 // The same collapse with the friction rate-dependent, mu(I) in place of sin(phi) ([YS] Eq. 25), and
-// no constant fitted to the experiment (cases/bui2008_experiment_mu_of_i.toml). 150 x 50 gave RMS
-// 1.4 mm, contour run-out -8 %, one cell -11 % (a cell of 4 mm reads a thicker layer than the
-// experiment's tip), energy +7 %. At rest but for the half-full tip cell, which creeps at 1.2 mm/s
-// on this mesh (the contour moves 0.03 cells between t = 1 and 2 s; at 300 x 100, 9e-5 m/s).
+// no constant fitted to the experiment (cases/bui2008_experiment_mu_of_i.toml). 150 x 50 gives RMS
+// 1.5 mm, contour run-out -8.6 %, one cell -10 % (a cell of 4 mm reads a thicker layer than the
+// experiment's tip), energy +6.6 %, largest soil speed at the end 4e-5 m/s.
 TEST(Bui2008MuOfI, HalfResolutionSurfaceRunOutAndRest) {
   const Bui2008Run r = run_bui2008(150, "bui2008_experiment_mu_of_i");
   if (!test::is_root()) return;
   EXPECT_LT(r.volume_error, 1e-10);
   EXPECT_LT(std::abs(r.accounted / r.released - 1.0), 0.10);
   EXPECT_LT(r.contour_drift, 0.2 * r.dx);
-  EXPECT_LT(r.soil_speed, 2e-3);
+  EXPECT_LT(r.soil_speed, 1e-3);
   EXPECT_LT(r.rms, 0.002);
   EXPECT_LT(std::abs(r.toe_contour / experiment_runout - 1), 0.10);
   EXPECT_LT(std::abs(r.toe_cell / experiment_runout - 1), 0.15);
 }
 
-// What the issue asks of the paper's resolution, for the mu(I) case. Measured: RMS 1.35 mm, contour
-// run-out -2.9 %, energy +3.3 %, soil speed 9e-5 m/s; the one-cell run-out is -7.7 %, so this fails
-// on it. About 8 minutes on two ranks; run with --gtest_also_run_disabled_tests.
+// What the issue asks of the paper's resolution, for the mu(I) case. Measured: RMS 1.36 mm, contour
+// run-out -2.9 %, energy +3.4 %, soil speed 6e-5 m/s; the one-cell run-out is -7.7 %, so this fails
+// on it. About 5 minutes on two ranks; run with --gtest_also_run_disabled_tests.
 TEST(Bui2008MuOfI, DISABLED_PaperResolutionAgainstExperiment) {
   const Bui2008Run r = run_bui2008(300, "bui2008_experiment_mu_of_i");
   if (!test::is_root()) return;
