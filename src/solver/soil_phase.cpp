@@ -8,6 +8,7 @@
 #include <numbers>
 
 #include "models/interface/vof_advection.hpp"
+#include "models/interface/wetted_fraction.hpp"
 #include "models/rheology/invariants.hpp"
 #include "models/strain/euler_almansi.hpp"
 #include "operators/face_interpolation.hpp"
@@ -178,7 +179,12 @@ void SoilPhase::update_face_viscosity(FlowSolver& flow) const {
         const double pressure = p[j][i] + rho[j][i] * g[axis] * half;
         if (at_face) {  // the face between the ghost and the cell, the ghost's velocity encoding the wall
           const int il = sign < 0 ? i - (axis == 0) : i, jl = sign < 0 ? j - (axis == 1) : j;
-          return mixture_viscosity(c[j][i], pressure, face_strain_rate(grid_, u.data(), v.data(), axis, il, jl));
+          // The face's own soil fraction: how much of it the cell's soil covers. A film on the floor
+          // covers all of the floor under it, so the floor rubs on soil, not on the air mixture.
+          const double cf = face_fraction ? interface::wetted_side_fraction(c.data(), grid_.dx_data(), grid_.dy_data(),
+                                                                            i, j, axis, sign)
+                                          : c[j][i];
+          return mixture_viscosity(cf, pressure, face_strain_rate(grid_, u.data(), v.data(), axis, il, jl));
         }
         return mixture_viscosity(c[j][i], pressure, cell_strain_rate(grid_, u.data(), v.data(), i, j));
       });

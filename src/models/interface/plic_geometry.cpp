@@ -69,6 +69,15 @@ double rectangle_fraction(Normal2 n, double alpha, double x0, double x1, double 
   return unit_square_fraction(n.nx * (x1 - x0), n.ny * (y1 - y0), alpha - n.nx * x0 - n.ny * y0);
 }
 
+double side_fraction(Normal2 n, double alpha, int axis, int sign) {
+  // Along the side, with s in [-0.5, 0.5] the coordinate along it, the soil is where a s <= b.
+  const double a = axis == 0 ? n.ny : n.nx;
+  const double b = alpha - 0.5 * sign * (axis == 0 ? n.nx : n.ny);
+  if (a == 0.0) return b >= 0.0 ? 1.0 : 0.0;
+  const double f = a > 0.0 ? b / a + 0.5 : 0.5 - b / a;
+  return std::clamp(f, 0.0, 1.0);
+}
+
 Normal2 to_physical(Normal2 n, double dx, double dy) { return normalise_l1(n.nx / dx, n.ny / dy); }
 
 Normal2 youngs_normal(const Block3x3& b) {

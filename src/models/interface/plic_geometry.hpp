@@ -70,6 +70,11 @@ double cell_fraction(Normal2 n, double alpha);
 // relative to the sub-rectangle's own area.
 double rectangle_fraction(Normal2 n, double alpha, double x0, double x1, double y0, double y1);
 
+// Length fraction of one side of the unit cell lying on the soil side of the line: the side normal
+// to `axis` (0 = x, 1 = y) at X or Y = sign * 0.5 (sign = -1 or +1). A side the line only touches
+// counts as soil if the soil lies along it (n.X * X + n.Y * Y <= alpha everywhere on it).
+double side_fraction(Normal2 n, double alpha, int axis, int sign);
+
 // Area fraction of the unit square [0,1]^2 where mx*X + my*Y <= a (any signs, any magnitudes,
 // not necessarily normalised). Exact, cancellation-free piecewise formula; building block of the
 // functions above.

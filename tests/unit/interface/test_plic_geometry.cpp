@@ -243,5 +243,41 @@ TEST(PlicGeometry, NormalPointsOutOfSoilAndUniformIsUndefined) {
   EXPECT_NEAR(p.nx / p.ny, 0.5, 1e-15);
 }
 
+// A side's soil fraction is the limit of the fraction of a thin strip along it.
+TEST(PlicGeometry, SideFractionIsTheLimitOfAThinStrip) {
+  std::mt19937_64 rng(7);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  const double eps = 1e-7;
+  int compared = 0;
+  for (const Normal2 n : test_normals(rng, 500)) {
+    const double c = u(rng);
+    const double alpha = line_alpha(c, n);
+    const double strip[2][2] = {{rectangle_fraction(n, alpha, -0.5, -0.5 + eps, -0.5, 0.5),
+                                 rectangle_fraction(n, alpha, 0.5 - eps, 0.5, -0.5, 0.5)},
+                                {rectangle_fraction(n, alpha, -0.5, 0.5, -0.5, -0.5 + eps),
+                                 rectangle_fraction(n, alpha, -0.5, 0.5, 0.5 - eps, 0.5)}};
+    for (int axis = 0; axis < 2; ++axis)
+      for (int k = 0; k < 2; ++k) {
+        const double f = side_fraction(n, alpha, axis, 2 * k - 1);
+        EXPECT_GE(f, 0.0);
+        EXPECT_LE(f, 1.0);
+        EXPECT_NEAR(f, strip[axis][k], 1e-5) << "n = (" << n.nx << ", " << n.ny << "), c = " << c;
+        ++compared;
+      }
+  }
+  EXPECT_GT(compared, 2000);
+  // Exact cases: a horizontal layer covers its bottom side only; a vertical one covers c of it.
+  const Normal2 up{0.0, 1.0}, right{1.0, 0.0};
+  EXPECT_EQ(side_fraction(up, line_alpha(0.2, up), 1, -1), 1.0);
+  EXPECT_EQ(side_fraction(up, line_alpha(0.2, up), 1, +1), 0.0);
+  EXPECT_NEAR(side_fraction(up, line_alpha(0.2, up), 0, -1), 0.2, 1e-15);
+  EXPECT_NEAR(side_fraction(right, line_alpha(0.3, right), 1, -1), 0.3, 1e-15);
+  // The diagonal through the centre, soil below-left: the west and south sides are soil.
+  const Normal2 diagonal{0.5, 0.5};
+  EXPECT_EQ(side_fraction(diagonal, 0.0, 1, -1), 1.0);
+  EXPECT_EQ(side_fraction(diagonal, 0.0, 0, -1), 1.0);
+  EXPECT_EQ(side_fraction(diagonal, 0.0, 1, +1), 0.0);
+}
+
 }  // namespace
 }  // namespace granflow::interface
