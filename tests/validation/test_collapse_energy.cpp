@@ -22,7 +22,8 @@ TEST(GranularCollapse, EnergyBudgetClosesWithLinearDensity) {
                                       {"output.progress_seconds=0", "output.interval=0.3", "time.end=0.6",
                                        "mesh.cells=[150, 50]", "mixture.density=\"linear\"",
                                        // the projection, as the case was written for it (docs/validation.md)
-                                       "numerics.pressure_coupling=projection", "soil.face_fraction=cells"});
+                                       "numerics.pressure_coupling=projection", "soil.face_fraction=cells",
+                                       "time.courant=0.5", "time.interface_substeps=1"});
   Simulation sim(PETSC_COMM_WORLD, config, out);
   const RunSummary run = sim.run();
   int rank;
