@@ -69,6 +69,19 @@ double rectangle_fraction(Normal2 n, double alpha, double x0, double x1, double 
   return unit_square_fraction(n.nx * (x1 - x0), n.ny * (y1 - y0), alpha - n.nx * x0 - n.ny * y0);
 }
 
+CellLine cell_line(const Block3x3& b) {
+  double lo = b.c[0][0], hi = b.c[0][0];
+  for (const auto& row : b.c)
+    for (const double v : row) {
+      lo = std::min(lo, v);
+      hi = std::max(hi, v);
+    }
+  if (hi - lo < 1e-8) return {};
+  const Normal2 n = myc_normal(b);
+  if (n.nx == 0.0 && n.ny == 0.0) return {};
+  return {true, n, line_alpha(b.c[1][1], n)};
+}
+
 double side_fraction(Normal2 n, double alpha, int axis, int sign) {
   // Along the side, with s in [-0.5, 0.5] the coordinate along it, the soil is where a s <= b.
   const double a = axis == 0 ? n.ny : n.nx;

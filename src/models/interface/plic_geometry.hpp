@@ -41,6 +41,17 @@ inline Block3x3 gather_block(const double* const* c, const double* dx, const dou
   return b;
 }
 
+// The PLIC line of a mixed cell (0 < c < 1) at the centre of a block: MYC normal and the alpha that
+// holds the cell's c. `found` is false where the block is too flat to orient (spread of c below
+// 1e-8): MYC's normal is scale-invariant, so round-off noise in a uniform mixed region would
+// otherwise be turned into an arbitrary sharp line. Callers then treat the cell as uniform, at c.
+struct CellLine {
+  bool found = false;
+  Normal2 n;
+  double alpha = 0.0;
+};
+CellLine cell_line(const Block3x3& b);
+
 // Youngs' normal: -grad c averaged over the four corners of the centre cell. Exact for lines
 // aligned with the grid axes or diagonals, first order otherwise.
 Normal2 youngs_normal(const Block3x3& b);

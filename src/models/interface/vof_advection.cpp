@@ -9,11 +9,6 @@ namespace granflow::interface {
 
 namespace {
 
-// Below this spread of c over the 3x3 block there is no interface to reconstruct: MYC's normal is
-// scale-invariant, so round-off noise in a uniform mixed region would otherwise be turned into an
-// arbitrary sharp line and amplified to O(1) within one sweep. Such blocks use donor-cell fluxes.
-constexpr double kFlatBlock = 1e-8;
-
 // Soil fraction of the strip of relative width s next to the face the flow leaves through, in the
 // upwind cell (i, j). `to_high` is true when that face is the cell's east/north face.
 inline double swept_fraction(const double* const* c, const double* dx, const double* dy, int i,
@@ -22,23 +17,15 @@ inline double swept_fraction(const double* const* c, const double* dx, const dou
   // Pure cells (the vast majority) need no reconstruction, and give exact 0/1 fluxes.
   if (cu <= 0.0) return 0.0;
   if (cu >= 1.0) return 1.0;
-  const Block3x3 b = gather_block(c, dx, dy, i, j);
-  double lo_c = b.c[0][0], hi_c = b.c[0][0];
-  for (const auto& row : b.c)
-    for (const double v : row) {
-      lo_c = std::min(lo_c, v);
-      hi_c = std::max(hi_c, v);
-    }
-  // Flat neighbourhood: no orientation, so take the line parallel to the flow (donor cell).
-  if (hi_c - lo_c < kFlatBlock) return cu;
-  const Normal2 n = myc_normal(b);
-  if (n.nx == 0.0 && n.ny == 0.0) return cu;
-  const double alpha = line_alpha(cu, n);
+  // A flat neighbourhood has no orientation (a line would amplify round-off to O(1) within one
+  // sweep), so take the line parallel to the flow (donor cell).
+  const CellLine line = cell_line(gather_block(c, dx, dy, i, j));
+  if (!line.found) return cu;
   s = std::min(s, 1.0);
   const double lo = to_high ? 0.5 - s : -0.5;
   const double hi = to_high ? 0.5 : -0.5 + s;
-  return axis == 0 ? rectangle_fraction(n, alpha, lo, hi, -0.5, 0.5)
-                   : rectangle_fraction(n, alpha, -0.5, 0.5, lo, hi);
+  return axis == 0 ? rectangle_fraction(line.n, line.alpha, lo, hi, -0.5, 0.5)
+                   : rectangle_fraction(line.n, line.alpha, -0.5, 0.5, lo, hi);
 }
 
 // Signed soil volume per unit face area crossing face (i, j) in dt (F), and its complement
