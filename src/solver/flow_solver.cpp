@@ -785,19 +785,47 @@ std::vector<Field*> FlowSolver::state_fields() {
   std::vector<Field*> f{vel_[0].get(), vel_[1].get(), face_[0].get(), face_[1].get(),
                         face_force_[0].get(), face_force_[1].get(), p_.get()};
   if (cell_force_[0]) f.insert(f.end(), {cell_force_[0].get(), cell_force_[1].get()});
+  // u^{n-1}, so that a step taken again extrapolates from the same two states.
+  if (settings_.numerics.extrapolated_first_iterate)
+    f.insert(f.end(), {vel_old_[0].get(), vel_old_[1].get(), face_old_[0].get(), face_old_[1].get()});
   return f;
 }
 
-void FlowSolver::save_state() { saved_.save(state_fields()); }
-void FlowSolver::restore_state() { saved_.restore(state_fields()); }
+// The step's old-time fields become u^n and its first outer iterate u^n + ratio (u^n - u^{n-1}),
+// ratio = dt / dt_previous, in place of u^n. The viscosity of the first Picard iteration is then
+// taken from where the flow is heading, not from where it was: a region coming to rest gets its
+// high viscosity one iteration sooner (docs/method.md). On entry the old-time fields hold u^{n-1}.
+void FlowSolver::extrapolate_first_iterate(double ratio) {
+  for (int a = 0; a < 2; ++a)
+    for (auto [now, old] : {std::pair{vel_[a].get(), vel_old_[a].get()}, std::pair{face_[a].get(), face_old_[a].get()}})
+      for (int copy = 0; copy < 2; ++copy) {  // owned values and ghosts alike
+        Vec x = copy == 0 ? now->global() : now->local(), x_old = copy == 0 ? old->global() : old->local();
+        VecAYPX(x_old, -1.0, x);    // u^n - u^{n-1}
+        VecAXPY(x, ratio, x_old);   // the first iterate
+        VecAYPX(x_old, -ratio, x);  // u^n
+      }
+}
+
+void FlowSolver::save_state() {
+  saved_.save(state_fields());
+  saved_dt_ = dt_;
+}
+void FlowSolver::restore_state() {
+  saved_.restore(state_fields());
+  dt_ = saved_dt_;
+}
 
 StepReport FlowSolver::step(double dt) {
+  const double dt_previous = dt_;
   dt_ = dt;
   StepReport report;
-  for (int a = 0; a < 2; ++a) {
-    vel_old_[a]->copy_from(*vel_[a]);
-    face_old_[a]->copy_from(*face_[a]);
-  }
+  if (settings_.numerics.extrapolated_first_iterate && dt_previous > 0.0)
+    extrapolate_first_iterate(dt / dt_previous);
+  else
+    for (int a = 0; a < 2; ++a) {
+      vel_old_[a]->copy_from(*vel_[a]);
+      face_old_[a]->copy_from(*face_[a]);
+    }
   const auto& num = settings_.numerics;
   Vec u_start[2];
   for (int a = 0; a < 2; ++a) VecDuplicate(vel_[a]->global(), &u_start[a]);

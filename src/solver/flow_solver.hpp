@@ -103,6 +103,7 @@ class FlowSolver {
   void face_viscosity_from_cells();
   void assemble_momentum(double dt);
   void compute_face_forces();
+  void extrapolate_first_iterate(double ratio);
   int solve_momentum();
   void compute_hbya();
   // Coupled velocity-pressure solve (coupled_step.cpp).
@@ -148,7 +149,8 @@ class FlowSolver {
   std::vector<double> side_head_[2];  // west, east: hydrostatic head of the boundary column per row
   bool has_pressure_boundary_ = false;
   bool shared_momentum_matrix_ = true;  // no slip walls: u and v share their matrix
-  double dt_ = 0.0;
+  double dt_ = 0.0;        // the last step's size
+  double saved_dt_ = 0.0;  // save_state()
 };
 
 }  // namespace granflow
