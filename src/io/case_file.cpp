@@ -316,8 +316,8 @@ CaseConfig read_case(const toml::table& root, const std::filesystem::path& sourc
     n.require_range("outer_iterations", num.outer_iterations, 1, 1000);
     num.outer_tolerance = n.number("outer_tolerance", num.outer_tolerance);
     n.require_range("outer_tolerance", num.outer_tolerance, 0.0, 1.0);
-    num.extrapolated_first_iterate =
-        n.choice("first_iterate", "previous_step", {"previous_step", "extrapolated"}) == "extrapolated";
+    num.look_ahead_viscosity =
+        n.choice("first_viscosity", "previous_step", {"previous_step", "look_ahead"}) == "look_ahead";
     num.pressure_correctors = int(n.integer("pressure_correctors", num.pressure_correctors));
     n.require_range("pressure_correctors", num.pressure_correctors, 1, 100);
     num.momentum_predictor = n.boolean("momentum_predictor", num.momentum_predictor);

@@ -21,8 +21,9 @@ struct NumericsSettings {
   double blending = 0.7;        // central share of the blended scheme
   int outer_iterations = 3;     // PIMPLE outer iterations per step (properties updated in each)
   double outer_tolerance = 1e-5;  // stop the outer loop when the velocity changes less than this (relative)
-  // First outer iterate of a step: u^n (false) or extrapolated from u^n and u^{n-1} (true).
-  bool extrapolated_first_iterate = false;
+  // Viscosity of a step's first outer iteration: from u^n (false), or the larger of that and the
+  // viscosity from the velocity extrapolated to the end of the step (true, "look_ahead").
+  bool look_ahead_viscosity = false;
   int pressure_correctors = 2;  // PISO pressure corrections per outer iteration
   bool momentum_predictor = true;
   bool transpose_stress = true;  // explicit div(mu grad(v)^T) term

@@ -50,6 +50,8 @@ FlowSolver::FlowSolver(const Grid& grid, const FlowSettings& settings) : grid_(g
   for (int a = 0; a < 2; ++a) {
     vel_[a] = make_field(grid);
     vel_old_[a] = make_field(grid);
+    vel_ahead_[a] = make_field(grid);
+    face_mu_now_[a] = make_field(grid);
     face_[a] = make_field(grid);
     face_old_[a] = make_field(grid);
     face_force_[a] = make_field(grid);
@@ -62,6 +64,7 @@ FlowSolver::FlowSolver(const Grid& grid, const FlowSettings& settings) : grid_(g
     face_force_[a]->set(0.0);
   }
   p_ = make_field(grid);
+  mu_now_ = make_field(grid);
   rho_ = make_field(grid);
   mu_ = make_field(grid);
   p_->set(0.0);
@@ -786,24 +789,42 @@ std::vector<Field*> FlowSolver::state_fields() {
                         face_force_[0].get(), face_force_[1].get(), p_.get()};
   if (cell_force_[0]) f.insert(f.end(), {cell_force_[0].get(), cell_force_[1].get()});
   // u^{n-1}, so that a step taken again extrapolates from the same two states.
-  if (settings_.numerics.extrapolated_first_iterate)
-    f.insert(f.end(), {vel_old_[0].get(), vel_old_[1].get(), face_old_[0].get(), face_old_[1].get()});
+  if (settings_.numerics.look_ahead_viscosity) f.insert(f.end(), {vel_old_[0].get(), vel_old_[1].get()});
   return f;
 }
 
-// The step's old-time fields become u^n and its first outer iterate u^n + ratio (u^n - u^{n-1}),
-// ratio = dt / dt_previous, in place of u^n. The viscosity of the first Picard iteration is then
-// taken from where the flow is heading, not from where it was: a region coming to rest gets its
-// high viscosity one iteration sooner (docs/method.md). On entry the old-time fields hold u^{n-1}.
-void FlowSolver::extrapolate_first_iterate(double ratio) {
-  for (int a = 0; a < 2; ++a)
-    for (auto [now, old] : {std::pair{vel_[a].get(), vel_old_[a].get()}, std::pair{face_[a].get(), face_old_[a].get()}})
-      for (int copy = 0; copy < 2; ++copy) {  // owned values and ghosts alike
-        Vec x = copy == 0 ? now->global() : now->local(), x_old = copy == 0 ? old->global() : old->local();
-        VecAYPX(x_old, -1.0, x);    // u^n - u^{n-1}
-        VecAXPY(x, ratio, x_old);   // the first iterate
-        VecAYPX(x_old, -ratio, x);  // u^n
-      }
+// The velocity extrapolated to the end of the step, u^n + ratio (u^n - u^{n-1}) with ratio =
+// dt / dt_previous (on entry vel_old_ still holds u^{n-1}).
+void FlowSolver::extrapolate_velocity(double ratio) {
+  for (int a = 0; a < 2; ++a) {
+    vel_ahead_[a]->copy_from(*vel_[a]);
+    for (int copy = 0; copy < 2; ++copy)  // owned values and ghosts alike
+      VecAXPBY(copy == 0 ? vel_ahead_[a]->global() : vel_ahead_[a]->local(), -ratio, 1.0 + ratio,
+               copy == 0 ? vel_old_[a]->global() : vel_old_[a]->local());
+  }
+}
+
+// Properties of the first outer iteration under numerics.first_viscosity = "look_ahead": each cell
+// and face takes the larger of its viscosities from u^n and from the extrapolated velocity. A region
+// coming to rest gets its high plastic viscosity one Picard iteration sooner. One starting to move
+// keeps that of u^n: a viscosity taken from a rate that grows ahead of the solution falls ahead of
+// it too, and where the yield stress is about zero (a fringe of soil) that feedback runs away
+// (docs/method.md).
+void FlowSolver::update_properties_ahead() {
+  update_properties();
+  mu_now_->copy_from(*mu_);
+  for (int a = 0; a < 2; ++a) face_mu_now_[a]->copy_from(*face_mu_[a]);
+  for (int a = 0; a < 2; ++a) std::swap(vel_[a], vel_ahead_[a]);  // stands in while properties are computed
+  update_properties();
+  for (int a = 0; a < 2; ++a) std::swap(vel_[a], vel_ahead_[a]);
+  for (int copy = 0; copy < 2; ++copy) {
+    auto keep_larger = [copy](Field& f, const Field& now) {
+      Vec x = copy == 0 ? f.global() : f.local();
+      VecPointwiseMax(x, x, copy == 0 ? now.global() : now.local());
+    };
+    keep_larger(*mu_, *mu_now_);
+    for (int a = 0; a < 2; ++a) keep_larger(*face_mu_[a], *face_mu_now_[a]);
+  }
 }
 
 void FlowSolver::save_state() {
@@ -819,19 +840,19 @@ StepReport FlowSolver::step(double dt) {
   const double dt_previous = dt_;
   dt_ = dt;
   StepReport report;
-  if (settings_.numerics.extrapolated_first_iterate && dt_previous > 0.0)
-    extrapolate_first_iterate(dt / dt_previous);
-  else
-    for (int a = 0; a < 2; ++a) {
-      vel_old_[a]->copy_from(*vel_[a]);
-      face_old_[a]->copy_from(*face_[a]);
-    }
+  const bool look_ahead = settings_.numerics.look_ahead_viscosity && dt_previous > 0.0;
+  if (look_ahead) extrapolate_velocity(dt / dt_previous);
+  for (int a = 0; a < 2; ++a) {
+    vel_old_[a]->copy_from(*vel_[a]);
+    face_old_[a]->copy_from(*face_[a]);
+  }
   const auto& num = settings_.numerics;
   Vec u_start[2];
   for (int a = 0; a < 2; ++a) VecDuplicate(vel_[a]->global(), &u_start[a]);
   for (int outer = 0; outer < num.outer_iterations; ++outer) {
     for (int a = 0; a < 2; ++a) VecCopy(vel_[a]->global(), u_start[a]);
-    update_properties();
+    if (outer == 0 && look_ahead) update_properties_ahead();
+    else update_properties();
     assemble_momentum(dt);
     if (num.pressure_coupling == PressureCoupling::coupled) {
       report.pressure_iterations += solve_coupled();

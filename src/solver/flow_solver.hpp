@@ -103,7 +103,8 @@ class FlowSolver {
   void face_viscosity_from_cells();
   void assemble_momentum(double dt);
   void compute_face_forces();
-  void extrapolate_first_iterate(double ratio);
+  void extrapolate_velocity(double ratio);
+  void update_properties_ahead();
   int solve_momentum();
   void compute_hbya();
   // Coupled velocity-pressure solve (coupled_step.cpp).
@@ -124,6 +125,7 @@ class FlowSolver {
   PropertyUpdate face_viscosity_update_;
 
   std::unique_ptr<Field> vel_[2], vel_old_[2], face_[2], face_old_[2], face_force_[2];
+  std::unique_ptr<Field> vel_ahead_[2], mu_now_, face_mu_now_[2];  // first_viscosity = look_ahead  // extrapolated velocity for the first viscosity
   std::unique_ptr<Field> p_, rho_, mu_, face_mu_[2];
   std::unique_ptr<Field> body_force_[2];
   FieldSnapshot saved_;  // save_state()
