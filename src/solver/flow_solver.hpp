@@ -125,7 +125,8 @@ class FlowSolver {
   PropertyUpdate face_viscosity_update_;
 
   std::unique_ptr<Field> vel_[2], vel_old_[2], face_[2], face_old_[2], face_force_[2];
-  std::unique_ptr<Field> vel_ahead_[2], mu_now_, face_mu_now_[2];  // first_viscosity = look_ahead  // extrapolated velocity for the first viscosity
+  // first_viscosity = look_ahead: the extrapolated velocity, and the viscosities at u^n it is weighed against
+  std::unique_ptr<Field> vel_ahead_[2], mu_now_, face_mu_now_[2];
   std::unique_ptr<Field> p_, rho_, mu_, face_mu_[2];
   std::unique_ptr<Field> body_force_[2];
   FieldSnapshot saved_;  // save_state()
