@@ -318,6 +318,8 @@ CaseConfig read_case(const toml::table& root, const std::filesystem::path& sourc
     n.require_range("outer_tolerance", num.outer_tolerance, 0.0, 1.0);
     num.look_ahead_viscosity =
         n.choice("first_viscosity", "previous_step", {"previous_step", "look_ahead"}) == "look_ahead";
+    num.mean_viscosity_pressure =
+        n.choice("viscosity_pressure", "last_iterate", {"last_iterate", "mean_of_last_two"}) == "mean_of_last_two";
     num.pressure_correctors = int(n.integer("pressure_correctors", num.pressure_correctors));
     n.require_range("pressure_correctors", num.pressure_correctors, 1, 100);
     num.momentum_predictor = n.boolean("momentum_predictor", num.momentum_predictor);

@@ -24,6 +24,10 @@ struct NumericsSettings {
   // Viscosity of a step's first outer iteration: from u^n (false), or the larger of that and the
   // viscosity from the velocity extrapolated to the end of the step (true, "look_ahead").
   bool look_ahead_viscosity = false;
+  // Pressure in the yield stress of the outer iterations after the first: the last iterate's (false),
+  // or the mean of the last two (true, "mean_of_last_two"), which cancels a two-iteration cycle of a
+  // stiff cell's pressure and viscosity (docs/method.md). A converged step is the same either way.
+  bool mean_viscosity_pressure = false;
   int pressure_correctors = 2;  // PISO pressure corrections per outer iteration
   bool momentum_predictor = true;
   bool transpose_stress = true;  // explicit div(mu grad(v)^T) term

@@ -68,6 +68,10 @@ FlowSolver::FlowSolver(const Grid& grid, const FlowSettings& settings) : grid_(g
   rho_ = make_field(grid);
   mu_ = make_field(grid);
   p_->set(0.0);
+  if (settings_.numerics.mean_viscosity_pressure) {
+    p_last_iterate_ = make_field(grid);
+    p_mean_ = make_field(grid);
+  }
   rho_->set(1.0);
   mu_->set(1.0);
   for (auto& f : face_mu_) {
@@ -827,6 +831,24 @@ void FlowSolver::update_properties_ahead() {
   }
 }
 
+// Properties of an outer iteration after the first under numerics.viscosity_pressure =
+// "mean_of_last_two": the yield stress from the mean of the pressures of the last two iterations. In a
+// cell far stiffer than its neighbours (the thin tip of a pile) the pressure is weakly tied to them
+// and the Picard loop can settle into a two-iteration cycle: stiff, its pressure falls below zero;
+// without yield stress, its pressure rises again. Two iterations per step then end every step on the
+// soft half, and the floor under the cell loses its friction. The mean cancels the cycle and is the
+// pressure itself once the loop converges.
+void FlowSolver::update_properties_at_mean_pressure() {
+  for (int copy = 0; copy < 2; ++copy) {  // owned values and ghosts alike
+    Vec mean = copy == 0 ? p_mean_->global() : p_mean_->local();
+    VecAXPBYPCZ(mean, 0.5, 0.5, 0.0, copy == 0 ? p_->global() : p_->local(),
+                copy == 0 ? p_last_iterate_->global() : p_last_iterate_->local());
+  }
+  std::swap(p_, p_mean_);  // stands in while properties are computed
+  update_properties();
+  std::swap(p_, p_mean_);
+}
+
 void FlowSolver::save_state() {
   saved_.save(state_fields());
   saved_dt_ = dt_;
@@ -852,7 +874,9 @@ StepReport FlowSolver::step(double dt) {
   for (int outer = 0; outer < num.outer_iterations; ++outer) {
     for (int a = 0; a < 2; ++a) VecCopy(vel_[a]->global(), u_start[a]);
     if (outer == 0 && look_ahead) update_properties_ahead();
+    else if (outer > 0 && num.mean_viscosity_pressure) update_properties_at_mean_pressure();
     else update_properties();
+    if (num.mean_viscosity_pressure) p_last_iterate_->copy_from(*p_);
     assemble_momentum(dt);
     if (num.pressure_coupling == PressureCoupling::coupled) {
       report.pressure_iterations += solve_coupled();

@@ -105,6 +105,7 @@ class FlowSolver {
   void compute_face_forces();
   void extrapolate_velocity(double ratio);
   void update_properties_ahead();
+  void update_properties_at_mean_pressure();
   int solve_momentum();
   void compute_hbya();
   // Coupled velocity-pressure solve (coupled_step.cpp).
@@ -127,6 +128,8 @@ class FlowSolver {
   std::unique_ptr<Field> vel_[2], vel_old_[2], face_[2], face_old_[2], face_force_[2];
   // first_viscosity = look_ahead: the extrapolated velocity, and the viscosities at u^n it is weighed against
   std::unique_ptr<Field> vel_ahead_[2], mu_now_, face_mu_now_[2];
+  // viscosity_pressure = mean_of_last_two: the pressure the last iteration started from, and the mean
+  std::unique_ptr<Field> p_last_iterate_, p_mean_;
   std::unique_ptr<Field> p_, rho_, mu_, face_mu_[2];
   std::unique_ptr<Field> body_force_[2];
   FieldSnapshot saved_;  // save_state()
