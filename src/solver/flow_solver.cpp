@@ -50,8 +50,6 @@ FlowSolver::FlowSolver(const Grid& grid, const FlowSettings& settings) : grid_(g
   for (int a = 0; a < 2; ++a) {
     vel_[a] = make_field(grid);
     vel_old_[a] = make_field(grid);
-    vel_ahead_[a] = make_field(grid);
-    face_mu_now_[a] = make_field(grid);
     face_[a] = make_field(grid);
     face_old_[a] = make_field(grid);
     face_force_[a] = make_field(grid);
@@ -64,10 +62,16 @@ FlowSolver::FlowSolver(const Grid& grid, const FlowSettings& settings) : grid_(g
     face_force_[a]->set(0.0);
   }
   p_ = make_field(grid);
-  mu_now_ = make_field(grid);
   rho_ = make_field(grid);
   mu_ = make_field(grid);
   p_->set(0.0);
+  if (settings_.numerics.look_ahead_viscosity) {
+    for (int a = 0; a < 2; ++a) {
+      vel_ahead_[a] = make_field(grid);
+      face_mu_now_[a] = make_field(grid);
+    }
+    mu_now_ = make_field(grid);
+  }
   if (settings_.numerics.mean_viscosity_pressure) {
     p_last_iterate_ = make_field(grid);
     p_mean_ = make_field(grid);
