@@ -806,9 +806,7 @@ std::vector<Field*> FlowSolver::state_fields() {
 void FlowSolver::extrapolate_velocity(double ratio) {
   for (int a = 0; a < 2; ++a) {
     vel_ahead_[a]->copy_from(*vel_[a]);
-    for (int copy = 0; copy < 2; ++copy)  // owned values and ghosts alike
-      VecAXPBY(copy == 0 ? vel_ahead_[a]->global() : vel_ahead_[a]->local(), -ratio, 1.0 + ratio,
-               copy == 0 ? vel_old_[a]->global() : vel_old_[a]->local());
+    vel_ahead_[a]->axpby(-ratio, 1.0 + ratio, *vel_old_[a]);
   }
 }
 
@@ -825,14 +823,8 @@ void FlowSolver::update_properties_ahead() {
   for (int a = 0; a < 2; ++a) std::swap(vel_[a], vel_ahead_[a]);  // stands in while properties are computed
   update_properties();
   for (int a = 0; a < 2; ++a) std::swap(vel_[a], vel_ahead_[a]);
-  for (int copy = 0; copy < 2; ++copy) {
-    auto keep_larger = [copy](Field& f, const Field& now) {
-      Vec x = copy == 0 ? f.global() : f.local();
-      VecPointwiseMax(x, x, copy == 0 ? now.global() : now.local());
-    };
-    keep_larger(*mu_, *mu_now_);
-    for (int a = 0; a < 2; ++a) keep_larger(*face_mu_[a], *face_mu_now_[a]);
-  }
+  mu_->max_with(*mu_now_);
+  for (int a = 0; a < 2; ++a) face_mu_[a]->max_with(*face_mu_now_[a]);
 }
 
 // Properties of an outer iteration after the first under numerics.viscosity_pressure =
@@ -843,11 +835,7 @@ void FlowSolver::update_properties_ahead() {
 // soft half, and the floor under the cell loses its friction. The mean cancels the cycle and is the
 // pressure itself once the loop converges.
 void FlowSolver::update_properties_at_mean_pressure() {
-  for (int copy = 0; copy < 2; ++copy) {  // owned values and ghosts alike
-    Vec mean = copy == 0 ? p_mean_->global() : p_mean_->local();
-    VecAXPBYPCZ(mean, 0.5, 0.5, 0.0, copy == 0 ? p_->global() : p_->local(),
-                copy == 0 ? p_last_iterate_->global() : p_last_iterate_->local());
-  }
+  p_mean_->mean_of(*p_, *p_last_iterate_);
   std::swap(p_, p_mean_);  // stands in while properties are computed
   update_properties();
   std::swap(p_, p_mean_);
