@@ -1,7 +1,7 @@
 #pragma once
 // A cell field on the grid: one global Vec (owned values, what solvers and writers see) and one
 // local Vec (owned plus ghosts, what stencils read). Arrays are indexed [j][i] with global indices.
-// The whole-field operations (set, copy_from, axpby, ...) act on both, so ghosts stay current.
+// The whole-field operations (set, copy_from, combine, ...) act on both, so ghosts stay current.
 #include <petscdmda.h>
 
 #include "mesh/grid.hpp"
@@ -41,20 +41,15 @@ class Field {
     VecCopy(other.global_, global_);
     VecCopy(other.local_, local_);
   }
-  // this = alpha x + beta this
-  void axpby(double alpha, double beta, const Field& x) {
-    VecAXPBY(global_, alpha, beta, x.global_);
-    VecAXPBY(local_, alpha, beta, x.local_);
+  // this = alpha a + beta b
+  void combine(double alpha, const Field& a, double beta, const Field& b) {
+    VecAXPBYPCZ(global_, alpha, beta, 0.0, a.global_, b.global_);
+    VecAXPBYPCZ(local_, alpha, beta, 0.0, a.local_, b.local_);
   }
   // this = max(this, other), value by value
   void max_with(const Field& other) {
     VecPointwiseMax(global_, global_, other.global_);
     VecPointwiseMax(local_, local_, other.local_);
-  }
-  // this = (a + b) / 2
-  void mean_of(const Field& a, const Field& b) {
-    VecAXPBYPCZ(global_, 0.5, 0.5, 0.0, a.global_, b.global_);
-    VecAXPBYPCZ(local_, 0.5, 0.5, 0.0, a.local_, b.local_);
   }
 
  private:

@@ -804,10 +804,7 @@ std::vector<Field*> FlowSolver::state_fields() {
 // The velocity extrapolated to the end of the step, u^n + ratio (u^n - u^{n-1}) with ratio =
 // dt / dt_previous (on entry vel_old_ still holds u^{n-1}).
 void FlowSolver::extrapolate_velocity(double ratio) {
-  for (int a = 0; a < 2; ++a) {
-    vel_ahead_[a]->copy_from(*vel_[a]);
-    vel_ahead_[a]->axpby(-ratio, 1.0 + ratio, *vel_old_[a]);
-  }
+  for (int a = 0; a < 2; ++a) vel_ahead_[a]->combine(-ratio, *vel_old_[a], 1.0 + ratio, *vel_[a]);
 }
 
 // Properties of the first outer iteration under numerics.first_viscosity = "look_ahead": each cell
@@ -835,7 +832,7 @@ void FlowSolver::update_properties_ahead() {
 // soft half, and the floor under the cell loses its friction. The mean cancels the cycle and is the
 // pressure itself once the loop converges.
 void FlowSolver::update_properties_at_mean_pressure() {
-  p_mean_->mean_of(*p_, *p_last_iterate_);
+  p_mean_->combine(0.5, *p_, 0.5, *p_last_iterate_);
   std::swap(p_, p_mean_);  // stands in while properties are computed
   update_properties();
   std::swap(p_, p_mean_);

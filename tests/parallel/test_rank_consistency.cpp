@@ -9,6 +9,7 @@
 #include "io/case_file.hpp"
 #include "io/gather.hpp"
 #include "solver/simulation.hpp"
+#include "../verification/test_support.hpp"
 
 namespace granflow {
 namespace {
@@ -63,11 +64,9 @@ TEST(RankConsistency, CavityOneAndTwoRanksAgree) {
 // block at x = 0.12-0.13 m.
 TEST(RankConsistency, CollapseWithFaceYieldPressureOneAndTwoRanksAgree) {
   expect_rank_independent("cases/bui2008_experiment.toml",
-                          {"mesh.cells=[25,20]", "mesh.upper=[0.25,0.2]", "time.end=0.1", "output.progress_seconds=0",
-                           "soil.yield_pressure=face", "solver.pressure.rtol=1e-12", "solver.momentum.rtol=1e-12",
-                           "numerics.pressure_coupling=projection", "soil.face_fraction=cells",
-                           "time.courant=0.5", "time.interface_substeps=1",  // the projection's own step
-                           "numerics.outer_iterations=3", "numerics.first_viscosity=previous_step"},
+                          test::with_bui2008_projection({"mesh.cells=[25,20]", "mesh.upper=[0.25,0.2]", "time.end=0.1",
+                                                         "output.progress_seconds=0", "soil.yield_pressure=face",
+                                                         "solver.pressure.rtol=1e-12", "solver.momentum.rtol=1e-12"}),
                           1e-7);
 }
 

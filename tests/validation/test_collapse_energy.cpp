@@ -19,12 +19,10 @@ TEST(GranularCollapse, EnergyBudgetClosesWithLinearDensity) {
   const auto out = std::filesystem::temp_directory_path() / "granflow_collapse_energy";
   std::filesystem::remove_all(out);
   const CaseConfig config = load_case(test::repo_path("cases/bui2008_experiment.toml"),
-                                      {"output.progress_seconds=0", "output.interval=0.3", "time.end=0.6",
-                                       "mesh.cells=[150, 50]", "mixture.density=\"linear\"",
-                                       // the projection, as the case was written for it (docs/validation.md)
-                                       "numerics.pressure_coupling=projection", "soil.face_fraction=cells",
-                                       "time.courant=0.5", "time.interface_substeps=1",
-                                       "numerics.outer_iterations=3", "numerics.first_viscosity=previous_step"});
+                                      // the projection, as the case was written for it (docs/validation.md)
+                                      test::with_bui2008_projection({"output.progress_seconds=0", "output.interval=0.3",
+                                                                     "time.end=0.6", "mesh.cells=[150, 50]",
+                                                                     "mixture.density=\"linear\""}));
   Simulation sim(PETSC_COMM_WORLD, config, out);
   const RunSummary run = sim.run();
   int rank;
