@@ -155,8 +155,8 @@ def measure(run_dir, stamp, t):
     thick = h >= dy * (1 - 1e-9)
     toe_contour = float(max(surf["x0"].max(), surf["x1"].max())) if len(surf["x0"]) else 0.0
     toe_cell = float(x[thick].max() + 0.5 * dx) if np.any(thick) else 0.0
-    # Mean slope of the surface between the columns 3/4 and 1/4 as high as the wall: a pile at rest
-    # stands at about its friction angle.
+    # Mean slope of the surface between the columns 3/4 and 1/4 as high as the wall: a cohesionless
+    # pile at rest can stand no steeper than its yield surface allows (asin(3 alpha_phi) in plane strain).
     slope = None
     if h[0] > 0:
         above = lambda f: np.nonzero(h < f * h[0])[0]
