@@ -9,9 +9,9 @@
 #include <cmath>
 #include <filesystem>
 
-#include "io/gather.hpp"
 #include "solver/simulation.hpp"
 #include "../verification/test_support.hpp"
+#include "collapse_measures.hpp"
 
 namespace granflow {
 namespace {
@@ -35,12 +35,7 @@ Bui2008Run run_bui2008(int nx, const std::string& case_name = "bui2008_experimen
                                        fmt::format("mesh.cells=[{},{}]", nx, nx / 3)});
   Simulation sim(PETSC_COMM_WORLD, config, out);
   const RunSummary run = sim.run();
-  // Largest soil speed at the end: cells at least half soil.
-  const auto c = gather_to_root(sim.grid(), sim.soil()->soil_fraction());
-  const auto u = gather_to_root(sim.grid(), sim.flow().velocity(0));
-  const auto v = gather_to_root(sim.grid(), sim.flow().velocity(1));
-  for (size_t k = 0; k < c.size(); ++k)
-    if (c[k] >= 0.5) r.soil_speed = std::max(r.soil_speed, std::hypot(u[k], v[k]));
+  r.soil_speed = test::largest_soil_speed(sim);
   if (!test::is_root()) return r;
 
   auto history = test::read_csv((out / "history.csv").string());
@@ -56,18 +51,14 @@ Bui2008Run run_bui2008(int nx, const std::string& case_name = "bui2008_experimen
   while (k1 + 1 < n && t[k1] < 1.0) ++k1;
   r.contour_drift = std::abs(history["toe_contour"][n - 1] - history["toe_contour"][k1]);
   r.cell_drift = std::abs(history["toe_one_cell"][n - 1] - history["toe_one_cell"][k1]);
-  // Soil volume: what is in the domain plus what left through its open sides.
-  r.outflow = history["soil_outflow"][n - 1];
-  r.volume_error = std::abs((history["soil_volume"][n - 1] + r.outflow) / history["soil_volume"][0] - 1.0);
-  // Energy budget: potential energy released against kinetic plus dissipated.
-  r.released = history["potential_energy"][0] - history["potential_energy"][n - 1];
-  r.accounted = history["kinetic_energy"][n - 1] + history["dissipated_energy"][n - 1];
+  // Soil volume (in the domain plus what left through its open sides) and energy budget.
+  const test::CollapseBudget budget = test::collapse_budget(history);
+  r.outflow = budget.outflow;
+  r.volume_error = budget.volume_error;
+  r.released = budget.released;
+  r.accounted = budget.accounted;
   // Surface: column heights at the experiment's points.
-  std::string last_heights;
-  for (const auto& e : std::filesystem::directory_iterator(out))
-    if (e.path().filename().string().starts_with("column_height_"))
-      last_heights = std::max(last_heights, e.path().string());
-  auto heights = test::read_csv(last_heights);
+  auto heights = test::read_csv(test::last_output(out, "column_height"));
   auto exp_surface = test::read_csv(test::repo_path("validation/refdata/bui2008_al_bar_collapse_final_surface.csv"));
   double sum2 = 0.0;
   for (size_t k = 0; k < exp_surface["x_m"].size(); ++k) {

@@ -15,9 +15,9 @@
 #include <string>
 #include <vector>
 
-#include "io/gather.hpp"
 #include "solver/simulation.hpp"
 #include "../verification/test_support.hpp"
+#include "collapse_measures.hpp"
 
 namespace granflow {
 namespace {
@@ -42,11 +42,7 @@ SphRun run_sph(const std::string& case_name, std::vector<std::string> overrides 
   const CaseConfig config = load_case(test::repo_path("cases/" + case_name + ".toml"), overrides);
   Simulation sim(PETSC_COMM_WORLD, config, out);
   const RunSummary run = sim.run();
-  const auto c = gather_to_root(sim.grid(), sim.soil()->soil_fraction());
-  const auto u = gather_to_root(sim.grid(), sim.flow().velocity(0));
-  const auto v = gather_to_root(sim.grid(), sim.flow().velocity(1));
-  for (size_t k = 0; k < c.size(); ++k)
-    if (c[k] >= 0.5) r.soil_speed = std::max(r.soil_speed, std::hypot(u[k], v[k]));
+  r.soil_speed = test::largest_soil_speed(sim);
   if (!test::is_root()) return r;
 
   auto history = test::read_csv((out / "history.csv").string());
@@ -59,16 +55,12 @@ SphRun run_sph(const std::string& case_name, std::vector<std::string> overrides 
   r.toe_cell_at_1_4 = history["toe_one_cell"][k14];
   r.toe_contour = history["toe_contour"][n - 1];
   r.wall_height = history["wall_height"][n - 1];
-  r.outflow = history["soil_outflow"][n - 1];
-  r.volume_error = std::abs((history["soil_volume"][n - 1] + r.outflow) / history["soil_volume"][0] - 1.0);
-  const double released = history["potential_energy"][0] - history["potential_energy"][n - 1];
-  r.energy_ratio = (history["kinetic_energy"][n - 1] + history["dissipated_energy"][n - 1]) / released;
+  const test::CollapseBudget budget = test::collapse_budget(history);
+  r.outflow = budget.outflow;
+  r.volume_error = budget.volume_error;
+  r.energy_ratio = budget.accounted / budget.released;
   // Mean slope between the columns 3/4 and 1/4 as high as the wall (as scripts/compare_bui2008_sph.py).
-  std::string last_heights;
-  for (const auto& e : std::filesystem::directory_iterator(out))
-    if (e.path().filename().string().starts_with("column_height_"))
-      last_heights = std::max(last_heights, e.path().string());
-  auto heights = test::read_csv(last_heights);
+  auto heights = test::read_csv(test::last_output(out, "column_height"));
   const auto& xs = heights["x"];
   const auto& hs = heights["height"];
   auto first_below = [&](double f) {
