@@ -229,7 +229,7 @@ void Simulation::write_soil_lines() const {
   });
 }
 
-RunSummary Simulation::run() {
+RunSummary Simulation::run(const StepObserver& after_step) {
   using clock = std::chrono::steady_clock;
   const auto start = clock::now();
   auto last_progress = start;
@@ -278,6 +278,7 @@ RunSummary Simulation::run() {
     summary.momentum_iterations += r.momentum_iterations;
     summary.pressure_iterations += r.pressure_iterations;
     summary.pressure_solves += r.pressure_solves;
+    if (after_step) after_step(*this, step_dt);
 
     const double speed = flow_->max_speed();
     if (!std::isfinite(speed) || speed > 1e6) {

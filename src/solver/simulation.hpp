@@ -1,6 +1,7 @@
 #pragma once
 // The time loop of a case: adaptive steps, output at requested times, progress, divergence guard.
 #include <filesystem>
+#include <functional>
 #include <memory>
 
 #include "io/case_file.hpp"
@@ -35,7 +36,9 @@ class Simulation {
   Simulation(MPI_Comm comm, const CaseConfig& config, std::filesystem::path output_dir);
   ~Simulation();
 
-  RunSummary run();
+  // Called after every accepted step, with the step's size (diagnostics and tests; not in a hot loop).
+  using StepObserver = std::function<void(Simulation&, double dt)>;
+  RunSummary run(const StepObserver& after_step = {});
   const Grid& grid() const { return *grid_; }
   FlowSolver& flow() { return *flow_; }
   SoilPhase* soil() { return soil_.get(); }
