@@ -11,7 +11,7 @@
 
 #include "solver/simulation.hpp"
 #include "../verification/test_support.hpp"
-#include "collapse_measures.hpp"
+#include "../verification/collapse_measures.hpp"
 
 namespace granflow {
 namespace {
@@ -33,12 +33,9 @@ Bui2008Run run_bui2008(int nx, const std::string& case_name = "bui2008_experimen
   const CaseConfig config = load_case(test::repo_path("cases/" + case_name + ".toml"),
                                       {"output.progress_seconds=0", "output.interval=0.5",
                                        fmt::format("mesh.cells=[{},{}]", nx, nx / 3)});
-  Simulation sim(PETSC_COMM_WORLD, config, out);
-  const RunSummary run = sim.run();
-  r.soil_speed = test::largest_soil_speed(sim);
+  auto [run, soil_speed, history] = test::run_to_end(config, out);
+  r.soil_speed = soil_speed;
   if (!test::is_root()) return r;
-
-  auto history = test::read_csv((out / "history.csv").string());
   const auto& t = history["time"];
   const size_t n = t.size();
   if (n < 10) return r;
@@ -47,8 +44,7 @@ Bui2008Run run_bui2008(int nx, const std::string& case_name = "bui2008_experimen
   r.toe_cell = history["toe_one_cell"][n - 1];
   // Rest: run-out at t = 1 s against the end. The one-cell toe moves by whole cells (a column
   // thinning below one cell moves it back by one), so the contour's carries the criterion.
-  size_t k1 = 0;
-  while (k1 + 1 < n && t[k1] < 1.0) ++k1;
+  const size_t k1 = test::first_row_at(t, 1.0);
   r.contour_drift = std::abs(history["toe_contour"][n - 1] - history["toe_contour"][k1]);
   r.cell_drift = std::abs(history["toe_one_cell"][n - 1] - history["toe_one_cell"][k1]);
   // Soil volume (in the domain plus what left through its open sides) and energy budget.

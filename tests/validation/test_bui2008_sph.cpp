@@ -17,7 +17,7 @@
 
 #include "solver/simulation.hpp"
 #include "../verification/test_support.hpp"
-#include "collapse_measures.hpp"
+#include "../verification/collapse_measures.hpp"
 
 namespace granflow {
 namespace {
@@ -40,17 +40,13 @@ SphRun run_sph(const std::string& case_name, std::vector<std::string> overrides 
   overrides.insert(overrides.end(), {"output.progress_seconds=0", "output.fields=false",
                                      fmt::format("mesh.cells=[{},{}]", nx, ny)});
   const CaseConfig config = load_case(test::repo_path("cases/" + case_name + ".toml"), overrides);
-  Simulation sim(PETSC_COMM_WORLD, config, out);
-  const RunSummary run = sim.run();
-  r.soil_speed = test::largest_soil_speed(sim);
+  auto [run, soil_speed, history] = test::run_to_end(config, out);
+  r.soil_speed = soil_speed;
   if (!test::is_root()) return r;
-
-  auto history = test::read_csv((out / "history.csv").string());
   const auto& t = history["time"];
   const size_t n = t.size();
   if (n < 10) return r;
-  size_t k14 = 0;
-  while (k14 + 1 < n && t[k14] < 1.4) ++k14;
+  const size_t k14 = test::first_row_at(t, 1.4);
   r.toe_cell = history["toe_one_cell"][n - 1];
   r.toe_cell_at_1_4 = history["toe_one_cell"][k14];
   r.toe_contour = history["toe_contour"][n - 1];

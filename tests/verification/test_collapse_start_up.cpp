@@ -14,6 +14,7 @@
 
 #include "io/gather.hpp"
 #include "solver/simulation.hpp"
+#include "collapse_measures.hpp"
 #include "test_support.hpp"
 
 namespace granflow {
@@ -60,10 +61,7 @@ Watched watch_collapse(double end, std::vector<std::string> overrides = {}) {
       pr.viscosity.push_back(mu[k]);
       pr.soil_fraction.push_back(c[k]);
     }
-    StepRecord r{s.time(), dt, 0.0};
-    for (size_t k = 0; k < c.size(); ++k)
-      if (c[k] >= 0.5) r.soil_speed = std::max(r.soil_speed, std::hypot(u[k], v[k]));
-    w.steps.push_back(r);
+    w.steps.push_back({s.time(), dt, test::largest_soil_speed(c, u, v)});
   });
   return w;
 }

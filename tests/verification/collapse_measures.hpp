@@ -10,18 +10,48 @@
 
 #include "io/gather.hpp"
 #include "solver/simulation.hpp"
+#include "test_support.hpp"
 
 namespace granflow::test {
 
-// Largest speed over cells at least half soil; collective, the value is meaningful on rank 0.
-inline double largest_soil_speed(Simulation& sim) {
-  const auto c = gather_to_root(sim.grid(), sim.soil()->soil_fraction());
-  const auto u = gather_to_root(sim.grid(), sim.flow().velocity(0));
-  const auto v = gather_to_root(sim.grid(), sim.flow().velocity(1));
+// Largest speed over cells at least half soil, from gathered soil fraction and velocities.
+inline double largest_soil_speed(const std::vector<double>& c, const std::vector<double>& u,
+                                 const std::vector<double>& v) {
   double speed = 0.0;
   for (size_t k = 0; k < c.size(); ++k)
     if (c[k] >= 0.5) speed = std::max(speed, std::hypot(u[k], v[k]));
   return speed;
+}
+
+// The same for a simulation's current state; collective, the value is meaningful on rank 0.
+inline double largest_soil_speed(Simulation& sim) {
+  return largest_soil_speed(gather_to_root(sim.grid(), sim.soil()->soil_fraction()),
+                            gather_to_root(sim.grid(), sim.flow().velocity(0)),
+                            gather_to_root(sim.grid(), sim.flow().velocity(1)));
+}
+
+// Index of the first history row at or after time t_at (the last row if none).
+inline size_t first_row_at(const std::vector<double>& times, double t_at) {
+  size_t k = 0;
+  while (k + 1 < times.size() && times[k] < t_at) ++k;
+  return k;
+}
+
+// A case run to its end: its summary, the soil's largest speed at the end and, on rank 0, its
+// history.csv columns.
+struct FinishedRun {
+  RunSummary summary;
+  double soil_speed = 0;
+  std::map<std::string, std::vector<double>> history;
+};
+
+inline FinishedRun run_to_end(const CaseConfig& config, const std::filesystem::path& out) {
+  Simulation sim(PETSC_COMM_WORLD, config, out);
+  FinishedRun r;
+  r.summary = sim.run();
+  r.soil_speed = largest_soil_speed(sim);
+  if (is_root()) r.history = read_csv((out / "history.csv").string());
+  return r;
 }
 
 // Soil volume and energy over a run, from its history.csv columns.
