@@ -12,16 +12,19 @@
 
 namespace {
 
-int run_case(const std::string& case_file, const std::vector<std::string>& overrides, std::string out_dir) {
+int run_case(const std::string& case_file, const std::vector<std::string>& overrides, std::string out_dir,
+             bool restart) {
   using namespace granflow;
   CaseConfig config = load_case(case_file, overrides);
   if (out_dir.empty()) out_dir = (std::filesystem::path("out") / std::filesystem::path(case_file).stem()).string();
   int rank;
   MPI_Comm_rank(PETSC_COMM_WORLD, &rank);
   Simulation sim(PETSC_COMM_WORLD, config, out_dir);
+  if (restart) sim.restart();
   if (rank == 0)
-    fmt::print("granflow: {} on {} x {} cells to t = {} s, output in {}\n", config.title, config.mesh.cells[0],
-               config.mesh.cells[1], config.time.end, out_dir);
+    fmt::print("granflow: {} on {} x {} cells {}to t = {} s, output in {}\n", config.title, config.mesh.cells[0],
+               config.mesh.cells[1], restart ? fmt::format("from the checkpoint at t = {:.6g} s ", sim.time()) : "",
+               config.time.end, out_dir);
   const RunSummary s = sim.run();
   if (rank == 0) {
     fmt::print("done: t = {:.6g} s in {} steps ({} taken again with a smaller step), {:.2f} s wall ({:.3g} cell-steps/s){}\n",
@@ -42,12 +45,16 @@ int main(int argc, char** argv) {
   std::string case_file, out_dir;
   std::vector<std::string> overrides;
   std::vector<std::string> petsc_options;
+  bool restart = false;
 
   auto* run = app.add_subcommand("run", "run a case");
   run->add_option("case", case_file, "case file (TOML)")->required();
   run->add_option("-o,--output", out_dir, "output directory (default out/<case name>)");
   run->add_option("--set", overrides, "override a case key: KEY=VALUE (repeatable)");
   run->add_option("--petsc", petsc_options, "options passed to PETSc, e.g. --petsc=-pressure_ksp_monitor");
+  run->add_flag("--restart", restart,
+                "continue from the checkpoint in the output directory (written at each output time; same case, "
+                "mesh and number of ranks)");
 
   auto* check = app.add_subcommand("check", "validate a case file without running it");
   check->add_option("case", case_file, "case file (TOML)")->required();
@@ -90,7 +97,7 @@ int main(int argc, char** argv) {
   for (const auto& o : petsc_options) PetscOptionsInsertString(nullptr, o.c_str());
   int status = 0;
   try {
-    status = run_case(case_file, overrides, out_dir);
+    status = run_case(case_file, overrides, out_dir, restart);
   } catch (const granflow::CaseError& e) {
     fmt::print(stderr, "error: {}\n", e.what());
     status = 2;

@@ -343,6 +343,7 @@ CaseConfig read_case(const toml::table& root, const std::filesystem::path& sourc
     c.output.times = o.numbers("times", {});
     for (double t : c.output.times) o.require_range("times", t, 0.0, c.time.end, "within [0, time.end]");
     c.output.fields = o.boolean("fields", true);
+    c.output.checkpoints = o.boolean("checkpoints", true);
     c.output.progress_seconds = o.number("progress_seconds", 2.0);
     for (TableReader l : o.tables("line")) {
       LineSample s;

@@ -40,6 +40,7 @@ struct OutputSettings {
   double interval = 0.0;       // simulated time between outputs; 0: only the final state
   std::vector<double> times;   // extra output times
   bool fields = true;          // ParaView series
+  bool checkpoints = true;     // a checkpoint at each output time, to restart from (granflow run --restart)
   std::vector<LineSample> lines;
   double progress_seconds = 2.0;  // wall seconds between progress lines (0: none)
 };

@@ -22,6 +22,9 @@ class VtkSeries {
   // Rank 0 writes; other ranks may pass empty data and return immediately.
   void write(const Grid& grid, double time, const std::vector<CellData>& data);
   const std::filesystem::path& index_file() const { return pvd_; }
+  // The files written so far (rank 0), and the same list taken back when a run restarts.
+  const std::vector<std::pair<double, std::string>>& entries() const { return entries_; }
+  void restore_entries(std::vector<std::pair<double, std::string>> entries) { entries_ = std::move(entries); }
 
  private:
   std::filesystem::path dir_, pvd_;

@@ -80,6 +80,11 @@ class FlowSolver {
   // that a step that went wrong can be taken again with a smaller time step.
   void save_state();
   void restore_state();
+  // What a checkpoint holds to continue a run exactly: the fields a step starts from, and the last
+  // step's size (the look-ahead extrapolates with it).
+  std::vector<Field*> checkpoint_fields() { return state_fields(); }
+  double last_dt() const { return dt_; }
+  void set_last_dt(double dt) { dt_ = dt; }
 
   // Largest |u| dt / h over cells, for the Courant condition; with a region (a ghosted fraction
   // field), only over cells whose 3 x 3 neighbourhood holds some of it.

@@ -8,6 +8,7 @@
 #include <cmath>
 
 #include "io/atomic_file.hpp"
+#include "io/checkpoint.hpp"
 #include "io/contour.hpp"
 #include "io/gather.hpp"
 
@@ -229,14 +230,53 @@ void Simulation::write_soil_lines() const {
   });
 }
 
+std::vector<Field*> Simulation::checkpoint_fields() {
+  auto fields = flow_->checkpoint_fields();
+  if (soil_)
+    for (Field* f : soil_->checkpoint_fields()) fields.push_back(f);
+  return fields;
+}
+
+void Simulation::write_checkpoint(double next_dt) {
+  if (out_.empty() || !config_.output.checkpoints) return;
+  RunCheckpoint run{time_, next_dt, output_index_, dissipated_energy_, initial_soil_volume_, history_, {}};
+  if (series_) run.series = series_->entries();
+  std::vector<double> scalars{flow_->last_dt()};
+  if (soil_)
+    for (double s : soil_->checkpoint_scalars()) scalars.push_back(s);
+  const auto fields = checkpoint_fields();
+  granflow::write_checkpoint(grid_->comm(), out_, grid_->nx(), grid_->ny(), run, fields, scalars);
+}
+
+void Simulation::restart() {
+  if (out_.empty()) throw CheckpointError("a restart needs the output directory of the earlier run");
+  const auto fields = checkpoint_fields();
+  std::vector<double> scalars;
+  RunCheckpoint run = read_checkpoint(grid_->comm(), out_, grid_->nx(), grid_->ny(), fields, scalars);
+  const size_t expected = 1 + (soil_ ? soil_->checkpoint_scalars().size() : 0);
+  if (scalars.size() != expected) throw CheckpointError("the checkpoint's state does not match this case's model");
+  flow_->set_last_dt(scalars[0]);
+  if (soil_) soil_->restore_scalars(std::span<const double>(scalars).subspan(1));
+  time_ = run.time;
+  restart_dt_ = run.next_dt;
+  output_index_ = run.output_index;
+  dissipated_energy_ = run.dissipated_energy;
+  initial_soil_volume_ = run.initial_soil_volume;
+  history_ = std::move(run.history);
+  if (series_) series_->restore_entries(std::move(run.series));
+  if (soil_) soil_->refresh(*flow_);
+  flow_->update_properties();  // density and viscosity of the restored state, for observers and output
+  restarted_ = true;
+}
+
 RunSummary Simulation::run(const StepObserver& after_step) {
   using clock = std::chrono::steady_clock;
   const auto start = clock::now();
   auto last_progress = start;
   RunSummary summary;
   const auto& tc = config_.time;
-  double dt = std::min(tc.dt, tc.max_dt);
-  write_output();
+  double dt = restarted_ ? restart_dt_ : std::min(tc.dt, tc.max_dt);
+  if (!restarted_) write_output();
   Vec previous[2];
   for (int a = 0; a < 2; ++a) VecDuplicate(flow_->velocity(a).global(), &previous[a]);
   while (time_ < tc.end * (1 - 1e-12) && summary.steps < tc.max_steps) {
@@ -288,7 +328,8 @@ RunSummary Simulation::run(const StepObserver& after_step) {
                                         "at x = {:.4g} m, y = {:.4g} m; the last good output is kept",
                                         time_, summary.steps, f.speed, f.x, f.y));
     }
-    if (std::abs(time_ - t_out) <= 1e-12 * std::max(1.0, t_out)) {
+    const bool at_output = std::abs(time_ - t_out) <= 1e-12 * std::max(1.0, t_out);
+    if (at_output) {
       time_ = t_out;
       write_output();
     }
@@ -317,6 +358,7 @@ RunSummary Simulation::run(const StepObserver& after_step) {
                    tc.end, step_dt, summary.steps, rate, eta);
     }
     dt = choose_dt(step_dt == dt ? dt : std::max(dt, step_dt));
+    if (at_output) write_checkpoint(dt);
   }
   for (int a = 0; a < 2; ++a) VecDestroy(&previous[a]);
   if (summary.reached_steady_state || summary.steps >= tc.max_steps) write_output();

@@ -48,6 +48,11 @@ class Simulation {
   // Writes the field series entry and the line samples for the current state.
   void write_output();
 
+  // Continues from the checkpoint in the output directory (written at the last output time of an
+  // earlier run of this case), so that run() carries on exactly as the earlier run would have.
+  // Throws CheckpointError if there is none or it does not fit this case or number of ranks.
+  void restart();
+
  private:
   double next_output_time() const;
   void record_history(double dt);
@@ -56,6 +61,8 @@ class Simulation {
   void write_lode_energy() const;
   double choose_dt(double dt_previous) const;
   double courant_after(double dt) const;  // flow Courant number of the current velocities over dt
+  std::vector<Field*> checkpoint_fields();
+  void write_checkpoint(double next_dt);
 
   static constexpr int max_step_retries = 4;
   static constexpr double retry_courant_factor = 4.0;  // retry a step above this multiple of the target
@@ -70,6 +77,8 @@ class Simulation {
   double dissipated_energy_ = 0.0;
   double initial_soil_volume_ = 0.0;
   double time_ = 0.0;
+  double restart_dt_ = 0.0;  // the step to continue with after restart()
+  bool restarted_ = false;
   int output_index_ = 0;
   int rank_ = 0;
 };

@@ -55,6 +55,20 @@ void SoilPhase::save_state() {
   saved_outflow_ = outflow_;
 }
 
+std::vector<double> SoilPhase::checkpoint_scalars() const {
+  std::vector<double> v{double(sweep_parity_), outflow_};
+  v.insert(v.end(), lode_energy_.values().begin(), lode_energy_.values().end());
+  return v;
+}
+
+void SoilPhase::restore_scalars(std::span<const double> values) {
+  if (values.size() != 2 + lode_energy_.values().size())
+    throw std::runtime_error("the checkpoint's soil state does not match this case");
+  sweep_parity_ = int(values[0]);
+  outflow_ = values[1];
+  std::copy(values.begin() + 2, values.end(), lode_energy_.values().begin());
+}
+
 void SoilPhase::restore_state() {
   saved_.restore(std::array<Field*, 3>{c_.get(), disp_[0].get(), disp_[1].get()});
   sweep_parity_ = saved_parity_;

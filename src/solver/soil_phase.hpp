@@ -5,6 +5,7 @@
 #include <array>
 #include <memory>
 #include <optional>
+#include <span>
 
 #include "mesh/field.hpp"
 #include "mesh/field_snapshot.hpp"
@@ -71,6 +72,11 @@ class SoilPhase {
   // Snapshot of c and the displacement, for a step taken again (FlowSolver::save_state).
   void save_state();
   void restore_state();
+  // What a checkpoint holds: c and the displacement; the sweep parity, this rank's outflow and
+  // dissipated energy by Lode angle as numbers.
+  std::vector<Field*> checkpoint_fields() { return {c_.get(), disp_[0].get(), disp_[1].get()}; }
+  std::vector<double> checkpoint_scalars() const;
+  void restore_scalars(std::span<const double> values);
  private:
   void fill_displacement_ghosts();
   // The cells within `reach` cells of any soil (1 there, else 0), ghosts filled.

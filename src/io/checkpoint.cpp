@@ -1,0 +1,199 @@
+#include "io/checkpoint.hpp"
+
+#include <fmt/format.h>
+#include <fmt/ostream.h>
+
+#include <cstdint>
+#include <fstream>
+#include <sstream>
+
+#include "io/atomic_file.hpp"
+
+namespace granflow {
+
+namespace {
+
+constexpr std::uint64_t magic = 0x31544b43464e5247ull;  // "GRNFCKT1"
+
+struct RankHeader {
+  std::uint64_t magic;
+  std::int64_t ranks, rank, nx, ny, fields, scalars;
+};
+
+std::filesystem::path rank_file(const std::filesystem::path& d, int rank) { return d / fmt::format("rank_{}.bin", rank); }
+
+void write_rank(const std::filesystem::path& path, const RankHeader& h, std::span<Field* const> fields,
+                std::span<const double> scalars) {
+  write_file_atomically(path, [&](std::ostream& out) {
+    out.write(reinterpret_cast<const char*>(&h), sizeof h);
+    for (Field* f : fields) {
+      PetscInt n;
+      VecGetLocalSize(f->local(), &n);
+      const std::int64_t size = n;
+      const PetscScalar* a;
+      VecGetArrayRead(f->local(), &a);
+      out.write(reinterpret_cast<const char*>(&size), sizeof size);
+      out.write(reinterpret_cast<const char*>(a), std::streamsize(sizeof(double) * n));
+      VecRestoreArrayRead(f->local(), &a);
+    }
+    out.write(reinterpret_cast<const char*>(scalars.data()), std::streamsize(sizeof(double) * scalars.size()));
+  });
+}
+
+// Reads this rank's file; returns an empty string or what is wrong with it.
+std::string read_rank(const std::filesystem::path& path, const RankHeader& expected, std::span<Field* const> fields,
+                      std::vector<double>& scalars) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) return fmt::format("cannot read {}", path.string());
+  RankHeader h{};
+  in.read(reinterpret_cast<char*>(&h), sizeof h);
+  if (!in || h.magic != magic) return fmt::format("{} is not a granflow checkpoint", path.string());
+  if (h.ranks != expected.ranks)
+    return fmt::format("the checkpoint was written on {} ranks; restart it on {} ranks, not {}", h.ranks, h.ranks,
+                       expected.ranks);
+  if (h.nx != expected.nx || h.ny != expected.ny)
+    return fmt::format("the checkpoint is of a {} x {} mesh, the case has {} x {} cells", h.nx, h.ny, expected.nx,
+                       expected.ny);
+  if (h.fields != expected.fields)
+    return fmt::format("the checkpoint holds {} fields, this case needs {} (a different model or numerics)", h.fields,
+                       expected.fields);
+  for (Field* f : fields) {
+    PetscInt n;
+    VecGetLocalSize(f->local(), &n);
+    std::int64_t size = -1;
+    in.read(reinterpret_cast<char*>(&size), sizeof size);
+    if (!in || size != n) return fmt::format("{}: a field's size does not match this rank's part of the mesh", path.string());
+    PetscScalar* a;
+    VecGetArray(f->local(), &a);
+    in.read(reinterpret_cast<char*>(a), std::streamsize(sizeof(double) * n));
+    VecRestoreArray(f->local(), &a);
+    if (!in) return fmt::format("{} is truncated", path.string());
+    f->gather_from_local();
+  }
+  scalars.assign(size_t(h.scalars), 0.0);
+  in.read(reinterpret_cast<char*>(scalars.data()), std::streamsize(sizeof(double) * scalars.size()));
+  if (!in) return fmt::format("{} is truncated", path.string());
+  return {};
+}
+
+void write_run(const std::filesystem::path& path, const RunCheckpoint& r) {
+  write_file_atomically(path, [&](std::ostream& out) {
+    fmt::print(out, "time {:a}\nnext_dt {:a}\noutput_index {}\ndissipated_energy {:a}\ninitial_soil_volume {:a}\n", r.time,
+               r.next_dt, r.output_index, r.dissipated_energy, r.initial_soil_volume);
+    fmt::print(out, "series {}\n", r.series.size());
+    for (const auto& [t, f] : r.series) fmt::print(out, "{:a} {}\n", t, f);
+    fmt::print(out, "history {}\n", r.history.size());
+    for (const auto& row : r.history) fmt::print(out, "{}\n", row);
+  });
+}
+
+double hex_double(const std::string& s) { return std::strtod(s.c_str(), nullptr); }
+
+RunCheckpoint read_run(const std::filesystem::path& path) {
+  std::ifstream in(path);
+  if (!in) throw CheckpointError(fmt::format("cannot read {}", path.string()));
+  RunCheckpoint r;
+  std::string key, value;
+  auto field = [&](const char* name) {
+    if (!(in >> key >> value) || key != name) throw CheckpointError(fmt::format("{}: expected '{}'", path.string(), name));
+    return value;
+  };
+  r.time = hex_double(field("time"));
+  r.next_dt = hex_double(field("next_dt"));
+  r.output_index = std::stoi(field("output_index"));
+  r.dissipated_energy = hex_double(field("dissipated_energy"));
+  r.initial_soil_volume = hex_double(field("initial_soil_volume"));
+  const size_t n_series = std::stoul(field("series"));
+  for (size_t k = 0; k < n_series; ++k) {
+    std::string t, f;
+    if (!(in >> t >> f)) throw CheckpointError(fmt::format("{} is truncated", path.string()));
+    r.series.emplace_back(hex_double(t), f);
+  }
+  const size_t n_history = std::stoul(field("history"));
+  std::string line;
+  std::getline(in, line);  // end of the count's line
+  for (size_t k = 0; k < n_history; ++k) {
+    if (!std::getline(in, line)) throw CheckpointError(fmt::format("{} is truncated", path.string()));
+    r.history.push_back(line);
+  }
+  return r;
+}
+
+// Every rank learns whether any rank failed, and rank 0's message if so.
+void agree(MPI_Comm comm, const std::string& mine) {
+  int failed = mine.empty() ? 0 : 1, any = 0;
+  MPI_Allreduce(&failed, &any, 1, MPI_INT, MPI_MAX, comm);
+  if (!any) return;
+  int rank;
+  MPI_Comm_rank(comm, &rank);
+  // The lowest failing rank's message, so that all ranks throw the same text.
+  int who = failed ? rank : 1 << 30, first = 0;
+  MPI_Allreduce(&who, &first, 1, MPI_INT, MPI_MIN, comm);
+  int length = rank == first ? int(mine.size()) : 0;
+  MPI_Bcast(&length, 1, MPI_INT, first, comm);
+  std::string text = rank == first ? mine : std::string(size_t(length), ' ');
+  MPI_Bcast(text.data(), length, MPI_CHAR, first, comm);
+  throw CheckpointError(text);
+}
+
+}  // namespace
+
+void write_checkpoint(MPI_Comm comm, const std::filesystem::path& dir, int nx, int ny, const RunCheckpoint& run,
+                      std::span<Field* const> fields, std::span<const double> scalars) {
+  int rank, size;
+  MPI_Comm_rank(comm, &rank);
+  MPI_Comm_size(comm, &size);
+  const auto partial = dir / "checkpoint.partial", final_dir = dir / "checkpoint", old = dir / "checkpoint.old";
+  if (rank == 0) {
+    std::filesystem::remove_all(partial);
+    std::filesystem::create_directories(partial);
+  }
+  MPI_Barrier(comm);
+  const RankHeader h{magic, size, rank, nx, ny, std::int64_t(fields.size()), std::int64_t(scalars.size())};
+  write_rank(rank_file(partial, rank), h, fields, scalars);
+  if (rank == 0) write_run(partial / "run.txt", run);
+  MPI_Barrier(comm);
+  if (rank == 0) {
+    std::filesystem::remove_all(old);
+    if (std::filesystem::exists(final_dir)) std::filesystem::rename(final_dir, old);
+    std::filesystem::rename(partial, final_dir);
+    std::filesystem::remove_all(old);
+  }
+  MPI_Barrier(comm);
+}
+
+RunCheckpoint read_checkpoint(MPI_Comm comm, const std::filesystem::path& dir, int nx, int ny,
+                              std::span<Field* const> fields, std::vector<double>& scalars) {
+  int rank, size;
+  MPI_Comm_rank(comm, &rank);
+  MPI_Comm_size(comm, &size);
+  // A run killed between the two renames of write_checkpoint leaves only checkpoint.old.
+  auto from = dir / "checkpoint";
+  if (!std::filesystem::exists(from / "run.txt") && std::filesystem::exists(dir / "checkpoint.old" / "run.txt"))
+    from = dir / "checkpoint.old";
+  std::string problem;
+  if (!std::filesystem::exists(from / "run.txt"))
+    problem = fmt::format("no checkpoint to restart from in {} (one is written at each output time)", dir.string());
+  agree(comm, problem);
+  const RankHeader expected{magic, size, rank, nx, ny, std::int64_t(fields.size()), 0};
+  agree(comm, read_rank(rank_file(from, rank), expected, fields, scalars));
+  RunCheckpoint run;
+  if (rank == 0) {
+    try {
+      run = read_run(from / "run.txt");
+    } catch (const CheckpointError& e) {
+      problem = e.what();
+    }
+  }
+  agree(comm, problem);
+  double clock[5] = {run.time, run.next_dt, double(run.output_index), run.dissipated_energy, run.initial_soil_volume};
+  MPI_Bcast(clock, 5, MPI_DOUBLE, 0, comm);
+  run.time = clock[0];
+  run.next_dt = clock[1];
+  run.output_index = int(clock[2]);
+  run.dissipated_energy = clock[3];
+  run.initial_soil_volume = clock[4];
+  return run;
+}
+
+}  // namespace granflow
