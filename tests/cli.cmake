@@ -7,6 +7,11 @@ set_tests_properties(cli_check_misspelt_key_message PROPERTIES LABELS cli
                      PASS_REGULAR_EXPRESSION "error: mesh.upeer: unknown key")
 add_test(NAME cli_run_missing_file COMMAND granflow run ${CMAKE_CURRENT_BINARY_DIR}/no_such_case.toml)
 set_tests_properties(cli_run_missing_file PROPERTIES LABELS cli WILL_FAIL TRUE)
+add_test(NAME cli_restart_without_checkpoint
+         COMMAND granflow run ${CMAKE_SOURCE_DIR}/cases/lid_driven_cavity_re100.toml
+                 -o ${CMAKE_CURRENT_BINARY_DIR}/no_such_run --restart)
+set_tests_properties(cli_restart_without_checkpoint PROPERTIES LABELS cli
+                     PASS_REGULAR_EXPRESSION "error: no checkpoint to restart from")
 add_test(NAME cli_check_shipped_cases COMMAND granflow check ${CMAKE_SOURCE_DIR}/cases/bui2008_experiment.toml)
 set_tests_properties(cli_check_shipped_cases PROPERTIES LABELS cli PASS_REGULAR_EXPRESSION "valid")
 add_test(NAME cli_element_test_csv COMMAND granflow element-test --csv)
