@@ -50,7 +50,7 @@ SoilPhase::SoilPhase(const Grid& grid, const FlowSettings& flow, const SoilSetti
 }
 
 void SoilPhase::save_state() {
-  saved_.save(std::array<Field*, 3>{c_.get(), disp_[0].get(), disp_[1].get()});
+  saved_.save(state_fields());
   saved_parity_ = sweep_parity_;
   saved_outflow_ = outflow_;
 }
@@ -70,7 +70,7 @@ void SoilPhase::restore_scalars(std::span<const double> values) {
 }
 
 void SoilPhase::restore_state() {
-  saved_.restore(std::array<Field*, 3>{c_.get(), disp_[0].get(), disp_[1].get()});
+  saved_.restore(state_fields());
   sweep_parity_ = saved_parity_;
   outflow_ = saved_outflow_;
 }

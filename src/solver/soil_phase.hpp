@@ -74,11 +74,12 @@ class SoilPhase {
   void restore_state();
   // What a checkpoint holds: c and the displacement; the sweep parity, this rank's outflow and
   // dissipated energy by Lode angle as numbers.
-  std::vector<Field*> checkpoint_fields() { return {c_.get(), disp_[0].get(), disp_[1].get()}; }
+  std::vector<Field*> checkpoint_fields() { return state_fields(); }
   std::vector<double> checkpoint_scalars() const;
   void restore_scalars(std::span<const double> values);
  private:
   void fill_displacement_ghosts();
+  std::vector<Field*> state_fields() { return {c_.get(), disp_[0].get(), disp_[1].get()}; }  // what a step changes
   // The cells within `reach` cells of any soil (1 there, else 0), ghosts filled.
   const Field& soil_region(int reach) const;
   interface::RadialWeights radial_weights() const { return {grid_.radius_face_data(), grid_.radius_centre_data()}; }
