@@ -320,6 +320,8 @@ CaseConfig read_case(const toml::table& root, const std::filesystem::path& sourc
         n.choice("first_viscosity", "previous_step", {"previous_step", "look_ahead"}) == "look_ahead";
     num.mean_viscosity_pressure =
         n.choice("viscosity_pressure", "last_iterate", {"last_iterate", "mean_of_last_two"}) == "mean_of_last_two";
+    num.air_band = int(n.integer("air_band", num.air_band));
+    n.require_range("air_band", num.air_band, 0, 1000000);
     num.pressure_correctors = int(n.integer("pressure_correctors", num.pressure_correctors));
     n.require_range("pressure_correctors", num.pressure_correctors, 1, 100);
     num.momentum_predictor = n.boolean("momentum_predictor", num.momentum_predictor);
@@ -362,6 +364,17 @@ CaseConfig read_case(const toml::table& root, const std::filesystem::path& sourc
   }
   top.finish();
   if (c.soil) c.soil->interface_courant = interface_courant;
+  if (c.flow.numerics.air_band > 0) {
+    // The air beyond the band is held at rest under the pressure of the air column above it.
+    if (c.flow.numerics.pressure_coupling != PressureCoupling::coupled)
+      throw CaseError("numerics.air_band: applies to pressure_coupling = \"coupled\" only");
+    if (!c.soil) throw CaseError("numerics.air_band: needs a [soil] phase to solve around");
+    if (c.flow.boundaries[int(Side::north)].kind != BoundaryKind::atmosphere)
+      throw CaseError("numerics.air_band: needs an atmosphere at the north side (the air beyond the band takes "
+                      "the pressure below it)");
+    if (c.flow.gravity[0] != 0.0)
+      throw CaseError("numerics.air_band: needs gravity along y (the air beyond the band is hydrostatic)");
+  }
   return c;
 }
 

@@ -31,6 +31,8 @@ void FlowSolver::create_coupled_system() {
   PetscCallAbort(comm, DMCreateGlobalVector(coupled_dm_, &coupled_rhs_));
   PetscCallAbort(comm, VecDuplicate(coupled_rhs_, &coupled_solution_));
   coupled_solver_ = std::make_unique<LinearSolver>(comm, "coupled", settings_.coupled_solver);
+  if (settings_.numerics.air_band > 0)
+    solve_region_ = std::make_unique<SolveRegion>(grid_, coupled_dm_, settings_.coupled_solver);
   for (int a = 0; a < 2; ++a) {
     cell_force_[a] = std::make_unique<Field>(grid_);
     cell_force_[a]->set(0.0);
@@ -38,6 +40,7 @@ void FlowSolver::create_coupled_system() {
 }
 
 void FlowSolver::destroy_coupled_system() {
+  solve_region_.reset();
   MatDestroy(&coupled_matrix_);
   VecDestroy(&coupled_rhs_);
   VecDestroy(&coupled_solution_);
@@ -45,6 +48,14 @@ void FlowSolver::destroy_coupled_system() {
 }
 
 // Rhie-Chow mobility of the face between (i,j) and (in,jn) along `axis`: harmonic mean of V/a_P.
+bool FlowSolver::solve_region_covers(const Field& cells) const {
+  return !solve_region_ || solve_region_->covers(cells);
+}
+
+void FlowSolver::set_solve_region(const Field& cells) {
+  if (solve_region_) solve_region_->assign(cells);
+}
+
 double FlowSolver::coupled_mobility(const double* const* rau, int i, int j, int in, int jn) const {
   return face_mean(FaceViscosity::harmonic, rau[j][i], rau[jn][in]);
 }
@@ -193,7 +204,6 @@ int FlowSolver::solve_coupled() {
   }
   PetscCallAbort(grid_.comm(), MatAssemblyBegin(coupled_matrix_, MAT_FINAL_ASSEMBLY));
   PetscCallAbort(grid_.comm(), MatAssemblyEnd(coupled_matrix_, MAT_FINAL_ASSEMBLY));
-  coupled_solver_->set_operator(coupled_matrix_);
   // Initial guess: the current state.
   {
     PetscScalar*** x;
@@ -208,7 +218,26 @@ int FlowSolver::solve_coupled() {
       }
     DMDAVecRestoreArrayDOF(coupled_dm_, coupled_solution_, &x);
   }
-  const int iterations = coupled_solver_->solve(coupled_rhs_, coupled_solution_);
+  int iterations = 0;
+  if (solve_region_) {
+    // Outside the region: air at rest under the pressure of the air column above it.
+    const auto& top = boundary(settings_.boundaries, Side::north);
+    const double y_top = grid_.spec().upper[1];
+    ConstFieldArray inside(grid_.field_dm(), solve_region_->cells().global()), rho(grid_.field_dm(), rho_->global());
+    PetscScalar*** x;
+    DMDAVecGetArrayDOF(coupled_dm_, coupled_solution_, &x);
+    for (int j = b.ys; j < b.ye(); ++j)
+      for (int i = b.xs; i < b.xe(); ++i)
+        if (inside[j][i] == 0.0) {
+          x[j][i][U] = x[j][i][V] = 0.0;
+          x[j][i][P] = top.pressure - rho[j][i] * g[1] * (y_top - grid_.yc(j));
+        }
+    DMDAVecRestoreArrayDOF(coupled_dm_, coupled_solution_, &x);
+    iterations = solve_region_->solve(coupled_matrix_, coupled_rhs_, coupled_solution_);
+  } else {
+    coupled_solver_->set_operator(coupled_matrix_);
+    iterations = coupled_solver_->solve(coupled_rhs_, coupled_solution_);
+  }
   {
     PetscScalar*** x;
     DMDAVecGetArrayDOF(coupled_dm_, coupled_solution_, &x);

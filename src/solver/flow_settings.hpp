@@ -28,6 +28,9 @@ struct NumericsSettings {
   // or the mean of the last two (true, "mean_of_last_two"), which cancels a two-iteration cycle of a
   // stiff cell's pressure and viscosity (docs/method.md). A converged step is the same either way.
   bool mean_viscosity_pressure = false;
+  // Coupled solve only: cells of air around the soil that the solve covers (0: the whole domain).
+  // The region is rebuilt with this band when the soil comes closer than half of it to its edge.
+  int air_band = 0;
   int pressure_correctors = 2;  // PISO pressure corrections per outer iteration
   bool momentum_predictor = true;
   bool transpose_stress = true;  // explicit div(mu grad(v)^T) term

@@ -798,6 +798,7 @@ std::vector<Field*> FlowSolver::state_fields() {
   if (cell_force_[0]) f.insert(f.end(), {cell_force_[0].get(), cell_force_[1].get()});
   // u^{n-1}, so that a step taken again extrapolates from the same two states.
   if (settings_.numerics.look_ahead_viscosity) f.insert(f.end(), {vel_old_[0].get(), vel_old_[1].get()});
+  if (solve_region_) f.push_back(&solve_region_->cells());
   return f;
 }
 

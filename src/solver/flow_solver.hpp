@@ -16,6 +16,7 @@
 #include "mesh/grid.hpp"
 #include "solver/flow_settings.hpp"
 #include "solver/linear_solver.hpp"
+#include "solver/solve_region.hpp"
 
 namespace granflow {
 
@@ -85,6 +86,13 @@ class FlowSolver {
   std::vector<Field*> checkpoint_fields() { return state_fields(); }
   double last_dt() const { return dt_; }
   void set_last_dt(double dt) { dt_ = dt; }
+
+  // numerics.air_band > 0: the coupled solve covers only the cells of its region (SolveRegion); the
+  // air beyond is held at rest at its hydrostatic pressure. Without an air band both are no-ops.
+  bool solve_region_covers(const Field& cells) const;
+  void set_solve_region(const Field& cells);
+  // Cells the last coupled solve covered, over all ranks (all of them without an air band).
+  long solve_region_cells() const { return solve_region_ ? solve_region_->cell_count() : grid_.cell_count(); }
 
   // Largest |u| dt / h over cells, for the Courant condition; with a region (a ghosted fraction
   // field), only over cells whose 3 x 3 neighbourhood holds some of it.
@@ -156,6 +164,7 @@ class FlowSolver {
   Mat coupled_matrix_ = nullptr;
   Vec coupled_rhs_ = nullptr, coupled_solution_ = nullptr;
   std::unique_ptr<LinearSolver> coupled_solver_;
+  std::unique_ptr<SolveRegion> solve_region_;  // numerics.air_band > 0
   std::unique_ptr<Field> cell_force_[2];  // lagged balanced cell force of the Rhie-Chow flux
   std::vector<double> side_head_[2];  // west, east: hydrostatic head of the boundary column per row
   bool has_pressure_boundary_ = false;

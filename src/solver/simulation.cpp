@@ -58,6 +58,16 @@ double Simulation::next_output_time() const {
   return next;
 }
 
+// numerics.air_band: the coupled solve covers the soil and a band of air around it. The band is
+// laid anew, air_band cells wide, once the soil has come within half of that of its edge, so the
+// factorisation's analysis serves several steps.
+void Simulation::update_solve_region() {
+  const int band = config_.flow.numerics.air_band;
+  if (band == 0) return;
+  if (flow_->solve_region_covers(soil_->soil_region(band - band / 2))) return;
+  flow_->set_solve_region(soil_->soil_region(band));
+}
+
 double Simulation::courant_after(double dt) const {
   const bool soil_only = soil_ && config_.time.courant_region == CourantRegion::soil;
   return flow_->max_courant(dt, soil_only ? &soil_->soil_fraction() : nullptr);
@@ -299,6 +309,7 @@ RunSummary Simulation::run(const StepObserver& after_step) {
       if (soil_) {  // explicit interface, then the implicit flow step
         soil_->advect(*flow_, step_dt);
         soil_->refresh(*flow_);
+        update_solve_region();
       }
       r = flow_->step(step_dt);
       if (!may_retry || attempt == max_step_retries) break;

@@ -56,6 +56,7 @@ class Simulation {
  private:
   double next_output_time() const;
   void record_history(double dt);
+  void update_solve_region();
   void write_history() const;
   void write_soil_lines() const;
   void write_lode_energy() const;

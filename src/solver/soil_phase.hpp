@@ -65,6 +65,9 @@ class SoilPhase {
   const Field& stress_ratio_to_drucker_prager() const { return *stress_ratio_; }
   const Field& dissipation() const { return *dissipation_; }  // per cell, from the last budget()
   const SoilSettings& settings() const { return settings_; }
+  // The cells within `reach` cells of any soil (1 there, else 0), ghosts filled. Scratch storage:
+  // valid until the next call.
+  const Field& soil_region(int reach) const;
 
  private:
   void fill_fraction_ghosts(Field& f) const;
@@ -80,8 +83,6 @@ class SoilPhase {
  private:
   void fill_displacement_ghosts();
   std::vector<Field*> state_fields() { return {c_.get(), disp_[0].get(), disp_[1].get()}; }  // what a step changes
-  // The cells within `reach` cells of any soil (1 there, else 0), ghosts filled.
-  const Field& soil_region(int reach) const;
   interface::RadialWeights radial_weights() const { return {grid_.radius_face_data(), grid_.radius_centre_data()}; }
   double compute_dissipation(const FlowSolver& flow);
   double mixture_viscosity(double c, double pressure, const rheology::StrainRate& rate) const;

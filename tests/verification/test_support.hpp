@@ -20,7 +20,8 @@ inline std::string repo_path(const std::string& rel) { return std::string(GRANFL
 // mixtures, one VoF sweep per step and three outer iterations from the last step's velocity. Tests
 // whose tolerances were set on that set-up append these overrides to their own.
 inline std::vector<std::string> with_bui2008_projection(std::vector<std::string> overrides) {
-  overrides.insert(overrides.end(), {"numerics.pressure_coupling=projection", "soil.face_fraction=cells",
+  overrides.insert(overrides.end(), {"numerics.pressure_coupling=projection", "numerics.air_band=0",
+                                     "soil.face_fraction=cells",
                                      "time.courant=0.5", "time.interface_substeps=1", "numerics.outer_iterations=3",
                                      "numerics.first_viscosity=previous_step"});
   return overrides;

@@ -104,8 +104,8 @@ TEST(CaseFile, SyntaxErrorGivesLine) {
   EXPECT_NE(e.find(":1:"), std::string::npos) << e;
 }
 
-TEST(CaseFile, RheologyParametersAreValidated) {
-  const std::string two_phase = R"(
+// Soil under air in a box open at the top; its friction angle is out of range until overridden.
+const char* two_phase = R"(
 [mesh]
 cells = [8, 8]
 upper = [1.0, 1.0]
@@ -129,6 +129,8 @@ east = { type = "wall" }
 south = { type = "wall" }
 north = { type = "atmosphere" }
 )";
+
+TEST(CaseFile, RheologyParametersAreValidated) {
   const std::string e = error_of(two_phase);
   EXPECT_NE(e.find("soil.rheology"), std::string::npos) << e;
   EXPECT_NE(e.find("friction_angle"), std::string::npos) << e;
@@ -147,6 +149,32 @@ north = { type = "atmosphere" }
   EXPECT_NE(fraction.find("strain_rate"), std::string::npos) << fraction;
   EXPECT_NO_THROW(parse_case(two_phase, {"soil.rheology.friction_angle=30", "soil.strain_rate=face",
                                          "soil.yield_pressure=face", "soil.face_fraction=face"}));
+}
+
+TEST(CaseFile, AirBandNeedsTheCoupledSolveAndAnOpenTop) {
+  const std::vector<std::string> valid{"soil.rheology.friction_angle=30", "numerics.pressure_coupling=coupled"};
+  auto with = [&](const std::string& extra) {
+    auto o = valid;
+    o.push_back(extra);
+    return o;
+  };
+  EXPECT_EQ(parse_case(two_phase, with("numerics.air_band=12")).flow.numerics.air_band, 12);
+  EXPECT_EQ(parse_case(two_phase, valid).flow.numerics.air_band, 0);
+  for (const char* bad : {"numerics.air_band=-1", "numerics.air_band=2.5"}) {
+    const std::string e = error_of(two_phase, with(bad));
+    EXPECT_NE(e.find("numerics.air_band"), std::string::npos) << bad << ": " << e;
+  }
+  const std::string projection =
+      error_of(two_phase, {"soil.rheology.friction_angle=30", "numerics.air_band=12", "numerics.pressure_coupling=projection"});
+  EXPECT_NE(projection.find("numerics.air_band"), std::string::npos) << projection;
+  EXPECT_NE(projection.find("coupled"), std::string::npos) << projection;
+  auto closed_top = with("numerics.air_band=12");
+  closed_top.push_back("boundary.north={type=\"wall\"}");
+  const std::string wall = error_of(two_phase, closed_top);
+  EXPECT_NE(wall.find("numerics.air_band"), std::string::npos) << wall;
+  EXPECT_NE(wall.find("north"), std::string::npos) << wall;
+  const std::string no_soil = error_of(minimal, {"numerics.pressure_coupling=coupled", "numerics.air_band=4"});
+  EXPECT_NE(no_soil.find("numerics.air_band"), std::string::npos) << no_soil;
 }
 
 TEST(CaseFile, ShippedCasesAreValid) {
