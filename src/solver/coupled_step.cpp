@@ -47,7 +47,6 @@ void FlowSolver::destroy_coupled_system() {
   DMDestroy(&coupled_dm_);
 }
 
-// Rhie-Chow mobility of the face between (i,j) and (in,jn) along `axis`: harmonic mean of V/a_P.
 bool FlowSolver::solve_region_covers(const Field& cells) const {
   return !solve_region_ || solve_region_->covers(cells);
 }
@@ -56,6 +55,7 @@ void FlowSolver::set_solve_region(const Field& cells) {
   if (solve_region_) solve_region_->assign(cells);
 }
 
+// Rhie-Chow mobility of the face between (i,j) and (in,jn) along `axis`: harmonic mean of V/a_P.
 double FlowSolver::coupled_mobility(const double* const* rau, int i, int j, int in, int jn) const {
   return face_mean(FaceViscosity::harmonic, rau[j][i], rau[jn][in]);
 }
