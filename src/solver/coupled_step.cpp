@@ -30,9 +30,11 @@ void FlowSolver::create_coupled_system() {
   PetscCallAbort(comm, MatSetOption(coupled_matrix_, MAT_NEW_NONZERO_ALLOCATION_ERR, PETSC_TRUE));
   PetscCallAbort(comm, DMCreateGlobalVector(coupled_dm_, &coupled_rhs_));
   PetscCallAbort(comm, VecDuplicate(coupled_rhs_, &coupled_solution_));
-  coupled_solver_ = std::make_unique<LinearSolver>(comm, "coupled", settings_.coupled_solver);
+  // Over the whole domain, or over the soil and its air band (the region makes its own solver).
   if (settings_.numerics.air_band > 0)
     solve_region_ = std::make_unique<SolveRegion>(grid_, coupled_dm_, settings_.coupled_solver);
+  else
+    coupled_solver_ = std::make_unique<LinearSolver>(comm, "coupled", settings_.coupled_solver);
   for (int a = 0; a < 2; ++a) {
     cell_force_[a] = std::make_unique<Field>(grid_);
     cell_force_[a]->set(0.0);

@@ -163,8 +163,8 @@ class FlowSolver {
   DM coupled_dm_ = nullptr;  // (u, v, p) per cell, same layout as the grid
   Mat coupled_matrix_ = nullptr;
   Vec coupled_rhs_ = nullptr, coupled_solution_ = nullptr;
-  std::unique_ptr<LinearSolver> coupled_solver_;
-  std::unique_ptr<SolveRegion> solve_region_;  // numerics.air_band > 0
+  std::unique_ptr<LinearSolver> coupled_solver_;  // numerics.air_band = 0
+  std::unique_ptr<SolveRegion> solve_region_;      // numerics.air_band > 0
   std::unique_ptr<Field> cell_force_[2];  // lagged balanced cell force of the Rhie-Chow flux
   std::vector<double> side_head_[2];  // west, east: hydrostatic head of the boundary column per row
   bool has_pressure_boundary_ = false;
