@@ -26,15 +26,16 @@ void FlowSolver::create_coupled_system() {
   PetscCallAbort(comm, DMDACreate2d(comm, DM_BOUNDARY_NONE, DM_BOUNDARY_NONE, DMDA_STENCIL_STAR, grid_.nx(),
                                     grid_.ny(), m, n, 3, 1, lx, ly, &coupled_dm_));
   PetscCallAbort(comm, DMSetUp(coupled_dm_));
-  PetscCallAbort(comm, DMCreateMatrix(coupled_dm_, &coupled_matrix_));
-  PetscCallAbort(comm, MatSetOption(coupled_matrix_, MAT_NEW_NONZERO_ALLOCATION_ERR, PETSC_TRUE));
-  PetscCallAbort(comm, DMCreateGlobalVector(coupled_dm_, &coupled_rhs_));
-  PetscCallAbort(comm, VecDuplicate(coupled_rhs_, &coupled_solution_));
-  // Over the whole domain, or over the soil and its air band (the region makes its own solver).
-  if (settings_.numerics.air_band > 0)
-    solve_region_ = std::make_unique<SolveRegion>(grid_, coupled_dm_, settings_.coupled_solver);
-  else
+  PetscCallAbort(comm, DMCreateGlobalVector(coupled_dm_, &coupled_solution_));
+  // Over the soil and its air band (the region makes its own system), or over the whole domain.
+  if (settings_.numerics.air_band > 0) {
+    solve_region_ = std::make_unique<SolveRegion>(grid_, settings_.coupled_solver);
+  } else {
+    PetscCallAbort(comm, DMCreateMatrix(coupled_dm_, &coupled_matrix_));
+    PetscCallAbort(comm, MatSetOption(coupled_matrix_, MAT_NEW_NONZERO_ALLOCATION_ERR, PETSC_TRUE));
+    PetscCallAbort(comm, VecDuplicate(coupled_solution_, &coupled_rhs_));
     coupled_solver_ = std::make_unique<LinearSolver>(comm, "coupled", settings_.coupled_solver);
+  }
   for (int a = 0; a < 2; ++a) {
     cell_force_[a] = std::make_unique<Field>(grid_);
     cell_force_[a]->set(0.0);
@@ -55,6 +56,12 @@ bool FlowSolver::solve_region_covers(const Field& cells) const {
 
 void FlowSolver::set_solve_region(const Field& cells) {
   if (solve_region_) solve_region_->assign(cells);
+}
+
+// Pressure of air at rest in row j below the north atmosphere (gravity along y, checked by the case).
+double FlowSolver::pressure_at_rest(double rho, int j) const {
+  const double y_top = grid_.spec().upper[1];
+  return boundary(settings_.boundaries, Side::north).pressure - rho * settings_.gravity[1] * (y_top - grid_.yc(j));
 }
 
 // Rhie-Chow mobility of the face between (i,j) and (in,jn) along `axis`: harmonic mean of V/a_P.
@@ -99,113 +106,137 @@ int FlowSolver::solve_coupled() {
     ConstFieldArray fcx = local_read(grid_, *cell_force_[0]), fcy = local_read(grid_, *cell_force_[1]);
     const double* const* rau[2] = {rx.data(), ry.data()};
     const double* const* fcell[2] = {fcx.data(), fcy.data()};
-    PetscScalar*** rhs;
-    DMDAVecGetArrayDOF(coupled_dm_, coupled_rhs_, &rhs);
-    for (int j = b.ys; j < b.ye(); ++j)
-      for (int i = b.xs; i < b.xe(); ++i) {
-        const size_t k = size_t(j - b.ys) * b.xm + (i - b.xs);
-        const double Vol = grid_.volume(i, j), rhoP = rho[j][i];
-        // Momentum rows: a_P v_P - sum a_nb v_nb - V f_cell(p) = source.
-        for (int c = 0; c < 2; ++c) {
-          MatStencil row{0, j, i, c};
-          MatStencil cols[8];
-          double vals[8];
-          int n = 0;
-          cols[n] = row;
-          vals[n++] = a_centre_[c][k];
-          const int di[4] = {1, -1, 0, 0}, dj[4] = {0, 0, 1, -1};
-          const double anb[4] = {a_east_[k], a_west_[k], a_north_[k], a_south_[k]};
-          for (int f = 0; f < 4; ++f) {
-            const int in = i + di[f], jn = j + dj[f];
-            if (in < 0 || in >= nx || jn < 0 || jn >= ny) continue;
-            cols[n] = MatStencil{0, jn, in, c};
-            vals[n++] = -anb[f];
-          }
-          double r = source_[c][k];
-          double p_centre = 0.0;
-          for (int side = 0; side < 2; ++side) {  // high then low face along c
-            const int s = side == 0 ? 1 : -1;
-            const int in = i + (c == 0 ? s : 0), jn = j + (c == 1 ? s : 0);
-            if (in < 0 || in >= nx || jn < 0 || jn >= ny) {
-              const Side bs = c == 0 ? (s > 0 ? Side::east : Side::west) : (s > 0 ? Side::north : Side::south);
-              const auto& bc = boundary(settings_.boundaries, bs);
-              if (bc.kind != BoundaryKind::atmosphere) continue;  // walls carry no face force
-              const double d = 0.5 * (c == 0 ? grid_.dx(i) : grid_.dy(j));
-              const double yb = grid_.yc(j) + (c == 1 ? s * d : 0.0);
-              const double face_vel = c == 0 ? (s > 0 ? fxv[j][i] : fxv[j][i - 1]) : (s > 0 ? fyv[j][i] : fyv[j - 1][i]);
-              const double pb = atmosphere_pressure(bc, boundary_head(bs, j, rhoP, yb), rhoP, s * face_vel,
-                                                    u[j][i] * u[j][i] + v[j][i] * v[j][i]);
-              // -V/2 f_b with f_b = -s (p_b - p_P)/d + rho_P g_c: p_b enters like a neighbour pressure.
-              const double w = Vol / (2 * d);
+    // The rows of the cells `wanted(i, j)`, each handed to `emit(i, j, unknown, n, cols, vals, rhs)`.
+    auto fill_rows = [&](auto&& wanted, auto&& emit) {
+      for (int j = b.ys; j < b.ye(); ++j)
+        for (int i = b.xs; i < b.xe(); ++i) {
+          if (!wanted(i, j)) continue;
+          const size_t k = size_t(j - b.ys) * b.xm + (i - b.xs);
+          const double Vol = grid_.volume(i, j), rhoP = rho[j][i];
+          // Momentum rows: a_P v_P - sum a_nb v_nb - V f_cell(p) = source.
+          for (int c = 0; c < 2; ++c) {
+            MatStencil row{0, j, i, c};
+            MatStencil cols[8];
+            double vals[8];
+            int n = 0;
+            cols[n] = row;
+            vals[n++] = a_centre_[c][k];
+            const int di[4] = {1, -1, 0, 0}, dj[4] = {0, 0, 1, -1};
+            const double anb[4] = {a_east_[k], a_west_[k], a_north_[k], a_south_[k]};
+            for (int f = 0; f < 4; ++f) {
+              const int in = i + di[f], jn = j + dj[f];
+              if (in < 0 || in >= nx || jn < 0 || jn >= ny) continue;
+              cols[n] = MatStencil{0, jn, in, c};
+              vals[n++] = -anb[f];
+            }
+            double r = source_[c][k];
+            double p_centre = 0.0;
+            for (int side = 0; side < 2; ++side) {  // high then low face along c
+              const int s = side == 0 ? 1 : -1;
+              const int in = i + (c == 0 ? s : 0), jn = j + (c == 1 ? s : 0);
+              if (in < 0 || in >= nx || jn < 0 || jn >= ny) {
+                const Side bs = c == 0 ? (s > 0 ? Side::east : Side::west) : (s > 0 ? Side::north : Side::south);
+                const auto& bc = boundary(settings_.boundaries, bs);
+                if (bc.kind != BoundaryKind::atmosphere) continue;  // walls carry no face force
+                const double d = 0.5 * (c == 0 ? grid_.dx(i) : grid_.dy(j));
+                const double yb = grid_.yc(j) + (c == 1 ? s * d : 0.0);
+                const double face_vel =
+                    c == 0 ? (s > 0 ? fxv[j][i] : fxv[j][i - 1]) : (s > 0 ? fyv[j][i] : fyv[j - 1][i]);
+                const double pb = atmosphere_pressure(bc, boundary_head(bs, j, rhoP, yb), rhoP, s * face_vel,
+                                                      u[j][i] * u[j][i] + v[j][i] * v[j][i]);
+                // -V/2 f_b with f_b = -s (p_b - p_P)/d + rho_P g_c: p_b enters like a neighbour pressure.
+                const double w = Vol / (2 * d);
+                p_centre += -s * w;
+                r += -s * w * pb + 0.5 * Vol * rhoP * g[c];
+                continue;
+              }
+              const double d = c == 0 ? std::abs(grid_.xc(in) - grid_.xc(i)) : std::abs(grid_.yc(jn) - grid_.yc(j));
+              const double rho_f = 0.5 * (rhoP + rho[jn][in]);
+              const double w = Vol * rhoP / (2 * rho_f * d);  // -V rho_P/(2 rho_f) * (-s (p_N - p_P)/d)
+              cols[n] = MatStencil{0, jn, in, P};
+              vals[n++] = s * w;
               p_centre += -s * w;
-              r += -s * w * pb + 0.5 * Vol * rhoP * g[c];
-              continue;
+              r += 0.5 * Vol * rhoP * g[c];
             }
-            const double d = c == 0 ? std::abs(grid_.xc(in) - grid_.xc(i)) : std::abs(grid_.yc(jn) - grid_.yc(j));
-            const double rho_f = 0.5 * (rhoP + rho[jn][in]);
-            const double w = Vol * rhoP / (2 * rho_f * d);  // -V rho_P/(2 rho_f) * (-s (p_N - p_P)/d)
-            cols[n] = MatStencil{0, jn, in, P};
-            vals[n++] = s * w;
-            p_centre += -s * w;
-            r += 0.5 * Vol * rhoP * g[c];
+            cols[n] = MatStencil{0, j, i, P};
+            vals[n++] = p_centre;
+            emit(i, j, c, n, cols, vals, r);
           }
-          cols[n] = MatStencil{0, j, i, P};
-          vals[n++] = p_centre;
-          MatSetValuesStencil(coupled_matrix_, 1, &row, n, cols, vals, INSERT_VALUES);
-          rhs[j][i][c] = r;
-        }
-        // Continuity row: sum_f s A U_f = 0, U_f = mean(v_n) + m_f (f_f(p) - mean(f_cell)_lagged).
-        {
-          MatStencil row{0, j, i, P};
-          MatStencil cols[12];
-          double vals[12];
-          int n = 0;
-          double u_centre[2] = {0.0, 0.0}, p_centre = 0.0, r = 0.0;
-          for (int f = 0; f < 4; ++f) {
-            const int axis = f < 2 ? 0 : 1;
-            const int s = (f % 2 == 0) ? 1 : -1;
-            const int in = i + (axis == 0 ? s : 0), jn = j + (axis == 1 ? s : 0);
-            const double area = grid_.face_area(axis, i, j, s);
-            if (in < 0 || in >= nx || jn < 0 || jn >= ny) {
-              const Side bs = axis == 0 ? (s > 0 ? Side::east : Side::west) : (s > 0 ? Side::north : Side::south);
-              const auto& bc = boundary(settings_.boundaries, bs);
-              if (bc.kind != BoundaryKind::atmosphere) continue;
-              const double d = 0.5 * (axis == 0 ? grid_.dx(i) : grid_.dy(j));
-              const double yb = grid_.yc(j) + (axis == 1 ? s * d : 0.0);
-              const double face_vel = axis == 0 ? (s > 0 ? fxv[j][i] : fxv[j][i - 1]) : (s > 0 ? fyv[j][i] : fyv[j - 1][i]);
-              const double pb = atmosphere_pressure(bc, boundary_head(bs, j, rhoP, yb), rhoP, s * face_vel,
-                                                    u[j][i] * u[j][i] + v[j][i] * v[j][i]);
-              const double m = rau[axis][j][i];
-              u_centre[axis] += s * area;
+          // Continuity row: sum_f s A U_f = 0, U_f = mean(v_n) + m_f (f_f(p) - mean(f_cell)_lagged).
+          {
+            MatStencil row{0, j, i, P};
+            MatStencil cols[12];
+            double vals[12];
+            int n = 0;
+            double u_centre[2] = {0.0, 0.0}, p_centre = 0.0, r = 0.0;
+            for (int f = 0; f < 4; ++f) {
+              const int axis = f < 2 ? 0 : 1;
+              const int s = (f % 2 == 0) ? 1 : -1;
+              const int in = i + (axis == 0 ? s : 0), jn = j + (axis == 1 ? s : 0);
+              const double area = grid_.face_area(axis, i, j, s);
+              if (in < 0 || in >= nx || jn < 0 || jn >= ny) {
+                const Side bs = axis == 0 ? (s > 0 ? Side::east : Side::west) : (s > 0 ? Side::north : Side::south);
+                const auto& bc = boundary(settings_.boundaries, bs);
+                if (bc.kind != BoundaryKind::atmosphere) continue;
+                const double d = 0.5 * (axis == 0 ? grid_.dx(i) : grid_.dy(j));
+                const double yb = grid_.yc(j) + (axis == 1 ? s * d : 0.0);
+                const double face_vel =
+                    axis == 0 ? (s > 0 ? fxv[j][i] : fxv[j][i - 1]) : (s > 0 ? fyv[j][i] : fyv[j - 1][i]);
+                const double pb = atmosphere_pressure(bc, boundary_head(bs, j, rhoP, yb), rhoP, s * face_vel,
+                                                      u[j][i] * u[j][i] + v[j][i] * v[j][i]);
+                const double m = rau[axis][j][i];
+                u_centre[axis] += s * area;
+                p_centre += m * area / d;
+                r += m * area / d * pb - s * area * m * rhoP * g[axis] + s * area * m * fcell[axis][j][i];
+                continue;
+              }
+              const double d = axis == 0 ? std::abs(grid_.xc(in) - grid_.xc(i)) : std::abs(grid_.yc(jn) - grid_.yc(j));
+              const double m = coupled_mobility(rau[axis], i, j, in, jn);
+              const double rho_f = 0.5 * (rhoP + rho[jn][in]);
+              u_centre[axis] += 0.5 * s * area;
+              cols[n] = MatStencil{0, jn, in, axis};
+              vals[n++] = 0.5 * s * area;
               p_centre += m * area / d;
-              r += m * area / d * pb - s * area * m * rhoP * g[axis] + s * area * m * fcell[axis][j][i];
-              continue;
+              cols[n] = MatStencil{0, jn, in, P};
+              vals[n++] = -m * area / d;
+              r += -s * area * m * rho_f * g[axis] + s * area * m * 0.5 * (fcell[axis][j][i] + fcell[axis][jn][in]);
             }
-            const double d = axis == 0 ? std::abs(grid_.xc(in) - grid_.xc(i)) : std::abs(grid_.yc(jn) - grid_.yc(j));
-            const double m = coupled_mobility(rau[axis], i, j, in, jn);
-            const double rho_f = 0.5 * (rhoP + rho[jn][in]);
-            u_centre[axis] += 0.5 * s * area;
-            cols[n] = MatStencil{0, jn, in, axis};
-            vals[n++] = 0.5 * s * area;
-            p_centre += m * area / d;
-            cols[n] = MatStencil{0, jn, in, P};
-            vals[n++] = -m * area / d;
-            r += -s * area * m * rho_f * g[axis] + s * area * m * 0.5 * (fcell[axis][j][i] + fcell[axis][jn][in]);
+            cols[n] = MatStencil{0, j, i, U};
+            vals[n++] = u_centre[0];
+            cols[n] = MatStencil{0, j, i, V};
+            vals[n++] = u_centre[1];
+            cols[n] = row;
+            vals[n++] = p_centre;
+            emit(i, j, int(P), n, cols, vals, r);
           }
-          cols[n] = MatStencil{0, j, i, U};
-          vals[n++] = u_centre[0];
-          cols[n] = MatStencil{0, j, i, V};
-          vals[n++] = u_centre[1];
-          cols[n] = row;
-          vals[n++] = p_centre;
-          MatSetValuesStencil(coupled_matrix_, 1, &row, n, cols, vals, INSERT_VALUES);
-          rhs[j][i][P] = r;
         }
+    };
+    if (solve_region_) {
+      // Only the region's rows; outside, air at rest under the pressure of the air column above it.
+      if (solve_region_->prepare() > 0) {
+        auto outside = [&](int i, int j, int unknown) {
+          return unknown == P ? pressure_at_rest(rho[j][i], j) : 0.0;
+        };
+        SolveRegion::RowWriter rows(*solve_region_);
+        fill_rows([&](int i, int j) { return rows.inside(i, j); },
+                  [&](int i, int j, int unknown, int n, const MatStencil* cols, const double* vals, double r) {
+                    rows.set(i, j, unknown, n, cols, vals, r, outside);
+                  });
       }
-    DMDAVecRestoreArrayDOF(coupled_dm_, coupled_rhs_, &rhs);
+    } else {
+      PetscScalar*** rhs;
+      DMDAVecGetArrayDOF(coupled_dm_, coupled_rhs_, &rhs);
+      fill_rows([](int, int) { return true; },
+                [&](int i, int j, int unknown, int n, const MatStencil* cols, const double* vals, double r) {
+                  const MatStencil row{0, j, i, unknown};
+                  MatSetValuesStencil(coupled_matrix_, 1, &row, n, cols, vals, INSERT_VALUES);
+                  rhs[j][i][unknown] = r;
+                });
+      DMDAVecRestoreArrayDOF(coupled_dm_, coupled_rhs_, &rhs);
+      PetscCallAbort(grid_.comm(), MatAssemblyBegin(coupled_matrix_, MAT_FINAL_ASSEMBLY));
+      PetscCallAbort(grid_.comm(), MatAssemblyEnd(coupled_matrix_, MAT_FINAL_ASSEMBLY));
+    }
   }
-  PetscCallAbort(grid_.comm(), MatAssemblyBegin(coupled_matrix_, MAT_FINAL_ASSEMBLY));
-  PetscCallAbort(grid_.comm(), MatAssemblyEnd(coupled_matrix_, MAT_FINAL_ASSEMBLY));
   // Initial guess: the current state.
   {
     PetscScalar*** x;
@@ -223,8 +254,6 @@ int FlowSolver::solve_coupled() {
   int iterations = 0;
   if (solve_region_) {
     // Outside the region: air at rest under the pressure of the air column above it.
-    const auto& top = boundary(settings_.boundaries, Side::north);
-    const double y_top = grid_.spec().upper[1];
     ConstFieldArray inside(grid_.field_dm(), solve_region_->cells().global()), rho(grid_.field_dm(), rho_->global());
     PetscScalar*** x;
     DMDAVecGetArrayDOF(coupled_dm_, coupled_solution_, &x);
@@ -232,10 +261,10 @@ int FlowSolver::solve_coupled() {
       for (int i = b.xs; i < b.xe(); ++i)
         if (inside[j][i] == 0.0) {
           x[j][i][U] = x[j][i][V] = 0.0;
-          x[j][i][P] = top.pressure - rho[j][i] * g[1] * (y_top - grid_.yc(j));
+          x[j][i][P] = pressure_at_rest(rho[j][i], j);
         }
     DMDAVecRestoreArrayDOF(coupled_dm_, coupled_solution_, &x);
-    iterations = solve_region_->solve(coupled_matrix_, coupled_rhs_, coupled_solution_);
+    if (solve_region_->cell_count() > 0) iterations = solve_region_->solve(coupled_dm_, coupled_solution_);
   } else {
     coupled_solver_->set_operator(coupled_matrix_);
     iterations = coupled_solver_->solve(coupled_rhs_, coupled_solution_);

@@ -127,6 +127,7 @@ class FlowSolver {
   void store_cell_forces();
   int solve_coupled();
   double coupled_mobility(const double* const* rau, int i, int j, int in, int jn) const;
+  double pressure_at_rest(double rho, int j) const;  // air outside the solve region
   double local_min_viscosity(const double* const* mu, int i, int j) const;
   double cell_force(int axis, int i, int j, const double* const* ff, const double* const* rho) const;
   double face_coefficient(const double* const* rau, const double* const* rho, int i, int j, int in, int jn) const;

@@ -3,19 +3,21 @@
 namespace granflow {
 
 namespace {
-constexpr int unknowns_per_cell = 3;  // u, v, p
+// Rows of a region cell's equations: its u, v and continuity rows have at most 11 entries.
+constexpr PetscInt entries_per_row = 12;
 }  // namespace
 
-SolveRegion::SolveRegion(const Grid& grid, DM coupled_dm, const LinearSolverSettings& solver)
-    : grid_(grid), coupled_dm_(coupled_dm), solver_settings_(solver), cells_(grid) {
+SolveRegion::SolveRegion(const Grid& grid, const LinearSolverSettings& solver)
+    : grid_(grid), solver_settings_(solver), cells_(grid), index_(grid) {
   cells_.set(0.0);  // empty until assigned: the first step lays the band
+  index_.set(-1.0);
 }
 
 SolveRegion::~SolveRegion() {
   solver_.reset();
   MatDestroy(&matrix_);
-  ISDestroy(&rows_is_);
-  VecDestroy(&residual_);
+  VecDestroy(&rhs_);
+  VecDestroy(&solution_);
 }
 
 bool SolveRegion::covers(const Field& needed) const {
@@ -44,51 +46,94 @@ void SolveRegion::assign(const Field& wanted) {
   cells_.scatter_to_local();
 }
 
-int SolveRegion::solve(Mat a, Vec b, Vec x) {
+long SolveRegion::prepare() {
   const MPI_Comm comm = grid_.comm();
   const auto& box = grid_.owned();
-  PetscInt first_row;
-  PetscCallAbort(comm, VecGetOwnershipRange(b, &first_row, nullptr));
-  std::vector<PetscInt> rows;
+  std::vector<int> owned;
   {
     ConstFieldArray mine(grid_.field_dm(), cells_.global());
     for (int j = box.ys; j < box.ye(); ++j)
       for (int i = box.xs; i < box.xe(); ++i)
-        if (mine[j][i] != 0.0) {
-          const PetscInt row = first_row + unknowns_per_cell * (PetscInt(j - box.ys) * box.xm + (i - box.xs));
-          for (int k = 0; k < unknowns_per_cell; ++k) rows.push_back(row + k);
-        }
+        if (mine[j][i] != 0.0) owned.push_back((j - box.ys) * box.xm + (i - box.xs));
   }
-  int changed = (!matrix_ || rows != rows_) ? 1 : 0, any_changed = 0;
+  // The mask is compared rather than tracked: a retried step or a restart restores it directly.
+  int changed = (!matrix_ || owned != owned_) ? 1 : 0, any_changed = 0;
   MPI_Allreduce(&changed, &any_changed, 1, MPI_INT, MPI_MAX, comm);
-  if (any_changed) {
-    solver_.reset();
-    MatDestroy(&matrix_);
-    ISDestroy(&rows_is_);
-    rows_ = std::move(rows);
-    long local = long(rows_.size()) / unknowns_per_cell;
-    MPI_Allreduce(&local, &cell_count_, 1, MPI_LONG, MPI_SUM, comm);
-    if (cell_count_ == 0) return 0;  // no soil left: nothing but air at rest
-    PetscCallAbort(comm, ISCreateGeneral(comm, PetscInt(rows_.size()), rows_.data(), PETSC_COPY_VALUES, &rows_is_));
-    PetscCallAbort(comm, MatCreateSubMatrix(a, rows_is_, rows_is_, MAT_INITIAL_MATRIX, &matrix_));
-    // A new pattern needs a new factorisation analysis; a fresh solver also takes the new sizes.
-    solver_ = std::make_unique<LinearSolver>(comm, "coupled", solver_settings_);
-  } else {
-    if (cell_count_ == 0) return 0;
-    PetscCallAbort(comm, MatCreateSubMatrix(a, rows_is_, rows_is_, MAT_REUSE_MATRIX, &matrix_));
+  if (!any_changed) return cell_count_;
+
+  solver_.reset();
+  MatDestroy(&matrix_);
+  VecDestroy(&rhs_);
+  VecDestroy(&solution_);
+  owned_ = std::move(owned);
+  const long local = long(owned_.size());
+  long first = 0;
+  MPI_Allreduce(&local, &cell_count_, 1, MPI_LONG, MPI_SUM, comm);
+  MPI_Exscan(&local, &first, 1, MPI_LONG, MPI_SUM, comm);
+  int rank;
+  MPI_Comm_rank(comm, &rank);
+  if (rank == 0) first = 0;  // MPI_Exscan leaves rank 0's result undefined
+  first_row_ = unknowns_per_cell * PetscInt(first);
+  {
+    FieldArray index(grid_.field_dm(), index_.global());
+    for (int j = box.ys; j < box.ye(); ++j)
+      for (int i = box.xs; i < box.xe(); ++i) index[j][i] = -1.0;
+    for (size_t k = 0; k < owned_.size(); ++k) {
+      const int c = owned_[k];
+      index[box.ys + c / box.xm][box.xs + c % box.xm] = double(first + long(k));
+    }
   }
-  // Right-hand side of the region's rows: b - A x with x zero in the region and the known values outside.
-  if (!residual_) PetscCallAbort(comm, VecDuplicate(b, &residual_));
-  PetscCallAbort(comm, VecISSet(x, rows_is_, 0.0));
-  PetscCallAbort(comm, MatMult(a, x, residual_));
-  PetscCallAbort(comm, VecAYPX(residual_, -1.0, b));
-  Vec region_rhs, region_x;
-  PetscCallAbort(comm, VecGetSubVector(residual_, rows_is_, &region_rhs));
-  PetscCallAbort(comm, VecGetSubVector(x, rows_is_, &region_x));
+  index_.scatter_to_local();
+  if (cell_count_ == 0) return 0;  // no soil left: nothing but air at rest
+
+  const PetscInt rows = unknowns_per_cell * PetscInt(local);
+  PetscCallAbort(comm, MatCreate(comm, &matrix_));
+  PetscCallAbort(comm, MatSetSizes(matrix_, rows, rows, PETSC_DETERMINE, PETSC_DETERMINE));
+  PetscCallAbort(comm, MatSetType(matrix_, MATAIJ));
+  PetscCallAbort(comm, MatSetBlockSize(matrix_, unknowns_per_cell));
+  PetscCallAbort(comm, MatSeqAIJSetPreallocation(matrix_, entries_per_row, nullptr));
+  PetscCallAbort(comm, MatMPIAIJSetPreallocation(matrix_, entries_per_row, nullptr, entries_per_row, nullptr));
+  PetscCallAbort(comm, MatSetOption(matrix_, MAT_NO_OFF_PROC_ENTRIES, PETSC_TRUE));  // rows are set where owned
+  PetscCallAbort(comm, MatCreateVecs(matrix_, &solution_, &rhs_));
+  // A new pattern needs a new factorisation analysis; a fresh solver also takes the new sizes.
+  solver_ = std::make_unique<LinearSolver>(comm, "coupled", solver_settings_);
+  return cell_count_;
+}
+
+SolveRegion::RowWriter::RowWriter(SolveRegion& region)
+    : region_(region), index_(region.grid_.field_dm(), region.index_.local()) {
+  PetscCallAbort(region_.grid_.comm(), VecGetArray(region_.rhs_, &rhs_));
+}
+
+SolveRegion::RowWriter::~RowWriter() {
+  const MPI_Comm comm = region_.grid_.comm();
+  VecRestoreArray(region_.rhs_, &rhs_);
+  PetscCallAbort(comm, MatAssemblyBegin(region_.matrix_, MAT_FINAL_ASSEMBLY));
+  PetscCallAbort(comm, MatAssemblyEnd(region_.matrix_, MAT_FINAL_ASSEMBLY));
+}
+
+int SolveRegion::solve(DM coupled_dm, Vec x) {
+  const auto& box = grid_.owned();
+  auto copy = [&](bool into_region) {
+    PetscScalar*** full;
+    PetscScalar* region;
+    DMDAVecGetArrayDOF(coupled_dm, x, &full);
+    VecGetArray(solution_, &region);
+    for (size_t k = 0; k < owned_.size(); ++k) {
+      const int c = owned_[k];
+      PetscScalar* cell = full[box.ys + c / box.xm][box.xs + c % box.xm];
+      for (int u = 0; u < unknowns_per_cell; ++u) {
+        if (into_region) region[unknowns_per_cell * k + u] = cell[u];
+        else cell[u] = region[unknowns_per_cell * k + u];
+      }
+    }
+    VecRestoreArray(solution_, &region);
+    DMDAVecRestoreArrayDOF(coupled_dm, x, &full);
+  };
+  copy(true);  // the initial guess of an iterative solver
   solver_->set_operator(matrix_);
-  const int iterations = solver_->solve(region_rhs, region_x);
-  PetscCallAbort(comm, VecRestoreSubVector(x, rows_is_, &region_x));  // copies the solution back into x
-  PetscCallAbort(comm, VecRestoreSubVector(residual_, rows_is_, &region_rhs));
+  const int iterations = solver_->solve(rhs_, solution_);
+  copy(false);
   return iterations;
 }
 

@@ -6,8 +6,10 @@
 // factorisation covers a fifth of the domain instead of all of it (docs/method.md, "Air band").
 //
 // The cells are a 0/1 mask field (part of the flow state, so a retried step and a restart see the
-// same region). The rows of the coupled system they hold, the submatrix and its solver are rebuilt
-// only when the mask changes; between changes the factorisation's analysis is reused.
+// same region). The region's system is assembled directly in its own numbering: a column outside
+// the region moves to the right-hand side with its known value. Numbering, matrix and solver are
+// made anew only when the mask changes; between changes the matrix is refilled in place and the
+// factorisation's analysis is reused.
 #include <petscksp.h>
 
 #include <memory>
@@ -21,33 +23,79 @@ namespace granflow {
 
 class SolveRegion {
  public:
-  SolveRegion(const Grid& grid, DM coupled_dm, const LinearSolverSettings& solver);
+  static constexpr int unknowns_per_cell = 3;  // u, v, p
+
+  SolveRegion(const Grid& grid, const LinearSolverSettings& solver);
   ~SolveRegion();
   SolveRegion(const SolveRegion&) = delete;
   SolveRegion& operator=(const SolveRegion&) = delete;
 
   // 1 in the cells the solve covers, 0 outside.
   Field& cells() { return cells_; }
+  const Field& cells() const { return cells_; }
   // Whether every cell where `needed` is non-zero lies in the region (on every rank).
   bool covers(const Field& needed) const;
   // The region becomes the cells where `wanted` is non-zero.
   void assign(const Field& wanted);
-  // Solves the region's rows of a x = b for the region's unknowns of x; the other entries of x
-  // hold the known outside values on entry and are left as they are. Returns the iterations.
-  int solve(Mat a, Vec b, Vec x);
-  // Cells in the region over all ranks, after the last solve.
+
+  // Numbers the region's cells anew (and makes a new matrix and solver) if the mask changed since
+  // the last call; returns the region's cells over all ranks. Call before filling the rows.
+  long prepare();
+  // Cells in the region over all ranks, after the last prepare().
   long cell_count() const { return cell_count_; }
+
+  // Fills the region's rows, one (cell, unknown) at a time, while it lives; the matrix is
+  // assembled when it goes. Columns are given as grid stencils; those outside the region are
+  // moved to the right-hand side with the value `outside(i, j, unknown)`.
+  class RowWriter {
+   public:
+    explicit RowWriter(SolveRegion& region);
+    ~RowWriter();
+    RowWriter(const RowWriter&) = delete;
+    RowWriter& operator=(const RowWriter&) = delete;
+
+    bool inside(int i, int j) const { return index_[j][i] >= 0.0; }
+    template <class Outside>
+    void set(int i, int j, int unknown, int n, const MatStencil* cols, const double* vals, double rhs,
+             Outside&& outside) {
+      PetscInt region_cols[16];
+      double region_vals[16];
+      int m = 0;
+      for (int k = 0; k < n; ++k) {
+        const double c = index_[cols[k].j][cols[k].i];
+        if (c >= 0.0) {
+          region_cols[m] = unknowns_per_cell * PetscInt(c) + cols[k].c;
+          region_vals[m++] = vals[k];
+        } else {
+          rhs -= vals[k] * outside(cols[k].i, cols[k].j, cols[k].c);
+        }
+      }
+      const PetscInt row = unknowns_per_cell * PetscInt(index_[j][i]) + unknown;
+      MatSetValues(region_.matrix_, 1, &row, m, region_cols, region_vals, INSERT_VALUES);
+      rhs_[row - region_.first_row_] = rhs;
+    }
+
+   private:
+    SolveRegion& region_;
+    ConstFieldArray index_;
+    PetscScalar* rhs_ = nullptr;
+  };
+
+  // Solves the region's system (after a RowWriter filled it) and writes the region's unknowns into
+  // `x`, a (u, v, p) vector of the whole grid laid out as the grid; the other entries of x are left
+  // as they are. `x` also gives the initial guess of an iterative solver. Returns the iterations.
+  int solve(DM coupled_dm, Vec x);
 
  private:
   const Grid& grid_;
-  DM coupled_dm_;
   LinearSolverSettings solver_settings_;
   Field cells_;
-  std::vector<PetscInt> rows_;  // owned rows of the coupled system in the region, of the last solve
+  Field index_;                 // region number of each cell (-1 outside), with ghosts
+  std::vector<int> owned_;      // owned region cells as (j - ys) xm + (i - xs), of the last prepare()
   long cell_count_ = 0;
-  IS rows_is_ = nullptr;
+  PetscInt first_row_ = 0;      // the first of this rank's rows in the region's numbering
   Mat matrix_ = nullptr;
-  Vec residual_ = nullptr;  // b - A x_outside
+  Vec rhs_ = nullptr, solution_ = nullptr;
   std::unique_ptr<LinearSolver> solver_;
 };
 
