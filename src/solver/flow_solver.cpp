@@ -522,7 +522,12 @@ void FlowSolver::assemble_momentum(double dt) {
         source_[c][k] = src[c];
       }
     }
+}
 
+int FlowSolver::solve_momentum() {
+  const auto& b = grid_.owned();
+  const int nx = grid_.nx(), ny = grid_.ny();
+  // The momentum matrices from assemble_momentum's coefficients (the coupled solve has its own).
   for (int c = 0; c < (shared_momentum_matrix_ ? 1 : 2); ++c) {
     Mat A = momentum_matrix_[c];
     for (int j = b.ys; j < b.ye(); ++j)
@@ -544,10 +549,6 @@ void FlowSolver::assemble_momentum(double dt) {
     PetscCallAbort(grid_.comm(), MatAssemblyEnd(A, MAT_FINAL_ASSEMBLY));
     momentum_solver_[c]->set_operator(A);
   }
-}
-
-int FlowSolver::solve_momentum() {
-  const auto& b = grid_.owned();
   int iterations = 0;
   for (int c = 0; c < 2; ++c) {
     {
