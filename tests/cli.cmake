@@ -12,6 +12,12 @@ add_test(NAME cli_restart_without_checkpoint
                  -o ${CMAKE_CURRENT_BINARY_DIR}/no_such_run --restart)
 set_tests_properties(cli_restart_without_checkpoint PROPERTIES LABELS cli
                      PASS_REGULAR_EXPRESSION "error: no checkpoint to restart from")
+# ... and leaves no output directory behind where there was none.
+add_test(NAME cli_failed_restart_leaves_no_directory
+         COMMAND sh -c "rm -rf \"$1\"; \"$0\" run \"$2\" -o \"$1\" --restart; test $? -ne 0 && test ! -e \"$1\""
+                 $<TARGET_FILE:granflow> ${CMAKE_CURRENT_BINARY_DIR}/no_such_run_left
+                 ${CMAKE_SOURCE_DIR}/cases/lid_driven_cavity_re100.toml)
+set_tests_properties(cli_failed_restart_leaves_no_directory PROPERTIES LABELS cli)
 add_test(NAME cli_check_shipped_cases COMMAND granflow check ${CMAKE_SOURCE_DIR}/cases/bui2008_experiment.toml)
 set_tests_properties(cli_check_shipped_cases PROPERTIES LABELS cli PASS_REGULAR_EXPRESSION "valid")
 add_test(NAME cli_element_test_csv COMMAND granflow element-test --csv)

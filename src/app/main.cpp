@@ -7,6 +7,7 @@
 
 #include "io/case_error.hpp"
 #include "io/case_file.hpp"
+#include "io/checkpoint.hpp"
 #include "models/rheology/element_test.hpp"
 #include "solver/simulation.hpp"
 
@@ -19,6 +20,9 @@ int run_case(const std::string& case_file, const std::vector<std::string>& overr
   if (out_dir.empty()) out_dir = (std::filesystem::path("out") / std::filesystem::path(case_file).stem()).string();
   int rank;
   MPI_Comm_rank(PETSC_COMM_WORLD, &rank);
+  // Checked before the simulation makes the output directory, so a mistyped one is not left behind.
+  if (restart && !std::filesystem::is_directory(out_dir))
+    throw CheckpointError(fmt::format("no checkpoint to restart from in {}: no such directory", out_dir));
   Simulation sim(PETSC_COMM_WORLD, config, out_dir);
   if (restart) sim.restart();
   if (rank == 0)
