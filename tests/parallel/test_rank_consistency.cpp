@@ -80,5 +80,14 @@ TEST(RankConsistency, CollapseWithFaceFractionOneAndTwoRanksAgree) {
                           1e-7);
 }
 
+// The same with a narrow air band: the region's system is numbered across both ranks, and its
+// top and right edges, where known outside values enter the right-hand side, lie on both.
+TEST(RankConsistency, CollapseWithAirBandOneAndTwoRanksAgree) {
+  expect_rank_independent("cases/bui2008_experiment.toml",
+                          {"mesh.cells=[25,20]", "mesh.upper=[0.25,0.2]", "time.end=0.1", "output.progress_seconds=0",
+                           "numerics.air_band=3"},
+                          1e-7);
+}
+
 }  // namespace
 }  // namespace granflow

@@ -1,0 +1,102 @@
+#pragma once
+// Checkpoint and restart (SPEC 6), shared by the one-rank and the two-rank tests: a run stopped
+// between outputs and restarted from its last checkpoint must end exactly where the run that was
+// never stopped ends, field by field and row by row of the history.
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "io/checkpoint.hpp"
+#include "io/gather.hpp"
+#include "solver/simulation.hpp"
+#include "test_support.hpp"
+
+namespace granflow::test {
+
+// A scratch directory named by rank 0's process, the same on every rank.
+inline std::filesystem::path scratch(const std::string& name) {
+  long pid = long(getpid());
+  MPI_Bcast(&pid, 1, MPI_LONG, 0, PETSC_COMM_WORLD);
+  return std::filesystem::temp_directory_path() / (name + "_" + std::to_string(pid));
+}
+
+// Removes a scratch directory from rank 0 once every rank is done with it.
+inline void remove_scratch(const std::filesystem::path& dir) {
+  MPI_Barrier(PETSC_COMM_WORLD);
+  if (is_root()) std::filesystem::remove_all(dir);
+  MPI_Barrier(PETSC_COMM_WORLD);
+}
+
+inline std::string file_text(const std::filesystem::path& p) {
+  std::ifstream in(p);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+struct EndState {
+  double time = 0.0;
+  long steps = 0;
+  std::vector<std::vector<double>> fields;  // u, v, p (and c)
+};
+
+inline EndState end_state(Simulation& sim, long steps) {
+  EndState e{sim.time(), steps, {}};
+  for (int a = 0; a < 2; ++a) e.fields.push_back(gather_to_root(sim.grid(), sim.flow().velocity(a)));
+  e.fields.push_back(gather_to_root(sim.grid(), sim.flow().pressure()));
+  if (sim.soil()) e.fields.push_back(gather_to_root(sim.grid(), sim.soil()->soil_fraction()));
+  return e;
+}
+
+// On all ranks of PETSC_COMM_WORLD: runs the case whole into one directory; into another, stops it
+// after `stop_after` steps and runs it again from the checkpoint. Returns the checkpoint's time.
+inline double expect_restart_reproduces(const std::string& case_file, std::vector<std::string> overrides,
+                                        long stop_after, bool has_history) {
+  const auto whole_dir = scratch("granflow_restart_whole"), split_dir = scratch("granflow_restart_split");
+  remove_scratch(whole_dir);
+  remove_scratch(split_dir);
+  const CaseConfig config = load_case(repo_path(case_file), overrides);
+  EndState whole;
+  {
+    Simulation sim(PETSC_COMM_WORLD, config, whole_dir);
+    const RunSummary s = sim.run();
+    whole = end_state(sim, s.steps);
+  }
+  overrides.push_back("time.max_steps=" + std::to_string(stop_after));
+  {
+    Simulation stopped(PETSC_COMM_WORLD, load_case(repo_path(case_file), overrides), split_dir);
+    stopped.run();
+    EXPECT_LT(stopped.time(), config.time.end);
+  }
+  double checkpoint_time = 0.0;
+  EndState resumed;
+  {
+    Simulation sim(PETSC_COMM_WORLD, config, split_dir);
+    sim.restart();
+    checkpoint_time = sim.time();
+    const RunSummary s = sim.run();
+    resumed = end_state(sim, s.steps);
+  }
+  EXPECT_GT(checkpoint_time, 0.0);
+  EXPECT_EQ(resumed.time, whole.time);
+  EXPECT_LT(resumed.steps, whole.steps);
+  for (size_t k = 0; k < whole.fields.size(); ++k) {
+    EXPECT_EQ(resumed.fields[k].size(), whole.fields[k].size());
+    if (resumed.fields[k].size() != whole.fields[k].size()) continue;
+    size_t differ = 0;
+    for (size_t n = 0; n < whole.fields[k].size(); ++n) differ += resumed.fields[k][n] != whole.fields[k][n];
+    EXPECT_EQ(differ, 0u) << "field " << k << " differs in " << differ << " cells";
+  }
+  if (has_history) EXPECT_EQ(file_text(split_dir / "history.csv"), file_text(whole_dir / "history.csv"));
+  EXPECT_EQ(file_text(split_dir / "fields.pvd"), file_text(whole_dir / "fields.pvd"));
+  remove_scratch(whole_dir);
+  remove_scratch(split_dir);
+  return checkpoint_time;
+}
+
+}  // namespace granflow::test
