@@ -14,8 +14,8 @@ case $case_name in
   *) echo "error: run_main.sh takes bui2008_experiment or bui2008_experiment_mu_of_i, not '$case_name'" >&2; exit 2 ;;
 esac
 out=out/$case_name
-# Two ranks where there are two cores: the coupled solve's factorisation is 1.5x faster on two, and
-# the result is the one-rank result (docs/validation.md).
+# Two ranks where there are two cores: the run is 1.25 times faster on two (docs/benchmarks.md), and
+# the result is the one-rank result to round-off (docs/validation.md).
 ranks=$(( $(nproc) >= 2 ? 2 : 1 ))
 if [ "$ranks" -gt 1 ]; then
   export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
