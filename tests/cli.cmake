@@ -14,7 +14,7 @@ set_tests_properties(cli_restart_without_checkpoint PROPERTIES LABELS cli
                      PASS_REGULAR_EXPRESSION "error: no checkpoint to restart from")
 # ... and leaves no output directory behind where there was none.
 add_test(NAME cli_failed_restart_leaves_no_directory
-         COMMAND sh -c "rm -rf \"$1\"; \"$0\" run \"$2\" -o \"$1\" --restart; test $? -ne 0 && test ! -e \"$1\""
+         COMMAND sh -c "rm -rf \"$1\"; out=$(\"$0\" run \"$2\" -o \"$1\" --restart 2>&1); test $? -ne 0 && test ! -e \"$1\" && echo \"$out\" | grep -q 'no checkpoint to restart from .*: no such directory'"
                  $<TARGET_FILE:granflow> ${CMAKE_CURRENT_BINARY_DIR}/no_such_run_left
                  ${CMAKE_SOURCE_DIR}/cases/lid_driven_cavity_re100.toml)
 set_tests_properties(cli_failed_restart_leaves_no_directory PROPERTIES LABELS cli)

@@ -21,7 +21,7 @@ int run_case(const std::string& case_file, const std::vector<std::string>& overr
   int rank;
   MPI_Comm_rank(PETSC_COMM_WORLD, &rank);
   // Checked before the simulation makes the output directory, so a mistyped one is not left behind.
-  if (restart && !std::filesystem::is_directory(out_dir))
+  if (restart && !std::filesystem::exists(out_dir))
     throw CheckpointError(fmt::format("no checkpoint to restart from in {}: no such directory", out_dir));
   Simulation sim(PETSC_COMM_WORLD, config, out_dir);
   if (restart) sim.restart();

@@ -3,7 +3,7 @@
 // of air around it. The air beyond is held at rest at its hydrostatic pressure and enters the solve
 // as known neighbour values, like an atmosphere. The soil feels the air only through pressures of
 // order rho_air U^2 (about 1 Pa against the soil's kPa), so the pile is the same, and the direct
-// factorisation covers a fifth of the domain instead of all of it (docs/method.md, "Air band").
+// factorisation covers about a quarter of the domain instead of all of it (docs/method.md, "Air band").
 //
 // The cells are a 0/1 mask field (part of the flow state, so a retried step and a restart see the
 // same region). The region's system is assembled directly in its own numbering: a column outside
@@ -58,8 +58,11 @@ class SolveRegion {
     template <class Outside>
     void set(int i, int j, int unknown, int n, const MatStencil* cols, const double* vals, double rhs,
              Outside&& outside) {
-      PetscInt region_cols[16];
-      double region_vals[16];
+      constexpr int most_columns = 16;
+      PetscCheckAbort(n <= most_columns, PETSC_COMM_SELF, PETSC_ERR_ARG_OUTOFRANGE,
+                      "a coupled row of %d columns (at most %d)", n, most_columns);
+      PetscInt region_cols[most_columns];
+      double region_vals[most_columns];
       int m = 0;
       for (int k = 0; k < n; ++k) {
         const double c = index_[cols[k].j][cols[k].i];
@@ -71,7 +74,8 @@ class SolveRegion {
         }
       }
       const PetscInt row = unknowns_per_cell * PetscInt(index_[j][i]) + unknown;
-      MatSetValues(region_.matrix_, 1, &row, m, region_cols, region_vals, INSERT_VALUES);
+      PetscCallAbort(PETSC_COMM_SELF,
+                     MatSetValues(region_.matrix_, 1, &row, m, region_cols, region_vals, INSERT_VALUES));
       rhs_[row - region_.first_row_] = rhs;
     }
 

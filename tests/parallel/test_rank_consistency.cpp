@@ -80,12 +80,14 @@ TEST(RankConsistency, CollapseWithFaceFractionOneAndTwoRanksAgree) {
                           1e-7);
 }
 
-// The same with a narrow air band: the region's system is numbered across both ranks, and its
-// top and right edges, where known outside values enter the right-hand side, lie on both.
+// The same with a narrow air band: the region's system is numbered across both ranks, its top edge,
+// where known outside values enter the right-hand side, lies on both, and its right edge at the start
+// is the last column of the first rank (50 columns split 25 | 25, the block's 20 and a band of 5), so
+// the outside values there come from the other rank's cells.
 TEST(RankConsistency, CollapseWithAirBandOneAndTwoRanksAgree) {
   expect_rank_independent("cases/bui2008_experiment.toml",
-                          {"mesh.cells=[25,20]", "mesh.upper=[0.25,0.2]", "time.end=0.1", "output.progress_seconds=0",
-                           "numerics.air_band=3"},
+                          {"mesh.cells=[50,20]", "mesh.upper=[0.5,0.2]", "time.end=0.1", "output.progress_seconds=0",
+                           "numerics.air_band=5"},
                           1e-7);
 }
 
