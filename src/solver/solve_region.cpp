@@ -74,10 +74,9 @@ long SolveRegion::prepare() {
   MPI_Comm_rank(comm, &rank);
   if (rank == 0) first = 0;  // MPI_Exscan leaves rank 0's result undefined
   first_row_ = unknowns_per_cell * PetscInt(first);
+  index_.set(-1.0);
   {
     FieldArray index(grid_.field_dm(), index_.global());
-    for (int j = box.ys; j < box.ye(); ++j)
-      for (int i = box.xs; i < box.xe(); ++i) index[j][i] = -1.0;
     for (size_t k = 0; k < owned_.size(); ++k) {
       const int c = owned_[k];
       index[box.ys + c / box.xm][box.xs + c % box.xm] = double(first + long(k));
