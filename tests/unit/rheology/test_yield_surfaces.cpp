@@ -220,5 +220,28 @@ TEST(RheologyYieldSurface, DruckerPragerBinghamParametersFromEquations8And9) {
   EXPECT_DOUBLE_EQ(dp.yield_stress(1000.0), 3.0 * dp.alpha_phi * 1000.0 + dp.cohesion_term);
 }
 
+// In simple shear at constant volume (the sliding layers of a collapse) the shear stress on the
+// sliding plane over the normal stress p is the model's friction coefficient. With the plane-strain
+// fit of [VoF] Eq. 8 it is 3 alpha_phi = tan(phi) / sqrt(1 + 4/3 tan^2 phi), below tan(phi) of the
+// shear box that measured phi: 0.3324 against 0.3600 at 19.8 deg (docs/validation.md).
+TEST(RheologyYieldSurface, DruckerPragerBinghamFrictionInSimpleShearIsThreeAlpha) {
+  auto shear_friction = [](double phi_deg) {
+    RheologyParameters p;
+    p.model = Model::drucker_prager_bingham;
+    p.friction_angle_deg = phi_deg;
+    const GranularRheology rheology(p);
+    const double pressure = 800.0, shear_rate = 50.0;  // du/dy, so D_xy = shear_rate / 2
+    const StrainRate d = planar_strain_rate(0.0, 0.0, 0.5 * shear_rate);
+    const RheologyResult r = rheology.evaluate(d, pressure);
+    const double eta = plastic_viscosity(r.yield_stress, r.strain_rate_norm);
+    return deviatoric_stress(d, eta).xy / pressure;
+  };
+  const double deg = std::numbers::pi / 180.0;
+  EXPECT_NEAR(shear_friction(19.8), 0.3324, 1e-4);
+  EXPECT_NEAR(shear_friction(19.8) / std::tan(19.8 * deg), 0.923, 1e-3);
+  // The cone that gives the shear box's friction in simple shear: 21.6 deg.
+  EXPECT_NEAR(shear_friction(21.6), std::tan(19.8 * deg), 1e-4);
+}
+
 }  // namespace
 }  // namespace granflow::rheology
