@@ -242,7 +242,7 @@ void SoilPhase::compute_overburden(const std::array<double, 2>& gravity) {
   VecDestroy(&natural);
 }
 
-const Field& SoilPhase::soil_region(int reach) const {
+const Field& SoilPhase::soil_region(int reach, double floor) const {
   // c's ghosts are current: every change of c ends with fill_fraction_ghosts. The region's own
   // domain-boundary ghosts stay 0 (set at construction); soil coming in through a boundary is in c's.
   const Field* in = c_.get();
@@ -251,7 +251,7 @@ const Field& SoilPhase::soil_region(int reach) const {
     {
       ConstFieldArray a(grid_.field_dm(), in->local());
       FieldArray r(grid_.field_dm(), out.global());
-      interface::soil_region(a.data(), grid_.owned(), r.data());
+      interface::soil_region(a.data(), grid_.owned(), r.data(), k == 0 ? floor : 0.0);
     }
     out.scatter_to_local();
     in = &out;

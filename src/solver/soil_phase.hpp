@@ -65,9 +65,9 @@ class SoilPhase {
   const Field& stress_ratio_to_drucker_prager() const { return *stress_ratio_; }
   const Field& dissipation() const { return *dissipation_; }  // per cell, from the last budget()
   const SoilSettings& settings() const { return settings_; }
-  // The cells within `reach` cells of any soil (1 there, else 0), ghosts filled. Scratch storage:
-  // valid until the next call.
-  const Field& soil_region(int reach) const;
+  // The cells within `reach` cells of a cell whose |c| exceeds `floor` (1 there, else 0), ghosts
+  // filled. Scratch storage: valid until the next call.
+  const Field& soil_region(int reach, double floor = 0.0) const;
 
  private:
   void fill_fraction_ghosts(Field& f) const;

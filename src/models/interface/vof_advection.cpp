@@ -153,12 +153,12 @@ double max_sweep_courant(int axis, double dt, const double* const* u, const doub
   return cmax;
 }
 
-void soil_region(const double* const* in, CellBox o, double** region) {
+void soil_region(const double* const* in, CellBox o, double** region, double floor) {
   for (int j = o.ys; j < o.ys + o.ym; ++j)
     for (int i = o.xs; i < o.xs + o.xm; ++i) {
       bool any = false;
       for (int dj = -1; dj <= 1; ++dj)
-        for (int di = -1; di <= 1; ++di) any = any || in[j + dj][i + di] != 0.0;
+        for (int di = -1; di <= 1; ++di) any = any || std::abs(in[j + dj][i + di]) > floor;
       region[j][i] = any ? 1.0 : 0.0;
     }
 }

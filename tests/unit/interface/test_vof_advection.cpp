@@ -161,6 +161,18 @@ TEST(VofSweep, SoilRegionIsTheBoxAroundAnySoil) {
     }
 }
 
+// With a floor, slivers at or below it do not count (either sign); a fraction above it does.
+TEST(VofSweep, SoilRegionWithAFloorIgnoresSlivers) {
+  GhostedArray2 c(6, 5, 2), region(6, 5, 2);
+  c(1, 1) = 1e-17;
+  c(2, 3) = -1e-9;
+  c(4, 2) = 2e-9;
+  soil_region(c.rows(), CellBox{0, 0, 6, 5}, region.rows(), 1e-9);
+  for (int j = 0; j < 5; ++j)
+    for (int i = 0; i < 6; ++i)
+      EXPECT_EQ(region(i, j), std::abs(i - 4) <= 1 && std::abs(j - 2) <= 1 ? 1.0 : 0.0) << i << ", " << j;
+}
+
 // Faces away from the soil carry nothing, however fast the air crosses them: with the region one
 // cell wide, a step whose air runs at Courant number 3 two cells above the soil keeps c in [0, 1],
 // conserves it, and gives the same c to the last bit as the step with that air at rest.
