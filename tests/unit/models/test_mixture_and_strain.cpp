@@ -21,8 +21,10 @@ TEST(Mixture, LinearIsEquationOne) {
 TEST(Mixture, ArctanHitsBothPhasesAndIsMonotone) {
   for (auto [M, N] : {std::pair{-0.45, 25.0}, std::pair{0.0, 5.0}, std::pair{0.3, 10.0}}) {
     const MixtureInterpolation a{InterpolationKind::arctan, M, N};
-    EXPECT_NEAR(a(0.0, 1.0, 2650.0), 1.0, 1e-9 * 2650) << M << " " << N;
-    EXPECT_NEAR(a(1.0, 1.0, 2650.0), 2650.0, 1e-9 * 2650) << M << " " << N;
+    EXPECT_EQ(a(0.0, 1.8e-5, 1e8), 1.8e-5) << M << " " << N;  // exact, however large the jump
+    EXPECT_EQ(a(1.0, 1.8e-5, 1e8), 1e8) << M << " " << N;
+    EXPECT_NEAR(a(1e-9, 1.0, 2650.0), 1.0, 1e-6 * 2650) << M << " " << N;  // and continuous there
+    EXPECT_NEAR(a(1.0 - 1e-9, 1.0, 2650.0), 2650.0, 1e-6 * 2650) << M << " " << N;
     double last = a(0.0, 1.0, 2650.0);
     for (int k = 1; k <= 100; ++k) {
       const double v = a(k / 100.0, 1.0, 2650.0);
