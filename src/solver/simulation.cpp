@@ -61,11 +61,11 @@ double Simulation::next_output_time() const {
 // numerics.air_band: the coupled solve covers the soil and a band of air around it. The band is
 // laid anew, air_band cells wide, once the soil has come within half of that of its edge, so the
 // factorisation's analysis serves several steps.
-// Only soil fractions above a trace count: the geometric sweeps leave slivers of 1e-17 where a
-// swept strip grazes the interface, present or exactly 0 by the round-off of the face velocities,
-// so with any non-zero fraction counting the region (and with it the air's flow) differed between
-// rank layouts now and then. A fraction within round-off of 1e-9 is far less likely, and the trace
-// outside the region stays where it is (its faces are at rest) and is conserved.
+// Only soil fractions above a trace count: the geometric sweeps leave slivers of 1e-20 to 1e-16
+// where a swept strip grazes the interface, there or exactly 0 by the round-off of the face
+// velocities, so with any non-zero fraction counting, the region (and with it the air's flow)
+// differed between rank layouts now and then. A fraction within round-off of 1e-9 is far rarer.
+// A trace left outside the region is advected and conserved like any soil.
 void Simulation::update_solve_region() {
   constexpr double trace_fraction = 1e-9;
   const int band = config_.flow.numerics.air_band;

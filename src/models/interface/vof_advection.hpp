@@ -69,8 +69,9 @@ double max_sweep_courant(int axis, double dt, const double* const* face_velocity
                          RadialWeights radial = {}, const double* const* region = nullptr);
 
 // region_out = 1 on the owned cells with |in| > `floor` anywhere in their 3 x 3 box, else 0 (reads
-// one ghost layer of `in`, corners included; floor 0 means any non-zero value). Applied to c and then n - 1 times to its own
-// result (ghosts refreshed in between), it marks the cells within n cells of any soil.
+// one ghost layer of `in`, corners included; floor 0 means any non-zero value). Applied to c and
+// then n - 1 times to its own result (ghosts refreshed in between), it marks the cells within n
+// cells of any soil.
 // Why it bounds the sweeps: a face carries soil in a sweep only if its upwind cell holds soil, and a
 // sweep at Courant number below 1 spreads soil by at most one cell along its axis, so in n sub-steps
 // (2n sweeps) every upwind cell with soil lies within n cells of the soil at the start. Faces
