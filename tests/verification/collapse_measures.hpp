@@ -28,15 +28,15 @@ inline double largest_soil_speed(const std::vector<double>& c, const std::vector
 // creep for a second more; the pile is what is asked to be at rest. Fields gathered, row-major nx x ny.
 inline double largest_pile_speed(const std::vector<double>& c, const std::vector<double>& u,
                                  const std::vector<double>& v, int nx, int ny) {
-  std::vector<int> label(c.size(), -1);
+  std::vector<char> seen(c.size(), 0);
   std::vector<size_t> stack;
   size_t best_size = 0;
   double best_speed = 0.0;
   for (size_t seed = 0; seed < c.size(); ++seed) {
-    if (c[seed] < 0.5 || label[seed] >= 0) continue;
+    if (c[seed] < 0.5 || seen[seed]) continue;
     size_t size = 0;
     double speed = 0.0;
-    label[seed] = int(seed);
+    seen[seed] = 1;
     stack.assign(1, seed);
     while (!stack.empty()) {
       const size_t k = stack.back();
@@ -48,8 +48,8 @@ inline double largest_pile_speed(const std::vector<double>& c, const std::vector
       for (int n = 0; n < 4; ++n) {
         if (ni[n] < 0 || ni[n] >= nx || nj[n] < 0 || nj[n] >= ny) continue;
         const size_t m = size_t(nj[n]) * nx + ni[n];
-        if (c[m] >= 0.5 && label[m] < 0) {
-          label[m] = int(seed);
+        if (c[m] >= 0.5 && !seen[m]) {
+          seen[m] = 1;
           stack.push_back(m);
         }
       }
