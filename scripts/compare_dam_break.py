@@ -2,6 +2,7 @@
 """Compare a granflow run of water_dam_break with the water-column collapse of Martin & Moyce (1952), n^2 = 2.
 
 Usage: compare_dam_break.py RUN_DIR [--png FILE] [--also DIR=LABEL ...] [--tmax T] [--a A]
+       compare_dam_break.py RUN_DIR --koshizuka [--tmax T]
 
 Reads RUN_DIR/history.csv and converts it to the experiment's non-dimensional variables:
   surge front      T   = t sqrt(2 g / a),  Z = toe_contour / a      (toe of the c = 0.5 contour)
@@ -24,6 +25,11 @@ chaos-polymtl/lethe, examples/multiphysics/dam-break). The script
 prints the raw comparison first and then both tables again with that shift (--release-shift to change
 it; the residual height is read at tau - shift / sqrt(2)). A late release would delay the column's fall
 as much as the front, so the shift is a test of that explanation, not a correction the tests use.
+
+With --koshizuka, RUN_DIR is a run of cases/water_dam_break_koshizuka.toml (column width L = 0.146 m)
+and its front is compared with the experiment reported by Koshizuka & Oka (1996) instead, a second
+experiment of the same geometry; Martin & Moyce's front, read at the same T, is printed beside it so
+that the two experiments can be compared with each other.
 """
 import argparse
 import os
@@ -35,6 +41,7 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 REFDATA = os.path.join(HERE, "..", "validation", "refdata")
 A = 0.05715  # column width a = 2.25 in
 G = 9.81
+KOSHIZUKA_L = 0.146  # column width of the Koshizuka & Oka experiment (cases/water_dam_break_koshizuka.toml)
 RELEASE_SHIFT = 0.175  # in T: the experiment's late start, as other comparisons take it (docstring)
 
 
@@ -51,13 +58,43 @@ def front_deviation(T_sim, z_sim, Te, Ze, shift=0.0):
     return Zs, np.abs(Zs - Ze) / Ze
 
 
+def simulated_front(run_dir, a, g=G):
+    """The run's front as T = t sqrt(2g/a) and Z = toe_contour / a, from the initial column (Z = 1) on."""
+    hist = read_csv(os.path.join(run_dir, "history.csv"))
+    t = np.concatenate([[0.0], hist["time"]])
+    return t * np.sqrt(2 * g / a), np.concatenate([[1.0], hist["toe_contour"] / a])
+
+
+def compare_koshizuka(run_dir, tmax):
+    """Front of a Koshizuka & Oka scale run against their data and against Martin & Moyce's at the same T."""
+    T_sim, z_sim = simulated_front(run_dir, KOSHIZUKA_L)
+    ko = read_csv(os.path.join(REFDATA, "koshizuka_oka1996_surge_front_pysph.csv"))
+    mm = read_csv(os.path.join(REFDATA, "martin_moyce1952_n2_2_surge_front.csv"))
+    if T_sim[-1] < tmax * (1 - 1e-6):
+        sys.exit(f"error: the run ends at T = {T_sim[-1]:.3f}, before T = {tmax}")
+    sel = (ko["T"] > 0) & (ko["T"] <= tmax + 1e-12)  # the table's (0, 1) is the initial column
+    Te, Ze = ko["T"][sel], ko["Z"][sel]
+    Zs, dev = front_deviation(T_sim, z_sim, Te, Ze)
+    # Martin & Moyce's table starts at T = 0.41; before it, from their column at rest (T = 0, Z = 1).
+    Zmm = np.interp(Te, np.concatenate([[0.0], mm["T"]]), np.concatenate([[1.0], mm["Z"]]), right=np.nan)
+    print(f"surge front against Koshizuka & Oka (1996), L = {KOSHIZUKA_L} m, T = t sqrt(2g/L), Z = toe_contour / L,"
+          f" points with T <= {tmax:g};")
+    print("Z_MM: Martin & Moyce's front at the same T (linear between their points)")
+    print("      T    Z_KO   Z_sim  |dZ|/Z_KO    Z_MM  (Z_MM-Z_KO)/Z_KO")
+    for k in range(len(Te)):
+        print(f"  {Te[k]:5.3f}  {Ze[k]:6.3f}  {Zs[k]:6.3f}  {dev[k]:9.4f}  {Zmm[k]:6.3f}  {(Zmm[k] - Ze[k]) / Ze[k]:+8.4f}")
+    kmax = int(np.argmax(dev))
+    between = np.abs(Zmm - Ze) / Ze
+    print(f"largest relative front deviation from Koshizuka & Oka: {dev[kmax]:.4f} at T = {Te[kmax]:.3f};"
+          f" the two experiments differ by up to {np.nanmax(between):.4f}")
+
+
 def compare(run_dir, a=A, g=G, tmax=3.0, shift=RELEASE_SHIFT):
     hist = read_csv(os.path.join(run_dir, "history.csv"))
     t = np.concatenate([[0.0], hist["time"]])
     # The initial state (t = 0) is not a history row; the column starts at Z = 1, H = 1.
-    z_sim = np.concatenate([[1.0], hist["toe_contour"] / a])
+    T_sim, z_sim = simulated_front(run_dir, a, g)
     h_sim = np.concatenate([[1.0], hist["wall_height"] / (2 * a)])
-    T_sim = t * np.sqrt(2 * g / a)
     tau_sim = t * np.sqrt(g / a)
     front = read_csv(os.path.join(REFDATA, "martin_moyce1952_n2_2_surge_front.csv"))
     resid = read_csv(os.path.join(REFDATA, "martin_moyce1952_n2_2_residual_height.csv"))
@@ -90,7 +127,12 @@ def main():
     ap.add_argument("--a", type=float, default=A, help=f"column width a in m (default {A})")
     ap.add_argument("--release-shift", type=float, default=RELEASE_SHIFT,
                     help=f"shift in T of the second front table (default {RELEASE_SHIFT}, see above)")
+    ap.add_argument("--koshizuka", action="store_true",
+                    help="RUN_DIR is cases/water_dam_break_koshizuka.toml: compare its front with Koshizuka & Oka (1996)")
     args = ap.parse_args()
+    if args.koshizuka:
+        compare_koshizuka(args.run_dir, args.tmax)
+        return
     r = compare(args.run_dir, a=args.a, tmax=args.tmax, shift=args.release_shift)
 
     Te, Ze, Zs, dz, lead = r["front_points"]
