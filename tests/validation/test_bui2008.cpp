@@ -3,7 +3,6 @@
 // friction (bui2008_experiment_mu_of_i): at half the paper's resolution in the suite (about half a
 // minute each), at the paper's 300 x 100 on demand (about 3 minutes each on two ranks).
 #include <gtest/gtest.h>
-#include <fmt/format.h>
 
 #include <algorithm>
 #include <cmath>
@@ -28,12 +27,7 @@ struct Bui2008Run {
 Bui2008Run run_bui2008(int nx, const std::string& case_name = "bui2008_experiment") {
   Bui2008Run r;
   r.dx = 0.6 / nx;
-  const auto out = std::filesystem::temp_directory_path() / fmt::format("granflow_{}_{}", case_name, nx);
-  std::filesystem::remove_all(out);
-  const CaseConfig config = load_case(test::repo_path("cases/" + case_name + ".toml"),
-                                      {"output.progress_seconds=0", "output.interval=0.5",
-                                       fmt::format("mesh.cells=[{},{}]", nx, nx / 3)});
-  auto [run, soil_speed, history] = test::run_to_end(config, out);
+  auto [run, soil_speed, history, out] = test::run_shipped_case(case_name, nx, nx / 3, {"output.interval=0.5"});
   r.soil_speed = soil_speed;
   if (!test::is_root()) return r;
   const auto& t = history["time"];

@@ -7,7 +7,6 @@
 // top of the block at the wall stays put (the failure line meets the surface away from the wall);
 // the run-out falls as the friction angle or the cohesion rises.
 #include <gtest/gtest.h>
-#include <fmt/format.h>
 
 #include <algorithm>
 #include <cmath>
@@ -35,12 +34,8 @@ SphRun run_sph(const std::string& case_name, std::vector<std::string> overrides 
   SphRun r;
   r.dx = 12.0 / nx;
   r.dy = 4.0 / ny;
-  const auto out = std::filesystem::temp_directory_path() / fmt::format("granflow_{}_{}", case_name, nx);
-  std::filesystem::remove_all(out);
-  overrides.insert(overrides.end(), {"output.progress_seconds=0", "output.fields=false",
-                                     fmt::format("mesh.cells=[{},{}]", nx, ny)});
-  const CaseConfig config = load_case(test::repo_path("cases/" + case_name + ".toml"), overrides);
-  auto [run, soil_speed, history] = test::run_to_end(config, out);
+  overrides.push_back("output.fields=false");
+  auto [run, soil_speed, history, out] = test::run_shipped_case(case_name, nx, ny, overrides);
   r.soil_speed = soil_speed;
   if (!test::is_root()) return r;
   const auto& t = history["time"];

@@ -69,12 +69,13 @@ inline size_t first_row_at(const std::vector<double>& times, double t_at) {
   return k;
 }
 
-// A case run to its end: its summary, the pile's largest speed at the end and, on rank 0, its
-// history.csv columns.
+// A case run to its end: its summary, the pile's largest speed at the end, on rank 0 its
+// history.csv columns, and its output directory.
 struct FinishedRun {
   RunSummary summary;
   double soil_speed = 0;
   std::map<std::string, std::vector<double>> history;
+  std::filesystem::path out;
 };
 
 // Collective; the speed is meaningful on rank 0.
@@ -86,7 +87,18 @@ inline FinishedRun run_to_end(const CaseConfig& config, const std::filesystem::p
   r.soil_speed = largest_pile_speed(gather_to_root(g, sim.soil()->soil_fraction()), gather_to_root(g, sim.flow().velocity(0)),
                                     gather_to_root(g, sim.flow().velocity(1)), g.nx(), g.ny());
   if (is_root()) r.history = read_csv((out / "history.csv").string());
+  r.out = out;
   return r;
+}
+
+// The shipped case cases/<case_name>.toml on nx x ny cells, without a progress line and with the
+// `overrides`, run to its end in a fresh temporary directory. Collective, as run_to_end.
+inline FinishedRun run_shipped_case(const std::string& case_name, int nx, int ny, std::vector<std::string> overrides) {
+  const auto out = std::filesystem::temp_directory_path() / ("granflow_" + case_name + "_" + std::to_string(nx));
+  std::filesystem::remove_all(out);
+  overrides.push_back("output.progress_seconds=0");
+  overrides.push_back("mesh.cells=[" + std::to_string(nx) + "," + std::to_string(ny) + "]");
+  return run_to_end(load_case(repo_path("cases/" + case_name + ".toml"), overrides), out);
 }
 
 // Soil volume and energy over a run, from its history.csv columns.
