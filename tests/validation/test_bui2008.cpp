@@ -1,7 +1,7 @@
 // Validation: the aluminium-bar collapse of Bui et al. (2008) against the experiment's final surface
 // (validation/refdata/bui2008_*.csv), with the paper's rheology (bui2008_experiment) and with mu(I)
-// friction (bui2008_experiment_mu_of_i): at half the paper's resolution in the suite (about half a
-// minute each), at the paper's 300 x 100 on demand (about 3 minutes each on two ranks).
+// friction (bui2008_experiment_mu_of_i): at half the paper's resolution in the suite (about 8 s
+// each), at the paper's 300 x 100 on demand (under a minute each on two ranks).
 #include <gtest/gtest.h>
 
 #include <algorithm>
