@@ -58,16 +58,16 @@ def front_deviation(T_sim, z_sim, Te, Ze, shift=0.0):
     return Zs, np.abs(Zs - Ze) / Ze
 
 
-def simulated_front(run_dir, a, g=G):
-    """The run's front as T = t sqrt(2g/a) and Z = toe_contour / a, from the initial column (Z = 1) on."""
-    hist = read_csv(os.path.join(run_dir, "history.csv"))
+def simulated_front(hist, a, g=G):
+    """A run's front from its history as T = t sqrt(2g/a) and Z = toe_contour / a, from the initial column
+    (Z = 1) on."""
     t = np.concatenate([[0.0], hist["time"]])
     return t * np.sqrt(2 * g / a), np.concatenate([[1.0], hist["toe_contour"] / a])
 
 
 def compare_koshizuka(run_dir, tmax):
     """Front of a Koshizuka & Oka scale run against their data and against Martin & Moyce's at the same T."""
-    T_sim, z_sim = simulated_front(run_dir, KOSHIZUKA_L)
+    T_sim, z_sim = simulated_front(read_csv(os.path.join(run_dir, "history.csv")), KOSHIZUKA_L)
     ko = read_csv(os.path.join(REFDATA, "koshizuka_oka1996_surge_front_pysph.csv"))
     mm = read_csv(os.path.join(REFDATA, "martin_moyce1952_n2_2_surge_front.csv"))
     if T_sim[-1] < tmax * (1 - 1e-6):
@@ -93,7 +93,7 @@ def compare(run_dir, a=A, g=G, tmax=3.0, shift=RELEASE_SHIFT):
     hist = read_csv(os.path.join(run_dir, "history.csv"))
     t = np.concatenate([[0.0], hist["time"]])
     # The initial state (t = 0) is not a history row; the column starts at Z = 1, H = 1.
-    T_sim, z_sim = simulated_front(run_dir, a, g)
+    T_sim, z_sim = simulated_front(hist, a, g)
     h_sim = np.concatenate([[1.0], hist["wall_height"] / (2 * a)])
     tau_sim = t * np.sqrt(g / a)
     front = read_csv(os.path.join(REFDATA, "martin_moyce1952_n2_2_surge_front.csv"))
