@@ -97,12 +97,15 @@ double Simulation::choose_dt(double dt_previous) const {
 void Simulation::write_output() {
   if (out_.empty()) return;
   const Grid& g = *grid_;
+  // The strain norm behind the failure line is a diagnostic: bring it up to date for the soil lines
+  // as well as for the fields, which may be switched off.
+  if (soil_) soil_->compute_diagnostics(*flow_);
   auto u = gather_to_root(g, flow_->velocity(0));
   auto v = gather_to_root(g, flow_->velocity(1));
   auto p = gather_to_root(g, flow_->pressure());
-  auto rho = gather_to_root(g, flow_->density());
-  auto mu = gather_to_root(g, flow_->viscosity());
   if (config_.output.fields) {
+    auto rho = gather_to_root(g, flow_->density());
+    auto mu = gather_to_root(g, flow_->viscosity());
     std::vector<double> vel(u.size() * 3, 0.0);
     for (size_t k = 0; k < u.size(); ++k) {
       vel[3 * k] = u[k];
@@ -110,7 +113,6 @@ void Simulation::write_output() {
     }
     std::vector<CellData> data{{"velocity", 3, vel}, {"pressure", 1, p}, {"density", 1, rho}, {"viscosity", 1, mu}};
     if (soil_) {
-      soil_->compute_diagnostics(*flow_);
       auto dx = gather_to_root(g, soil_->displacement(0)), dy = gather_to_root(g, soil_->displacement(1));
       std::vector<double> disp(dx.size() * 3, 0.0);
       for (size_t k = 0; k < dx.size(); ++k) {

@@ -22,12 +22,13 @@ struct Bui2008Run {
   double dx = 0;
   double toe_contour = 0, toe_cell = 0, rms = 0, contour_drift = 0, cell_drift = 0, volume_error = 0, outflow = 0;
   double released = 0, accounted = 0, soil_speed = 0;
+  double failure_line = 0;  // mean distance of the experiment's failure points from the computed line
 };
 
 Bui2008Run run_bui2008(int nx, const std::string& case_name = "bui2008_experiment") {
   Bui2008Run r;
   r.dx = 0.6 / nx;
-  auto [run, soil_speed, history, out] = test::run_shipped_case(case_name, nx, nx / 3, {"output.interval=0.5"});
+  auto [run, soil_speed, history, out] = test::run_shipped_case(case_name, nx, nx / 3, {"output.interval=0.5", "output.fields=false"});
   r.soil_speed = soil_speed;
   if (!test::is_root()) return r;
   const auto& t = history["time"];
@@ -62,14 +63,18 @@ Bui2008Run run_bui2008(int nx, const std::string& case_name = "bui2008_experimen
     sum2 += std::pow(h - exp_surface["y_m"][k], 2);
   }
   r.rms = std::sqrt(sum2 / exp_surface["x_m"].size());
+  // Failure line (strain norm 0.3 inside the soil), as scripts/compare_bui2008.py measures it.
+  auto failure = test::read_csv(test::last_output(out, "failure_line"));
+  auto exp_failure = test::read_csv(test::repo_path("validation/refdata/bui2008_al_bar_collapse_failure_line.csv"));
+  r.failure_line = test::mean_distance_to_segments(exp_failure["x_m"], exp_failure["y_m"], failure);
   std::printf(
       "%s %d x %d to t = %.2f s: %ld steps, %.1f s wall\n"
       "  run-out %.4f m (contour), %.4f m (one cell) vs 0.442: %+.1f %% / %+.1f %%\n"
-      "  surface RMS %.2f mm; run-out drift between t = 1 s and the end %.2f cells (contour), %.0f (one cell)\n"
+      "  surface RMS %.2f mm; failure line %.2f mm from the experiment's; run-out drift between t = 1 s and the end %.2f cells (contour), %.0f (one cell)\n"
       "  soil volume error %.2e, with %.2e of it carried out through the open side\n"
       "  energy: released %.4f J/m, kinetic + dissipated %.4f J/m (%+.1f %%); largest soil speed at the end %.2e m/s\n",
       case_name.c_str(), nx, nx / 3, run.time, run.steps, run.wall_seconds, r.toe_contour, r.toe_cell, 100 * (r.toe_contour / experiment_runout - 1),
-      100 * (r.toe_cell / experiment_runout - 1), 1000 * r.rms, r.contour_drift / r.dx, r.cell_drift / r.dx,
+      100 * (r.toe_cell / experiment_runout - 1), 1000 * r.rms, 1000 * r.failure_line, r.contour_drift / r.dx, r.cell_drift / r.dx,
       r.volume_error, r.outflow / history["soil_volume"][0], r.released,
       r.accounted, 100 * (r.accounted / r.released - 1), r.soil_speed);
   return r;
@@ -77,9 +82,11 @@ Bui2008Run run_bui2008(int nx, const std::string& case_name = "bui2008_experimen
 
 // The suite's run, 150 x 50: what the issue asks of the paper's resolution where the coarse mesh
 // meets it too (soil volume, rest); the energy budget (+5.9 % here, +3.3 % at 300 x 100), run-out
-// (+5.9 %) and RMS (4.2 mm) held to looser guards. No soil may leave through the open side: with the
-// floor at the cell's c (before the wall face took the part of it the soil covers) fragments of the
-// thin tongue slid out, 2.9e-5 of the soil with one sweep per step and 9e-4 with two.
+// (+5.9 %), RMS (4.2 mm) and the failure line's distance from the experiment's (8.3 mm) held to
+// looser guards. Run without field output, as a batch run would be: the failure line must not need
+// it. No soil may leave through the open side: with the floor at the cell's c (before the wall face
+// took the part of it the soil covers) fragments of the thin tongue slid out, 2.9e-5 of the soil
+// with one sweep per step and 9e-4 with two.
 TEST(Bui2008Experiment, HalfResolutionVolumeEnergyRestAndPile) {
   const Bui2008Run r = run_bui2008(150);
   if (!test::is_root()) return;
@@ -90,6 +97,7 @@ TEST(Bui2008Experiment, HalfResolutionVolumeEnergyRestAndPile) {
   EXPECT_LT(r.soil_speed, 1e-3);
   EXPECT_LT(std::abs(r.toe_cell / experiment_runout - 1), 0.08);
   EXPECT_LT(r.rms, 0.005);
+  EXPECT_LT(r.failure_line, 0.011);  // 8.3 mm
 }
 
 // Everything the issue asks of the paper's resolution. Not met (docs/validation.md): one-cell
@@ -104,14 +112,15 @@ TEST(Bui2008Experiment, DISABLED_PaperResolutionAgainstExperiment) {
   EXPECT_LT(r.soil_speed, 1e-3);
   EXPECT_LT(std::abs(r.toe_cell / experiment_runout - 1), 0.05);
   EXPECT_LT(r.rms, 0.004);
+  EXPECT_LT(r.failure_line, 0.010);  // reported, not limited, by the issue: 7.6 mm
 }
 
 // The same collapse with the friction rate-dependent, mu(I) in place of sin(phi) ([YS] Eq. 25), and
 // no constant fitted to the experiment (cases/bui2008_experiment_mu_of_i.toml). 150 x 50 gives RMS
-// 1.5 mm, contour run-out -7.7 %, one cell -10.4 % (a cell of 4 mm reads a thicker layer than the
-// experiment's tip), energy +5.3 %, largest soil speed at the end 7.6e-7 m/s in this run (7e-6 m/s
-// with the case's own output times, which cut the steps differently; 0.13 m/s in this run before
-// the case bounded the step at 0.02 s).
+// 1.55 mm, contour run-out -7.8 %, one cell -11.3 % (a cell of 4 mm reads a thicker layer than the
+// experiment's tip), failure line 5.8 mm from the experiment's, energy +5.2 %, largest soil speed
+// at the end 7.6e-7 m/s in this run (7e-6 m/s with the case's own output times, which cut the steps
+// differently; 0.13 m/s in this run before the case bounded the step at 0.02 s).
 TEST(Bui2008MuOfI, HalfResolutionSurfaceRunOutAndRest) {
   const Bui2008Run r = run_bui2008(150, "bui2008_experiment_mu_of_i");
   if (!test::is_root()) return;
@@ -122,6 +131,7 @@ TEST(Bui2008MuOfI, HalfResolutionSurfaceRunOutAndRest) {
   EXPECT_LT(r.rms, 0.002);
   EXPECT_LT(std::abs(r.toe_contour / experiment_runout - 1), 0.10);
   EXPECT_LT(std::abs(r.toe_cell / experiment_runout - 1), 0.15);
+  EXPECT_LT(r.failure_line, 0.008);
 }
 
 // What the issue asks of the paper's resolution, for the mu(I) case. Measured: RMS 1.47 mm, energy
@@ -137,6 +147,7 @@ TEST(Bui2008MuOfI, DISABLED_PaperResolutionAgainstExperiment) {
   EXPECT_LT(r.rms, 0.004);
   EXPECT_LT(std::abs(r.toe_contour / experiment_runout - 1), 0.05);
   EXPECT_LT(std::abs(r.toe_cell / experiment_runout - 1), 0.05);
+  EXPECT_LT(r.failure_line, 0.008);  // 4.6 mm
 }
 
 }  // namespace

@@ -120,6 +120,26 @@ inline CollapseBudget collapse_budget(std::map<std::string, std::vector<double>>
   return b;
 }
 
+// Mean distance of the points (xs, ys) from the nearest of a run's line segments (columns x0, y0,
+// x1, y1 of a `surface_*` or `failure_line_*` file); NaN if there are no segments, so that a check
+// on it fails.
+inline double mean_distance_to_segments(const std::vector<double>& xs, const std::vector<double>& ys,
+                                        std::map<std::string, std::vector<double>>& segments) {
+  const auto &x0 = segments["x0"], &y0 = segments["y0"], &x1 = segments["x1"], &y1 = segments["y1"];
+  if (x0.empty() || xs.empty()) return std::nan("");
+  double sum = 0.0;
+  for (size_t k = 0; k < xs.size(); ++k) {
+    double nearest = INFINITY;
+    for (size_t s = 0; s < x0.size(); ++s) {
+      const double ex = x1[s] - x0[s], ey = y1[s] - y0[s];
+      const double t = std::clamp(((xs[k] - x0[s]) * ex + (ys[k] - y0[s]) * ey) / std::max(ex * ex + ey * ey, 1e-30), 0.0, 1.0);
+      nearest = std::min(nearest, std::hypot(x0[s] + t * ex - xs[k], y0[s] + t * ey - ys[k]));
+    }
+    sum += nearest;
+  }
+  return sum / double(xs.size());
+}
+
 // The last of a run's numbered output files `prefix_NNNNN.csv`.
 inline std::string last_output(const std::filesystem::path& run_dir, const std::string& prefix) {
   std::string last;
