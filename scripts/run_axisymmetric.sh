@@ -19,7 +19,7 @@ for case in lube2004_a05 lube2004_a2 ring_collapse; do
   for model in drucker_prager mohr_coulomb matsuoka_nakai; do
     dir="$out/${case}_${model}"
     if grep -qs "up to t = 0.5 s" "$dir/lode_dissipation.csv"; then continue; fi
-    build/granflow run "cases/$case.toml" -o "$dir" --set soil.rheology.model="$model" "${extra[@]}"
+    build/granflow run "cases/$case.toml" -o "$dir" --overwrite --set soil.rheology.model="$model" "${extra[@]}"
   done
 done
 /usr/bin/python3 scripts/compare_axisymmetric.py "$out"

@@ -19,9 +19,9 @@ out=out/$case_name
 ranks=$(( $(nproc) >= 2 ? 2 : 1 ))
 if [ "$ranks" -gt 1 ]; then
   export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
-  mpirun -np "$ranks" build/granflow run "cases/$case_name.toml" -o "$out"
+  mpirun -np "$ranks" build/granflow run "cases/$case_name.toml" -o "$out" --overwrite
 else
-  build/granflow run "cases/$case_name.toml" -o "$out"
+  build/granflow run "cases/$case_name.toml" -o "$out" --overwrite
 fi
 status=$?
 /usr/bin/python3 scripts/compare_bui2008.py "$out" --png "$out/comparison_bui2008.png" --json "$out/comparison.json" || exit 1

@@ -4,7 +4,7 @@ add_test(NAME cli_check_misspelt_key COMMAND granflow check ${CMAKE_CURRENT_BINA
 set_tests_properties(cli_check_misspelt_key PROPERTIES LABELS cli WILL_FAIL TRUE)
 add_test(NAME cli_check_misspelt_key_message COMMAND granflow check ${CMAKE_CURRENT_BINARY_DIR}/misspelt.toml)
 set_tests_properties(cli_check_misspelt_key_message PROPERTIES LABELS cli
-                     PASS_REGULAR_EXPRESSION "error: mesh.upeer: unknown key")
+                     PASS_REGULAR_EXPRESSION "error: [^ ]*misspelt.toml: mesh.upeer: unknown key")
 add_test(NAME cli_run_missing_file COMMAND granflow run ${CMAKE_CURRENT_BINARY_DIR}/no_such_case.toml)
 set_tests_properties(cli_run_missing_file PROPERTIES LABELS cli WILL_FAIL TRUE)
 add_test(NAME cli_restart_without_checkpoint
@@ -30,3 +30,47 @@ foreach(case_file ${GRANFLOW_SHIPPED_CASES})
   add_test(NAME cli_check_case_${case_name} COMMAND granflow check ${case_file})
   set_tests_properties(cli_check_case_${case_name} PROPERTIES LABELS cli PASS_REGULAR_EXPRESSION ": valid [(]")
 endforeach()
+# A new run into a directory that holds an earlier run is refused, and the earlier run is kept;
+# --overwrite replaces it, and its checkpoint with it.
+set(GRANFLOW_SHORT_RUN --set "mesh.cells=[20,20]" --set time.end=0.02 --set output.interval=0.01 --set output.progress_seconds=0)
+add_test(NAME cli_run_into_earlier_run_refused
+         COMMAND sh -c "g=$0; d=$1; c=$2; shift 2; rm -rf \"$d\"; \"$g\" run \"$c\" -o \"$d\" \"$@\" > /dev/null || exit 1; cp \"$d/history.csv\" \"$d/kept\"; out=$(\"$g\" run \"$c\" -o \"$d\" 2>&1); test $? -eq 2 && echo \"$out\" | grep -q 'holds an earlier run' && cmp -s \"$d/history.csv\" \"$d/kept\" && \"$g\" run \"$c\" -o \"$d\" --overwrite \"$@\" > /dev/null"
+                 $<TARGET_FILE:granflow> ${CMAKE_CURRENT_BINARY_DIR}/earlier_run ${CMAKE_SOURCE_DIR}/cases/bui2008_experiment.toml
+                 ${GRANFLOW_SHORT_RUN})
+set_tests_properties(cli_run_into_earlier_run_refused PROPERTIES LABELS cli)
+# A restart whose end is not past the checkpoint, and a damaged checkpoint, are named.
+add_test(NAME cli_restart_end_before_checkpoint
+         COMMAND sh -c "g=$0; d=$1; c=$2; shift 2; rm -rf \"$d\"; \"$g\" run \"$c\" -o \"$d\" \"$@\" > /dev/null || exit 1; \"$g\" run \"$c\" -o \"$d\" --restart \"$@\" 2>&1"
+                 $<TARGET_FILE:granflow> ${CMAKE_CURRENT_BINARY_DIR}/restart_end ${CMAKE_SOURCE_DIR}/cases/bui2008_experiment.toml
+                 ${GRANFLOW_SHORT_RUN})
+set_tests_properties(cli_restart_end_before_checkpoint PROPERTIES LABELS cli
+                     PASS_REGULAR_EXPRESSION "error: time.end = 0.02 s is not past the checkpoint's t = 0.02 s")
+add_test(NAME cli_restart_damaged_checkpoint
+         COMMAND sh -c "g=$0; d=$1; c=$2; shift 2; rm -rf \"$d\"; \"$g\" run \"$c\" -o \"$d\" \"$@\" > /dev/null || exit 1; sed -i 's/^output_index .*/output_index abc/' \"$d/checkpoint/run.txt\"; \"$g\" run \"$c\" -o \"$d\" --restart \"$@\" --set time.end=0.05 2>&1"
+                 $<TARGET_FILE:granflow> ${CMAKE_CURRENT_BINARY_DIR}/restart_damaged ${CMAKE_SOURCE_DIR}/cases/bui2008_experiment.toml
+                 ${GRANFLOW_SHORT_RUN})
+set_tests_properties(cli_restart_damaged_checkpoint PROPERTIES LABELS cli PASS_REGULAR_EXPRESSION "run.txt is damaged")
+add_test(NAME cli_restart_other_domain
+         COMMAND sh -c "g=$0; d=$1; c=$2; shift 2; rm -rf \"$d\"; \"$g\" run \"$c\" -o \"$d\" \"$@\" > /dev/null || exit 1; \"$g\" run \"$c\" -o \"$d\" --restart \"$@\" --set time.end=0.05 --set mesh.upper=[0.7,0.2] 2>&1"
+                 $<TARGET_FILE:granflow> ${CMAKE_CURRENT_BINARY_DIR}/restart_domain ${CMAKE_SOURCE_DIR}/cases/bui2008_experiment.toml
+                 ${GRANFLOW_SHORT_RUN})
+set_tests_properties(cli_restart_other_domain PROPERTIES LABELS cli
+                     PASS_REGULAR_EXPRESSION "the checkpoint is of the domain \\[0, 0.6\\] x \\[0, 0.2\\] \\(planar\\); the case's is \\[0, 0.7\\]")
+# An output path that is a file, a misspelt command, a solver PETSc does not know, a PETSc option
+# nothing reads.
+add_test(NAME cli_output_is_a_file
+         COMMAND sh -c "touch \"$1\"; \"$0\" run \"$2\" -o \"$1\" 2>&1"
+                 $<TARGET_FILE:granflow> ${CMAKE_CURRENT_BINARY_DIR}/output_file ${CMAKE_SOURCE_DIR}/cases/lid_driven_cavity_re100.toml)
+set_tests_properties(cli_output_is_a_file PROPERTIES LABELS cli PASS_REGULAR_EXPRESSION "output_file: exists and is not a directory")
+add_test(NAME cli_unknown_command COMMAND granflow runn ${CMAKE_SOURCE_DIR}/cases/lid_driven_cavity_re100.toml)
+set_tests_properties(cli_unknown_command PROPERTIES LABELS cli PASS_REGULAR_EXPRESSION "error: unknown command 'runn'")
+add_test(NAME cli_check_unknown_solver
+         COMMAND granflow check ${CMAKE_SOURCE_DIR}/cases/bui2008_experiment.toml --set solver.coupled.ksp_type=bogus)
+set_tests_properties(cli_check_unknown_solver PROPERTIES LABELS cli
+                     PASS_REGULAR_EXPRESSION "solver.coupled.ksp_type: 'bogus' is not a Krylov method")
+add_test(NAME cli_unused_petsc_option
+         COMMAND granflow run ${CMAKE_SOURCE_DIR}/cases/lid_driven_cavity_re100.toml -o ${CMAKE_CURRENT_BINARY_DIR}/unused_option
+                 --overwrite --set "mesh.cells=[8,8]" --set time.end=0.01 --set output.progress_seconds=0
+                 --petsc=-presure_ksp_monitor)
+set_tests_properties(cli_unused_petsc_option PROPERTIES LABELS cli
+                     PASS_REGULAR_EXPRESSION "warning: PETSc option -presure_ksp_monitor was given but not used")

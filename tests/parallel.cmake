@@ -13,7 +13,7 @@ set_tests_properties(parallel_tests_2_ranks PROPERTIES
 # the root only, and the other rank must not touch them.
 add_test(NAME cli_run_soil_case_2_ranks_with_output
          COMMAND ${MPIRUN} -np 2 --oversubscribe $<TARGET_FILE:granflow> run ${CMAKE_SOURCE_DIR}/cases/bui2008_experiment.toml
-                 -o ${CMAKE_CURRENT_BINARY_DIR}/soil_2_ranks --set "mesh.cells=[60,20]" --set time.end=0.02
+                 -o ${CMAKE_CURRENT_BINARY_DIR}/soil_2_ranks --overwrite --set "mesh.cells=[60,20]" --set time.end=0.02
                  --set output.interval=0.01 --set output.progress_seconds=0)
 set_tests_properties(cli_run_soil_case_2_ranks_with_output PROPERTIES
   LABELS parallel TIMEOUT 300 PASS_REGULAR_EXPRESSION "done: t = 0.02 s"

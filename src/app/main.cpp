@@ -3,32 +3,63 @@
 #include <fmt/format.h>
 #include <petscsys.h>
 
+#include <cstdio>
 #include <filesystem>
 
 #include "io/case_error.hpp"
 #include "io/case_file.hpp"
 #include "io/checkpoint.hpp"
 #include "models/rheology/element_test.hpp"
+#include "solver/linear_solver.hpp"
 #include "solver/simulation.hpp"
 
 namespace {
 
+// The solvers' method names, checked by PETSc itself (which must be initialised).
+void check_solver_methods(const granflow::CaseConfig& c) {
+  const std::pair<const char*, const granflow::LinearSolverSettings*> solvers[] = {
+      {"momentum", &c.flow.momentum_solver}, {"pressure", &c.flow.pressure_solver}, {"coupled", &c.flow.coupled_solver}};
+  for (const auto& [name, settings] : solvers)
+    if (auto problem = granflow::unknown_method(*settings); !problem.empty())
+      throw granflow::CaseError(fmt::format("{}: solver.{}.{}", c.source.string(), name, problem));
+}
+
+// A run's own files in `dir`, if there are any: a new run there would replace them.
+std::string earlier_run_in(const std::filesystem::path& dir) {
+  for (const char* name : {"history.csv", "checkpoint", "fields.pvd"})
+    if (std::filesystem::exists(dir / name)) return (dir / name).string();
+  return {};
+}
+
 int run_case(const std::string& case_file, const std::vector<std::string>& overrides, std::string out_dir,
-             bool restart) {
+             bool restart, bool overwrite) {
   using namespace granflow;
   CaseConfig config = load_case(case_file, overrides);
+  check_solver_methods(config);
   if (out_dir.empty()) out_dir = (std::filesystem::path("out") / std::filesystem::path(case_file).stem()).string();
   int rank;
   MPI_Comm_rank(PETSC_COMM_WORLD, &rank);
   // Checked before the simulation makes the output directory, so a mistyped one is not left behind.
+  // Every rank sees the same files here (the output directory is shared), so all stop alike.
+  if (std::filesystem::exists(out_dir) && !std::filesystem::is_directory(out_dir))
+    throw CaseError(fmt::format("-o {}: exists and is not a directory", out_dir));
   if (restart && !std::filesystem::exists(out_dir))
     throw CheckpointError(fmt::format("no checkpoint to restart from in {}: no such directory", out_dir));
+  if (!restart && !overwrite)
+    if (auto earlier = earlier_run_in(out_dir); !earlier.empty())
+      throw CaseError(fmt::format("{} holds an earlier run ({}): continue it with --restart, replace it with "
+                                  "--overwrite, or choose another directory with -o", out_dir, earlier));
+  // An earlier run's checkpoint must not outlive it: a later --restart would continue that run.
+  if (overwrite && rank == 0)
+    for (const char* name : {"checkpoint", "checkpoint.old", "checkpoint.partial"})
+      std::filesystem::remove_all(std::filesystem::path(out_dir) / name);
   Simulation sim(PETSC_COMM_WORLD, config, out_dir);
   if (restart) sim.restart();
   if (rank == 0)
     fmt::print("granflow: {} on {} x {} cells {}to t = {} s, output in {}\n", config.title, config.mesh.cells[0],
                config.mesh.cells[1], restart ? fmt::format("from the checkpoint at t = {:.6g} s ", sim.time()) : "",
                config.time.end, out_dir);
+  std::fflush(stdout);  // the banner is there even if the run is killed (stdout is buffered into a file)
   const RunSummary s = sim.run();
   if (rank == 0) {
     fmt::print("done: t = {:.6g} s in {} steps ({} taken again with a smaller step), {:.2f} s wall ({:.3g} cell-steps/s){}\n",
@@ -41,6 +72,17 @@ int run_case(const std::string& case_file, const std::vector<std::string>& overr
   return 0;
 }
 
+// Options given to PETSc that nothing read (a misspelt name, a solver prefix that does not exist),
+// one warning each on rank 0: PETSc itself ignores them silently.
+void warn_unused_petsc_options(int rank) {
+  PetscInt n = 0;
+  char **names = nullptr, **values = nullptr;
+  PetscOptionsLeftGet(nullptr, &n, &names, &values);
+  for (PetscInt k = 0; k < n && rank == 0; ++k)
+    fmt::print(stderr, "warning: PETSc option -{} was given but not used (misspelt, or no such solver)\n", names[k]);
+  PetscOptionsLeftRestore(nullptr, &n, &names, &values);
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -49,16 +91,18 @@ int main(int argc, char** argv) {
   std::string case_file, out_dir;
   std::vector<std::string> overrides;
   std::vector<std::string> petsc_options;
-  bool restart = false;
+  bool restart = false, overwrite = false;
 
   auto* run = app.add_subcommand("run", "run a case");
   run->add_option("case", case_file, "case file (TOML)")->required();
   run->add_option("-o,--output", out_dir, "output directory (default out/<case name>)");
   run->add_option("--set", overrides, "override a case key: KEY=VALUE (repeatable)");
   run->add_option("--petsc", petsc_options, "options passed to PETSc, e.g. --petsc=-pressure_ksp_monitor");
-  run->add_flag("--restart", restart,
+  auto* restart_flag = run->add_flag("--restart", restart,
                 "continue from the checkpoint in the output directory (written at each output time; same case, "
                 "mesh and number of ranks)");
+  run->add_flag("--overwrite", overwrite, "replace an earlier run in the output directory (refused without it)")
+      ->excludes(restart_flag);
 
   auto* check = app.add_subcommand("check", "validate a case file without running it");
   check->add_option("case", case_file, "case file (TOML)")->required();
@@ -71,7 +115,25 @@ int main(int argc, char** argv) {
   element->add_option("--phi", phi_deg, "friction angle in degrees")->check(CLI::Range(0.001, 89.999));
   element->add_flag("--csv", csv, "print CSV instead of a table");
 
+  // CLI11 would say only that a subcommand is required.
+  if (argc > 1 && argv[1][0] != '-') {
+    const std::string command = argv[1];
+    if (command != "run" && command != "check" && command != "element-test") {
+      fmt::print(stderr, "error: unknown command '{}' (the commands are run, check and element-test; see granflow --help)\n",
+                 command);
+      return 2;
+    }
+  }
   CLI11_PARSE(app, argc, argv);
+  if (run->count("--output") && out_dir.empty()) {
+    fmt::print(stderr, "error: -o/--output: the output directory is empty\n");
+    return 2;
+  }
+  for (const auto& o : petsc_options)
+    if (o.empty() || o[0] != '-') {
+      fmt::print(stderr, "error: --petsc '{}': PETSc options start with '-', e.g. --petsc=\"-coupled_ksp_monitor\"\n", o);
+      return 2;
+    }
 
   if (*element) {
     try {
@@ -83,33 +145,48 @@ int main(int argc, char** argv) {
     }
   }
 
-  if (*check) {
-    try {
-      const auto c = granflow::load_case(case_file, overrides);
-      fmt::print("{}: valid ({} x {} cells, t_end = {} s)\n", case_file, c.mesh.cells[0], c.mesh.cells[1], c.time.end);
-      return 0;
-    } catch (const granflow::CaseError& e) {
-      fmt::print(stderr, "error: {}\n", e.what());
-      return 2;
-    }
-  }
-
   // PETSc sees only the options given through --petsc (and PETSC_OPTIONS from the environment).
   int pargc = 1;
   char** pargv = argv;
   PetscInitialize(&pargc, &pargv, nullptr, nullptr);
+  int rank = 0, size = 1;
+  MPI_Comm_rank(PETSC_COMM_WORLD, &rank);
+  MPI_Comm_size(PETSC_COMM_WORLD, &size);
+
+  if (*check) {
+    int status = 0;
+    try {
+      const auto c = granflow::load_case(case_file, overrides);
+      check_solver_methods(c);
+      fmt::print("{}: valid ({} x {} cells, t_end = {} s)\n", case_file, c.mesh.cells[0], c.mesh.cells[1], c.time.end);
+    } catch (const granflow::CaseError& e) {
+      fmt::print(stderr, "error: {}\n", e.what());
+      status = 2;
+    }
+    PetscFinalize();
+    return status;
+  }
+
   for (const auto& o : petsc_options) PetscOptionsInsertString(nullptr, o.c_str());
+  // These errors are met by every rank alike (the case, the checkpoint's agreed verdict, the global
+  // speed), so rank 0 reports them and all ranks stop in order. Any other error may be one rank's
+  // alone while the others wait in a collective call: that rank reports it and stops them all.
   int status = 0;
   try {
-    status = run_case(case_file, overrides, out_dir, restart);
+    status = run_case(case_file, overrides, out_dir, restart, overwrite);
+    warn_unused_petsc_options(rank);
   } catch (const granflow::CaseError& e) {
-    fmt::print(stderr, "error: {}\n", e.what());
+    if (rank == 0) fmt::print(stderr, "error: {}\n", e.what());
     status = 2;
+  } catch (const granflow::CheckpointError& e) {
+    if (rank == 0) fmt::print(stderr, "error: {}\n", e.what());
+    status = 1;
   } catch (const granflow::DivergenceError& e) {
-    fmt::print(stderr, "error: {}\n", e.what());
+    if (rank == 0) fmt::print(stderr, "error: {}\n", e.what());
     status = 3;
   } catch (const std::exception& e) {
-    fmt::print(stderr, "error: {}\n", e.what());
+    fmt::print(stderr, "error: {}{}\n", e.what(), size > 1 ? fmt::format(" (rank {})", rank) : "");
+    if (size > 1) MPI_Abort(PETSC_COMM_WORLD, 1);
     status = 1;
   }
   PetscFinalize();

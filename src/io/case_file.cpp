@@ -57,10 +57,8 @@ LinearSolverSettings read_linear_solver(TableReader r, LinearSolverSettings d) {
   r.require_range("rtol", d.rtol, 0.0, 1.0);
   d.atol = r.number("atol", d.atol);
   r.require_range("atol", d.atol, 0.0, inf);
-  d.max_iterations = int(r.integer("max_iterations", d.max_iterations));
-  d.max_reuse = int(r.integer("reuse_preconditioner", d.max_reuse));
-  r.require_range("reuse_preconditioner", d.max_reuse, 1, 1e6);
-  r.require_range("max_iterations", d.max_iterations, 1, 1e9);
+  d.max_iterations = r.integer_in("max_iterations", d.max_iterations, 1, 1000000000);
+  d.max_reuse = r.integer_in("reuse_preconditioner", d.max_reuse, 1, 1000000);
   r.finish();
   return d;
 }
@@ -223,6 +221,11 @@ CaseConfig read_case(const toml::table& root, const std::filesystem::path& sourc
       if (n < 1 || n != std::floor(n) || n > 1e8)
         throw CaseError(fmt::format("mesh.cells: {} is not a positive whole number of cells", n));
     c.mesh.cells = {int(cells[0]), int(cells[1])};
+    // PETSc's indices here are 32-bit; the coupled solve's matrix holds about 3 x 35 entries a cell.
+    constexpr double max_cells = 2e7;
+    if (cells[0] * cells[1] > max_cells)
+      throw CaseError(fmt::format("mesh.cells: {} x {} = {:.3g} cells, more than the {:.0e} this build can index",
+                                  cells[0], cells[1], cells[0] * cells[1], max_cells));
     c.mesh.lower = m.pair("lower", {0.0, 0.0});
     c.mesh.upper = m.required_pair("upper");
     for (int a = 0; a < 2; ++a)
@@ -254,8 +257,7 @@ CaseConfig read_case(const toml::table& root, const std::filesystem::path& sourc
     t.require_range("max_growth", c.time.max_growth, 1.0, 10.0);
     interface_courant = t.number("interface_courant", 0.45);
     t.require_range("interface_courant", interface_courant, 1e-3, 0.49, "in (0, 0.49]");
-    c.time.interface_substeps = int(t.integer("interface_substeps", 1));
-    t.require_range("interface_substeps", double(c.time.interface_substeps), 1, 100);
+    c.time.interface_substeps = t.integer_in("interface_substeps", 1, 1, 100);
     c.time.steady_tolerance = t.number("steady_tolerance", 0.0);
     t.require_range("steady_tolerance", c.time.steady_tolerance, 0.0, inf);
     c.time.max_steps = t.integer("max_steps", c.time.max_steps);
@@ -312,18 +314,15 @@ CaseConfig read_case(const toml::table& root, const std::filesystem::path& sourc
     n.require_range("rotational_coefficient", num.rotational_coefficient, 0.0, 2.0);
     num.blending = n.number("blending", num.blending);
     n.require_range("blending", num.blending, 0.0, 1.0);
-    num.outer_iterations = int(n.integer("outer_iterations", num.outer_iterations));
-    n.require_range("outer_iterations", num.outer_iterations, 1, 1000);
+    num.outer_iterations = n.integer_in("outer_iterations", num.outer_iterations, 1, 1000);
     num.outer_tolerance = n.number("outer_tolerance", num.outer_tolerance);
     n.require_range("outer_tolerance", num.outer_tolerance, 0.0, 1.0);
     num.look_ahead_viscosity =
         n.choice("first_viscosity", "previous_step", {"previous_step", "look_ahead"}) == "look_ahead";
     num.mean_viscosity_pressure =
         n.choice("viscosity_pressure", "last_iterate", {"last_iterate", "mean_of_last_two"}) == "mean_of_last_two";
-    num.air_band = int(n.integer("air_band", num.air_band));
-    n.require_range("air_band", num.air_band, 0, 1000000);
-    num.pressure_correctors = int(n.integer("pressure_correctors", num.pressure_correctors));
-    n.require_range("pressure_correctors", num.pressure_correctors, 1, 100);
+    num.air_band = n.integer_in("air_band", num.air_band, 0, 1000000);
+    num.pressure_correctors = n.integer_in("pressure_correctors", num.pressure_correctors, 1, 100);
     num.momentum_predictor = n.boolean("momentum_predictor", num.momentum_predictor);
     num.transpose_stress = n.boolean("transpose_stress", num.transpose_stress);
     const std::string fv = n.choice("face_viscosity", "harmonic", {"harmonic", "arithmetic"});
@@ -342,28 +341,54 @@ CaseConfig read_case(const toml::table& root, const std::filesystem::path& sourc
     TableReader o = top.table("output");
     c.output.interval = o.number("interval", 0.0);
     o.require_range("interval", c.output.interval, 0.0, inf);
+    constexpr double max_outputs = 1e5;
+    if (c.output.interval > 0.0 && c.time.end / c.output.interval > max_outputs)
+      throw CaseError(fmt::format("output.interval: {} s gives {:.3g} outputs to time.end = {} s, more than {:.0e}",
+                                  c.output.interval, c.time.end / c.output.interval, c.time.end, max_outputs));
     c.output.times = o.numbers("times", {});
     for (double t : c.output.times) o.require_range("times", t, 0.0, c.time.end, "within [0, time.end]");
     c.output.fields = o.boolean("fields", true);
     c.output.checkpoints = o.boolean("checkpoints", true);
     c.output.progress_seconds = o.number("progress_seconds", 2.0);
+    o.require_range("progress_seconds", c.output.progress_seconds, 0.0, inf, "zero (no progress line) or positive");
     for (TableReader l : o.tables("line")) {
       LineSample s;
       s.name = l.required_string("name");
       for (char ch : s.name)
         if (!(std::isalnum(static_cast<unsigned char>(ch)) || ch == '_' || ch == '-'))
           throw CaseError(fmt::format("{}.name: '{}' may hold only letters, digits, '_' and '-'", l.path(), s.name));
+      // The solver's own files must not be overwritten by a line's samples.
+      for (const char* own : {"history", "surface", "failure_line", "column_height", "lode_dissipation", "fields"})
+        if (s.name == own)
+          throw CaseError(fmt::format("{}.name: '{}' is the name of one of the run's own output files", l.path(), s.name));
+      for (const auto& other : c.output.lines)
+        if (other.name == s.name) throw CaseError(fmt::format("{}.name: a second line named '{}'", l.path(), s.name));
       s.start = l.required_pair("start");
       s.end = l.required_pair("end");
-      s.points = int(l.integer("points", 101));
-      l.require_range("points", s.points, 2, 1e7);
+      for (const auto& [key, point] : {std::pair{"start", s.start}, std::pair{"end", s.end}})
+        for (int a = 0; a < 2; ++a)
+          if (!(point[a] >= c.mesh.lower[a] && point[a] <= c.mesh.upper[a]))
+            throw CaseError(fmt::format("{}.{}: [{}, {}] lies outside the domain [{}, {}] x [{}, {}]", l.path(), key,
+                                        point[0], point[1], c.mesh.lower[0], c.mesh.upper[0], c.mesh.lower[1],
+                                        c.mesh.upper[1]));
+      s.points = l.integer_in("points", 101, 2, 10000000);
       l.finish();
       c.output.lines.push_back(s);
     }
     o.finish();
   }
   top.finish();
-  if (c.soil) c.soil->interface_courant = interface_courant;
+  if (c.soil) {
+    c.soil->interface_courant = interface_courant;
+    // A shape may reach past the domain (it is clipped), but one wholly outside it holds no soil.
+    for (size_t k = 0; k < c.soil->initial_soil.size(); ++k) {
+      const auto [lo, hi] = interface::bounding_box(c.soil->initial_soil[k]);
+      if (!(lo[0] < c.mesh.upper[0] && hi[0] > c.mesh.lower[0] && lo[1] < c.mesh.upper[1] && hi[1] > c.mesh.lower[1]))
+        throw CaseError(fmt::format("initial.soil[{}]: the shape, within [{}, {}] x [{}, {}], lies outside the domain "
+                                    "[{}, {}] x [{}, {}]", k, lo[0], hi[0], lo[1], hi[1], c.mesh.lower[0],
+                                    c.mesh.upper[0], c.mesh.lower[1], c.mesh.upper[1]));
+    }
+  }
   if (c.flow.numerics.air_band > 0) {
     // The air beyond the band is held at rest under the pressure of the air column above it.
     if (c.flow.numerics.pressure_coupling != PressureCoupling::coupled)
@@ -394,11 +419,23 @@ CaseConfig parse_case(std::string_view text, const std::vector<std::string>& ove
 }
 
 CaseConfig load_case(const std::filesystem::path& file, const std::vector<std::string>& overrides) {
+  std::error_code ec;
+  if (std::filesystem::is_directory(file, ec))
+    throw CaseError(fmt::format("{}: is a directory, not a case file", file.string()));
   std::ifstream in(file);
   if (!in) throw CaseError(fmt::format("{}: cannot open the case file", file.string()));
   std::stringstream ss;
   ss << in.rdbuf();
-  return parse_case(ss.str(), overrides, file);
+  const std::string text = ss.str();
+  if (text.find_first_not_of(" \t\r\n") == std::string::npos)
+    throw CaseError(fmt::format("{}: the case file is empty", file.string()));
+  try {
+    return parse_case(text, overrides, file);
+  } catch (const CaseError& e) {
+    const std::string what = e.what();
+    if (what.starts_with(file.string())) throw;  // a TOML syntax error names its file and line already
+    throw CaseError(fmt::format("{}: {}", file.string(), what));
+  }
 }
 
 }  // namespace granflow

@@ -3,10 +3,12 @@
 #include <fmt/format.h>
 #include <fmt/ostream.h>
 
+#include <cmath>
 #include <cstdint>
 #include <fstream>
 
 #include "io/atomic_file.hpp"
+#include "io/collective_failure.hpp"
 
 namespace granflow {
 
@@ -83,6 +85,7 @@ void write_run(const std::filesystem::path& path, const RunCheckpoint& r) {
     for (const auto& [t, f] : r.series) fmt::print(out, "{:a} {}\n", t, f);
     fmt::print(out, "history {}\n", r.history.size());
     for (const auto& row : r.history) fmt::print(out, "{}\n", row);
+    fmt::print(out, "domain {}\n", r.domain);
   });
 }
 
@@ -102,6 +105,10 @@ RunCheckpoint read_run(const std::filesystem::path& path) {
   r.output_index = std::stoi(field("output_index"));
   r.dissipated_energy = hex_double(field("dissipated_energy"));
   r.initial_soil_volume = hex_double(field("initial_soil_volume"));
+  if (!(std::isfinite(r.time) && r.time >= 0.0 && std::isfinite(r.next_dt) && r.next_dt > 0.0 && r.output_index >= 0 &&
+        std::isfinite(r.dissipated_energy) && std::isfinite(r.initial_soil_volume)))
+    throw CheckpointError(fmt::format("{}: the clock (time {}, next_dt {}, output_index {}) is not a run's",
+                                      path.string(), r.time, r.next_dt, r.output_index));
   const size_t n_series = std::stoul(field("series"));
   for (size_t k = 0; k < n_series; ++k) {
     std::string t, f;
@@ -115,24 +122,13 @@ RunCheckpoint read_run(const std::filesystem::path& path) {
     if (!std::getline(in, line)) throw CheckpointError(fmt::format("{} is truncated", path.string()));
     r.history.push_back(line);
   }
+  if (std::getline(in, line) && line.starts_with("domain ")) r.domain = line.substr(7);
   return r;
 }
 
-// Every rank learns whether any rank failed, and rank 0's message if so.
+// Every rank throws if any rank failed, with the same message.
 void agree(MPI_Comm comm, const std::string& mine) {
-  int failed = mine.empty() ? 0 : 1, any = 0;
-  MPI_Allreduce(&failed, &any, 1, MPI_INT, MPI_MAX, comm);
-  if (!any) return;
-  int rank;
-  MPI_Comm_rank(comm, &rank);
-  // The lowest failing rank's message, so that all ranks throw the same text.
-  int who = failed ? rank : 1 << 30, first = 0;
-  MPI_Allreduce(&who, &first, 1, MPI_INT, MPI_MIN, comm);
-  int length = rank == first ? int(mine.size()) : 0;
-  MPI_Bcast(&length, 1, MPI_INT, first, comm);
-  std::string text = rank == first ? mine : std::string(size_t(length), ' ');
-  MPI_Bcast(text.data(), length, MPI_CHAR, first, comm);
-  throw CheckpointError(text);
+  if (auto text = first_failure(comm, mine); !text.empty()) throw CheckpointError(text);
 }
 
 }  // namespace
@@ -162,7 +158,7 @@ void write_checkpoint(MPI_Comm comm, const std::filesystem::path& dir, int nx, i
 }
 
 RunCheckpoint read_checkpoint(MPI_Comm comm, const std::filesystem::path& dir, int nx, int ny,
-                              std::span<Field* const> fields, std::vector<double>& scalars) {
+                              const std::string& domain, std::span<Field* const> fields, std::vector<double>& scalars) {
   int rank, size;
   MPI_Comm_rank(comm, &rank);
   MPI_Comm_size(comm, &size);
@@ -180,9 +176,11 @@ RunCheckpoint read_checkpoint(MPI_Comm comm, const std::filesystem::path& dir, i
   if (rank == 0) {
     try {
       run = read_run(from / "run.txt");
-    } catch (const CheckpointError& e) {
-      problem = e.what();
+    } catch (const std::exception& e) {  // std::stoi and the like throw their own types
+      problem = fmt::format("{} is damaged ({})", (from / "run.txt").string(), e.what());
     }
+    if (problem.empty() && !run.domain.empty() && run.domain != domain)
+      problem = fmt::format("the checkpoint is of the domain {}; the case's is {}", run.domain, domain);
   }
   agree(comm, problem);
   double clock[5] = {run.time, run.next_dt, double(run.output_index), run.dissipated_energy, run.initial_soil_volume};

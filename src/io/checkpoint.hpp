@@ -29,6 +29,7 @@ struct RunCheckpoint {
   double initial_soil_volume = 0.0;
   std::vector<std::string> history;                      // rows of history.csv
   std::vector<std::pair<double, std::string>> series;    // entries of fields.pvd
+  std::string domain;  // the domain the fields are of, as Simulation describes it ("" in older checkpoints)
 };
 
 // Writes the checkpoint into dir/checkpoint/ (collective). It is assembled in checkpoint.partial/ and
@@ -37,9 +38,10 @@ void write_checkpoint(MPI_Comm comm, const std::filesystem::path& dir, int nx, i
                       std::span<Field* const> fields, std::span<const double> scalars);
 
 // Reads the checkpoint of dir back (collective): the fields in the same order as written, this rank's
-// scalars into `scalars` and rank 0's run part into the return value (on every rank). Throws
-// CheckpointError naming what does not match.
+// scalars into `scalars` and rank 0's run part into the return value (on every rank; the history,
+// series and domain on rank 0 only). Throws CheckpointError naming what does not match, on every rank:
+// the number of ranks, the mesh, the fields, or a domain other than `domain`.
 RunCheckpoint read_checkpoint(MPI_Comm comm, const std::filesystem::path& dir, int nx, int ny,
-                              std::span<Field* const> fields, std::vector<double>& scalars);
+                              const std::string& domain, std::span<Field* const> fields, std::vector<double>& scalars);
 
 }  // namespace granflow

@@ -51,6 +51,13 @@ long TableReader::integer(std::string_view key, long fallback) {
   type_error(key, "an integer");
 }
 
+int TableReader::integer_in(std::string_view key, int fallback, long lo, long hi) {
+  const long value = integer(key, fallback);
+  if (value < lo || value > hi)
+    throw CaseError(fmt::format("{}: {} is invalid, must be in [{}, {}]", key_path(key), value, lo, hi));
+  return int(value);
+}
+
 bool TableReader::boolean(std::string_view key, bool fallback) {
   const toml::node* n = get(key);
   if (!n) return fallback;
@@ -77,6 +84,7 @@ std::string TableReader::choice(std::string_view key, std::string fallback,
     if (v == a) return v;
   std::string list;
   for (auto a : allowed) list += (list.empty() ? "" : ", ") + std::string(a);
+  if (!has(key)) throw CaseError(fmt::format("{}: missing (one of: {})", key_path(key), list));
   throw CaseError(fmt::format("{}: '{}' is not one of: {}", key_path(key), v, list));
 }
 

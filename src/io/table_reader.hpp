@@ -26,6 +26,8 @@ class TableReader {
   double required_number(std::string_view key);
   std::optional<double> optional_number(std::string_view key);
   long integer(std::string_view key, long fallback);
+  // An integer that must lie in [lo, hi], checked before it is narrowed to int.
+  int integer_in(std::string_view key, int fallback, long lo, long hi);
   bool boolean(std::string_view key, bool fallback);
   std::string string(std::string_view key, std::string fallback);
   std::string required_string(std::string_view key);

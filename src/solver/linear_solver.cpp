@@ -7,6 +7,21 @@
 
 namespace granflow {
 
+std::string unknown_method(const LinearSolverSettings& s) {
+  KSP ksp;
+  PC pc;
+  KSPCreate(PETSC_COMM_SELF, &ksp);
+  KSPGetPC(ksp, &pc);
+  PetscPushErrorHandler(PetscReturnErrorHandler, nullptr);  // an unknown name returns an error, quietly
+  const PetscErrorCode ksp_error = KSPSetType(ksp, s.ksp_type.c_str());
+  const PetscErrorCode pc_error = PCSetType(pc, s.pc_type.c_str());
+  PetscPopErrorHandler();
+  KSPDestroy(&ksp);
+  if (ksp_error) return fmt::format("ksp_type: '{}' is not a Krylov method PETSc knows (e.g. cg, gmres, bcgs, preonly)", s.ksp_type);
+  if (pc_error) return fmt::format("pc_type: '{}' is not a preconditioner PETSc knows (e.g. hypre, gamg, bjacobi, lu)", s.pc_type);
+  return {};
+}
+
 LinearSolver::LinearSolver(MPI_Comm comm, const std::string& prefix, const LinearSolverSettings& s)
     : prefix_(prefix), max_reuse_(std::max(1, s.max_reuse)) {
   PetscCallAbort(comm, KSPCreate(comm, &ksp_));

@@ -19,6 +19,10 @@ struct LinearSolverSettings {
   int max_reuse = 1;
 };
 
+// What is wrong with the settings' method names ("" if PETSc knows both): a misspelt ksp_type or
+// pc_type is found before a run starts, not as a PETSc error trace inside it. Needs PETSc initialised.
+std::string unknown_method(const LinearSolverSettings& settings);
+
 class LinearSolver {
  public:
   LinearSolver(MPI_Comm comm, const std::string& prefix, const LinearSolverSettings& settings);

@@ -9,6 +9,7 @@
 
 #include "io/atomic_file.hpp"
 #include "io/checkpoint.hpp"
+#include "io/collective_failure.hpp"
 #include "io/contour.hpp"
 #include "io/gather.hpp"
 
@@ -39,8 +40,13 @@ Simulation::Simulation(MPI_Comm comm, const CaseConfig& config, std::filesystem:
   flow_->update_properties();  // the granular viscosity needs the pressure
   if (soil_) initial_soil_volume_ = soil_->budget(*flow_).soil_volume;
   if (!out_.empty()) {
-    if (rank_ == 0) std::filesystem::create_directories(out_);
-    MPI_Barrier(comm);
+    std::string problem;
+    if (rank_ == 0) {
+      std::error_code ec;
+      std::filesystem::create_directories(out_, ec);
+      if (ec) problem = fmt::format("cannot make the output directory {}: {}", out_.string(), ec.message());
+    }
+    if (auto text = first_failure(comm, problem); !text.empty()) throw std::runtime_error(text);
     series_ = std::make_unique<VtkSeries>(out_, "fields");
   }
 }
@@ -255,9 +261,16 @@ std::vector<Field*> Simulation::checkpoint_fields() {
   return fields;
 }
 
+// The domain as a checkpoint records it, so that a restart cannot take the fields of another one.
+std::string Simulation::domain() const {
+  const auto& m = config_.mesh;
+  return fmt::format("[{:.9g}, {:.9g}] x [{:.9g}, {:.9g}] ({})", m.lower[0], m.upper[0], m.lower[1], m.upper[1],
+                     m.axisymmetric ? "axisymmetric" : "planar");
+}
+
 void Simulation::write_checkpoint(double next_dt) {
   if (out_.empty() || !config_.output.checkpoints) return;
-  RunCheckpoint run{time_, next_dt, output_index_, dissipated_energy_, initial_soil_volume_, history_, {}};
+  RunCheckpoint run{time_, next_dt, output_index_, dissipated_energy_, initial_soil_volume_, history_, {}, domain()};
   if (series_) run.series = series_->entries();
   std::vector<double> scalars{flow_->last_dt()};
   if (soil_)
@@ -270,7 +283,10 @@ void Simulation::restart() {
   if (out_.empty()) throw CheckpointError("a restart needs the output directory of the earlier run");
   const auto fields = checkpoint_fields();
   std::vector<double> scalars;
-  RunCheckpoint run = read_checkpoint(grid_->comm(), out_, grid_->nx(), grid_->ny(), fields, scalars);
+  RunCheckpoint run = read_checkpoint(grid_->comm(), out_, grid_->nx(), grid_->ny(), domain(), fields, scalars);
+  if (!(config_.time.end > run.time * (1 + 1e-12)))
+    throw CheckpointError(fmt::format("time.end = {} s is not past the checkpoint's t = {:.9g} s: raise it to run on",
+                                      config_.time.end, run.time));
   const size_t expected = 1 + (soil_ ? soil_->checkpoint_scalars().size() : 0);
   if (scalars.size() != expected) throw CheckpointError("the checkpoint's state does not match this case's model");
   flow_->set_last_dt(scalars[0]);

@@ -7,6 +7,7 @@
 #include "io/case_file.hpp"
 #include "io/vtk_series.hpp"
 #include "mesh/grid.hpp"
+#include "solver/divergence_error.hpp"
 #include "solver/flow_solver.hpp"
 #include "solver/soil_phase.hpp"
 
@@ -25,10 +26,6 @@ struct RunSummary {
   bool reached_steady_state = false;
 };
 
-// Thrown when the solution stops being finite or bounded; the last output stays as written.
-struct DivergenceError : std::runtime_error {
-  using std::runtime_error::runtime_error;
-};
 
 class Simulation {
  public:
@@ -64,6 +61,7 @@ class Simulation {
   double courant_after(double dt) const;  // flow Courant number of the current velocities over dt
   std::vector<Field*> checkpoint_fields();
   void write_checkpoint(double next_dt);
+  std::string domain() const;
 
   static constexpr int max_step_retries = 4;
   static constexpr double retry_courant_factor = 4.0;  // retry a step above this multiple of the target

@@ -2,6 +2,8 @@
 
 #include "mesh/face_loop.hpp"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -11,6 +13,7 @@
 #include "models/interface/wetted_fraction.hpp"
 #include "models/rheology/invariants.hpp"
 #include "models/strain/euler_almansi.hpp"
+#include "solver/divergence_error.hpp"
 #include "operators/face_interpolation.hpp"
 #include "operators/strain_rate.hpp"
 
@@ -277,7 +280,15 @@ void SoilPhase::advect(const FlowSolver& flow, double dt) {
   auto substeps_for = [&](double co) { return std::max(1, int(std::ceil(co / settings_.interface_courant - allowance))); };
   // The faces that can carry soil depend on how many sub-steps it moves in: widen the region until
   // it covers them (once at most, in practice).
-  int substeps = substeps_for(interface_courant(flow, dt, 1));
+  // Far more sweeps than a step can need means velocities far beyond the step's (a fixed step over a
+  // flow that has blown up); the Courant number is the same on every rank, so all stop together.
+  constexpr double max_substeps = 1000;
+  const double co = interface_courant(flow, dt, 1);
+  if (!(co / settings_.interface_courant <= max_substeps))
+    throw DivergenceError(fmt::format("the soil fraction would need {:.3g} sweeps in a step of {:.3g} s: the flow has "
+                                      "diverged (lower time.dt, or let time.adaptive size the step)",
+                                      co / settings_.interface_courant, dt));
+  int substeps = substeps_for(co);
   for (int reach = 1; substeps > reach;) {
     reach = substeps;
     substeps = std::max(substeps, substeps_for(interface_courant(flow, dt, reach)));

@@ -1,5 +1,6 @@
 #include "models/interface/initial_shapes.hpp"
 
+#include <algorithm>
 #include <cstddef>
 
 namespace granflow::interface {
@@ -26,6 +27,20 @@ struct Contains {
 }  // namespace
 
 bool contains(const Shape& shape, double x, double y) { return std::visit(Contains{x, y}, shape); }
+
+std::array<Point, 2> bounding_box(const Shape& shape) {
+  if (const auto* b = std::get_if<Box>(&shape)) return {b->lower, b->upper};
+  if (const auto* c = std::get_if<Circle>(&shape))
+    return {Point{c->centre[0] - c->radius, c->centre[1] - c->radius}, Point{c->centre[0] + c->radius, c->centre[1] + c->radius}};
+  const auto& v = std::get<Polygon>(shape).vertices;
+  std::array<Point, 2> box{v.front(), v.front()};
+  for (const auto& p : v)
+    for (int a = 0; a < 2; ++a) {
+      box[0][a] = std::min(box[0][a], p[a]);
+      box[1][a] = std::max(box[1][a], p[a]);
+    }
+  return box;
+}
 
 bool union_contains(const std::vector<Shape>& shapes, double x, double y) {
   for (const auto& s : shapes)

@@ -21,6 +21,8 @@ struct Polygon {
 using Shape = std::variant<Box, Circle, Polygon>;
 
 bool contains(const Shape& shape, double x, double y);
+// The smallest axis-aligned box around the shape: {lower, upper}.
+std::array<Point, 2> bounding_box(const Shape& shape);
 bool union_contains(const std::vector<Shape>& shapes, double x, double y);
 
 // Fraction of the cell [x0,x1] x [y0,y1] inside the union, by samples x samples midpoint sampling
