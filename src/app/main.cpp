@@ -178,6 +178,9 @@ int main(int argc, char** argv) {
   } catch (const granflow::CaseError& e) {
     if (rank == 0) fmt::print(stderr, "error: {}\n", e.what());
     status = 2;
+  } catch (const granflow::GridError& e) {
+    if (rank == 0) fmt::print(stderr, "error: {}\n", e.what());
+    status = 2;
   } catch (const granflow::CheckpointError& e) {
     if (rank == 0) fmt::print(stderr, "error: {}\n", e.what());
     status = 1;

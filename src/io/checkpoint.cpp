@@ -5,7 +5,9 @@
 
 #include <cmath>
 #include <cstdint>
+#include <cstdlib>
 #include <fstream>
+#include <limits>
 
 #include "io/atomic_file.hpp"
 #include "io/collective_failure.hpp"
@@ -85,7 +87,7 @@ void write_run(const std::filesystem::path& path, const RunCheckpoint& r) {
     for (const auto& [t, f] : r.series) fmt::print(out, "{:a} {}\n", t, f);
     fmt::print(out, "history {}\n", r.history.size());
     for (const auto& row : r.history) fmt::print(out, "{}\n", row);
-    fmt::print(out, "domain {}\n", r.domain);
+    fmt::print(out, "domain {}\nsteps {}\n", r.domain, r.steps);
   });
 }
 
@@ -100,29 +102,39 @@ RunCheckpoint read_run(const std::filesystem::path& path) {
     if (!(in >> key >> value) || key != name) throw CheckpointError(fmt::format("{}: expected '{}'", path.string(), name));
     return value;
   };
+  auto count_in = [&](const char* name, const std::string& text) {
+    char* end = nullptr;
+    const long long n = std::strtoll(text.c_str(), &end, 10);
+    if (end == text.c_str() || *end != '\0' || n < 0 || n > std::numeric_limits<int>::max())
+      throw CheckpointError(fmt::format("{}: '{}' is not a count for '{}'", path.string(), text, name));
+    return size_t(n);
+  };
+  auto count = [&](const char* name) { return count_in(name, field(name)); };
   r.time = hex_double(field("time"));
   r.next_dt = hex_double(field("next_dt"));
-  r.output_index = std::stoi(field("output_index"));
+  r.output_index = int(count("output_index"));
   r.dissipated_energy = hex_double(field("dissipated_energy"));
   r.initial_soil_volume = hex_double(field("initial_soil_volume"));
   if (!(std::isfinite(r.time) && r.time >= 0.0 && std::isfinite(r.next_dt) && r.next_dt > 0.0 && r.output_index >= 0 &&
         std::isfinite(r.dissipated_energy) && std::isfinite(r.initial_soil_volume)))
     throw CheckpointError(fmt::format("{}: the clock (time {}, next_dt {}, output_index {}) is not a run's",
                                       path.string(), r.time, r.next_dt, r.output_index));
-  const size_t n_series = std::stoul(field("series"));
+  const size_t n_series = count("series");
   for (size_t k = 0; k < n_series; ++k) {
     std::string t, f;
     if (!(in >> t >> f)) throw CheckpointError(fmt::format("{} is truncated", path.string()));
     r.series.emplace_back(hex_double(t), f);
   }
-  const size_t n_history = std::stoul(field("history"));
+  const size_t n_history = count("history");
   std::string line;
   std::getline(in, line);  // end of the count's line
   for (size_t k = 0; k < n_history; ++k) {
     if (!std::getline(in, line)) throw CheckpointError(fmt::format("{} is truncated", path.string()));
     r.history.push_back(line);
   }
+  // Added later: older checkpoints end with the history.
   if (std::getline(in, line) && line.starts_with("domain ")) r.domain = line.substr(7);
+  if (in >> key >> value && key == "steps") r.steps = long(count_in("steps", value));
   return r;
 }
 
@@ -168,7 +180,7 @@ RunCheckpoint read_checkpoint(MPI_Comm comm, const std::filesystem::path& dir, i
     from = dir / "checkpoint.old";
   std::string problem;
   if (!std::filesystem::exists(from / "run.txt"))
-    problem = fmt::format("no checkpoint to restart from in {} (one is written at each output time)", dir.string());
+    problem = fmt::format("no checkpoint to restart from in {} (one is written at each output time after the start)", dir.string());
   agree(comm, problem);
   const RankHeader expected{magic, size, rank, nx, ny, std::int64_t(fields.size()), 0};
   agree(comm, read_rank(rank_file(from, rank), expected, fields, scalars));
@@ -176,20 +188,24 @@ RunCheckpoint read_checkpoint(MPI_Comm comm, const std::filesystem::path& dir, i
   if (rank == 0) {
     try {
       run = read_run(from / "run.txt");
-    } catch (const std::exception& e) {  // std::stoi and the like throw their own types
-      problem = fmt::format("{} is damaged ({})", (from / "run.txt").string(), e.what());
+    } catch (const CheckpointError& e) {
+      problem = fmt::format("the checkpoint is damaged: {}", e.what());
+    } catch (const std::exception& e) {  // whatever else reading it throws must reach every rank too
+      problem = fmt::format("the checkpoint is damaged: {}: {}", (from / "run.txt").string(), e.what());
     }
     if (problem.empty() && !run.domain.empty() && run.domain != domain)
       problem = fmt::format("the checkpoint is of the domain {}; the case's is {}", run.domain, domain);
   }
   agree(comm, problem);
-  double clock[5] = {run.time, run.next_dt, double(run.output_index), run.dissipated_energy, run.initial_soil_volume};
-  MPI_Bcast(clock, 5, MPI_DOUBLE, 0, comm);
+  double clock[6] = {run.time, run.next_dt, double(run.output_index), run.dissipated_energy, run.initial_soil_volume,
+                     double(run.steps)};
+  MPI_Bcast(clock, 6, MPI_DOUBLE, 0, comm);
   run.time = clock[0];
   run.next_dt = clock[1];
   run.output_index = int(clock[2]);
   run.dissipated_energy = clock[3];
   run.initial_soil_volume = clock[4];
+  run.steps = long(clock[5]);
   return run;
 }
 

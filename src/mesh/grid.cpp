@@ -1,5 +1,7 @@
 #include "mesh/grid.hpp"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
@@ -43,8 +45,30 @@ void axis_geometry(int n, double lo, double hi, double grading, std::vector<doub
 }
 }  // namespace
 
+namespace {
+// Too many ranks for the cells is the user's to fix, not a PETSc error trace (which one rank alone
+// may meet while the others wait). PETSc's own split of M x N cells over the ranks (DMSetUp_DA_2D,
+// PETSC_DECIDE): the squarest m x n = size with m along the longer axis, the ranks' widths differing
+// by at most one cell; each width must hold the ghost layers unless the axis is not split.
+void check_ranks_can_share(MPI_Comm comm, std::array<int, 2> cells) {
+  int size;
+  MPI_Comm_size(comm, &size);
+  const long M = cells[0], N = cells[1];
+  long m = std::max(1L, long(0.5 + std::sqrt(double(M) * size / double(N))));
+  while (m > 0 && size % m != 0) --m;
+  long n = size / m;
+  if (M > N && m < n) std::swap(m, n);
+  auto fits = [](long cells_along, long parts) { return parts == 1 || (cells_along >= parts && cells_along / parts >= Grid::ghost_width); };
+  if (!fits(M, m) || !fits(N, n))
+    throw GridError(fmt::format("mesh.cells: {} x {} cells cannot be shared by {} ranks (each needs at least {} cells "
+                                "along each axis it is split along); use fewer ranks or more cells",
+                                M, N, size, Grid::ghost_width));
+}
+}  // namespace
+
 Grid::Grid(MPI_Comm comm, const GridSpec& spec) : comm_(comm), spec_(spec) {
   if (spec.cells[0] < 1 || spec.cells[1] < 1) throw std::invalid_argument("grid needs at least one cell per axis");
+  check_ranks_can_share(comm, spec.cells);
   PetscCallAbort(comm, DMDACreate2d(comm, DM_BOUNDARY_GHOSTED, DM_BOUNDARY_GHOSTED, DMDA_STENCIL_BOX,
                                     spec.cells[0], spec.cells[1], PETSC_DECIDE, PETSC_DECIDE, 1,
                                     ghost_width, nullptr, nullptr, &field_dm_));

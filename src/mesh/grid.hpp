@@ -11,6 +11,7 @@
 #include <petscdmda.h>
 
 #include <array>
+#include <stdexcept>
 #include <vector>
 
 #include "mesh/cell_box.hpp"
@@ -30,6 +31,11 @@ struct GridSpec {
   // Axisymmetric (r-z): x is the radius r >= 0, y the axial coordinate z. Areas and volumes are per
   // radian: a face at radius r has area r dz, a cell volume r_c dr dz.
   bool axisymmetric = false;
+};
+
+// The mesh cannot be laid out as asked (too many ranks for its cells); thrown on every rank alike.
+struct GridError : std::runtime_error {
+  using std::runtime_error::runtime_error;
 };
 
 class Grid {

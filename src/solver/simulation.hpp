@@ -78,6 +78,7 @@ class Simulation {
   double time_ = 0.0;
   double restart_dt_ = 0.0;  // the step to continue with after restart()
   bool restarted_ = false;
+  long steps_ = 0;  // steps of the whole run, over restarts (time.max_steps counts these)
   int output_index_ = 0;
   int rank_ = 0;
 };

@@ -23,7 +23,8 @@ struct SoilSettings {
   mixture::MixtureInterpolation viscosity_mixing;
   std::vector<interface::Shape> initial_soil;
   double interface_courant = 0.45;  // largest Courant number of one VoF sweep (< 0.5 for boundedness)
-  bool displacement = true;         // carry the Eulerian displacement and strain ([VoF] Eq. 16)
+  bool displacement = true;         // carry the Eulerian displacement and strain ([VoF] Eq. 16); the case
+                                    // file turns it on where there is a rheology (soil.displacement)
   double failure_strain = 0.3;      // ||e|| of the failure line ([VoF] Sec. 4)
   // Pressure entering the yield stress ([VoF] Sec. 2.2: the solver's own, clipped at zero):
   // - cell: the pressure at the cell centre, one viscosity per cell, faces take the mean of two cells';

@@ -53,7 +53,7 @@ inline EndState end_state(Simulation& sim, long steps) {
   return e;
 }
 
-// On all ranks of PETSC_COMM_WORLD: runs the case whole into one directory; into another, stops it
+// On all ranks of PETSC_COMM_WORLD: runs the case whole into one directory; into another, kills it
 // after `stop_after` steps and runs it again from the checkpoint. Returns the checkpoint's time.
 inline double expect_restart_reproduces(const std::string& case_file, std::vector<std::string> overrides,
                                         long stop_after, bool has_history) {
@@ -67,10 +67,17 @@ inline double expect_restart_reproduces(const std::string& case_file, std::vecto
     const RunSummary s = sim.run();
     whole = end_state(sim, s.steps);
   }
-  overrides.push_back("time.max_steps=" + std::to_string(stop_after));
   {
-    Simulation stopped(PETSC_COMM_WORLD, load_case(repo_path(case_file), overrides), split_dir);
-    stopped.run();
+    // Killed after `stop_after` steps, between outputs: nothing more is written.
+    struct Killed {};
+    Simulation stopped(PETSC_COMM_WORLD, config, split_dir);
+    try {
+      stopped.run([&, steps = 0L](const Simulation&, double) mutable {
+        if (++steps == stop_after) throw Killed{};
+      });
+      ADD_FAILURE() << "the run ended before step " << stop_after;
+    } catch (const Killed&) {
+    }
     EXPECT_LT(stopped.time(), config.time.end);
   }
   double checkpoint_time = 0.0;

@@ -36,6 +36,45 @@ TEST(Restart, CavityContinuesExactlyFromItsLastCheckpoint) {
   std::printf("cavity restarted from its checkpoint at t = %.3g s\n", t);
 }
 
+// time.max_steps counts the steps of the whole run, over restarts; a run stopped by it writes its
+// output and a checkpoint where it stopped, once, also when that is an output time.
+TEST(Restart, MaxStepsCountsTheWholeRunAndItsLastOutputOnce) {
+  const auto whole_dir = scratch("granflow_max_steps_whole"), split_dir = scratch("granflow_max_steps_split");
+  test::remove_scratch(whole_dir);
+  test::remove_scratch(split_dir);
+  auto overrides = std::vector<std::string>{"mesh.cells=[16,16]", "time.end=10", "time.dt=0.01", "time.adaptive=false",
+                                            "time.steady_tolerance=0", "output.interval=0.1", "output.progress_seconds=0"};
+  auto with_steps = [&](long n) {
+    auto o = overrides;
+    o.push_back("time.max_steps=" + std::to_string(n));
+    return load_case(test::repo_path("cases/lid_driven_cavity_re100.toml"), o);
+  };
+  double whole_time = 0.0;
+  {
+    Simulation sim(PETSC_COMM_WORLD, with_steps(50), whole_dir);  // ends on the output time 0.5
+    EXPECT_EQ(sim.run().steps, 50);
+    whole_time = sim.time();
+  }
+  {
+    Simulation sim(PETSC_COMM_WORLD, with_steps(25), split_dir);
+    EXPECT_EQ(sim.run().steps, 25);
+  }
+  {
+    Simulation sim(PETSC_COMM_WORLD, with_steps(50), split_dir);
+    sim.restart();
+    EXPECT_NEAR(sim.time(), 0.25, 1e-12);  // where the first part stopped, between outputs
+    EXPECT_EQ(sim.run().steps, 25);         // the rest of 50
+    EXPECT_EQ(sim.time(), whole_time);
+  }
+  if (test::is_root()) {
+    const std::string pvd = test::file_text(whole_dir / "fields.pvd");
+    EXPECT_EQ(pvd.find("timestep=\"0.5\""), pvd.rfind("timestep=\"0.5\"")) << pvd;  // written once
+    EXPECT_NE(pvd.find("timestep=\"0.5\""), std::string::npos) << pvd;
+  }
+  test::remove_scratch(whole_dir);
+  test::remove_scratch(split_dir);
+}
+
 TEST(Restart, RefusesAMissingOrForeignCheckpoint) {
   const auto dir = scratch("granflow_restart_foreign");
   std::filesystem::remove_all(dir);

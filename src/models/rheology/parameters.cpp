@@ -79,7 +79,7 @@ std::optional<std::string> validate(const RheologyParameters& p) {
   }
   // Negated comparisons so that NaN fails every check.
   if (!(p.friction_angle_deg > 0.0 && p.friction_angle_deg < 90.0)) {
-    return bad("friction_angle_deg (phi)", p.friction_angle_deg, "must lie in (0, 90) degrees");
+    return bad("friction_angle (phi)", p.friction_angle_deg, "must lie in (0, 90) degrees");
   }
   if (!(p.cohesion >= 0.0 && std::isfinite(p.cohesion))) {
     return bad("cohesion (C)", p.cohesion, "must be finite and >= 0 Pa");
@@ -89,20 +89,20 @@ std::optional<std::string> validate(const RheologyParameters& p) {
                "is only used by model drucker_prager_bingham; set it to 0 or change the model");
   }
   if (!(p.regularisation_time > 0.0 && std::isfinite(p.regularisation_time))) {
-    return bad("regularisation_time (m)", p.regularisation_time, "must be finite and > 0 s");
+    return bad("m (regularisation time)", p.regularisation_time, "must be finite and > 0 s");
   }
   if (!(p.min_dynamic_viscosity >= 0.0 && std::isfinite(p.min_dynamic_viscosity))) {
-    return bad("min_dynamic_viscosity (mu_min)", p.min_dynamic_viscosity,
+    return bad("mu_min", p.min_dynamic_viscosity,
                "must be finite and >= 0 Pa s");
   }
   if (!(p.min_kinematic_viscosity >= 0.0 && std::isfinite(p.min_kinematic_viscosity))) {
-    return bad("min_kinematic_viscosity (nu_min)", p.min_kinematic_viscosity,
+    return bad("nu_min", p.min_kinematic_viscosity,
                "must be finite and >= 0 m^2/s");
   }
   if (!(p.max_kinematic_viscosity > p.min_kinematic_viscosity &&
         std::isfinite(p.max_kinematic_viscosity))) {
-    return bad("max_kinematic_viscosity (nu_max)", p.max_kinematic_viscosity,
-               fmt::format("must be finite and > min_kinematic_viscosity = {} m^2/s",
+    return bad("nu_max", p.max_kinematic_viscosity,
+               fmt::format("must be finite and > nu_min = {} m^2/s",
                            p.min_kinematic_viscosity));
   }
   if (!(p.density > 0.0 && std::isfinite(p.density))) {
@@ -113,14 +113,14 @@ std::optional<std::string> validate(const RheologyParameters& p) {
   }
   // mu_s and mu_2 replace sin(phi), so they must stay in (0, 1) like a sine.
   if (!(p.static_friction > 0.0 && p.static_friction < 1.0)) {
-    return bad("static_friction (mu_s)", p.static_friction, "must lie in (0, 1)");
+    return bad("mu_s", p.static_friction, "must lie in (0, 1)");
   }
   if (!(p.limiting_friction >= p.static_friction && p.limiting_friction < 1.0)) {
-    return bad("limiting_friction (mu_2)", p.limiting_friction,
-               fmt::format("must lie in [static_friction = {}, 1)", p.static_friction));
+    return bad("mu_2", p.limiting_friction,
+               fmt::format("must lie in [mu_s = {}, 1)", p.static_friction));
   }
   if (!(p.reference_inertial_number > 0.0 && std::isfinite(p.reference_inertial_number))) {
-    return bad("reference_inertial_number (I_0)", p.reference_inertial_number,
+    return bad("I_0", p.reference_inertial_number,
                "must be finite and > 0");
   }
   if (p.friction == FrictionSource::mu_of_I && p.model == Model::drucker_prager_bingham) {

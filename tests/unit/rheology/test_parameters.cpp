@@ -69,7 +69,7 @@ TEST(RheologyParameters, ValidationNamesTheBadParameter) {
   for (double phi : {0.0, 90.0, 95.0, -5.0, nan}) {
     RheologyParameters p;
     p.friction_angle_deg = phi;
-    expect_rejected(p, "friction_angle_deg");
+    expect_rejected(p, "friction_angle (phi)");
   }
   {
     RheologyParameters p;
@@ -90,17 +90,17 @@ TEST(RheologyParameters, ValidationNamesTheBadParameter) {
   {
     RheologyParameters p;
     p.regularisation_time = 0.0;
-    expect_rejected(p, "regularisation_time");
+    expect_rejected(p, "m (regularisation time)");
   }
   {
     RheologyParameters p;
     p.min_dynamic_viscosity = -1e-3;
-    expect_rejected(p, "min_dynamic_viscosity");
+    expect_rejected(p, "mu_min");
   }
   {
     RheologyParameters p;
     p.max_kinematic_viscosity = 1e-6;  // below nu_min
-    expect_rejected(p, "max_kinematic_viscosity");
+    expect_rejected(p, "nu_max");
   }
   {
     RheologyParameters p;
@@ -110,17 +110,17 @@ TEST(RheologyParameters, ValidationNamesTheBadParameter) {
   {
     RheologyParameters p;
     p.static_friction = 1.2;
-    expect_rejected(p, "static_friction");
+    expect_rejected(p, "mu_s");
   }
   {
     RheologyParameters p;
     p.limiting_friction = 0.2;  // below mu_s
-    expect_rejected(p, "limiting_friction");
+    expect_rejected(p, "mu_2");
   }
   {
     RheologyParameters p;
     p.reference_inertial_number = -0.3;
-    expect_rejected(p, "reference_inertial_number");
+    expect_rejected(p, "I_0");
   }
   {
     RheologyParameters p;
