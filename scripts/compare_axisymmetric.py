@@ -24,6 +24,8 @@ import sys
 
 import numpy as np
 
+from granflow_files import main_with_errors, read_csv
+
 MODELS = {"drucker_prager": ("Drucker-Prager", "C0", "-"), "mohr_coulomb": ("Mohr-Coulomb", "C3", "--"),
           "matsuoka_nakai": ("Matsuoka-Nakai", "C2", ":")}  # label, colour, line style (lode_dissipation.png)
 # h0, r0 of the cylinders (a = h0 / r0); the time of the Lode-angle and stress-ratio figures.
@@ -31,13 +33,6 @@ CASES = {"lube2004_a05": dict(h0=0.1, r0=0.2, t_field=0.2, label="cylinder a = 0
          "lube2004_a2": dict(h0=0.2, r0=0.1, t_field=0.1, label="cylinder a = 2", colour="C3"),
          "ring_collapse": dict(h0=0.1, r0=None, t_field=0.2, label="ring", colour="C2")}
 SECTION_TIMES = {0.1: ":", 0.2: "-.", 0.5: "--"}
-
-
-def read_csv(path):
-    rows = [l.strip() for l in open(path) if l.strip() and not l.startswith("#")]
-    header = rows[0].split(",")
-    data = np.array([[float(v) for v in r.split(",")] for r in rows[1:]]).reshape(-1, len(header))
-    return {h: data[:, k] for k, h in enumerate(header)}
 
 
 def output_times(run):
@@ -354,4 +349,4 @@ def main():
 
 
 if __name__ == "__main__":
-    sys.exit(main())
+    main_with_errors(main)

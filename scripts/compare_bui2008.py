@@ -15,16 +15,11 @@ import sys
 
 import numpy as np
 
+from granflow_files import main_with_errors, read_csv
+
 HERE = os.path.dirname(os.path.abspath(__file__))
 REFDATA = os.path.join(HERE, "..", "validation", "refdata")
 EXPERIMENT_RUNOUT = 0.442
-
-
-def read_csv(path):
-    rows = [l.strip() for l in open(path) if l.strip() and not l.startswith("#")]
-    header = rows[0].split(",")
-    data = np.array([[float(x) for x in r.split(",")] for r in rows[1:]]) if len(rows) > 1 else np.zeros((0, len(header)))
-    return {h: data[:, k] for k, h in enumerate(header)}
 
 
 def last(run_dir, name):
@@ -113,4 +108,4 @@ def main():
 
 
 if __name__ == "__main__":
-    sys.exit(main())
+    main_with_errors(main)

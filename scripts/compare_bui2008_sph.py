@@ -19,33 +19,14 @@ import glob
 import json
 import os
 import re
-import sys
 
 import numpy as np
+
+from granflow_files import InputError, main_with_errors, read_csv
 
 # Which figure of [VoF] a case is drawn for, from the run directory's name.
 FIGURES = {"bui2008_sph_phi25_c5": "Fig. 7", "bui2008_sph_phi25": "Fig. 4", "bui2008_sph_phi45": "Fig. 5",
            "bui2008_sph_phi65": "Fig. 6"}
-
-
-class InputError(Exception):
-    pass
-
-
-def read_csv(path):
-    try:
-        lines = open(path).read().splitlines()
-    except OSError as e:
-        raise InputError(f"cannot read {path}: {e.strerror}")
-    rows = [l.strip() for l in lines if l.strip() and not l.startswith("#")]
-    if not rows:
-        raise InputError(f"{path}: no header line")
-    header = rows[0].split(",")
-    try:
-        data = np.array([[float(x) for x in r.split(",")] for r in rows[1:]]).reshape(-1, len(header))
-    except ValueError:
-        raise InputError(f"{path}: not a table of numbers under the header {rows[0]}")
-    return {h: data[:, k] for k, h in enumerate(header)}
 
 
 def time_of(path):
@@ -273,7 +254,4 @@ def main():
 
 
 if __name__ == "__main__":
-    try:
-        sys.exit(main())
-    except InputError as e:
-        sys.exit(f"error: {e}")
+    main_with_errors(main)

@@ -7,19 +7,13 @@ at Ghia's interior points (the wall points are boundary conditions) and exits 0.
 """
 import argparse
 import os
-import sys
 
 import numpy as np
 
+from granflow_files import main_with_errors, read_csv
+
 HERE = os.path.dirname(os.path.abspath(__file__))
 REFDATA = os.path.join(HERE, "..", "validation", "refdata")
-
-
-def read_csv(path):
-    rows = [l.strip() for l in open(path) if l.strip() and not l.startswith("#")]
-    header = rows[0].split(",")
-    data = np.array([[float(x) for x in r.split(",")] for r in rows[1:]])
-    return {h: data[:, k] for k, h in enumerate(header)}
 
 
 def main():
@@ -55,4 +49,4 @@ def main():
 
 
 if __name__ == "__main__":
-    sys.exit(main())
+    main_with_errors(main)

@@ -37,19 +37,14 @@ import sys
 
 import numpy as np
 
+from granflow_files import main_with_errors, read_csv
+
 HERE = os.path.dirname(os.path.abspath(__file__))
 REFDATA = os.path.join(HERE, "..", "validation", "refdata")
 A = 0.05715  # column width a = 2.25 in
 G = 9.81
 KOSHIZUKA_L = 0.146  # column width of the Koshizuka & Oka experiment (cases/water_dam_break_koshizuka.toml)
 RELEASE_SHIFT = 0.175  # in T: the experiment's late start, as other comparisons take it (docstring)
-
-
-def read_csv(path):
-    rows = [l.strip() for l in open(path) if l.strip() and not l.startswith("#")]
-    header = rows[0].split(",")
-    data = np.array([[float(x) for x in r.split(",")] for r in rows[1:]]) if len(rows) > 1 else np.zeros((0, len(header)))
-    return {h: data[:, k] for k, h in enumerate(header)}
 
 
 def front_deviation(T_sim, z_sim, Te, Ze, shift=0.0):
@@ -213,4 +208,4 @@ def main():
 
 
 if __name__ == "__main__":
-    main()
+    main_with_errors(main)

@@ -74,3 +74,14 @@ add_test(NAME cli_unused_petsc_option
                  --petsc=-presure_ksp_monitor)
 set_tests_properties(cli_unused_petsc_option PROPERTIES LABELS cli
                      PASS_REGULAR_EXPRESSION "warning: PETSc option -presure_ksp_monitor was given but not used")
+# The comparison scripts name a missing or malformed file in one line, not a traceback.
+file(WRITE ${CMAKE_CURRENT_BINARY_DIR}/bad_refdata/ghia1982_cavity_re100.csv "y,u\n0.5,abc\n")
+add_test(NAME scripts_compare_missing_run
+         COMMAND /usr/bin/python3 ${CMAKE_SOURCE_DIR}/scripts/compare_dam_break.py ${CMAKE_CURRENT_BINARY_DIR}/no_such_run)
+set_tests_properties(scripts_compare_missing_run PROPERTIES LABELS cli
+                     PASS_REGULAR_EXPRESSION "^error: cannot read [^\n]*no_such_run/history.csv: No such file or directory\n$")
+add_test(NAME scripts_compare_malformed_refdata
+         COMMAND /usr/bin/python3 ${CMAKE_SOURCE_DIR}/scripts/compare_cavity.py ${CMAKE_CURRENT_BINARY_DIR}/no_such_run 100
+                 --refdata ${CMAKE_CURRENT_BINARY_DIR}/bad_refdata)
+set_tests_properties(scripts_compare_malformed_refdata PROPERTIES LABELS cli
+                     PASS_REGULAR_EXPRESSION "^error: [^\n]*bad_refdata/ghia1982_cavity_re100.csv: not a table of numbers")
