@@ -5,6 +5,8 @@
 #include <algorithm>
 #include <stdexcept>
 
+#include "solver/divergence_error.hpp"
+
 namespace granflow {
 
 std::string unknown_method(const LinearSolverSettings& s) {
@@ -82,8 +84,9 @@ int LinearSolver::solve(Vec b, Vec x) {
     iterations_after_setup_ = int(its);
   }
   last_iterations_ = int(its);
+  // The converged reason is the same on every rank, so all stop together, as for a diverged flow.
   if (reason < 0 && reason != KSP_DIVERGED_ITS)
-    throw std::runtime_error(fmt::format("linear solver '{}' failed: {}", prefix_, KSPConvergedReasons[reason]));
+    throw DivergenceError(fmt::format("linear solver '{}' failed: {}", prefix_, KSPConvergedReasons[reason]));
   return int(its);
 }
 
