@@ -85,3 +85,10 @@ add_test(NAME scripts_compare_malformed_refdata
                  --refdata ${CMAKE_CURRENT_BINARY_DIR}/bad_refdata)
 set_tests_properties(scripts_compare_malformed_refdata PROPERTIES LABELS cli
                      PASS_REGULAR_EXPRESSION "^error: [^\n]*bad_refdata/ghia1982_cavity_re100.csv: not a table of numbers")
+# A restart with other materials is allowed, but said.
+add_test(NAME cli_restart_other_physics_warned
+         COMMAND sh -c "g=$0; d=$1; c=$2; shift 2; rm -rf \"$d\"; \"$g\" run \"$c\" -o \"$d\" \"$@\" > /dev/null || exit 1; \"$g\" run \"$c\" -o \"$d\" --restart \"$@\" --set time.end=0.03 --set soil.rheology.friction_angle=30 2>&1"
+                 $<TARGET_FILE:granflow> ${CMAKE_CURRENT_BINARY_DIR}/restart_physics ${CMAKE_SOURCE_DIR}/cases/bui2008_experiment.toml
+                 ${GRANFLOW_SHORT_RUN})
+set_tests_properties(cli_restart_other_physics_warned PROPERTIES LABELS cli
+                     PASS_REGULAR_EXPRESSION "warning: the case's physics [(][^)]*phi 30 deg[^)]*[)] differs from the checkpoint's run [(][^)]*phi 19.8 deg")

@@ -87,7 +87,7 @@ void write_run(const std::filesystem::path& path, const RunCheckpoint& r) {
     for (const auto& [t, f] : r.series) fmt::print(out, "{:a} {}\n", t, f);
     fmt::print(out, "history {}\n", r.history.size());
     for (const auto& row : r.history) fmt::print(out, "{}\n", row);
-    fmt::print(out, "domain {}\nsteps {}\n", r.domain, r.steps);
+    fmt::print(out, "domain {}\nsteps {}\nphysics {}\n", r.domain, r.steps, r.physics);
   });
 }
 
@@ -135,6 +135,8 @@ RunCheckpoint read_run(const std::filesystem::path& path) {
   // Added later: older checkpoints end with the history.
   if (std::getline(in, line) && line.starts_with("domain ")) r.domain = line.substr(7);
   if (in >> key >> value && key == "steps") r.steps = long(count_in("steps", value));
+  std::getline(in, line);  // end of the steps line
+  if (std::getline(in, line) && line.starts_with("physics ")) r.physics = line.substr(8);
   return r;
 }
 

@@ -31,6 +31,7 @@ struct RunCheckpoint {
   std::vector<std::pair<double, std::string>> series;    // entries of fields.pvd
   std::string domain;  // the domain the fields are of, as Simulation describes it ("" in older checkpoints)
   long steps = 0;      // steps taken so far (0 in older checkpoints)
+  std::string physics; // the materials and gravity, as Simulation describes them ("" in older checkpoints)
 };
 
 // Writes the checkpoint into dir/checkpoint/ (collective). It is assembled in checkpoint.partial/ and

@@ -270,9 +270,22 @@ std::string Simulation::domain() const {
                      m.axisymmetric ? "axisymmetric" : "planar");
 }
 
+// The materials and gravity, as a checkpoint records them: a restart with others is most likely
+// the wrong case file, though a deliberate change is allowed.
+std::string Simulation::physics() const {
+  std::string text = fmt::format("gravity [{:.9g}, {:.9g}]", config_.flow.gravity[0], config_.flow.gravity[1]);
+  if (!config_.soil) return text + fmt::format("; fluid {:.9g} kg/m^3, {:.9g} Pa s", config_.fluid.density, config_.fluid.viscosity);
+  const SoilSettings& s = *config_.soil;
+  text += fmt::format("; air {:.9g} kg/m^3, {:.9g} Pa s; soil {:.9g} kg/m^3", s.air_density, s.air_viscosity, s.soil_density);
+  if (!s.rheology) return text + fmt::format(", {:.9g} Pa s", s.soil_viscosity);
+  const auto& r = *s.rheology;
+  return text + fmt::format(", {} with {} friction, phi {:.9g} deg, cohesion {:.9g} Pa", rheology::to_string(r.model),
+                            rheology::to_string(r.friction), r.friction_angle_deg, r.cohesion);
+}
+
 void Simulation::write_checkpoint(double next_dt) {
   if (out_.empty() || !config_.output.checkpoints) return;
-  RunCheckpoint run{time_, next_dt, output_index_, dissipated_energy_, initial_soil_volume_, history_, {}, domain(), steps_};
+  RunCheckpoint run{time_, next_dt, output_index_, dissipated_energy_, initial_soil_volume_, history_, {}, domain(), steps_, physics()};
   if (series_) run.series = series_->entries();
   std::vector<double> scalars{flow_->last_dt()};
   if (soil_)
@@ -296,6 +309,9 @@ void Simulation::restart() {
   time_ = run.time;
   restart_dt_ = run.next_dt;
   steps_ = run.steps;
+  if (rank_ == 0 && !run.physics.empty() && run.physics != physics())
+    fmt::print(stderr, "warning: the case's physics ({}) differs from the checkpoint's run ({}); continuing with the case's\n",
+               physics(), run.physics);
   output_index_ = run.output_index;
   dissipated_energy_ = run.dissipated_energy;
   initial_soil_volume_ = run.initial_soil_volume;

@@ -62,6 +62,7 @@ class Simulation {
   std::vector<Field*> checkpoint_fields();
   void write_checkpoint(double next_dt);
   std::string domain() const;
+  std::string physics() const;
 
   static constexpr int max_step_retries = 4;
   static constexpr double retry_courant_factor = 4.0;  // retry a step above this multiple of the target
