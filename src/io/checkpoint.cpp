@@ -132,11 +132,14 @@ RunCheckpoint read_run(const std::filesystem::path& path) {
     if (!std::getline(in, line)) throw CheckpointError(fmt::format("{} is truncated", path.string()));
     r.history.push_back(line);
   }
-  // Added later: older checkpoints end with the history.
-  if (std::getline(in, line) && line.starts_with("domain ")) r.domain = line.substr(7);
-  if (in >> key >> value && key == "steps") r.steps = long(count_in("steps", value));
-  std::getline(in, line);  // end of the steps line
-  if (std::getline(in, line) && line.starts_with("physics ")) r.physics = line.substr(8);
+  // Added later, one "key value" line each: older checkpoints end with the history.
+  while (std::getline(in, line)) {
+    const size_t space = line.find(' ');
+    const std::string name = line.substr(0, space), text = space == std::string::npos ? "" : line.substr(space + 1);
+    if (name == "domain") r.domain = text;
+    else if (name == "steps") r.steps = long(count_in("steps", text));
+    else if (name == "physics") r.physics = text;
+  }
   return r;
 }
 

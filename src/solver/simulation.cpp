@@ -332,8 +332,10 @@ RunSummary Simulation::run(const StepObserver& after_step) {
   if (!restarted_) write_output();
   Vec previous[2];
   for (int a = 0; a < 2; ++a) VecDuplicate(flow_->velocity(a).global(), &previous[a]);
-  bool output_is_current = false;      // the last step ended on an output time and wrote it
-  bool checkpoint_is_current = false;  // ... and its checkpoint
+  // Whether the state at hand has been written, and checkpointed: at the start it has been written
+  // (just above, or by the run a restart continues), and checkpointed if this is a restart.
+  bool output_is_current = true;
+  bool checkpoint_is_current = restarted_;
   while (time_ < tc.end * (1 - 1e-12) && steps_ < tc.max_steps) {
     const double t_out = next_output_time();
     // Steps land on output times, but for a run that seeks a steady state only on time.end: the

@@ -66,6 +66,13 @@ TEST(Restart, MaxStepsCountsTheWholeRunAndItsLastOutputOnce) {
     EXPECT_EQ(sim.run().steps, 25);         // the rest of 50
     EXPECT_EQ(sim.time(), whole_time);
   }
+  const std::string split_pvd = test::is_root() ? test::file_text(split_dir / "fields.pvd") : "";
+  {
+    Simulation sim(PETSC_COMM_WORLD, with_steps(50), split_dir);  // nothing left to do: nothing written
+    sim.restart();
+    EXPECT_EQ(sim.run().steps, 0);
+  }
+  if (test::is_root()) EXPECT_EQ(test::file_text(split_dir / "fields.pvd"), split_pvd);
   if (test::is_root()) {
     const std::string pvd = test::file_text(whole_dir / "fields.pvd");
     EXPECT_EQ(pvd.find("timestep=\"0.5\""), pvd.rfind("timestep=\"0.5\"")) << pvd;  // written once
