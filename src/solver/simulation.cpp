@@ -309,9 +309,9 @@ void Simulation::restart() {
   time_ = run.time;
   restart_dt_ = run.next_dt;
   steps_ = run.steps;
-  if (rank_ == 0 && !run.physics.empty() && run.physics != physics())
+  if (const std::string ours = physics(); rank_ == 0 && !run.physics.empty() && run.physics != ours)
     fmt::print(stderr, "warning: the case's physics ({}) differs from the checkpoint's run ({}); continuing with the case's\n",
-               physics(), run.physics);
+               ours, run.physics);
   output_index_ = run.output_index;
   dissipated_energy_ = run.dissipated_energy;
   initial_soil_volume_ = run.initial_soil_volume;
