@@ -27,3 +27,13 @@ set_tests_properties(cli_too_many_ranks_for_the_cells PROPERTIES
   LABELS parallel TIMEOUT 120 PASS_REGULAR_EXPRESSION "error: mesh.cells: 3 x 3 cells cannot be shared by 2 ranks"
   FAIL_REGULAR_EXPRESSION "PETSC ERROR"
   ENVIRONMENT "OMPI_ALLOW_RUN_AS_ROOT=1;OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1;OMPI_MCA_rmaps_base_oversubscribe=1")
+
+# An output directory that cannot be made (here under a file) is one message from rank 0, status 2,
+# not one per rank and an abort.
+add_test(NAME cli_output_directory_cannot_be_made_2_ranks
+         COMMAND sh -c "touch \"$2\"; $0 -np 2 --oversubscribe \"$1\" run \"$3\" -o \"$2/sub\" --set 'mesh.cells=[8,8]' 2>&1; test $? -eq 2"
+                 ${MPIRUN} $<TARGET_FILE:granflow> ${CMAKE_CURRENT_BINARY_DIR}/a_file ${CMAKE_SOURCE_DIR}/cases/lid_driven_cavity_re100.toml)
+set_tests_properties(cli_output_directory_cannot_be_made_2_ranks PROPERTIES
+  LABELS parallel TIMEOUT 120 PASS_REGULAR_EXPRESSION "^error: -o [^\n]*a_file/sub: cannot make the output directory: Not a directory\n"
+  FAIL_REGULAR_EXPRESSION "MPI_ABORT|rank 1"
+  ENVIRONMENT "OMPI_ALLOW_RUN_AS_ROOT=1;OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1;OMPI_MCA_rmaps_base_oversubscribe=1")

@@ -8,6 +8,7 @@
 #include <cmath>
 
 #include "io/atomic_file.hpp"
+#include "io/case_error.hpp"
 #include "io/checkpoint.hpp"
 #include "io/collective_failure.hpp"
 #include "io/contour.hpp"
@@ -44,9 +45,9 @@ Simulation::Simulation(MPI_Comm comm, const CaseConfig& config, std::filesystem:
     if (rank_ == 0) {
       std::error_code ec;
       std::filesystem::create_directories(out_, ec);
-      if (ec) problem = fmt::format("cannot make the output directory {}: {}", out_.string(), ec.message());
+      if (ec) problem = fmt::format("-o {}: cannot make the output directory: {}", out_.string(), ec.message());
     }
-    if (auto text = first_failure(comm, problem); !text.empty()) throw std::runtime_error(text);
+    if (auto text = first_failure(comm, problem); !text.empty()) throw CaseError(text);  // on every rank
     series_ = std::make_unique<VtkSeries>(out_, "fields");
   }
 }
