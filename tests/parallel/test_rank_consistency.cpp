@@ -26,6 +26,8 @@ Snapshot run_on(MPI_Comm comm, const CaseConfig& config) {
 }
 
 double max_difference(const std::vector<double>& a, const std::vector<double>& b) {
+  EXPECT_EQ(a.size(), b.size());
+  if (a.size() != b.size() || a.empty()) return INFINITY;
   double d = 0.0;
   for (size_t k = 0; k < a.size(); ++k) d = std::max(d, std::abs(a[k] - b[k]));
   return d;
@@ -50,13 +52,14 @@ void expect_rank_independent(const std::string& case_file, const std::vector<std
   MPI_Bcast(diff, 3, MPI_DOUBLE, 0, PETSC_COMM_WORLD);
   EXPECT_LT(diff[0], tol);
   EXPECT_LT(diff[1], tol);
+  EXPECT_LT(diff[2], 1e-6);  // Pa, against pressures of up to 3 kPa; measured 1e-12 to 1.3e-8
 }
 
 TEST(RankConsistency, CavityOneAndTwoRanksAgree) {
   expect_rank_independent("cases/lid_driven_cavity_re100.toml",
                           {"mesh.cells=[48,48]", "time.end=2.0", "time.steady_tolerance=0", "output.progress_seconds=0",
                            "solver.pressure.rtol=1e-12", "solver.momentum.rtol=1e-12"},
-                          1e-8);
+                          1e-10);  // m/s; measured 1.2e-12
 }
 
 // The collapse with the yield stress taken on faces: face viscosities of the faces shared with the
@@ -67,7 +70,7 @@ TEST(RankConsistency, CollapseWithFaceYieldPressureOneAndTwoRanksAgree) {
                           test::with_bui2008_projection({"mesh.cells=[25,20]", "mesh.upper=[0.25,0.2]", "time.end=0.1",
                                                          "output.progress_seconds=0", "soil.yield_pressure=face",
                                                          "solver.pressure.rtol=1e-12", "solver.momentum.rtol=1e-12"}),
-                          1e-7);
+                          1e-9);  // m/s; measured 4.4e-12, iterative solves to 1e-12
 }
 
 // The same with the shipped case's settings, the coupled solve and the face's own soil fraction. The
@@ -77,7 +80,7 @@ TEST(RankConsistency, CollapseWithFaceYieldPressureOneAndTwoRanksAgree) {
 TEST(RankConsistency, CollapseWithFaceFractionOneAndTwoRanksAgree) {
   expect_rank_independent("cases/bui2008_experiment.toml",
                           {"mesh.cells=[25,20]", "mesh.upper=[0.25,0.2]", "time.end=0.1", "output.progress_seconds=0"},
-                          1e-7);
+                          1e-9);  // m/s; measured 9e-15: room for MUMPS's sums in another order, which a collapse amplifies
 }
 
 // The same with a narrow air band: the region's system is numbered across both ranks, its top edge,
@@ -88,7 +91,7 @@ TEST(RankConsistency, CollapseWithAirBandOneAndTwoRanksAgree) {
   expect_rank_independent("cases/bui2008_experiment.toml",
                           {"mesh.cells=[50,20]", "mesh.upper=[0.5,0.2]", "time.end=0.1", "output.progress_seconds=0",
                            "numerics.air_band=5"},
-                          1e-7);
+                          1e-9);  // m/s; measured 1.5e-13, room as above
 }
 
 }  // namespace

@@ -25,7 +25,8 @@ constexpr double pi = 3.14159265358979323846;
 
 struct SphRun {
   double dx = 0, dy = 0;
-  double toe_cell = 0, toe_cell_at_1_4 = 0, toe_contour = 0, wall_height = 0, slope_deg = 0;
+  double toe_cell = 0, toe_cell_at_1_4 = 0, toe_contour = 0, wall_height = 0;
+  double slope_deg = NAN;  // until measured: a profile that never crosses the marks fails the checks on it
   double volume_error = 0, outflow = 0, energy_ratio = 0, soil_speed = 0;
 };
 

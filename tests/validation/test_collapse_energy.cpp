@@ -39,7 +39,10 @@ TEST(GranularCollapse, EnergyBudgetClosesWithLinearDensity) {
               "soil volume error %.2e\n",
               run.time, run.steps, released, accounted, 100 * (accounted / released - 1), volume_error);
   EXPECT_GT(released, 5.0);  // the block has collapsed: a third of its potential energy is gone
-  EXPECT_LT(std::abs(accounted / released - 1.0), 0.05);
+  // Short by 2.8 % here: the numerical dissipation the recorded one misses; an excess would be energy
+  // from nowhere.
+  EXPECT_LT(accounted / released - 1.0, 0.0);
+  EXPECT_GT(accounted / released - 1.0, -0.05);
   EXPECT_LT(volume_error, 1e-10);
 }
 

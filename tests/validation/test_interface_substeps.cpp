@@ -1,7 +1,7 @@
 // Several VoF sweeps per flow step (time.interface_substeps): the bui2008_experiment collapse on
 // 75 x 25 cells to t = 0.4 s, once with the step sized by one sweep (Courant 0.5) and once with two
-// sweeps per step (Courant 1). Once the step has grown from its initial 1e-4 s (the same 20-odd
-// steps of max_growth in both runs, over by t = 0.1 s), the second must take about half the steps;
+// sweeps per step (Courant 1). Once the step has grown from its initial 1e-4 s (by t = 0.1 s, after
+// 39 and 32 steps here), the second must take about half the steps;
 // it must conserve the soil to round-off and put the front where the first does.
 #include <gtest/gtest.h>
 

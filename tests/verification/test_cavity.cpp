@@ -23,18 +23,25 @@ double largest_deviation(int re) {
   const auto v = gather_to_root(g, sim.flow().velocity(1));
   auto ref = test::read_csv(test::repo_path(fmt::format("validation/refdata/ghia1982_cavity_re{}.csv", re)));
   double worst = 0.0;
+  int compared = 0;
   int rank;
   MPI_Comm_rank(PETSC_COMM_WORLD, &rank);
   if (rank == 0) {
     // Ghia's wall points are the boundary conditions themselves; compare the interior ones.
     for (size_t k = 0; k < ref["y"].size(); ++k)
-      if (ref["y"][k] > 0 && ref["y"][k] < 1)
+      if (ref["y"][k] > 0 && ref["y"][k] < 1) {
         worst = std::max(worst, std::abs(sample_bilinear(g, u, 0.5, ref["y"][k]) - ref["u"][k]));
+        ++compared;
+      }
     for (size_t k = 0; k < ref["x"].size(); ++k)
-      if (ref["x"][k] > 0 && ref["x"][k] < 1)
+      if (ref["x"][k] > 0 && ref["x"][k] < 1) {
         worst = std::max(worst, std::abs(sample_bilinear(g, v, ref["x"][k], 0.5) - ref["v"][k]));
+        ++compared;
+      }
   }
   MPI_Bcast(&worst, 1, MPI_DOUBLE, 0, PETSC_COMM_WORLD);
+  MPI_Bcast(&compared, 1, MPI_INT, 0, PETSC_COMM_WORLD);
+  EXPECT_EQ(compared, 30) << "Ghia's 15 interior points on each centre line";
   std::printf("cavity Re %d, 128 x 128: largest |deviation| from Ghia et al. = %.4f (%ld steps, %.1f s)\n", re, worst,
               s.steps, s.wall_seconds);
   return worst;

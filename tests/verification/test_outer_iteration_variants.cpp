@@ -65,7 +65,7 @@ void expect_same_converged_step(const std::string& name, const std::string& one,
               "largest velocity difference %.2e m/s of %.3f m/s (with two outer iterations per step %.2e m/s)\n",
               name.c_str(), a.steps, a.outer_iterations, b.outer_iterations, converged.largest, converged.scale,
               two.largest);
-  EXPECT_LT(converged.largest, 1e-6 * converged.scale);
+  EXPECT_LT(converged.largest, 1e-7 * converged.scale);  // measured up to 8.4e-9 m/s of 1.1 m/s
   EXPECT_GT(two.largest, 1e-4 * two.scale);
 }
 

@@ -220,7 +220,7 @@ TEST(PlicGeometry, MycAccurateForArbitraryLines) {
               "mean %.4f\n",
               worst_myc, mean_myc, worst_youngs, mean_youngs);
   EXPECT_LT(mean_myc, mean_youngs);
-  EXPECT_LT(worst_myc, 0.25);
+  EXPECT_LT(worst_myc, 0.03);  // measured 0.014; Youngs's 0.087 would fail
 }
 
 TEST(PlicGeometry, NormalPointsOutOfSoilAndUniformIsUndefined) {

@@ -346,8 +346,10 @@ void check(const std::vector<RunResult>& runs) {
     EXPECT_LT(runs[k].volume_error, 1e-12) << "n = " << runs[k].n;
     EXPECT_GE(runs[k].cmin, -1e-12) << "n = " << runs[k].n;
     EXPECT_LE(runs[k].cmax, 1.0 + 1e-12) << "n = " << runs[k].n;
+    // Halving the cells takes the shape error down by 0.19-0.33 in these runs (order 1.6-2.4); a
+    // first-order scheme (0.5) would fail.
     if (k > 0) {
-      EXPECT_LT(runs[k].l1, runs[k - 1].l1) << "n = " << runs[k].n;
+      EXPECT_LT(runs[k].l1, 0.45 * runs[k - 1].l1) << "n = " << runs[k].n;
     }
   }
 }
@@ -512,6 +514,7 @@ TEST(VofAdvection, StraightInterfaceStaysSharp) {
     EXPECT_LT(r.volume_error, 1e-12);
     EXPECT_GE(r.cmin, -1e-12);
     EXPECT_LE(r.cmax, 1.0 + 1e-12);
+    EXPECT_LT(r.l1, 1e-12);  // a plane band comes back exactly after one period (3e-15)
   }
 }
 
