@@ -40,9 +40,8 @@ int run_case(const std::string& case_file, const std::vector<std::string>& overr
   int rank;
   MPI_Comm_rank(PETSC_COMM_WORLD, &rank);
   // Checked before the simulation makes the output directory, so a mistyped one is not left behind.
-  // Every rank sees the same files here (the output directory is shared), so all stop alike.
-  if (std::filesystem::exists(out_dir) && !std::filesystem::is_directory(out_dir))
-    throw CaseError(fmt::format("-o {}: exists and is not a directory", out_dir));
+  // Every rank sees the same files here (the output directory is shared), so all stop alike. An
+  // output path that cannot be a directory is the simulation's to report, as it makes the directory.
   if (restart && !std::filesystem::exists(out_dir))
     throw CheckpointError(fmt::format("no checkpoint to restart from in {}: no such directory", out_dir));
   if (!restart && !overwrite)
@@ -78,8 +77,9 @@ void warn_unused_petsc_options(int rank) {
   PetscInt n = 0;
   char **names = nullptr, **values = nullptr;
   PetscOptionsLeftGet(nullptr, &n, &names, &values);
-  for (PetscInt k = 0; k < n && rank == 0; ++k)
-    fmt::print(stderr, "warning: PETSc option -{} was given but not used (misspelt, or no such solver)\n", names[k]);
+  if (rank == 0)
+    for (PetscInt k = 0; k < n; ++k)
+      fmt::print(stderr, "warning: PETSc option -{} was given but not used (misspelt, or no such solver)\n", names[k]);
   PetscOptionsLeftRestore(nullptr, &n, &names, &values);
 }
 
