@@ -12,6 +12,50 @@ rheology::StrainRate cell_strain_rate(const Grid& g, const double* const* u, con
   return rheology::planar_strain_rate(dudx, dvdy, 0.5 * (dudy + dvdx));
 }
 
+namespace {
+
+// Velocity gradient on a face, and the hoop rate where axisymmetric.
+struct FaceGradient {
+  double dudx, dvdx, dudy, dvdy, hoop;
+};
+
+FaceGradient face_gradient(const Grid& g, const double* const* u, const double* const* v, int axis, int i, int j) {
+  const int in = i + (axis == 0), jn = j + (axis == 1);
+  auto central_x = [&](const double* const* f, int ii, int jj) {
+    return (f[jj][ii + 1] - f[jj][ii - 1]) / (g.xc(ii + 1) - g.xc(ii - 1));
+  };
+  auto central_y = [&](const double* const* f, int ii, int jj) {
+    return (f[jj + 1][ii] - f[jj - 1][ii]) / (g.yc(jj + 1) - g.yc(jj - 1));
+  };
+  FaceGradient d{0.0, 0.0, 0.0, 0.0, 0.0};
+  if (axis == 0) {
+    const double h = g.xc(in) - g.xc(i);
+    d.dudx = (u[j][in] - u[j][i]) / h;
+    d.dvdx = (v[j][in] - v[j][i]) / h;
+    d.dudy = 0.5 * (central_y(u, i, j) + central_y(u, in, j));
+    d.dvdy = 0.5 * (central_y(v, i, j) + central_y(v, in, j));
+    if (g.axisymmetric()) {
+      const double r = g.xf(i);
+      d.hoop = r > 0.0 ? 0.5 * (u[j][i] + u[j][in]) / r : d.dudx;  // u_r / r -> du_r/dr on the axis
+    }
+  } else {
+    const double h = g.yc(jn) - g.yc(j);
+    d.dudy = (u[jn][i] - u[j][i]) / h;
+    d.dvdy = (v[jn][i] - v[j][i]) / h;
+    d.dudx = 0.5 * (central_x(u, i, j) + central_x(u, i, jn));
+    d.dvdx = 0.5 * (central_x(v, i, j) + central_x(v, i, jn));
+    if (g.axisymmetric()) d.hoop = 0.5 * (u[j][i] + u[jn][i]) / g.xc(i);
+  }
+  return d;
+}
+
+rheology::StrainRate strain_rate_of(const Grid& g, const FaceGradient& d) {
+  if (g.axisymmetric()) return rheology::axisymmetric_strain_rate(d.dudx, d.dvdy, 0.5 * (d.dudy + d.dvdx), d.hoop);
+  return rheology::planar_strain_rate(d.dudx, d.dvdy, 0.5 * (d.dudy + d.dvdx));
+}
+
+}  // namespace
+
 // Strain rate on the face between cell (i, j) and its neighbour at +1 along `axis` (either may be a
 // ghost): the derivatives across the face from the two cells (compact), those along it as the mean
 // of the two cells' central differences. This is the rate the face's viscous stress multiplies, so
@@ -20,34 +64,34 @@ rheology::StrainRate cell_strain_rate(const Grid& g, const double* const* u, con
 // 4 r / (1 + r)^2 of the yield stress (3/4 at r = 3): the layer slides below its strength.
 rheology::StrainRate face_strain_rate(const Grid& g, const double* const* u, const double* const* v, int axis, int i,
                                       int j) {
-  const int in = i + (axis == 0), jn = j + (axis == 1);
-  auto central_x = [&](const double* const* f, int ii, int jj) {
-    return (f[jj][ii + 1] - f[jj][ii - 1]) / (g.xc(ii + 1) - g.xc(ii - 1));
+  return strain_rate_of(g, face_gradient(g, u, v, axis, i, j));
+}
+
+// The flux's quadratic wall gradient (flow_solver.cpp) in the rate the wall face's viscosity is taken
+// from: a plastic viscosity from the two-point rate times the quadratic gradient would put the wall's
+// stress off the yield surface, by 4/3 for a plug sliding on the wall.
+rheology::StrainRate quadratic_wall_strain_rate(const Grid& g, const double* const* u, const double* const* v, int axis,
+                                                int i, int j, int sign, std::array<double, 2> wall_velocity,
+                                                bool no_shear) {
+  const int di = axis == 0 ? sign : 0, dj = axis == 1 ? sign : 0;
+  FaceGradient d = face_gradient(g, u, v, axis, sign < 0 ? i - di : i, sign < 0 ? j - dj : j);
+  const double h1 = axis == 0 ? g.dx(i) : g.dy(j);
+  const double h2 = axis == 0 ? g.dx(i - di) : g.dy(j - dj);
+  const double s1 = 0.5 * h1, s2 = h1 + 0.5 * h2;
+  // Derivative along +axis of a component whose wall value is w, first two cells f1 and f2 inward.
+  auto across = [&](double f1, double f2, double w) {
+    return -sign * ((f1 - w) * s2 / s1 - (f2 - w) * s1 / s2) / (s2 - s1);
   };
-  auto central_y = [&](const double* const* f, int ii, int jj) {
-    return (f[jj + 1][ii] - f[jj - 1][ii]) / (g.yc(jj + 1) - g.yc(jj - 1));
-  };
-  double dudx, dvdx, dudy, dvdy, hoop = 0.0;
+  const double du = across(u[j][i], u[j - dj][i - di], axis == 0 ? 0.0 : wall_velocity[0]);
+  const double dv = across(v[j][i], v[j - dj][i - di], axis == 1 ? 0.0 : wall_velocity[1]);
   if (axis == 0) {
-    const double h = g.xc(in) - g.xc(i);
-    dudx = (u[j][in] - u[j][i]) / h;
-    dvdx = (v[j][in] - v[j][i]) / h;
-    dudy = 0.5 * (central_y(u, i, j) + central_y(u, in, j));
-    dvdy = 0.5 * (central_y(v, i, j) + central_y(v, in, j));
-    if (g.axisymmetric()) {
-      const double r = g.xf(i);
-      hoop = r > 0.0 ? 0.5 * (u[j][i] + u[j][in]) / r : dudx;  // u_r / r -> du_r/dr on the axis
-    }
+    d.dudx = du;
+    d.dvdx = no_shear ? 0.0 : dv;
   } else {
-    const double h = g.yc(jn) - g.yc(j);
-    dudy = (u[jn][i] - u[j][i]) / h;
-    dvdy = (v[jn][i] - v[j][i]) / h;
-    dudx = 0.5 * (central_x(u, i, j) + central_x(u, i, jn));
-    dvdx = 0.5 * (central_x(v, i, j) + central_x(v, i, jn));
-    if (g.axisymmetric()) hoop = 0.5 * (u[j][i] + u[jn][i]) / g.xc(i);
+    d.dvdy = dv;
+    d.dudy = no_shear ? 0.0 : du;
   }
-  if (g.axisymmetric()) return rheology::axisymmetric_strain_rate(dudx, dvdy, 0.5 * (dudy + dvdx), hoop);
-  return rheology::planar_strain_rate(dudx, dvdy, 0.5 * (dudy + dvdx));
+  return strain_rate_of(g, d);
 }
 
 }  // namespace granflow

@@ -1,6 +1,8 @@
 #pragma once
 // Discrete strain-rate tensor D = (grad v + grad v^T) / 2 of the cell-centred velocity, at a cell
 // centre or on a face. The velocity arrays are ghosted ([j][i], ghosts encoding the boundaries).
+#include <array>
+
 #include "mesh/grid.hpp"
 #include "models/rheology/invariants.hpp"
 
@@ -13,5 +15,13 @@ rheology::StrainRate cell_strain_rate(const Grid& g, const double* const* u, con
 // derivatives across the face compact, those along it the mean of the two cells' central ones.
 rheology::StrainRate face_strain_rate(const Grid& g, const double* const* u, const double* const* v, int axis, int i,
                                       int j);
+
+// On the wall face of cell (i, j) at `sign` (-1 low, +1 high) along `axis`: as face_strain_rate, but
+// with the derivatives across the wall quadratic through the wall and the first two cell centres, as
+// the momentum flux takes them under numerics.wall_gradient = "quadratic". `wall_velocity` is the
+// wall's; `no_shear` (a slip wall) keeps the tangential component's derivative at zero.
+rheology::StrainRate quadratic_wall_strain_rate(const Grid& g, const double* const* u, const double* const* v, int axis,
+                                                int i, int j, int sign, std::array<double, 2> wall_velocity,
+                                                bool no_shear);
 
 }  // namespace granflow

@@ -35,6 +35,11 @@ inline double outward_normal(Side s, int axis) {
   }
   return 0.0;
 }
+// The side a boundary face lies on, from its axis and its sign (-1 low, +1 high).
+inline Side side_of(int axis, int sign) {
+  if (axis == 0) return sign < 0 ? Side::west : Side::east;
+  return sign < 0 ? Side::south : Side::north;
+}
 inline int normal_axis(Side s) { return (s == Side::west || s == Side::east) ? 0 : 1; }
 
 // Pressure at an atmosphere face: p0 plus the hydrostatic head below the top of the domain

@@ -170,6 +170,7 @@ void SoilPhase::update_face_viscosity(FlowSolver& flow) const {
   const auto& g = flow_settings_.gravity;
   const bool at_face = settings_.strain_rate == StrainRateAt::face;
   const bool face_fraction = settings_.face_fraction == FaceFraction::face;
+  const bool quadratic_wall = flow_settings_.numerics.quadratic_wall_gradient;
   ConstFieldArray c = local_read(grid_, *c_);
   ConstFieldArray u = local_read(grid_, flow.velocity(0)), v = local_read(grid_, flow.velocity(1));
   ConstFieldArray p = local_read(grid_, flow.pressure()), rho = local_read(grid_, flow.density());
@@ -201,7 +202,12 @@ void SoilPhase::update_face_viscosity(FlowSolver& flow) const {
           const double cf = face_fraction ? interface::wetted_side_fraction(c.data(), grid_.dx_data(), grid_.dy_data(),
                                                                             i, j, axis, sign)
                                           : c[j][i];
-          return mixture_viscosity(cf, pressure, face_strain_rate(grid_, u.data(), v.data(), axis, il, jl));
+          const auto& bc = boundary(flow_settings_.boundaries, side_of(axis, sign));
+          const auto rate = quadratic_wall && bc.kind != BoundaryKind::atmosphere
+                                ? quadratic_wall_strain_rate(grid_, u.data(), v.data(), axis, i, j, sign,
+                                                             bc.wall_velocity, bc.kind == BoundaryKind::slip)
+                                : face_strain_rate(grid_, u.data(), v.data(), axis, il, jl);
+          return mixture_viscosity(cf, pressure, rate);
         }
         return mixture_viscosity(c[j][i], pressure, cell_strain_rate(grid_, u.data(), v.data(), i, j));
       });

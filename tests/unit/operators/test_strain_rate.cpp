@@ -2,6 +2,7 @@
 // grid (boundary faces to the ghosts included), and on faces the rate the face's stress multiplies.
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <vector>
 
@@ -67,6 +68,49 @@ TEST(StrainRate, FaceShearIsTheCompactDifferenceAcrossTheFace) {
     // The centre rates straddle it: the lower cell's is smaller, the upper cell's larger.
     EXPECT_LT(2.0 * cell_strain_rate(g, u.get(), v.get(), 1, j).xy, compact);
     EXPECT_GT(2.0 * cell_strain_rate(g, u.get(), v.get(), 1, j + 1).xy, compact);
+  }
+}
+
+// Under numerics.wall_gradient = "quadratic" the wall face's rate takes the derivatives across the
+// wall through the wall and the first two cells, as the momentum flux does: exact for a velocity
+// quadratic in the distance from the wall, on every side of a graded grid, moving walls included.
+TEST(StrainRate, QuadraticWallRateIsExactForAQuadraticProfile) {
+  GridSpec spec;
+  spec.cells = {6, 5};
+  spec.upper = {0.3, 0.2};
+  spec.grading = {1.4, 0.7};
+  Grid g(PETSC_COMM_SELF, spec);
+  const double X = 0.3, Y = 0.2, U = 0.7, a = 1.3, b = -40.0, e = -0.9, f = 25.0;
+  // Tangential component U + a s + b s^2 and normal e s + f s^2, s the distance from the wall.
+  auto tangential = [&](double s) { return U + a * s + b * s * s; };
+  auto normal = [&](double s) { return e * s + f * s * s; };
+  struct Wall {
+    int axis, sign;
+    double derivative_sign;  // d/d(axis) = derivative_sign * d/ds
+  };
+  for (const Wall w : {Wall{1, -1, 1.0}, Wall{1, 1, -1.0}, Wall{0, -1, 1.0}, Wall{0, 1, -1.0}}) {
+    auto distance = [&](double x, double y) {
+      return w.axis == 0 ? (w.sign < 0 ? x : X - x) : (w.sign < 0 ? y : Y - y);
+    };
+    GhostedArray u(g, [&](double x, double y) {
+      return w.axis == 1 ? tangential(distance(x, y)) : normal(distance(x, y));
+    });
+    GhostedArray v(g, [&](double x, double y) {
+      return w.axis == 0 ? tangential(distance(x, y)) : normal(distance(x, y));
+    });
+    const std::array<double, 2> wall_velocity = w.axis == 1 ? std::array{U, 0.0} : std::array{0.0, U};
+    const int n_along = w.axis == 0 ? g.ny() : g.nx();
+    for (int k = 0; k < n_along; ++k) {
+      const int i = w.axis == 0 ? (w.sign < 0 ? 0 : g.nx() - 1) : k;
+      const int j = w.axis == 1 ? (w.sign < 0 ? 0 : g.ny() - 1) : k;
+      const auto D = quadratic_wall_strain_rate(g, u.get(), v.get(), w.axis, i, j, w.sign, wall_velocity, false);
+      EXPECT_NEAR(D.xy, 0.5 * w.derivative_sign * a, 1e-10) << "axis " << w.axis << " sign " << w.sign;
+      EXPECT_NEAR(w.axis == 0 ? D.xx : D.yy, w.derivative_sign * e, 1e-10) << "axis " << w.axis << " sign " << w.sign;
+      // A slip wall carries no shear; the normal derivative stays.
+      const auto S = quadratic_wall_strain_rate(g, u.get(), v.get(), w.axis, i, j, w.sign, wall_velocity, true);
+      EXPECT_EQ(S.xy, 0.0);
+      EXPECT_NEAR(w.axis == 0 ? S.xx : S.yy, w.derivative_sign * e, 1e-10);
+    }
   }
 }
 
