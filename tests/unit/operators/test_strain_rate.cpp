@@ -27,12 +27,17 @@ struct GhostedArray {
   const double* const* get() const { return rows.data() + Grid::ghost_width; }
 };
 
-TEST(StrainRate, ExactForALinearVelocityAtCentresAndOnEveryFace) {
+// 6 x 5 cells over 0.3 x 0.2 m, graded along both axes.
+GridSpec graded_spec() {
   GridSpec spec;
   spec.cells = {6, 5};
   spec.upper = {0.3, 0.2};
   spec.grading = {1.4, 0.7};
-  Grid g(PETSC_COMM_SELF, spec);
+  return spec;
+}
+
+TEST(StrainRate, ExactForALinearVelocityAtCentresAndOnEveryFace) {
+  const Grid g(PETSC_COMM_SELF, graded_spec());
   const double a = 0.3, b = -1.7, c = 2.1, d = -0.3;  // u = a x + b y, v = c x + d y
   GhostedArray u(g, [&](double x, double y) { return a * x + b * y; });
   GhostedArray v(g, [&](double x, double y) { return c * x + d * y; });
@@ -75,11 +80,7 @@ TEST(StrainRate, FaceShearIsTheCompactDifferenceAcrossTheFace) {
 // wall through the wall and the first two cells, as the momentum flux does: exact for a velocity
 // quadratic in the distance from the wall, on every side of a graded grid, moving walls included.
 TEST(StrainRate, QuadraticWallRateIsExactForAQuadraticProfile) {
-  GridSpec spec;
-  spec.cells = {6, 5};
-  spec.upper = {0.3, 0.2};
-  spec.grading = {1.4, 0.7};
-  Grid g(PETSC_COMM_SELF, spec);
+  const Grid g(PETSC_COMM_SELF, graded_spec());
   const double X = 0.3, Y = 0.2, U = 0.7, a = 1.3, b = -40.0, e = -0.9, f = 25.0;
   // Tangential component U + a s + b s^2 and normal e s + f s^2, s the distance from the wall.
   auto tangential = [&](double s) { return U + a * s + b * s * s; };
