@@ -66,15 +66,15 @@ LinearSolverSettings read_linear_solver(TableReader r, LinearSolverSettings d) {
 BoundaryCondition read_boundary(TableReader r, bool& is_axis) {
   if (!r.present()) throw CaseError(fmt::format("{}: missing (every side needs a boundary type)", r.path()));
   BoundaryCondition bc;
-  const std::string type = r.choice("type", "", {"wall", "slip", "atmosphere", "axis"});
+  const std::string type = r.choice("type", "", {"wall", "slip", "symmetry", "atmosphere", "axis"});
   is_axis = type == "axis";
   if (type == "axis") {
     bc.kind = BoundaryKind::slip;  // symmetry: u_r = 0, no shear; the face at r = 0 has no area
   } else if (type == "wall") {
     bc.kind = BoundaryKind::wall;
     bc.wall_velocity = r.pair("velocity", {0.0, 0.0});
-  } else if (type == "slip") {
-    bc.kind = BoundaryKind::slip;
+  } else if (type == "slip" || type == "symmetry") {
+    bc.kind = BoundaryKind::slip;  // a symmetry plane is a slip wall: no normal velocity, no shear
   } else {
     bc.kind = BoundaryKind::atmosphere;
     bc.pressure = r.number("pressure", 0.0);

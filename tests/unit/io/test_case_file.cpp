@@ -92,6 +92,16 @@ TEST(CaseFile, InterfaceSubstepsMustBeAPositiveWholeNumber) {
   }
 }
 
+TEST(CaseFile, SymmetryIsASlipWall) {
+  const CaseConfig c = parse_case(minimal, {"boundary.west={type=\"symmetry\"}", "boundary.east={type=\"slip\"}"});
+  EXPECT_EQ(c.flow.boundaries[int(Side::west)].kind, BoundaryKind::slip);
+  EXPECT_EQ(c.flow.boundaries[int(Side::east)].kind, BoundaryKind::slip);
+  EXPECT_EQ(c.flow.boundaries[int(Side::south)].kind, BoundaryKind::wall);
+  // A symmetry plane takes no wall velocity.
+  const std::string e = error_of(minimal, {"boundary.west={type=\"symmetry\", velocity=[0.0, 1.0]}"});
+  EXPECT_NE(e.find("boundary.west.velocity"), std::string::npos) << e;
+}
+
 TEST(CaseFile, MissingSideIsNamed) {
   std::string text = minimal;
   text.erase(text.find("south ="), std::string("south = { type = \"wall\" }\n").size());
