@@ -74,6 +74,14 @@ add_test(NAME cli_unused_petsc_option
                  --petsc=-presure_ksp_monitor)
 set_tests_properties(cli_unused_petsc_option PROPERTIES LABELS cli
                      PASS_REGULAR_EXPRESSION "warning: PETSc option -presure_ksp_monitor was given but not used")
+# PETSc options read at start-up (-log_view) work through --petsc, and one --petsc may hold several.
+add_test(NAME cli_petsc_start_up_option
+         COMMAND granflow run ${CMAKE_SOURCE_DIR}/cases/lid_driven_cavity_re100.toml -o ${CMAKE_CURRENT_BINARY_DIR}/log_view
+                 --overwrite --set "mesh.cells=[8,8]" --set time.end=0.01 --set output.progress_seconds=0
+                 "--petsc=-log_view -pressure_ksp_rtol 1e-9")
+set_tests_properties(cli_petsc_start_up_option PROPERTIES LABELS cli
+                     PASS_REGULAR_EXPRESSION "Summary of Stages"
+                     FAIL_REGULAR_EXPRESSION "PETSC ERROR;was given but not used")
 # The comparison scripts name a missing or malformed file in one line, not a traceback.
 file(WRITE ${CMAKE_CURRENT_BINARY_DIR}/bad_refdata/ghia1982_cavity_re100.csv "y,u\n0.5,abc\n")
 add_test(NAME scripts_compare_missing_run

@@ -5,6 +5,9 @@
 
 #include <cstdio>
 #include <filesystem>
+#include <sstream>
+#include <string>
+#include <vector>
 
 #include "io/case_error.hpp"
 #include "io/case_file.hpp"
@@ -145,9 +148,18 @@ int main(int argc, char** argv) {
     }
   }
 
-  // PETSc sees only the options given through --petsc (and PETSC_OPTIONS from the environment).
-  int pargc = 1;
-  char** pargv = argv;
+  // PETSc sees only the options given through --petsc (and PETSC_OPTIONS from the environment), as
+  // its command line, so that those read at start-up (-log_view, -info, -malloc_debug) work too.
+  std::vector<std::string> petsc_words;
+  for (const auto& o : petsc_options) {
+    std::istringstream words(o);
+    for (std::string w; words >> w;) petsc_words.push_back(w);
+  }
+  std::vector<char*> petsc_argv{argv[0]};
+  for (auto& w : petsc_words) petsc_argv.push_back(w.data());
+  petsc_argv.push_back(nullptr);
+  int pargc = static_cast<int>(petsc_argv.size()) - 1;
+  char** pargv = petsc_argv.data();
   PetscInitialize(&pargc, &pargv, nullptr, nullptr);
   int rank = 0, size = 1;
   MPI_Comm_rank(PETSC_COMM_WORLD, &rank);
@@ -167,7 +179,6 @@ int main(int argc, char** argv) {
     return status;
   }
 
-  for (const auto& o : petsc_options) PetscOptionsInsertString(nullptr, o.c_str());
   // These errors are met by every rank alike (the case, the checkpoint's agreed verdict, the global
   // speed), so rank 0 reports them and all ranks stop in order. Any other error may be one rank's
   // alone while the others wait in a collective call: that rank reports it and stops them all.
