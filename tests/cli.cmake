@@ -81,7 +81,7 @@ add_test(NAME cli_petsc_start_up_option
                  "--petsc=-log_view -pressure_ksp_rtol 1e-9")
 set_tests_properties(cli_petsc_start_up_option PROPERTIES LABELS cli
                      PASS_REGULAR_EXPRESSION "Summary of Stages"
-                     FAIL_REGULAR_EXPRESSION "PETSC ERROR;was given but not used")
+                     FAIL_REGULAR_EXPRESSION "PETSC ERROR;was given but not used;error:")
 # The comparison scripts name a missing or malformed file in one line, not a traceback.
 file(WRITE ${CMAKE_CURRENT_BINARY_DIR}/bad_refdata/ghia1982_cavity_re100.csv "y,u\n0.5,abc\n")
 add_test(NAME scripts_compare_missing_run

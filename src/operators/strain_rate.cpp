@@ -74,7 +74,10 @@ rheology::StrainRate quadratic_wall_strain_rate(const Grid& g, const double* con
                                                 int i, int j, int sign, std::array<double, 2> wall_velocity,
                                                 bool no_shear) {
   const int di = axis == 0 ? sign : 0, dj = axis == 1 ? sign : 0;
-  FaceGradient d = face_gradient(g, u, v, axis, sign < 0 ? i - di : i, sign < 0 ? j - dj : j);
+  // The wall face lies between the ghost and the cell on the low side, between the cell and the
+  // ghost on the high side.
+  const int il = sign < 0 ? i + di : i, jl = sign < 0 ? j + dj : j;
+  FaceGradient d = face_gradient(g, u, v, axis, il, jl);
   const double h1 = axis == 0 ? g.dx(i) : g.dy(j);
   const double h2 = axis == 0 ? g.dx(i - di) : g.dy(j - dj);
   const double s1 = 0.5 * h1, s2 = h1 + 0.5 * h2;
@@ -85,6 +88,7 @@ rheology::StrainRate quadratic_wall_strain_rate(const Grid& g, const double* con
   const double du = across(u[j][i], u[j - dj][i - di], axis == 0 ? 0.0 : wall_velocity[0]);
   const double dv = across(v[j][i], v[j - dj][i - di], axis == 1 ? 0.0 : wall_velocity[1]);
   if (axis == 0) {
+    if (g.axisymmetric() && g.xf(il) <= 0.0) d.hoop = du;  // on the axis u_r / r -> du_r/dr
     d.dudx = du;
     d.dvdx = no_shear ? 0.0 : dv;
   } else {

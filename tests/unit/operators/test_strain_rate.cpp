@@ -4,6 +4,7 @@
 
 #include <array>
 #include <cmath>
+#include <string>
 #include <vector>
 
 #include "mesh/grid.hpp"
@@ -81,9 +82,11 @@ TEST(StrainRate, FaceShearIsTheCompactDifferenceAcrossTheFace) {
 // quadratic in the distance from the wall, on every side of a graded grid, moving walls included.
 TEST(StrainRate, QuadraticWallRateIsExactForAQuadraticProfile) {
   const Grid g(PETSC_COMM_SELF, graded_spec());
-  const double X = 0.3, Y = 0.2, U = 0.7, a = 1.3, b = -40.0, e = -0.9, f = 25.0;
-  // Tangential component U + a s + b s^2 and normal e s + f s^2, s the distance from the wall.
-  auto tangential = [&](double s) { return U + a * s + b * s * s; };
+  const double X = 0.3, Y = 0.2, U = 0.7, a = 1.3, b = -40.0, e = -0.9, f = 25.0, q = 6.0;
+  // Tangential component U + (a + q t) s + b s^2 and normal e s + f s^2, s the distance from the
+  // wall and t the coordinate along it: the wall shear varies along the wall, and the derivative
+  // along it from row to row.
+  auto tangential = [&](double s, double t) { return U + (a + q * t) * s + b * s * s; };
   auto normal = [&](double s) { return e * s + f * s * s; };
   struct Wall {
     int axis, sign;
@@ -93,20 +96,31 @@ TEST(StrainRate, QuadraticWallRateIsExactForAQuadraticProfile) {
     auto distance = [&](double x, double y) {
       return w.axis == 0 ? (w.sign < 0 ? x : X - x) : (w.sign < 0 ? y : Y - y);
     };
+    auto along = [&](double x, double y) { return w.axis == 0 ? y : x; };
     GhostedArray u(g, [&](double x, double y) {
-      return w.axis == 1 ? tangential(distance(x, y)) : normal(distance(x, y));
+      return w.axis == 1 ? tangential(distance(x, y), along(x, y)) : normal(distance(x, y));
     });
     GhostedArray v(g, [&](double x, double y) {
-      return w.axis == 0 ? tangential(distance(x, y)) : normal(distance(x, y));
+      return w.axis == 0 ? tangential(distance(x, y), along(x, y)) : normal(distance(x, y));
     });
     const std::array<double, 2> wall_velocity = w.axis == 1 ? std::array{U, 0.0} : std::array{0.0, U};
     const int n_along = w.axis == 0 ? g.ny() : g.nx();
     for (int k = 0; k < n_along; ++k) {
       const int i = w.axis == 0 ? (w.sign < 0 ? 0 : g.nx() - 1) : k;
       const int j = w.axis == 1 ? (w.sign < 0 ? 0 : g.ny() - 1) : k;
+      const double t = w.axis == 0 ? g.yc(j) : g.xc(i);
+      const std::string where = "axis " + std::to_string(w.axis) + " sign " + std::to_string(w.sign);
       const auto D = quadratic_wall_strain_rate(g, u.get(), v.get(), w.axis, i, j, w.sign, wall_velocity, false);
-      EXPECT_NEAR(D.xy, 0.5 * w.derivative_sign * a, 1e-10) << "axis " << w.axis << " sign " << w.sign;
-      EXPECT_NEAR(w.axis == 0 ? D.xx : D.yy, w.derivative_sign * e, 1e-10) << "axis " << w.axis << " sign " << w.sign;
+      EXPECT_NEAR(D.xy, 0.5 * w.derivative_sign * (a + q * t), 1e-10) << where;
+      EXPECT_NEAR(w.axis == 0 ? D.xx : D.yy, w.derivative_sign * e, 1e-10) << where;
+      // The derivative along the wall is the wall face's own, as face_strain_rate takes it.
+      const int il = w.sign < 0 && w.axis == 0 ? i - 1 : i, jl = w.sign < 0 && w.axis == 1 ? j - 1 : j;
+      const auto F = face_strain_rate(g, u.get(), v.get(), w.axis, il, jl);
+      EXPECT_DOUBLE_EQ(w.axis == 0 ? D.yy : D.xx, w.axis == 0 ? F.yy : F.xx) << where;
+      // ... which differs from that of the faces further in (the derivative along grows with s).
+      const auto inner = face_strain_rate(g, u.get(), v.get(), w.axis, il - w.sign * (w.axis == 0),
+                                          jl - w.sign * (w.axis == 1));
+      EXPECT_GT(std::abs((w.axis == 0 ? D.yy : D.xx) - (w.axis == 0 ? inner.yy : inner.xx)), 1e-3) << where;
       // A slip wall carries no shear; the normal derivative stays.
       const auto S = quadratic_wall_strain_rate(g, u.get(), v.get(), w.axis, i, j, w.sign, wall_velocity, true);
       EXPECT_EQ(S.xy, 0.0);
