@@ -82,9 +82,7 @@ rheology::StrainRate quadratic_wall_strain_rate(const Grid& g, const double* con
   const double h2 = axis == 0 ? g.dx(i - di) : g.dy(j - dj);
   const double s1 = 0.5 * h1, s2 = h1 + 0.5 * h2;
   // Derivative along +axis of a component whose wall value is w, first two cells f1 and f2 inward.
-  auto across = [&](double f1, double f2, double w) {
-    return -sign * ((f1 - w) * s2 / s1 - (f2 - w) * s1 / s2) / (s2 - s1);
-  };
+  auto across = [&](double f1, double f2, double w) { return -sign * quadratic_wall_derivative(f1, f2, w, s1, s2); };
   const double du = across(u[j][i], u[j - dj][i - di], axis == 0 ? 0.0 : wall_velocity[0]);
   const double dv = across(v[j][i], v[j - dj][i - di], axis == 1 ? 0.0 : wall_velocity[1]);
   if (axis == 0) {

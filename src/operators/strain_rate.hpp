@@ -16,6 +16,14 @@ rheology::StrainRate cell_strain_rate(const Grid& g, const double* const* u, con
 rheology::StrainRate face_strain_rate(const Grid& g, const double* const* u, const double* const* v, int axis, int i,
                                       int j);
 
+// Derivative at a wall, along the distance from it, of a quantity worth `wall` there and f1, f2 at
+// the first two cell centres (s1 and s2 from the wall): quadratic through the three. The momentum
+// flux and the wall face's strain rate both take it, so that a plastic stress stays on its yield
+// surface.
+inline double quadratic_wall_derivative(double f1, double f2, double wall, double s1, double s2) {
+  return ((f1 - wall) * s2 / s1 - (f2 - wall) * s1 / s2) / (s2 - s1);
+}
+
 // On the wall face of cell (i, j) at `sign` (-1 low, +1 high) along `axis`: as face_strain_rate, but
 // with the derivatives across the wall quadratic through the wall and the first two cell centres, as
 // the momentum flux takes them under numerics.wall_gradient = "quadratic". `wall_velocity` is the

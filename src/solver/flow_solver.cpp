@@ -8,6 +8,7 @@
 
 #include "operators/convection_scheme.hpp"
 #include "operators/face_interpolation.hpp"
+#include "operators/strain_rate.hpp"
 
 namespace granflow {
 
@@ -476,7 +477,7 @@ void FlowSolver::assemble_momentum(double dt) {
               if (bc.kind == BoundaryKind::slip && c != fg.axis) continue;  // no shear at a slip wall
               const double uw = c == fg.axis ? 0.0 : bc.wall_velocity[c];
               const double u1 = vel[c][j][i], u2 = vel[c][j - fg.dj][i - fg.di];
-              const double quadratic = ((u1 - uw) * s2 / s1 - (u2 - uw) * s1 / s2) / (s2 - s1);
+              const double quadratic = quadratic_wall_derivative(u1, u2, uw, s1, s2);
               const double two_point = (u1 - uw) / s1;
               const double factor = c == fg.axis ? stress_factor : 1.0;
               src[c] -= factor * mu_face * area * (quadratic - two_point);
