@@ -93,6 +93,13 @@ add_test(NAME scripts_compare_malformed_refdata
                  --refdata ${CMAKE_CURRENT_BINARY_DIR}/bad_refdata)
 set_tests_properties(scripts_compare_malformed_refdata PROPERTIES LABELS cli
                      PASS_REGULAR_EXPRESSION "^error: [^\n]*bad_refdata/ghia1982_cavity_re100.csv: not a table of numbers")
+# The front's history interpolates between steps and marks times past the run's end.
+file(WRITE ${CMAKE_CURRENT_BINARY_DIR}/front_run/history.csv "time,dt,toe_contour\n0.0,0.1,0.2\n0.2,0.1,0.4\n")
+add_test(NAME scripts_front_history
+         COMMAND /usr/bin/python3 ${CMAKE_SOURCE_DIR}/scripts/front_history.py ${CMAKE_CURRENT_BINARY_DIR}/front_run
+                 --times 0.05,0.15,0.3)
+set_tests_properties(scripts_front_history PROPERTIES LABELS cli
+                     PASS_REGULAR_EXPRESSION "front_run +0[.]250 +0[.]350 +-")
 # A restart with other materials is allowed, but said.
 add_test(NAME cli_restart_other_physics_warned
          COMMAND sh -c "g=$0; d=$1; c=$2; shift 2; rm -rf \"$d\"; \"$g\" run \"$c\" -o \"$d\" \"$@\" > /dev/null || exit 1; \"$g\" run \"$c\" -o \"$d\" --restart \"$@\" --set time.end=0.03 --set soil.rheology.friction_angle=30 2>&1"
