@@ -8,6 +8,8 @@
 #include <string>
 #include <vector>
 
+#include <gtest/gtest.h>
+
 #include "io/gather.hpp"
 #include "solver/simulation.hpp"
 #include "test_support.hpp"
@@ -92,9 +94,14 @@ inline FinishedRun run_to_end(const CaseConfig& config, const std::filesystem::p
 }
 
 // The shipped case cases/<case_name>.toml on nx x ny cells, without a progress line and with the
-// `overrides`, run to its end in a fresh temporary directory. Collective, as run_to_end.
+// `overrides`, run to its end in a fresh temporary directory. Collective, as run_to_end. The
+// directory is named for the test too: CTest runs tests side by side, and two of them running the
+// same case on the same mesh must not share it.
 inline FinishedRun run_shipped_case(const std::string& case_name, int nx, int ny, std::vector<std::string> overrides) {
-  const auto out = std::filesystem::temp_directory_path() / ("granflow_" + case_name + "_" + std::to_string(nx));
+  const auto* test = ::testing::UnitTest::GetInstance()->current_test_info();
+  const std::string test_name = test ? std::string("_") + test->test_suite_name() + "." + test->name() : "";
+  const auto out =
+      std::filesystem::temp_directory_path() / ("granflow_" + case_name + "_" + std::to_string(nx) + test_name);
   std::filesystem::remove_all(out);
   overrides.push_back("output.progress_seconds=0");
   overrides.push_back("mesh.cells=[" + std::to_string(nx) + "," + std::to_string(ny) + "]");
