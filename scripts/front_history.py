@@ -30,9 +30,9 @@ def main():
         require_columns(h, path, ["time", "toe_contour"])
         histories.append((run, h["time"], h["toe_contour"]))
     width = max(len(r) for r in args.runs)
-    print("run".ljust(width), " ".join(f"t={t:<6g}" for t in times))
+    print("run".ljust(width), " ".join(f"{'t=' + format(t, 'g'):>8}" for t in times))
     for run, t, toe in histories:
-        cells = [f"{np.interp(x, t, toe):.3f}  " if t.size and x <= t[-1] + 1e-9 else "-       " for x in times]
+        cells = [f"{np.interp(x, t, toe):8.3f}" if t.size and x <= t[-1] + 1e-9 else f"{'-':>8}" for x in times]
         print(run.ljust(width), " ".join(cells))
     return 0
 

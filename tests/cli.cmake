@@ -99,7 +99,8 @@ add_test(NAME scripts_front_history
          COMMAND /usr/bin/python3 ${CMAKE_SOURCE_DIR}/scripts/front_history.py ${CMAKE_CURRENT_BINARY_DIR}/front_run
                  --times 0.05,0.15,0.3)
 set_tests_properties(scripts_front_history PROPERTIES LABELS cli
-                     PASS_REGULAR_EXPRESSION "front_run +0[.]250 +0[.]350 +-")
+                     PASS_REGULAR_EXPRESSION "front_run +0[.]250 +0[.]350 +-"
+                     FAIL_REGULAR_EXPRESSION "Traceback;error:")
 # A restart with other materials is allowed, but said.
 add_test(NAME cli_restart_other_physics_warned
          COMMAND sh -c "g=$0; d=$1; c=$2; shift 2; rm -rf \"$d\"; \"$g\" run \"$c\" -o \"$d\" \"$@\" > /dev/null || exit 1; \"$g\" run \"$c\" -o \"$d\" --restart \"$@\" --set time.end=0.03 --set soil.rheology.friction_angle=30 2>&1"

@@ -7,9 +7,12 @@
 #include <fmt/format.h>
 
 #include <cmath>
+#include <cstdio>
+#include <numbers>
 #include <string>
 #include <vector>
 
+#include "io/gather.hpp"
 #include "solver/simulation.hpp"
 #include "test_support.hpp"
 
@@ -55,7 +58,7 @@ SlidingResult drag_layer(double thickness, double cell, double end) {
 // whose yield stress took the cell's pressure instead of the floor's would halve the friction of a
 // one-cell layer.
 TEST(SlidingLayer, FloorDragsALayerAtTheFrictionOfTheConeWhateverItsThickness) {
-  const double phi = 19.8 * M_PI / 180.0, t = std::tan(phi);
+  const double phi = 19.8 * std::numbers::pi / 180.0, t = std::tan(phi);
   const double mu = 3.0 * t / std::sqrt(9.0 + 12.0 * t * t);  // 0.332, tan 18.4 deg
   const double g = 9.81, floor_speed = 0.5, cell = 0.002;
   auto at = [](const SlidingResult& r, double time) {
@@ -66,7 +69,10 @@ TEST(SlidingLayer, FloorDragsALayerAtTheFrictionOfTheConeWhateverItsThickness) {
   for (int cells_thick : {1, 2, 4}) {
     const auto r = drag_layer(cells_thick * cell, cell, 0.2);
     if (!test::is_root()) continue;
-    ASSERT_FALSE(r.time.empty());
+    if (r.time.empty()) {  // not ASSERT: the other ranks go on to the next layer's collective run
+      ADD_FAILURE() << cells_thick << " cells: no step was taken";
+      continue;
+    }
     const size_t k = at(r, 0.1);  // sliding: floor speed 0.5 m/s not yet reached (at t = 0.153 s)
     const double ratio = r.mean_velocity[k] / (mu * g * r.time[k]);
     const double locked = r.mean_velocity.back();
