@@ -14,6 +14,7 @@
 
 #include "io/gather.hpp"
 #include "solver/simulation.hpp"
+#include "collapse_measures.hpp"
 #include "test_support.hpp"
 
 namespace granflow {
@@ -24,14 +25,15 @@ struct SlidingResult {
 };
 
 // The shipped Bui et al. case (its rheology, mixture and numerics) with a layer of `thickness` from
-// x = 0.1 to 0.3 m on a floor moving at 0.5 m/s, in a domain 0.4 x 0.04 m of cells of `cell` metres.
-SlidingResult drag_layer(double thickness, double cell, double end) {
+// x = 0.1 to 0.3 m on a floor moving at `floor_speed`, in a domain 0.4 x 0.04 m of cells of `cell` metres.
+SlidingResult drag_layer(double thickness, double cell, double floor_speed, double end) {
   const int nx = int(std::lround(0.4 / cell)), ny = int(std::lround(0.04 / cell));
   const std::vector<std::string> overrides = {
       fmt::format("mesh.cells=[{}, {}]", nx, ny), "mesh.upper=[0.4, 0.04]", fmt::format("time.end={}", end),
       fmt::format("initial.soil=[{{shape = \"box\", lower = [0.1, 0.0], upper = [0.3, {}]}}]", thickness),
       "boundary.west={type = \"atmosphere\"}", "boundary.east={type = \"atmosphere\"}",
-      "boundary.south={type = \"wall\", velocity = [0.5, 0.0]}", "output.progress_seconds=0"};
+      fmt::format("boundary.south={{type = \"wall\", velocity = [{}, 0.0]}}", floor_speed),
+      "output.progress_seconds=0"};
   const CaseConfig config = load_case(test::repo_path("cases/bui2008_experiment.toml"), overrides);
   Simulation sim(PETSC_COMM_WORLD, config, "");
   SlidingResult r;
@@ -61,19 +63,14 @@ TEST(SlidingLayer, FloorDragsALayerAtTheFrictionOfTheConeWhateverItsThickness) {
   const double phi = 19.8 * std::numbers::pi / 180.0, t = std::tan(phi);
   const double mu = 3.0 * t / std::sqrt(9.0 + 12.0 * t * t);  // 0.332, tan 18.4 deg
   const double g = 9.81, floor_speed = 0.5, cell = 0.002;
-  auto at = [](const SlidingResult& r, double time) {
-    size_t k = 0;
-    while (k + 1 < r.time.size() && r.time[k] < time - 1e-12) ++k;
-    return k;
-  };
   for (int cells_thick : {1, 2, 4}) {
-    const auto r = drag_layer(cells_thick * cell, cell, 0.2);
+    const auto r = drag_layer(cells_thick * cell, cell, floor_speed, 0.2);
     if (!test::is_root()) continue;
     if (r.time.empty()) {  // not ASSERT: the other ranks go on to the next layer's collective run
       ADD_FAILURE() << cells_thick << " cells: no step was taken";
       continue;
     }
-    const size_t k = at(r, 0.1);  // sliding: floor speed 0.5 m/s not yet reached (at t = 0.153 s)
+    const size_t k = test::first_row_at(r.time, 0.1);  // sliding: floor speed 0.5 m/s not yet reached (at t = 0.153 s)
     const double ratio = r.mean_velocity[k] / (mu * g * r.time[k]);
     const double locked = r.mean_velocity.back();
     std::printf("layer of %d cells: mean velocity / (mu g t) at t = %.4f s: %.4f; at t = %.3f s: %.4f m/s (floor %.1f)\n",
