@@ -55,15 +55,18 @@ SlidingResult drag_layer(double thickness, double cell, double floor_speed, doub
   return r;
 }
 
-// Measured (2 mm cells): mean velocity / (mu g t) at t = 0.1 s 1.008, 0.994 and 0.985 for layers of
-// 1, 2 and 4 cells; locked to the floor at t = 0.2 s at 0.4998, 0.4973 and 0.4945 m/s. A wall face
+// Measured (2 mm cells): mean velocity / (mu g t) at t = 0.1 s 1.011, 1.008, 0.994 and 0.985 for
+// layers of 1/2, 1, 2 and 4 cells; at t = 0.2 s 0.4863, 0.4998, 0.4973 and 0.4945 m/s. A wall face
 // whose yield stress took the cell's pressure instead of the floor's would halve the friction of a
-// one-cell layer.
+// one-cell layer. The film of half a cell is the front of a pile (SPEC 5c): its floor has the cone's
+// friction too. Every level of such a layer is at yield (the stress that accelerates the soil above it
+// is mu times its pressure), and the film breaks into lumps from its ends; its friction is still mu
+// times its weight, but once caught up its lumps trail the floor by 3 % (docs/validation.md).
 TEST(SlidingLayer, FloorDragsALayerAtTheFrictionOfTheConeWhateverItsThickness) {
   const double phi = 19.8 * std::numbers::pi / 180.0, t = std::tan(phi);
   const double mu = 3.0 * t / std::sqrt(9.0 + 12.0 * t * t);  // 0.332, tan 18.4 deg
   const double g = 9.81, floor_speed = 0.5, cell = 0.002;
-  for (int cells_thick : {1, 2, 4}) {
+  for (double cells_thick : {0.5, 1.0, 2.0, 4.0}) {
     const auto r = drag_layer(cells_thick * cell, cell, floor_speed, 0.2);
     if (!test::is_root()) continue;
     if (r.time.empty()) {  // not ASSERT: the other ranks go on to the next layer's collective run
@@ -73,10 +76,10 @@ TEST(SlidingLayer, FloorDragsALayerAtTheFrictionOfTheConeWhateverItsThickness) {
     const size_t k = test::first_row_at(r.time, 0.1);  // sliding: floor speed 0.5 m/s not yet reached (at t = 0.153 s)
     const double ratio = r.mean_velocity[k] / (mu * g * r.time[k]);
     const double locked = r.mean_velocity.back();
-    std::printf("layer of %d cells: mean velocity / (mu g t) at t = %.4f s: %.4f; at t = %.3f s: %.4f m/s (floor %.1f)\n",
+    std::printf("layer of %g cells: mean velocity / (mu g t) at t = %.4f s: %.4f; at t = %.3f s: %.4f m/s (floor %.1f)\n",
                 cells_thick, r.time[k], ratio, r.time.back(), locked, floor_speed);
     EXPECT_NEAR(ratio, 1.0, 0.03) << cells_thick << " cells";
-    EXPECT_NEAR(locked / floor_speed, 1.0, 0.015) << cells_thick << " cells";
+    EXPECT_NEAR(locked / floor_speed, 1.0, cells_thick < 1.0 ? 0.04 : 0.015) << cells_thick << " cells";
   }
 }
 
