@@ -25,7 +25,7 @@ struct CollapseResult {
 };
 
 CollapseResult run_collapse(const std::string& case_name, const std::string& model, const std::string& cells) {
-  const auto out = std::filesystem::temp_directory_path() / ("granflow_axi_" + case_name + "_" + model);
+  const auto out = test::output_dir("axi_" + case_name + "_" + model);
   std::filesystem::remove_all(out);
   const CaseConfig config =
       load_case(test::repo_path("cases/" + case_name + ".toml"),

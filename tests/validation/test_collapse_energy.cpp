@@ -16,7 +16,7 @@ namespace granflow {
 namespace {
 
 TEST(GranularCollapse, EnergyBudgetClosesWithLinearDensity) {
-  const auto out = std::filesystem::temp_directory_path() / "granflow_collapse_energy";
+  const auto out = test::output_dir("collapse_energy");
   std::filesystem::remove_all(out);
   const CaseConfig config = load_case(test::repo_path("cases/bui2008_experiment.toml"),
                                       // the projection, as the case was written for it (docs/validation.md)

@@ -24,7 +24,7 @@ struct Outcome {
 };
 
 Outcome run_collapse(int substeps, double courant) {
-  const auto out = std::filesystem::temp_directory_path() / ("granflow_substeps_" + std::to_string(substeps));
+  const auto out = test::output_dir("substeps_" + std::to_string(substeps));
   std::filesystem::remove_all(out);
   const CaseConfig config =
       load_case(test::repo_path("cases/bui2008_experiment.toml"),

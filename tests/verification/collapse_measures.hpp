@@ -100,8 +100,7 @@ inline FinishedRun run_to_end(const CaseConfig& config, const std::filesystem::p
 inline FinishedRun run_shipped_case(const std::string& case_name, int nx, int ny, std::vector<std::string> overrides) {
   const auto* test = ::testing::UnitTest::GetInstance()->current_test_info();
   const std::string test_name = test ? std::string("_") + test->test_suite_name() + "." + test->name() : "";
-  const auto out =
-      std::filesystem::temp_directory_path() / ("granflow_" + case_name + "_" + std::to_string(nx) + test_name);
+  const auto out = output_dir(case_name + "_" + std::to_string(nx) + test_name);
   std::filesystem::remove_all(out);
   overrides.push_back("output.progress_seconds=0");
   overrides.push_back("mesh.cells=[" + std::to_string(nx) + "," + std::to_string(ny) + "]");

@@ -22,7 +22,7 @@ namespace granflow::test {
 inline std::filesystem::path scratch(const std::string& name) {
   long pid = long(getpid());
   MPI_Bcast(&pid, 1, MPI_LONG, 0, PETSC_COMM_WORLD);
-  return std::filesystem::temp_directory_path() / (name + "_" + std::to_string(pid));
+  return output_dir(name + "_" + std::to_string(pid));
 }
 
 // Removes a scratch directory from rank 0 once every rank is done with it.
@@ -57,7 +57,7 @@ inline EndState end_state(Simulation& sim, long steps) {
 // after `stop_after` steps and runs it again from the checkpoint. Returns the checkpoint's time.
 inline double expect_restart_reproduces(const std::string& case_file, std::vector<std::string> overrides,
                                         long stop_after, bool has_history) {
-  const auto whole_dir = scratch("granflow_restart_whole"), split_dir = scratch("granflow_restart_split");
+  const auto whole_dir = scratch("restart_whole"), split_dir = scratch("restart_split");
   remove_scratch(whole_dir);
   remove_scratch(split_dir);
   const CaseConfig config = load_case(repo_path(case_file), overrides);

@@ -52,7 +52,7 @@ TEST(DamBreak, MartinMoyceColumnCollapse) {
   int rank = 0, pid = int(getpid());
   MPI_Comm_rank(PETSC_COMM_WORLD, &rank);
   MPI_Bcast(&pid, 1, MPI_INT, 0, PETSC_COMM_WORLD);
-  const auto out = std::filesystem::temp_directory_path() / ("granflow_dam_break_" + std::to_string(pid));
+  const auto out = test::output_dir("dam_break_" + std::to_string(pid));
   // T = 3.06 at t = 0.165 s; no field files, only the history.
   const CaseConfig config = load_case(test::repo_path("cases/water_dam_break.toml"),
                                       {"output.progress_seconds=0", "time.end=0.165", "output.fields=false"});

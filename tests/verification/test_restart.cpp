@@ -39,7 +39,7 @@ TEST(Restart, CavityContinuesExactlyFromItsLastCheckpoint) {
 // time.max_steps counts the steps of the whole run, over restarts; a run stopped by it writes its
 // output and a checkpoint where it stopped, once, also when that is an output time.
 TEST(Restart, MaxStepsCountsTheWholeRunAndItsLastOutputOnce) {
-  const auto whole_dir = scratch("granflow_max_steps_whole"), split_dir = scratch("granflow_max_steps_split");
+  const auto whole_dir = scratch("max_steps_whole"), split_dir = scratch("max_steps_split");
   test::remove_scratch(whole_dir);
   test::remove_scratch(split_dir);
   auto overrides = std::vector<std::string>{"mesh.cells=[16,16]", "time.end=10", "time.dt=0.01", "time.adaptive=false",
@@ -83,7 +83,7 @@ TEST(Restart, MaxStepsCountsTheWholeRunAndItsLastOutputOnce) {
 }
 
 TEST(Restart, RefusesAMissingOrForeignCheckpoint) {
-  const auto dir = scratch("granflow_restart_foreign");
+  const auto dir = scratch("restart_foreign");
   std::filesystem::remove_all(dir);
   const std::vector<std::string> small{"mesh.cells=[30,10]", "time.end=0.05", "output.interval=0.05",
                                        "output.progress_seconds=0", "output.fields=false"};

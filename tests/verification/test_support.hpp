@@ -1,6 +1,7 @@
 #pragma once
 // Helpers shared by the solver verification tests.
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <functional>
 #include <map>
@@ -15,6 +16,11 @@
 namespace granflow::test {
 
 inline std::string repo_path(const std::string& rel) { return std::string(GRANFLOW_SOURCE_DIR) + "/" + rel; }
+
+// A directory for a test's run, in the build tree's tests/runs.
+inline std::filesystem::path output_dir(const std::string& name) {
+  return std::filesystem::path(GRANFLOW_TEST_OUTPUT_DIR) / name;
+}
 
 // The Bui et al. case run as it was written before the coupled solve: the projection with the cells'
 // mixtures, one VoF sweep per step and three outer iterations from the last step's velocity. Tests
