@@ -82,6 +82,11 @@ add_test(NAME cli_petsc_start_up_option
 set_tests_properties(cli_petsc_start_up_option PROPERTIES LABELS cli
                      PASS_REGULAR_EXPRESSION "Summary of Stages"
                      FAIL_REGULAR_EXPRESSION "PETSC ERROR;was given but not used;error:")
+# An options file PETSc cannot read is named in one line, before PETSc stops with its error trace.
+add_test(NAME cli_petsc_missing_options_file
+         COMMAND sh -c "out=$(\"$0\" run \"$1\" -o \"$2\" --overwrite \"--petsc=-options_file $2/no_such_file\" 2>&1); test $? -eq 2 && echo \"$out\" | grep -q 'error: --petsc -options_file: cannot read .*no_such_file' && ! echo \"$out\" | grep -q 'PETSC ERROR'"
+                 $<TARGET_FILE:granflow> ${CMAKE_SOURCE_DIR}/cases/lid_driven_cavity_re100.toml ${CMAKE_CURRENT_BINARY_DIR}/options_file)
+set_tests_properties(cli_petsc_missing_options_file PROPERTIES LABELS cli)
 # The comparison scripts name a missing or malformed file in one line, not a traceback.
 file(WRITE ${CMAKE_CURRENT_BINARY_DIR}/bad_refdata/ghia1982_cavity_re100.csv "y,u\n0.5,abc\n")
 add_test(NAME scripts_compare_missing_run

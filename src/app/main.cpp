@@ -5,7 +5,9 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
+#include <fstream>
 #include <sstream>
 #include <string>
 #include <string_view>
@@ -92,6 +94,14 @@ void warn_unused_petsc_options(int rank) {
   PetscOptionsLeftRestore(nullptr, &n, &names, &values);
 }
 
+// Before MPI is up a process knows its rank only from the launcher: Open MPI's, or the PMI of MPICH
+// and Slurm. Without a launcher it is the only process.
+bool launched_as_rank_zero() {
+  for (const char* name : {"OMPI_COMM_WORLD_RANK", "PMI_RANK", "PMIX_RANK"})
+    if (const char* value = std::getenv(name)) return std::string_view(value) == "0";
+  return true;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -162,12 +172,25 @@ int main(int argc, char** argv) {
     std::istringstream words(o);
     for (std::string w; words >> w;) petsc_words.push_back(w);
   }
+  // PETSc stops inside PetscInitialize, with its error trace, on an options file it cannot read.
+  for (size_t k = 0; k < petsc_words.size(); ++k) {
+    if (petsc_words[k] != "-options_file" && petsc_words[k] != "-options_file_yaml") continue;
+    const std::string file = k + 1 < petsc_words.size() ? petsc_words[k + 1] : "";
+    if (!file.empty() && std::filesystem::is_regular_file(file) && std::ifstream(file)) continue;
+    if (launched_as_rank_zero())
+      fmt::print(stderr, "error: --petsc {}: {}\n", petsc_words[k],
+                 file.empty() ? "names no file" : fmt::format("cannot read {}", file));
+    return 2;
+  }
   std::vector<char*> petsc_argv{argv[0]};
   for (auto& w : petsc_words) petsc_argv.push_back(w.data());
   petsc_argv.push_back(nullptr);
   int pargc = static_cast<int>(petsc_argv.size()) - 1;
   char** pargv = petsc_argv.data();
-  PetscInitialize(&pargc, &pargv, nullptr, nullptr);
+  if (PetscInitialize(&pargc, &pargv, nullptr, nullptr) != 0) {
+    if (launched_as_rank_zero()) fmt::print(stderr, "error: PETSc could not start with the options of --petsc (above)\n");
+    return 2;
+  }
   int rank = 0, size = 1;
   MPI_Comm_rank(PETSC_COMM_WORLD, &rank);
   MPI_Comm_size(PETSC_COMM_WORLD, &size);
