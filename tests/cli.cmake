@@ -119,3 +119,8 @@ add_test(NAME cli_docs_case_example
                  $<TARGET_FILE:granflow> ${CMAKE_SOURCE_DIR}/docs/case_file.md ${CMAKE_CURRENT_BINARY_DIR}/docs_case_example)
 set_tests_properties(cli_docs_case_example PROPERTIES LABELS cli PASS_REGULAR_EXPRESSION "done: t = 0.05 s"
                      FAIL_REGULAR_EXPRESSION "error:;warning:")
+# A granular case with numerics that do not hold its pile at rest is valid, with a warning naming them.
+add_test(NAME cli_check_advice_on_numerics
+         COMMAND sh -c "out=$(\"$0\" check \"$1\" --set numerics.pressure_coupling=projection --set numerics.air_band=0 2>&1) && echo \"$out\" | grep -q ': valid (' && echo \"$out\" | grep -q 'warning: soil.rheology.regularisation = .exponential. .*pressure_coupling = .coupled.'"
+                 $<TARGET_FILE:granflow> ${CMAKE_SOURCE_DIR}/cases/bui2008_experiment.toml)
+set_tests_properties(cli_check_advice_on_numerics PROPERTIES LABELS cli)

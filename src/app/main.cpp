@@ -13,6 +13,7 @@
 #include <string_view>
 #include <vector>
 
+#include "io/case_advice.hpp"
 #include "io/case_error.hpp"
 #include "io/case_file.hpp"
 #include "io/checkpoint.hpp"
@@ -65,6 +66,8 @@ int run_case(const std::string& case_file, const std::vector<std::string>& overr
     fmt::print("granflow: {} on {} x {} cells {}to t = {} s, output in {}\n", config.title, config.mesh.cells[0],
                config.mesh.cells[1], restart ? fmt::format("from the checkpoint at t = {:.6g} s ", sim.time()) : "",
                config.time.end, out_dir);
+  if (rank == 0)
+    for (const auto& line : case_advice(config)) fmt::print(stderr, "warning: {}\n", line);
   std::fflush(stdout);  // the banner is there even if the run is killed (stdout is buffered into a file)
   const RunSummary s = sim.run();
   if (rank == 0) {
@@ -201,6 +204,7 @@ int main(int argc, char** argv) {
       const auto c = granflow::load_case(case_file, overrides);
       check_solver_methods(c);
       fmt::print("{}: valid ({} x {} cells, t_end = {} s)\n", case_file, c.mesh.cells[0], c.mesh.cells[1], c.time.end);
+      for (const auto& line : granflow::case_advice(c)) fmt::print(stderr, "warning: {}\n", line);
     } catch (const granflow::CaseError& e) {
       fmt::print(stderr, "error: {}\n", e.what());
       status = 2;
