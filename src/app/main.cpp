@@ -5,7 +5,6 @@
 
 #include <algorithm>
 #include <cstdio>
-#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -97,12 +96,18 @@ void warn_unused_petsc_options(int rank) {
   PetscOptionsLeftRestore(nullptr, &n, &names, &values);
 }
 
-// Before MPI is up a process knows its rank only from the launcher: Open MPI's, or the PMI of MPICH
-// and Slurm. Without a launcher it is the only process.
-bool launched_as_rank_zero() {
-  for (const char* name : {"OMPI_COMM_WORLD_RANK", "PMI_RANK", "PMIX_RANK"})
-    if (const char* value = std::getenv(name)) return std::string_view(value) == "0";
-  return true;
+// PETSc stops inside PetscInitialize, with its error trace, on an options file it cannot read: say
+// which, in one line. Empty when every options file among the --petsc words can be read.
+std::string unreadable_options_file(const std::vector<std::string>& words) {
+  for (size_t k = 0; k < words.size(); ++k) {
+    if (words[k] != "-options_file" && words[k] != "-options_file_yaml") continue;
+    if (k + 1 == words.size()) return fmt::format("--petsc {}: names no file", words[k]);
+    const std::string& file = words[k + 1];
+    std::error_code ec;
+    if (std::filesystem::is_directory(file, ec) || !std::ifstream(file).good())
+      return fmt::format("--petsc {}: cannot read {}", words[k], file);
+  }
+  return {};
 }
 
 }  // namespace
@@ -175,15 +180,20 @@ int main(int argc, char** argv) {
     std::istringstream words(o);
     for (std::string w; words >> w;) petsc_words.push_back(w);
   }
-  // PETSc stops inside PetscInitialize, with its error trace, on an options file it cannot read.
-  for (size_t k = 0; k < petsc_words.size(); ++k) {
-    if (petsc_words[k] != "-options_file" && petsc_words[k] != "-options_file_yaml") continue;
-    const std::string file = k + 1 < petsc_words.size() ? petsc_words[k + 1] : "";
-    if (!file.empty() && std::filesystem::is_regular_file(file) && std::ifstream(file)) continue;
-    if (launched_as_rank_zero())
-      fmt::print(stderr, "error: --petsc {}: {}\n", petsc_words[k],
-                 file.empty() ? "names no file" : fmt::format("cannot read {}", file));
-    return 2;
+  // MPI is started before PETSc, so that rank 0 alone checks what PETSc would read on rank 0 alone
+  // (its options files) and every rank stops with it. PetscFinalize then leaves MPI_Finalize to us.
+  MPI_Init(&argc, &argv);
+  {
+    int world_rank = 0;
+    MPI_Comm_rank(MPI_COMM_WORLD, &world_rank);
+    std::string problem = world_rank == 0 ? unreadable_options_file(petsc_words) : std::string();
+    int failed = problem.empty() ? 0 : 1;
+    MPI_Bcast(&failed, 1, MPI_INT, 0, MPI_COMM_WORLD);
+    if (failed) {
+      if (world_rank == 0) fmt::print(stderr, "error: {}\n", problem);
+      MPI_Finalize();
+      return 2;
+    }
   }
   std::vector<char*> petsc_argv{argv[0]};
   for (auto& w : petsc_words) petsc_argv.push_back(w.data());
@@ -191,7 +201,12 @@ int main(int argc, char** argv) {
   int pargc = static_cast<int>(petsc_argv.size()) - 1;
   char** pargv = petsc_argv.data();
   if (PetscInitialize(&pargc, &pargv, nullptr, nullptr) != 0) {
-    if (launched_as_rank_zero()) fmt::print(stderr, "error: PETSc could not start with the options of --petsc (above)\n");
+    int world_rank = 0, world_size = 1;
+    MPI_Comm_rank(MPI_COMM_WORLD, &world_rank);
+    MPI_Comm_size(MPI_COMM_WORLD, &world_size);
+    if (world_rank == 0) fmt::print(stderr, "error: PETSc could not start (its message is above)\n");
+    if (world_size > 1) MPI_Abort(MPI_COMM_WORLD, 2);  // PETSc may have failed on one rank alone
+    MPI_Finalize();
     return 2;
   }
   int rank = 0, size = 1;
@@ -210,6 +225,7 @@ int main(int argc, char** argv) {
       status = 2;
     }
     PetscFinalize();
+    MPI_Finalize();
     return status;
   }
 
@@ -238,5 +254,6 @@ int main(int argc, char** argv) {
     status = 1;
   }
   PetscFinalize();
+  MPI_Finalize();
   return status;
 }

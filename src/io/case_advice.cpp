@@ -1,5 +1,7 @@
 #include "io/case_advice.hpp"
 
+#include <fmt/format.h>
+
 namespace granflow {
 
 std::vector<std::string> case_advice(const CaseConfig& config) {
@@ -12,11 +14,15 @@ std::vector<std::string> case_advice(const CaseConfig& config) {
   const bool holds_rest = config.flow.numerics.pressure_coupling == PressureCoupling::coupled &&
                           config.soil->face_fraction == FaceFraction::face;
   if (exponential && !holds_rest)
-    advice.push_back(
-        "soil.rheology.regularisation = \"exponential\" (viscosities up to some 1e8 Pa s) is held at rest next to "
-        "air only with numerics.pressure_coupling = \"coupled\" and soil.face_fraction = \"face\"; with these "
-        "numerics a pile may not come to rest (docs/method.md, \"Known limitations\"; the example of "
-        "docs/case_file.md)");
+    advice.push_back(fmt::format(
+        "soil.rheology.regularisation = \"exponential\" with numerics.pressure_coupling = \"{}\" and "
+        "soil.face_fraction = \"{}\": a pile may not come to rest next to air. Soil at the exponential "
+        "regularisation's viscosities is held by numerics.pressure_coupling = \"coupled\" with "
+        "soil.yield_pressure, soil.strain_rate and soil.face_fraction = \"face\" (the example of docs/case_file.md)",
+        config.flow.numerics.pressure_coupling == PressureCoupling::coupled      ? "coupled"
+        : config.flow.numerics.pressure_coupling == PressureCoupling::projection ? "projection"
+                                                                                 : "piso",
+        config.soil->face_fraction == FaceFraction::face ? "face" : "cells"));
   return advice;
 }
 

@@ -94,7 +94,7 @@ inline FinishedRun run_to_end(const CaseConfig& config, const std::filesystem::p
 }
 
 // The shipped case cases/<case_name>.toml on nx x ny cells, without a progress line and with the
-// `overrides`, run to its end in a fresh directory of tests/runs. Collective, as run_to_end. The
+// `overrides`, run to its end in a fresh directory of the build tree's tests/runs. Collective, as run_to_end. The
 // directory is named for the test too: CTest runs tests side by side, and two of them running the
 // same case on the same mesh must not share it.
 inline FinishedRun run_shipped_case(const std::string& case_name, int nx, int ny, std::vector<std::string> overrides) {

@@ -58,7 +58,7 @@ SlidingResult drag_layer(double thickness, double cell, double floor_speed, doub
 // Measured (2 mm cells): mean velocity / (mu g t) at t = 0.1 s 1.011, 1.008, 0.994 and 0.985 for
 // layers of 1/2, 1, 2 and 4 cells; at t = 0.2 s 0.4863, 0.4998, 0.4973 and 0.4945 m/s. A wall face
 // whose yield stress took the cell's pressure instead of the floor's would halve the friction of a
-// one-cell layer. The film of half a cell is the front of a pile (SPEC 5c): its floor has the cone's
+// one-cell layer. A film of half a cell, as at the front of a pile, gets the cone's
 // friction too. Every level of such a layer is at yield (the stress that accelerates the soil above it
 // is mu times its pressure), and the film breaks into lumps from its ends; its friction is still mu
 // times its weight, but once caught up its lumps trail the floor by 3 % (docs/validation.md).
