@@ -20,12 +20,8 @@
 
 #include <cmath>
 #include <cstdio>
-#include <filesystem>
-#include <fstream>
-#include <iterator>
 #include <map>
 #include <numbers>
-#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -71,19 +67,12 @@ TEST(VerticalCut, StandsBelowAndFailsAboveTheBoundsOfLimitAnalysis) {
 // The Bui et al. case with a wedge of slope angle beta against the wall in place of its block: 0.3 m
 // long on the floor, 0.3 tan(beta) high at the wall. Collective; the history is read on rank 0.
 test::FinishedRun slope(double beta_deg, double end) {
-  std::ifstream in(test::repo_path("cases/bui2008_experiment.toml"));
-  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  const std::string block = "shape = \"box\"\nlower = [0.0, 0.0]\nupper = [0.2, 0.1]\n";
-  const auto at = text.find(block);
-  if (at == std::string::npos) throw std::runtime_error("the case's initial block changed; update this test");
   const double top = 0.3 * std::tan(beta_deg * std::numbers::pi / 180.0);
-  text.replace(at, block.size(), fmt::format("shape = \"polygon\"\npoints = [[0.0, 0.0], [0.3, 0.0], [0.0, {}]]\n", top));
-  const CaseConfig config = parse_case(
-      text, {"mesh.cells=[150,50]", fmt::format("time.end={}", end), "numerics.outer_iterations=10",
-             "numerics.outer_tolerance=1e-6", "output.fields=false", "output.interval=0.1", "output.progress_seconds=0"});
-  const auto out = test::output_dir(fmt::format("slope_{}", beta_deg));
-  std::filesystem::remove_all(out);
-  return test::run_to_end(config, out);
+  return test::run_shipped_case(
+      "bui2008_experiment", 150, 50,
+      {fmt::format("initial.soil=[{{shape = \"polygon\", points = [[0.0, 0.0], [0.3, 0.0], [0.0, {}]]}}]", top),
+       fmt::format("time.end={}", end), "numerics.outer_iterations=10", "numerics.outer_tolerance=1e-6",
+       "output.fields=false", "output.interval=0.1"});
 }
 
 // Measured at 150 x 50 (4 mm cells), t = 1 s: at 19 deg the wall height and the toe move by less than
