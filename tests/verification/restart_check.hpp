@@ -18,20 +18,6 @@
 
 namespace granflow::test {
 
-// A scratch directory named by rank 0's process, the same on every rank.
-inline std::filesystem::path scratch(const std::string& name) {
-  long pid = long(getpid());
-  MPI_Bcast(&pid, 1, MPI_LONG, 0, PETSC_COMM_WORLD);
-  return output_dir(name + "_" + std::to_string(pid));
-}
-
-// Removes a scratch directory from rank 0 once every rank is done with it.
-inline void remove_scratch(const std::filesystem::path& dir) {
-  MPI_Barrier(PETSC_COMM_WORLD);
-  if (is_root()) std::filesystem::remove_all(dir);
-  MPI_Barrier(PETSC_COMM_WORLD);
-}
-
 inline std::string file_text(const std::filesystem::path& p) {
   std::ifstream in(p);
   std::stringstream s;

@@ -1,5 +1,7 @@
 #pragma once
 // Helpers shared by the solver verification tests.
+#include <unistd.h>
+
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -38,6 +40,20 @@ inline bool is_root() {
   int rank;
   MPI_Comm_rank(PETSC_COMM_WORLD, &rank);
   return rank == 0;
+}
+
+// A scratch directory named by rank 0's process, the same on every rank.
+inline std::filesystem::path scratch(const std::string& name) {
+  long pid = long(getpid());
+  MPI_Bcast(&pid, 1, MPI_LONG, 0, PETSC_COMM_WORLD);
+  return output_dir(name + "_" + std::to_string(pid));
+}
+
+// Removes a scratch directory from rank 0 once every rank is done with it.
+inline void remove_scratch(const std::filesystem::path& dir) {
+  MPI_Barrier(PETSC_COMM_WORLD);
+  if (is_root()) std::filesystem::remove_all(dir);
+  MPI_Barrier(PETSC_COMM_WORLD);
 }
 
 // Columns of a CSV file with '#' comment lines and one header line.
