@@ -32,7 +32,7 @@ if [[ $which == cavity || $which == all ]]; then
   for n in 1 2; do run "cavity Re 1000, 256 x 256, to steady state" $n cases/lid_driven_cavity_re1000.toml "--set" "mesh.cells=[256,256]" "--set" "time.end=400"; done
 fi
 if [[ $which == bui2008 || $which == all ]]; then
-  # to t = 1 s, as SPEC 5b compares with OpenFOAM's 115 s
+  # to t = 1 s, as the OpenFOAM reference run of docs/benchmarks.md (115 s)
   for n in 1 2; do run "bui2008_experiment 300 x 100 to t = 1 s" $n cases/bui2008_experiment.toml "--set" "time.end=1.0"; done
   # the same with the coupled solve over the whole domain instead of the soil and its air band
   for n in 1 2; do run "bui2008_experiment 300 x 100 to t = 1 s, whole domain" $n cases/bui2008_experiment.toml "--set" "time.end=1.0" \

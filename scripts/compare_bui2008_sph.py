@@ -6,8 +6,8 @@ Usage: compare_bui2008_sph.py RUN_DIR [--png FILE] [--json FILE] [--times 0.8,1.
 No SPH data of Bui et al. (2008) is shipped, so this does not score the run: it draws the soil
 surface (c = 0.5) and the failure line (strain norm 0.3) at the paper's times, with the initial block,
 for a visual comparison with the paper's figures, and prints per time:
-- run-out: the toe of the c = 0.5 contour, and the toe of the soil at least one cell thick (SPEC 5c:
-  a film thinner than a cell runs ahead of the bulk, so both are given);
+- run-out: the toe of the c = 0.5 contour, and the toe of the soil at least one cell thick (a film
+  thinner than a cell runs ahead of the bulk, so both are given);
 - the soil height at the wall (column height sum c dy of the first column), and the mean slope of
   the surface between 3/4 and 1/4 of that height;
 - the failure line: its bounding box, and the lowest and highest points and the length of its connected

@@ -1,6 +1,6 @@
 #pragma once
 // Checkpoint of a run, written at each output time into OUT/checkpoint/: what the time loop needs to
-// continue exactly where it stopped (SPEC 6). Each rank writes its own part of the fields, ghosts
+// continue exactly where it stopped. Each rank writes its own part of the fields, ghosts
 // included, as raw doubles (rank_N.bin); rank 0 adds the run's clock, the history rows and the
 // field-series index as text (run.txt). A restart must use the same mesh and the same number of ranks.
 #include <mpi.h>

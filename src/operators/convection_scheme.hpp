@@ -1,7 +1,7 @@
 #pragma once
-// Face values of a convected quantity for the schemes of SPEC section 2. Each scheme is a pure
-// function of the upwind-upwind (UU), upwind (U) and downwind (D) cell values; the implicit part is
-// always upwind and the difference is added as a deferred correction.
+// Face values of a convected quantity for the schemes a case can choose (upwind, central, blended,
+// QUICK). Each scheme is a pure function of the upwind-upwind (UU), upwind (U) and downwind (D) cell
+// values; the implicit part is always upwind and the difference is added as a deferred correction.
 #include <string_view>
 
 namespace granflow {

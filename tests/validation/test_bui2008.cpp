@@ -19,7 +19,7 @@ namespace {
 
 constexpr double experiment_runout = 0.442;
 
-// A shipped case run to t = 2 s on nx x nx/3 cells, measured as the issue asks.
+// A shipped case run to t = 2 s on nx x nx/3 cells, measured against the validation targets.
 struct Bui2008Run {
   double dx = 0;
   double toe_contour = 0, toe_cell = 0, rms = 0, contour_drift = 0, cell_drift = 0, volume_error = 0, outflow = 0;
@@ -39,7 +39,7 @@ Bui2008Run run_bui2008(int nx, const std::string& case_name = "bui2008_experimen
   const auto& t = history["time"];
   const size_t n = t.size();
   if (n < 10) return r;
-  // Run-out, both ways (SPEC 5c: the c = 0.5 contour, and a layer at least one cell thick).
+  // Run-out, both ways (the c = 0.5 contour, and a layer at least one cell thick: a film thinner than a cell runs ahead).
   r.toe_contour = history["toe_contour"][n - 1];
   r.toe_cell = history["toe_one_cell"][n - 1];
   // Rest: run-out at t = 1 s against the end. The one-cell toe moves by whole cells (a column
@@ -85,7 +85,7 @@ Bui2008Run run_bui2008(int nx, const std::string& case_name = "bui2008_experimen
   return r;
 }
 
-// The suite's run, 150 x 50: what the issue asks of the paper's resolution where the coarse mesh
+// The suite's run, 150 x 50: what the validation targets ask of the paper's resolution where the coarse mesh
 // meets it too (soil volume, rest); the energy budget (+5.9 % here, +3.3 % at 300 x 100), run-out
 // (+5.9 %), RMS (4.2 mm) and the failure line's distance from the experiment's (8.3 mm) held to
 // looser guards. Run without field output, as a batch run would be: the failure line must not need
@@ -130,7 +130,7 @@ TEST(Bui2008Experiment, WallGradientDoesNotChangeTheFloorsFriction) {
   EXPECT_LT(std::abs(quadratic.second - two_point.second), cell);
 }
 
-// Everything the issue asks of the paper's resolution. Not met (docs/validation.md): one-cell
+// Every validation target at the paper's resolution. Not met (docs/validation.md): one-cell
 // run-out +12.7 % and RMS 4.4 mm. About a minute on two ranks; run with
 // --gtest_also_run_disabled_tests.
 TEST(Bui2008Experiment, DISABLED_PaperResolutionAgainstExperiment) {
@@ -142,7 +142,7 @@ TEST(Bui2008Experiment, DISABLED_PaperResolutionAgainstExperiment) {
   EXPECT_LT(r.soil_speed, 1e-3);
   EXPECT_LT(std::abs(r.toe_cell / experiment_runout - 1), 0.05);
   EXPECT_LT(r.rms, 0.004);
-  EXPECT_LT(r.failure_line, 0.010);  // reported, not limited, by the issue: 7.6 mm
+  EXPECT_LT(r.failure_line, 0.010);  // reported, not a target: 7.6 mm
 }
 
 // The paper's model with a viscosity floor the mesh resolves ([VoF] Eq. 12 with mu_min = 0.1 Pa s
@@ -151,11 +151,11 @@ TEST(Bui2008Experiment, DISABLED_PaperResolutionAgainstExperiment) {
 // cells of every mesh and the tongue runs a cell or more further on each finer one (one-cell toes
 // 0.468 and 0.498 m at 150 x 50 and 300 x 100); with 0.1 Pa s it is 4 mm and the run-out converges.
 // Measured at t = 1 s, one rank: one-cell toes 0.448 and 0.456 m, contour toes 0.4583 and 0.4614 m
-// (+4.4 %), RMS 3.85 mm, energy +3.4 % at 300 x 100. The margins to the issue's limits are thin (0.6 %
+// (+4.4 %), RMS 3.85 mm, energy +3.4 % at 300 x 100. The margins to the targets are thin (0.6 %
 // of run-out, 0.15 mm of RMS, 2 mm of the 10 allowed between meshes); the result is reproducible bit
 // for bit on one rank. By hand to t = 2 s with the case's output times: 150 x 50 contour 0.4587 m,
 // 600 x 200 one cell / contour 0.457 / 0.4587 m, RMS 3.9 mm. About a minute on one rank.
-TEST(Bui2008Experiment, ResolvedViscosityFloorRunOutConvergesWithinTheIssuesLimits) {
+TEST(Bui2008Experiment, ResolvedViscosityFloorRunOutConvergesWithinTheTargets) {
   const std::vector<std::string> floor = {"soil.rheology.mu_min=0.1", "time.end=1.0"};
   const Bui2008Run coarse = run_bui2008(150, "bui2008_experiment", floor);
   const Bui2008Run fine = run_bui2008(300, "bui2008_experiment", floor);
@@ -188,7 +188,7 @@ TEST(Bui2008MuOfI, HalfResolutionSurfaceRunOutAndRest) {
   EXPECT_LT(r.failure_line, 0.008);
 }
 
-// What the issue asks of the paper's resolution, for the mu(I) case. Measured: RMS 1.47 mm, energy
+// The validation targets at the paper's resolution, for the mu(I) case. Measured: RMS 1.47 mm, energy
 // +2.3 %, soil speed 7.9e-7 m/s; the run-out is -7.0 % (contour) and -8.6 % (one cell), so this fails
 // on it. About 2.5 minutes on two ranks; run with --gtest_also_run_disabled_tests.
 TEST(Bui2008MuOfI, DISABLED_PaperResolutionAgainstExperiment) {

@@ -1,5 +1,5 @@
 #pragma once
-// Checkpoint and restart (SPEC 6), shared by the one-rank and the two-rank tests: a run stopped
+// Checkpoint and restart, shared by the one-rank and the two-rank tests: a run stopped
 // between outputs and restarted from its last checkpoint must end exactly where the run that was
 // never stopped ends, field by field and row by row of the history.
 #include <gtest/gtest.h>

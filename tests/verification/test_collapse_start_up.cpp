@@ -1,4 +1,4 @@
-// The two traps of a granular collapse's time stepping (SPEC 5c), on the shipped Bui et al. (2008)
+// The two traps of a granular collapse's time stepping, on the shipped Bui et al. (2008)
 // case at 75 x 25 cells through its collapse (t <= 0.6 s), watched after every step:
 // - the soil pressure must stay smooth in time: interFoam with a momentum predictor flips the sign
 //   of the soil pressure from step to step, and its viscosity jumps between its bounds;

@@ -1,4 +1,4 @@
-// Checkpoint and restart (SPEC 6): a run stopped between outputs and restarted from its last
+// Checkpoint and restart: a run stopped between outputs and restarted from its last
 // checkpoint ends exactly where the run that was never stopped ends, field by field and row by row
 // of the history, on one rank (tests/verification/restart_check.hpp; two ranks: tests/parallel). The collapse takes the shipped numerics (coupled solve, look-ahead
 // viscosity from the last two steps, two VoF sweeps), so every piece of state a step starts from
