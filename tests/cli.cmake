@@ -124,3 +124,10 @@ add_test(NAME cli_check_advice_on_numerics
          COMMAND sh -c "out=$(\"$0\" check \"$1\" --set numerics.pressure_coupling=projection --set numerics.air_band=0 2>&1) && echo \"$out\" | grep -q ': valid (' && echo \"$out\" | grep -q 'warning: soil.rheology.regularisation = .exponential. with numerics.pressure_coupling = .projection.'"
                  $<TARGET_FILE:granflow> ${CMAKE_SOURCE_DIR}/cases/bui2008_experiment.toml)
 set_tests_properties(cli_check_advice_on_numerics PROPERTIES LABELS cli)
+# Line samples end on the boundary's values: the cavity's vertical centre line starts at rest on the
+# floor and ends on the lid's u = 1 (and v = 0).
+add_test(NAME cli_line_sample_ends_on_the_walls
+         COMMAND sh -c "\"$0\" run \"$1\" -o \"$2\" --overwrite --set \"mesh.cells=[16,16]\" --set time.end=0.05 --set output.progress_seconds=0 > /dev/null && sed -n '3p;$p' \"$2/u_vertical_centreline.csv\""
+                 $<TARGET_FILE:granflow> ${CMAKE_SOURCE_DIR}/cases/lid_driven_cavity_re100.toml ${CMAKE_CURRENT_BINARY_DIR}/line_sample)
+set_tests_properties(cli_line_sample_ends_on_the_walls PROPERTIES LABELS cli
+                     PASS_REGULAR_EXPRESSION "^0[.]5,0,0,0,[^\n]*\n0[.]5,1,1,0,")

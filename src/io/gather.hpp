@@ -1,5 +1,5 @@
 #pragma once
-// Whole-domain copies of distributed fields on rank 0 (for writers and samplers).
+// Whole-domain copies of distributed fields on rank 0 (for writers and samplers, io/field_sample.hpp).
 #include <vector>
 
 #include "mesh/field.hpp"
@@ -10,9 +10,5 @@ namespace granflow {
 std::vector<double> gather_to_root(const Grid& grid, const Field& field);
 // The same from a global vector of the grid's field layout.
 std::vector<double> gather_to_root(const Grid& grid, Vec global);
-
-// Bilinear interpolation between cell centres of a gathered field; points outside the centre
-// range take the nearest centre line's value.
-double sample_bilinear(const Grid& grid, const std::vector<double>& values, double x, double y);
 
 }  // namespace granflow

@@ -12,6 +12,7 @@
 #include "io/checkpoint.hpp"
 #include "io/collective_failure.hpp"
 #include "io/contour.hpp"
+#include "io/field_sample.hpp"
 #include "io/gather.hpp"
 
 namespace granflow {
@@ -147,6 +148,9 @@ void Simulation::write_output() {
     write_lode_energy();
   }
   if (rank_ == 0) {
+    const SideRules u_sides = velocity_side_rules(config_.flow.boundaries, 0);
+    const SideRules v_sides = velocity_side_rules(config_.flow.boundaries, 1);
+    const SideRules p_sides = pressure_side_rules();
     for (const auto& line : config_.output.lines) {
       auto body = [&](std::ostream& out) {
         fmt::print(out, "# {} at t = {:.9g} s\nx,y,u,v,p\n", line.name, time_);
@@ -154,8 +158,8 @@ void Simulation::write_output() {
           const double s = double(k) / (line.points - 1);
           const double x = line.start[0] + s * (line.end[0] - line.start[0]);
           const double y = line.start[1] + s * (line.end[1] - line.start[1]);
-          fmt::print(out, "{:.9g},{:.9g},{:.12g},{:.12g},{:.12g}\n", x, y, sample_bilinear(g, u, x, y),
-                     sample_bilinear(g, v, x, y), sample_bilinear(g, p, x, y));
+          fmt::print(out, "{:.9g},{:.9g},{:.12g},{:.12g},{:.12g}\n", x, y, sample_field(g, u, u_sides, x, y),
+                     sample_field(g, v, v_sides, x, y), sample_field(g, p, p_sides, x, y));
         }
       };
       write_file_atomically(out_ / fmt::format("{}_{:05d}.csv", line.name, output_index_), body);

@@ -1,0 +1,35 @@
+#pragma once
+// Point samples of a gathered cell field, for line output and comparisons with tabulated data.
+//
+// Between cell centres the sample is bilinear. Between the last centre and a side of the domain it
+// interpolates towards the value on the side, which each side's rule gives: the boundary condition
+// (a wall's velocity), the next cell's value (a zero gradient), or the last two cells' line
+// continued (a pressure against a wall, which carries the hydrostatic gradient). So a profile
+// sampled up to a wall ends on the wall's value instead of stopping half a cell short of it.
+#include <array>
+#include <vector>
+
+#include "mesh/grid.hpp"
+#include "solver/boundary.hpp"
+
+namespace granflow {
+
+struct SideRule {
+  enum class Kind { value, zero_gradient, linear };
+  Kind kind = Kind::zero_gradient;
+  double value = 0.0;  // the value on the side, for Kind::value
+};
+using SideRules = std::array<SideRule, 4>;  // indexed by Side
+
+// The rules for velocity component `axis` (0 = x, 1 = y): a wall's velocity on a wall (normal part
+// zero), zero normal velocity and a free tangential one on a slip side, a zero gradient at an
+// atmosphere.
+SideRules velocity_side_rules(const BoundarySet& boundaries, int axis);
+// The rules for the pressure: the last two cells' line continued on every side.
+SideRules pressure_side_rules();
+
+// Sample of a field gathered on rank 0 (index j * nx + i) at (x, y) inside the domain (bounds
+// included); points outside are taken at the nearest point of the domain.
+double sample_field(const Grid& grid, const std::vector<double>& values, const SideRules& sides, double x, double y);
+
+}  // namespace granflow

@@ -1,0 +1,97 @@
+// Point samples of a cell field: bilinear between centres, and between the last centre and a side
+// towards the side's value from its rule (a boundary value, a zero gradient, or the last two cells'
+// line continued).
+#include <gtest/gtest.h>
+
+#include <array>
+#include <vector>
+
+#include "io/field_sample.hpp"
+#include "mesh/grid.hpp"
+
+namespace granflow {
+namespace {
+
+GridSpec graded_spec() {
+  GridSpec spec;
+  spec.cells = {7, 5};
+  spec.lower = {-0.3, 0.1};
+  spec.upper = {0.9, 0.6};
+  spec.grading = {2.0, 0.5};
+  return spec;
+}
+
+template <class F>
+std::vector<double> cell_values(const Grid& g, F f) {
+  std::vector<double> v(size_t(g.nx()) * g.ny());
+  for (int j = 0; j < g.ny(); ++j)
+    for (int i = 0; i < g.nx(); ++i) v[size_t(j) * g.nx() + i] = f(g.xc(i), g.yc(j));
+  return v;
+}
+
+// Points over the whole domain, its sides and corners included.
+std::vector<std::array<double, 2>> points(const GridSpec& s) {
+  std::vector<std::array<double, 2>> p;
+  const int n = 23;
+  for (int a = 0; a <= n; ++a)
+    for (int b = 0; b <= n; ++b)
+      p.push_back({s.lower[0] + (s.upper[0] - s.lower[0]) * a / n, s.lower[1] + (s.upper[1] - s.lower[1]) * b / n});
+  return p;
+}
+
+TEST(FieldSample, LinearRuleReproducesALinearFieldUpToTheSidesAndCorners) {
+  const Grid g(PETSC_COMM_SELF, graded_spec());
+  const auto f = [](double x, double y) { return 2.0 + 3.0 * x - 5.0 * y; };
+  const auto values = cell_values(g, f);
+  for (const auto& [x, y] : points(g.spec()))
+    EXPECT_NEAR(sample_field(g, values, pressure_side_rules(), x, y), f(x, y), 1e-12) << x << ", " << y;
+}
+
+TEST(FieldSample, WallsGiveTheirVelocitySlipSidesNoNormalFlowAtmospheresAZeroGradient) {
+  const Grid g(PETSC_COMM_SELF, graded_spec());
+  BoundarySet b;
+  b[int(Side::west)].kind = BoundaryKind::slip;
+  b[int(Side::east)].kind = BoundaryKind::atmosphere;
+  b[int(Side::south)].kind = BoundaryKind::wall;
+  b[int(Side::north)].kind = BoundaryKind::wall;
+  b[int(Side::north)].wall_velocity = {1.5, 0.0};
+  const auto f = [](double x, double y) { return 0.7 + x * x + y; };
+  const auto values = cell_values(g, f);
+  const SideRules u_sides = velocity_side_rules(b, 0), v_sides = velocity_side_rules(b, 1);
+  const int nx = g.nx(), ny = g.ny();
+  const double x_mid = g.xc(3), y_mid = g.yc(2);
+  const double top = g.spec().upper[1], bottom = g.spec().lower[1];
+  const double left = g.spec().lower[0], right = g.spec().upper[0];
+  // On the lid: its tangential velocity, and no normal one; halfway to it, the mean of both.
+  EXPECT_DOUBLE_EQ(sample_field(g, values, u_sides, x_mid, top), 1.5);
+  EXPECT_DOUBLE_EQ(sample_field(g, values, v_sides, x_mid, top), 0.0);
+  const double y_half = 0.5 * (g.yc(ny - 1) + top);
+  EXPECT_NEAR(sample_field(g, values, u_sides, x_mid, y_half), 0.5 * (f(x_mid, g.yc(ny - 1)) + 1.5), 1e-12);
+  // On the floor: at rest.
+  EXPECT_DOUBLE_EQ(sample_field(g, values, u_sides, x_mid, bottom), 0.0);
+  EXPECT_DOUBLE_EQ(sample_field(g, values, v_sides, x_mid, bottom), 0.0);
+  // On the slip side: no normal velocity, the tangential one of the next cell.
+  EXPECT_DOUBLE_EQ(sample_field(g, values, u_sides, left, y_mid), 0.0);
+  EXPECT_NEAR(sample_field(g, values, v_sides, left, y_mid), f(g.xc(0), y_mid), 1e-12);
+  // At the atmosphere: both components those of the next cell.
+  EXPECT_NEAR(sample_field(g, values, u_sides, right, y_mid), f(g.xc(nx - 1), y_mid), 1e-12);
+  EXPECT_NEAR(sample_field(g, values, v_sides, right, y_mid), f(g.xc(nx - 1), y_mid), 1e-12);
+  // Between centres the sample is bilinear whatever the rules.
+  const double xq = 0.25 * g.xc(2) + 0.75 * g.xc(3), yq = 0.6 * g.yc(1) + 0.4 * g.yc(2);
+  const double expected = 0.6 * (0.25 * f(g.xc(2), g.yc(1)) + 0.75 * f(g.xc(3), g.yc(1))) +
+                          0.4 * (0.25 * f(g.xc(2), g.yc(2)) + 0.75 * f(g.xc(3), g.yc(2)));
+  EXPECT_NEAR(sample_field(g, values, u_sides, xq, yq), expected, 1e-12);
+  // Outside the domain: the nearest point of it.
+  EXPECT_DOUBLE_EQ(sample_field(g, values, u_sides, x_mid, top + 1.0), 1.5);
+}
+
+TEST(FieldSample, OneCellAcrossFallsBackToItsValue) {
+  GridSpec spec;
+  spec.cells = {1, 1};
+  const Grid g(PETSC_COMM_SELF, spec);
+  const std::vector<double> values{4.25};
+  for (const auto& [x, y] : points(spec)) EXPECT_DOUBLE_EQ(sample_field(g, values, pressure_side_rules(), x, y), 4.25);
+}
+
+}  // namespace
+}  // namespace granflow
