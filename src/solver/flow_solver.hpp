@@ -1,10 +1,13 @@
 #pragma once
-// Pressure-based segregated solver for the incompressible Navier-Stokes equations of a mixture with
-// cell-wise density and viscosity ([VoF] Eqs. 17-18, App. B; [YS] Eqs. 2-3), on collocated cells:
+// Pressure-based solver for the incompressible Navier-Stokes equations of a mixture with cell-wise
+// density and viscosity ([VoF] Eqs. 17-18, App. B; [YS] Eqs. 2-3), on collocated cells:
 //   - backward Euler in time, implicit upwind convection with deferred correction to the chosen
-//     scheme, implicit viscous term div(mu grad v) with its transpose part lagged;
-//   - PIMPLE: outer iterations (properties updated in each, as in [VoF] Alg. 1), a momentum predictor,
-//     and PISO pressure corrections with Rhie-Chow face fluxes;
+//     scheme, implicit viscous term div(mu grad v) with its transpose part lagged
+//     (momentum_equation.cpp);
+//   - outer iterations with the properties updated in each, as in [VoF] Alg. 1 (flow_solver.cpp);
+//     in each, velocity and pressure either in one coupled solve with Rhie-Chow face fluxes
+//     (coupled_step.cpp), or segregated: a momentum predictor and a projection or PISO pressure
+//     corrections (segregated_pressure.cpp);
 //   - gravity enters as a face force rho_f g next to the pressure gradient, and cell forces are
 //     reconstructed from face forces, so a fluid at rest under gravity stays at rest exactly.
 #include <functional>
@@ -114,11 +117,12 @@ class FlowSolver {
   double boundary_head(Side s, int j, double rho, double y_face) const;
   void fill_scalar_ghosts(Field& f);
   void face_viscosity_from_cells();
-  void assemble_momentum(double dt);
   void compute_face_forces();
   void extrapolate_velocity(double ratio);
   void update_properties_ahead();
   void update_properties_at_mean_pressure();
+  // Momentum equation (momentum_equation.cpp).
+  void assemble_momentum(double dt);
   int solve_momentum();
   void compute_hbya();
   // Coupled velocity-pressure solve (coupled_step.cpp).
@@ -128,8 +132,9 @@ class FlowSolver {
   int solve_coupled();
   double coupled_mobility(const double* const* rau, int i, int j, int in, int jn) const;
   double pressure_at_rest(double rho, int j) const;  // air outside the solve region
-  double local_min_viscosity(const double* const* mu, int i, int j) const;
   double cell_force(int axis, int i, int j, const double* const* ff, const double* const* rho) const;
+  // Segregated pressure step (segregated_pressure.cpp).
+  double local_min_viscosity(const double* const* mu, int i, int j) const;
   double face_coefficient(const double* const* rau, const double* const* rho, int i, int j, int in, int jn) const;
   void assemble_pressure_matrix(double dt);
   int solve_pressure(double dt);

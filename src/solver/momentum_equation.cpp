@@ -1,0 +1,238 @@
+// The momentum equation of FlowSolver ([VoF] Eq. 27): assembly of a_P v_P - sum a_nb v_nb = source +
+// V f_P with implicit viscous and convective terms (deferred correction for the higher-order
+// convection schemes), its solve per component, and HbyA, the velocity without the pressure force that
+// the segregated pressure step and the Rhie-Chow face fluxes start from.
+#include <algorithm>
+#include <cmath>
+
+#include "operators/convection_scheme.hpp"
+#include "operators/strain_rate.hpp"
+#include "solver/cell_faces.hpp"
+#include "solver/flow_solver.hpp"
+
+namespace granflow {
+
+// Momentum ([VoF] Eq. 27): a_P v_P - sum a_nb v_nb = source + V f_P.
+
+void FlowSolver::assemble_momentum(double dt) {
+  const auto& b = grid_.owned();
+  const int nx = grid_.nx(), ny = grid_.ny();
+  const auto& num = settings_.numerics;
+  ConstFieldArray u = local_read(grid_, *vel_[0]), v = local_read(grid_, *vel_[1]);
+  ConstFieldArray u0 = local_read(grid_, *vel_old_[0]), v0 = local_read(grid_, *vel_old_[1]);
+  ConstFieldArray fx = local_read(grid_, *face_[0]), fy = local_read(grid_, *face_[1]);
+  ConstFieldArray rho = local_read(grid_, *rho_), mu = local_read(grid_, *mu_);
+  ConstFieldArray fmx = local_read(grid_, *face_mu_[0]), fmy = local_read(grid_, *face_mu_[1]);
+  const double* const* vel[2] = {u.data(), v.data()};
+  std::unique_ptr<ConstFieldArray> bx, by;
+  if (body_force_[0]) {
+    bx = std::make_unique<ConstFieldArray>(grid_.field_dm(), body_force_[0]->global());
+    by = std::make_unique<ConstFieldArray>(grid_.field_dm(), body_force_[1]->global());
+  }
+
+  const double stress_factor = num.transpose_stress ? 2.0 : 1.0;  // implicit share, see below
+  for (int j = b.ys; j < b.ye(); ++j)
+    for (int i = b.xs; i < b.xe(); ++i) {
+      const size_t k = size_t(j - b.ys) * b.xm + (i - b.xs);
+      const double dx = grid_.dx(i), dy = grid_.dy(j), V = grid_.volume(i, j);
+      const double rhoP = rho[j][i], muP = mu[j][i];
+      const double a_time = rhoP * V / dt;
+      double a_nb[4] = {0, 0, 0, 0};
+      double diag = a_time;
+      double extra[2] = {0.0, 0.0};
+      double src[2] = {a_time * u0[j][i], a_time * v0[j][i]};
+      if (bx) {
+        src[0] += V * (*bx)[j][i];
+        src[1] += V * (*by)[j][i];
+      }
+      for (int f = 0; f < 4; ++f) {
+        const FaceGeometry& fg = faces_of_cell[f];
+        const int in = i + fg.di, jn = j + fg.dj;
+        const double area = grid_.face_area(fg.axis, i, j, fg.sign);
+        const bool is_boundary = in < 0 || in >= nx || jn < 0 || jn >= ny;
+        const double mu_face = fg.axis == 0 ? fmx[j][fg.sign > 0 ? i : i - 1] : fmy[fg.sign > 0 ? j : j - 1][i];
+        // Full viscous stress div(mu (grad v + grad v^T)), split as in Jasak & Weller (2000): the
+        // implicit part is 2 mu grad(v_c) on every face, and the lagged remainder on faces tangential
+        // to c is mu [(d v_n / d x_c) - (d v_c / d n)]. The implicit part bounds the lagged one, so the
+        // iteration is stable at any viscosity, and at convergence the stress is exactly the symmetric
+        // one. Boundary faces read the ghosts, which encode the boundary condition.
+        if (num.transpose_stress) {
+          for (int c = 0; c < 2; ++c) {
+            if (c == fg.axis) continue;
+            const double* const* qn = vel[fg.axis];  // normal component, differentiated along c
+            const double* const* qc = vel[c];        // component c, differentiated along the normal
+            double tangential;
+            if (c == 0)  // d v_n / dx at a north/south face
+              tangential = 0.5 * ((qn[j][i + 1] - qn[j][i - 1]) / (grid_.xc(i + 1) - grid_.xc(i - 1)) +
+                                  (qn[jn][i + 1] - qn[jn][i - 1]) / (grid_.xc(i + 1) - grid_.xc(i - 1)));
+            else  // d v_n / dy at an east/west face
+              tangential = 0.5 * ((qn[j + 1][i] - qn[j - 1][i]) / (grid_.yc(j + 1) - grid_.yc(j - 1)) +
+                                  (qn[j + 1][in] - qn[j - 1][in]) / (grid_.yc(j + 1) - grid_.yc(j - 1)));
+            const double dn = fg.axis == 0 ? grid_.xc(in) - grid_.xc(i) : grid_.yc(jn) - grid_.yc(j);
+            const double normal = (qc[jn][in] - qc[j][i]) / dn;
+            src[c] += fg.sign * mu_face * (tangential - normal) * area;
+          }
+        }
+        if (is_boundary) {
+          const auto& bc = boundary(settings_.boundaries, fg.side);
+          const double d_half = 0.5 * (fg.axis == 0 ? dx : dy);
+          const double coeff = stress_factor * mu_face * area / d_half;
+          if (bc.kind == BoundaryKind::wall) {
+            for (int c = 0; c < 2; ++c) {
+              extra[c] += coeff;
+              src[c] += coeff * (c == fg.axis ? 0.0 : bc.wall_velocity[c]);
+            }
+          } else if (bc.kind == BoundaryKind::slip) {
+            extra[fg.axis] += coeff;  // impermeable: normal component zero; no shear
+          }
+          if (num.quadratic_wall_gradient && bc.kind != BoundaryKind::atmosphere) {
+            // Deferred correction from the two-point wall gradient (u_1 - u_w)/s1 to the quadratic one
+            // through the wall and the first two cell centres (at s1 and s2 from the wall). The net
+            // two-point stress is mu per tangential and stress_factor mu for the normal component.
+            const double h1 = fg.axis == 0 ? dx : dy;
+            const double h2 = fg.axis == 0 ? grid_.dx(i - fg.di) : grid_.dy(j - fg.dj);
+            const double s1 = 0.5 * h1, s2 = h1 + 0.5 * h2;
+            for (int c = 0; c < 2; ++c) {
+              if (bc.kind == BoundaryKind::slip && c != fg.axis) continue;  // no shear at a slip wall
+              const double uw = c == fg.axis ? 0.0 : bc.wall_velocity[c];
+              const double u1 = vel[c][j][i], u2 = vel[c][j - fg.dj][i - fg.di];
+              const double quadratic = quadratic_wall_derivative(u1, u2, uw, s1, s2);
+              const double two_point = (u1 - uw) / s1;
+              const double factor = c == fg.axis ? stress_factor : 1.0;
+              src[c] -= factor * mu_face * area * (quadratic - two_point);
+            }
+          }
+          continue;  // atmosphere: zero gradient, no viscous flux; convection has no correction
+        }
+        // Outward face velocity and flux.
+        const double face_vel = fg.axis == 0 ? (fg.sign > 0 ? fx[j][i] : fx[j][i - 1])
+                                             : (fg.sign > 0 ? fy[j][i] : fy[j - 1][i]);
+        const double flux = fg.sign * face_vel * area;
+        const double d = fg.axis == 0 ? std::abs(grid_.xc(in) - grid_.xc(i)) : std::abs(grid_.yc(jn) - grid_.yc(j));
+        const double mu_f = mu_face;
+        const double conv = rhoP * std::max(-flux, 0.0);
+        a_nb[f] = stress_factor * mu_f * area / d + conv;
+        diag += a_nb[f];
+        // Deferred correction to the higher-order face value (lagged in the outer iterations).
+        if (num.convection != ConvectionScheme::upwind) {
+          for (int c = 0; c < 2; ++c) {
+            const double* const* q = vel[c];
+            double uu, up, dn;
+            if (flux >= 0.0) {
+              up = q[j][i];
+              dn = q[jn][in];
+              uu = q[j - fg.dj][i - fg.di];
+            } else {
+              up = q[jn][in];
+              dn = q[j][i];
+              uu = q[jn + fg.dj][in + fg.di];
+            }
+            src[c] -= rhoP * flux * (face_value(num.convection, num.blending, uu, up, dn) - up);
+          }
+        }
+      }
+      // Hoop stress of the radial momentum, -2 mu u_r / r^2 per volume ([YS] Sec. 4), implicit.
+      if (grid_.axisymmetric()) extra[0] += 2.0 * muP * V / (grid_.xc(i) * grid_.xc(i));
+      a_east_[k] = a_nb[0];
+      a_west_[k] = a_nb[1];
+      a_north_[k] = a_nb[2];
+      a_south_[k] = a_nb[3];
+      for (int c = 0; c < 2; ++c) {
+        a_centre_[c][k] = diag + extra[c];
+        source_[c][k] = src[c];
+      }
+    }
+}
+
+int FlowSolver::solve_momentum() {
+  const auto& b = grid_.owned();
+  const int nx = grid_.nx(), ny = grid_.ny();
+  // The momentum matrices from assemble_momentum's coefficients (the coupled solve has its own).
+  for (int c = 0; c < (shared_momentum_matrix_ ? 1 : 2); ++c) {
+    Mat A = momentum_matrix_[c];
+    for (int j = b.ys; j < b.ye(); ++j)
+      for (int i = b.xs; i < b.xe(); ++i) {
+        const size_t k = size_t(j - b.ys) * b.xm + (i - b.xs);
+        MatStencil row{0, j, i, 0};
+        MatStencil cols[5];
+        double vals[5];
+        int n = 0;
+        cols[n] = row;
+        vals[n++] = a_centre_[c][k];
+        if (i + 1 < nx) { cols[n] = MatStencil{0, j, i + 1, 0}; vals[n++] = -a_east_[k]; }
+        if (i - 1 >= 0) { cols[n] = MatStencil{0, j, i - 1, 0}; vals[n++] = -a_west_[k]; }
+        if (j + 1 < ny) { cols[n] = MatStencil{0, j + 1, i, 0}; vals[n++] = -a_north_[k]; }
+        if (j - 1 >= 0) { cols[n] = MatStencil{0, j - 1, i, 0}; vals[n++] = -a_south_[k]; }
+        MatSetValuesStencil(A, 1, &row, n, cols, vals, INSERT_VALUES);
+      }
+    PetscCallAbort(grid_.comm(), MatAssemblyBegin(A, MAT_FINAL_ASSEMBLY));
+    PetscCallAbort(grid_.comm(), MatAssemblyEnd(A, MAT_FINAL_ASSEMBLY));
+    momentum_solver_[c]->set_operator(A);
+  }
+  int iterations = 0;
+  for (int c = 0; c < 2; ++c) {
+    {
+      ConstFieldArray ff = local_read(grid_, *face_force_[c]), rho = local_read(grid_, *rho_);
+      FieldArray r(grid_.field_dm(), rhs_);
+      for (int j = b.ys; j < b.ye(); ++j)
+        for (int i = b.xs; i < b.xe(); ++i) {
+          const size_t k = size_t(j - b.ys) * b.xm + (i - b.xs);
+          r[j][i] = source_[c][k] + grid_.volume(i, j) * cell_force(c, i, j, ff.data(), rho.data());
+        }
+    }
+    // Without slip walls both components have the same matrix: one operator, one preconditioner.
+    iterations += momentum_solver_[shared_momentum_matrix_ ? 0 : c]->solve(rhs_, vel_[c]->global());
+  }
+  fill_velocity_ghosts();
+  return iterations;
+}
+
+// HbyA = (source + sum a_nb v_nb) / a_P, rAU = V / a_P, and the share of the old time level in it.
+void FlowSolver::compute_hbya() {
+  const auto& b = grid_.owned();
+  ConstFieldArray rho = local_read(grid_, *rho_);
+  if (settings_.numerics.pressure_coupling == PressureCoupling::projection) {
+    // Incremental projection: HbyA = v* - (dt/rho) f_old, so that the new velocity is HbyA + (dt/rho) f_new.
+    for (int c = 0; c < 2; ++c) {
+      ConstFieldArray q = local_read(grid_, *vel_[c]), ff = local_read(grid_, *face_force_[c]);
+      FieldArray h(grid_.field_dm(), hbya_[c]->global());
+      FieldArray r(grid_.field_dm(), rau_[c]->global());
+      for (int j = b.ys; j < b.ye(); ++j)
+        for (int i = b.xs; i < b.xe(); ++i) {
+          r[j][i] = dt_ / rho[j][i];
+          h[j][i] = q[j][i] - r[j][i] * cell_force(c, i, j, ff.data(), rho.data());
+        }
+    }
+    for (int c = 0; c < 2; ++c) {
+      hbya_[c]->scatter_to_local();
+      rau_[c]->scatter_to_local();
+    }
+    return;
+  }
+  for (int c = 0; c < 2; ++c) {
+    ConstFieldArray q = local_read(grid_, *vel_[c]);
+    FieldArray h(grid_.field_dm(), hbya_[c]->global());
+    FieldArray r(grid_.field_dm(), rau_[c]->global());
+    FieldArray w(grid_.field_dm(), time_weight_[c]->global());
+    const int nx = grid_.nx(), ny = grid_.ny();
+    for (int j = b.ys; j < b.ye(); ++j)
+      for (int i = b.xs; i < b.xe(); ++i) {
+        const size_t k = size_t(j - b.ys) * b.xm + (i - b.xs);
+        double H = source_[c][k];
+        if (i + 1 < nx) H += a_east_[k] * q[j][i + 1];
+        if (i > 0) H += a_west_[k] * q[j][i - 1];
+        if (j + 1 < ny) H += a_north_[k] * q[j + 1][i];
+        if (j > 0) H += a_south_[k] * q[j - 1][i];
+        const double V = grid_.volume(i, j);
+        h[j][i] = H / a_centre_[c][k];
+        r[j][i] = V / a_centre_[c][k];
+        w[j][i] = rho[j][i] * V / dt_ / a_centre_[c][k];
+      }
+  }
+  for (int c = 0; c < 2; ++c) {
+    hbya_[c]->scatter_to_local();
+    rau_[c]->scatter_to_local();
+    time_weight_[c]->scatter_to_local();
+  }
+}
+}  // namespace granflow
