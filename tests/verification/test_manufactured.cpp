@@ -10,8 +10,7 @@
 #include <cmath>
 #include <numbers>
 
-#include "solver/simulation.hpp"
-#include "test_support.hpp"
+#include "manufactured_run.hpp"
 
 namespace granflow {
 namespace {
@@ -43,11 +42,7 @@ double fy(double x, double y) {
   return conv - div - pi * std::cos(pi * x) * std::sin(pi * y);
 }
 
-struct Errors {
-  double u, v, p;
-};
-
-Errors solve_on(int n) {
+test::VelocityPressureErrors solve_on(int n) {
   const std::string text = fmt::format(R"(
 [mesh]
 cells = [{0}, {0}]
@@ -76,37 +71,14 @@ pc_type = "hypre"
 progress_seconds = 0
 )",
                                        n);
-  CaseConfig config = parse_case(text);
-  Simulation sim(PETSC_COMM_WORLD, config, "");
-  FlowSolver& flow = sim.flow();
-  const Grid& g = sim.grid();
-  flow.set_property_update([&g](FlowSolver& f) {
-    VecSet(f.density().global(), 1.0);
-    test::fill(g, f.viscosity(), mu_exact);
-  });
-  flow.enable_body_force();
-  test::fill(g, flow.body_force(0), fx);
-  test::fill(g, flow.body_force(1), fy);
-  const RunSummary s = sim.run();
-  EXPECT_TRUE(s.reached_steady_state) << n << " cells: not steady after " << s.steps << " steps";
-  return {test::l2_error(g, flow.velocity(0), u_exact), test::l2_error(g, flow.velocity(1), v_exact),
-          test::l2_error(g, flow.pressure(), p_exact, true)};
+  return test::run_manufactured(text, {mu_exact, fx, fy, u_exact, v_exact, p_exact});
 }
 
 TEST(ManufacturedSolution, SecondOrderWithViscosityContrast1e4) {
   const int sizes[3] = {16, 32, 64};
-  Errors e[3];
+  test::VelocityPressureErrors e[3];
   for (int k = 0; k < 3; ++k) e[k] = solve_on(sizes[k]);
-  for (int k = 0; k < 3; ++k)
-    std::printf("manufactured n = %3d: L2 error u %.3e  v %.3e  p %.3e\n", sizes[k], e[k].u, e[k].v, e[k].p);
-  for (int k = 1; k < 3; ++k) {
-    const double ou = std::log2(e[k - 1].u / e[k].u), ov = std::log2(e[k - 1].v / e[k].v),
-                 op = std::log2(e[k - 1].p / e[k].p);
-    std::printf("observed order %d -> %d: u %.2f  v %.2f  p %.2f\n", sizes[k - 1], sizes[k], ou, ov, op);
-    EXPECT_GE(ou, 1.8);
-    EXPECT_GE(ov, 1.8);
-    EXPECT_GE(op, 1.5);
-  }
+  test::expect_second_order("manufactured", sizes, e, "u", "v");
 }
 
 }  // namespace

@@ -14,8 +14,7 @@
 #include <cmath>
 #include <numbers>
 
-#include "solver/simulation.hpp"
-#include "test_support.hpp"
+#include "manufactured_run.hpp"
 
 namespace granflow {
 namespace {
@@ -49,11 +48,7 @@ double force_z(double r, double z) {
   return conv + d_z(p_exact, r, z) - div;
 }
 
-struct Errors {
-  double u, v, p;
-};
-
-Errors solve_on(int n) {
+test::VelocityPressureErrors solve_on(int n) {
   const std::string text = fmt::format(R"(
 [mesh]
 geometry = "axisymmetric"
@@ -82,37 +77,14 @@ pc_type = "hypre"
 progress_seconds = 0
 )",
                                        n);
-  Simulation sim(PETSC_COMM_WORLD, parse_case(text), "");
-  FlowSolver& flow = sim.flow();
-  const Grid& g = sim.grid();
-  flow.set_property_update([&g](FlowSolver& f) {
-    VecSet(f.density().global(), 1.0);
-    test::fill(g, f.viscosity(), mu_exact);
-  });
-  flow.enable_body_force();
-  test::fill(g, flow.body_force(0), force_r);
-  test::fill(g, flow.body_force(1), force_z);
-  const RunSummary s = sim.run();
-  EXPECT_TRUE(s.reached_steady_state) << n << " cells: not steady after " << s.steps << " steps";
-  return {test::l2_error(g, flow.velocity(0), ur), test::l2_error(g, flow.velocity(1), uz),
-          test::l2_error(g, flow.pressure(), p_exact, true)};
+  return test::run_manufactured(text, {mu_exact, force_r, force_z, ur, uz, p_exact});
 }
 
 TEST(ManufacturedSolution, AxisymmetricSecondOrderWithViscosityContrast100) {
   const int sizes[3] = {16, 32, 64};
-  Errors e[3];
+  test::VelocityPressureErrors e[3];
   for (int k = 0; k < 3; ++k) e[k] = solve_on(sizes[k]);
-  for (int k = 0; k < 3; ++k)
-    std::printf("axisymmetric manufactured n = %3d: L2 error u_r %.3e  u_z %.3e  p %.3e\n", sizes[k], e[k].u, e[k].v,
-                e[k].p);
-  for (int k = 1; k < 3; ++k) {
-    const double ou = std::log2(e[k - 1].u / e[k].u), ov = std::log2(e[k - 1].v / e[k].v),
-                 op = std::log2(e[k - 1].p / e[k].p);
-    std::printf("axisymmetric observed order %d -> %d: u_r %.2f  u_z %.2f  p %.2f\n", sizes[k - 1], sizes[k], ou, ov, op);
-    EXPECT_GE(ou, 1.8);
-    EXPECT_GE(ov, 1.8);
-    EXPECT_GE(op, 1.5);
-  }
+  test::expect_second_order("axisymmetric manufactured", sizes, e, "u_r", "u_z");
 }
 
 }  // namespace
