@@ -131,3 +131,10 @@ add_test(NAME cli_line_sample_ends_on_the_walls
                  $<TARGET_FILE:granflow> ${CMAKE_SOURCE_DIR}/cases/lid_driven_cavity_re100.toml ${CMAKE_CURRENT_BINARY_DIR}/line_sample)
 set_tests_properties(cli_line_sample_ends_on_the_walls PROPERTIES LABELS cli
                      PASS_REGULAR_EXPRESSION "^0[.]5,0,0,0,[^\n]*\n0[.]5,1,1,0,")
+# With soil, line samples add its fraction, strain norm and strain rate norm; on the floor (a wall)
+# the velocity is zero.
+add_test(NAME cli_line_sample_soil_columns
+         COMMAND sh -c "{ cat \"$1\"; printf '[[output.line]]\\nname = \"profile\"\\nstart = [0.1, 0.0]\\nend = [0.1, 0.05]\\npoints = 6\\n'; } > \"$2.toml\" && \"$0\" run \"$2.toml\" -o \"$2\" --overwrite --set \"mesh.cells=[30,10]\" --set time.end=0.05 --set output.fields=false --set output.progress_seconds=0 > /dev/null && sed -n '2,3p' \"$2/profile.csv\""
+                 $<TARGET_FILE:granflow> ${CMAKE_SOURCE_DIR}/cases/bui2008_experiment.toml ${CMAKE_CURRENT_BINARY_DIR}/line_sample_soil)
+set_tests_properties(cli_line_sample_soil_columns PROPERTIES LABELS cli
+                     PASS_REGULAR_EXPRESSION "^x,y,u,v,p,viscosity,soil_fraction,strain_norm,strain_rate_norm\n0[.]1,0,0,0,[0-9.e+]+,[0-9.e+]+,1,")

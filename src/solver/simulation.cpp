@@ -147,26 +147,50 @@ void Simulation::write_output() {
     write_history();
     write_lode_energy();
   }
-  if (rank_ == 0) {
-    const SideRules u_sides = velocity_side_rules(config_.flow.boundaries, 0);
-    const SideRules v_sides = velocity_side_rules(config_.flow.boundaries, 1);
-    const SideRules p_sides = pressure_side_rules();
-    for (const auto& line : config_.output.lines) {
-      auto body = [&](std::ostream& out) {
-        fmt::print(out, "# {} at t = {:.9g} s\nx,y,u,v,p\n", line.name, time_);
-        for (int k = 0; k < line.points; ++k) {
-          const double s = double(k) / (line.points - 1);
-          const double x = line.start[0] + s * (line.end[0] - line.start[0]);
-          const double y = line.start[1] + s * (line.end[1] - line.start[1]);
-          fmt::print(out, "{:.9g},{:.9g},{:.12g},{:.12g},{:.12g}\n", x, y, sample_field(g, u, u_sides, x, y),
-                     sample_field(g, v, v_sides, x, y), sample_field(g, p, p_sides, x, y));
-        }
-      };
-      write_file_atomically(out_ / fmt::format("{}_{:05d}.csv", line.name, output_index_), body);
-      write_file_atomically(out_ / fmt::format("{}.csv", line.name), body);
-    }
-  }
+  write_line_samples(u, v, p);
   ++output_index_;
+}
+
+// Each [[output.line]]: u, v, p and the viscosity, and with soil its fraction, strain norm and strain
+// rate norm, at evenly spaced points (io/field_sample.hpp: bilinear, running to the boundary's value
+// within half a cell of a side). u, v and p are already gathered on rank 0.
+void Simulation::write_line_samples(const std::vector<double>& u, const std::vector<double>& v,
+                                    const std::vector<double>& p) const {
+  if (config_.output.lines.empty()) return;
+  const Grid& g = *grid_;
+  struct Sampled {
+    const char* name;
+    std::vector<double> values;
+    SideRules sides;
+  };
+  std::vector<Sampled> q;
+  q.push_back({"u", u, velocity_side_rules(config_.flow.boundaries, 0)});
+  q.push_back({"v", v, velocity_side_rules(config_.flow.boundaries, 1)});
+  q.push_back({"p", p, pressure_side_rules()});
+  q.push_back({"viscosity", gather_to_root(g, flow_->viscosity()), SideRules{}});
+  if (soil_) {
+    q.push_back({"soil_fraction", gather_to_root(g, soil_->soil_fraction()), SideRules{}});
+    q.push_back({"strain_norm", gather_to_root(g, soil_->strain_norm()), SideRules{}});
+    q.push_back({"strain_rate_norm", gather_to_root(g, soil_->strain_rate_norm()), SideRules{}});
+  }
+  if (rank_ != 0) return;
+  for (const auto& line : config_.output.lines) {
+    auto body = [&](std::ostream& out) {
+      fmt::print(out, "# {} at t = {:.9g} s\nx,y", line.name, time_);
+      for (const auto& s : q) fmt::print(out, ",{}", s.name);
+      fmt::print(out, "\n");
+      for (int k = 0; k < line.points; ++k) {
+        const double f = double(k) / (line.points - 1);
+        const double x = line.start[0] + f * (line.end[0] - line.start[0]);
+        const double y = line.start[1] + f * (line.end[1] - line.start[1]);
+        fmt::print(out, "{:.9g},{:.9g}", x, y);
+        for (const auto& s : q) fmt::print(out, ",{:.12g}", sample_field(g, s.values, s.sides, x, y));
+        fmt::print(out, "\n");
+      }
+    };
+    write_file_atomically(out_ / fmt::format("{}_{:05d}.csv", line.name, output_index_), body);
+    write_file_atomically(out_ / fmt::format("{}.csv", line.name), body);
+  }
 }
 
 namespace {

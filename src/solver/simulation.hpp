@@ -57,6 +57,8 @@ class Simulation {
   void write_history() const;
   void write_soil_lines() const;
   void write_lode_energy() const;
+  void write_line_samples(const std::vector<double>& u, const std::vector<double>& v,
+                          const std::vector<double>& p) const;
   double choose_dt(double dt_previous) const;
   double courant_after(double dt) const;  // flow Courant number of the current velocities over dt
   std::vector<Field*> checkpoint_fields();
