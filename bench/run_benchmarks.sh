@@ -21,7 +21,7 @@ run() {  # name ranks case overrides...
     end=$(date +%s.%N)
     local steps its
     steps=$(grep -oP 'in \K[0-9]+(?= steps)' "$log")
-    its=$(grep -oP 'outer iterations \K[0-9]+, momentum iterations [0-9]+, pressure solves [0-9]+ \([0-9.]+' "$log" | tr -d '(')
+    its=$(grep -oP 'outer iterations \K.*(?= iterations each)' "$log" | sed -E 's/ \([0-9]+ of [0-9]+ steps[^)]*\)//; s/momentum iterations //; s/pressure solves //; s/ \(/, /')
     printf "| %s | %d | %.1f | %s | %s |\n" "$name" "$ranks" "$(echo "$end - $start" | bc)" "$steps" "$its"
     rm -rf "$out"
   done

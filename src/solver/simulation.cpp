@@ -409,6 +409,7 @@ RunSummary Simulation::run(const StepObserver& after_step) {
     ++summary.steps;
     ++steps_;
     summary.outer_iterations += r.outer_iterations;
+    if (!(r.velocity_change < config_.flow.numerics.outer_tolerance)) ++summary.steps_outer_unconverged;
     summary.momentum_iterations += r.momentum_iterations;
     summary.pressure_iterations += r.pressure_iterations;
     summary.pressure_solves += r.pressure_solves;

@@ -20,6 +20,9 @@ struct RunSummary {
   double time = 0.0;
   double wall_seconds = 0.0;
   long outer_iterations = 0;
+  // Steps whose outer iterations ran out before the velocity changed by less than
+  // numerics.outer_tolerance (most steps, with the few iterations of the collapse cases).
+  long steps_outer_unconverged = 0;
   long momentum_iterations = 0;
   long pressure_iterations = 0;
   long pressure_solves = 0;
