@@ -217,10 +217,10 @@ void FlowSolver::sync_velocity_from_cells() {
 // ---------------------------------------------------------------------------------------------
 // Hydrostatic initial pressure.
 
+// With gravity tilted from the y axis (an inclined bed), the initial pressure carries the y part:
+// the weight normal to a bed along x. The x part drives the flow, as on a slope.
 void FlowSolver::set_hydrostatic_pressure() {
   const double gy = settings_.gravity[1];
-  if (settings_.gravity[0] != 0.0)
-    throw std::invalid_argument("a hydrostatic initial pressure needs gravity along the y axis");
   // Every rank needs whole columns of density: gather them (once, at start-up).
   Vec natural, all;
   VecScatter to_all;
