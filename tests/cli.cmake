@@ -56,6 +56,12 @@ add_test(NAME cli_restart_other_domain
                  ${GRANFLOW_SHORT_RUN})
 set_tests_properties(cli_restart_other_domain PROPERTIES LABELS cli
                      PASS_REGULAR_EXPRESSION "the checkpoint is of the domain \\[0, 0.6\\] x \\[0, 0.2\\] \\(planar\\); the case's is \\[0, 0.7\\]")
+add_test(NAME cli_restart_other_grading
+         COMMAND sh -c "g=$0; d=$1; c=$2; shift 2; rm -rf \"$d\"; \"$g\" run \"$c\" -o \"$d\" \"$@\" > /dev/null || exit 1; \"$g\" run \"$c\" -o \"$d\" --restart \"$@\" --set time.end=0.05 --set mesh.grading=[5,0.2] 2>&1"
+                 $<TARGET_FILE:granflow> ${CMAKE_CURRENT_BINARY_DIR}/restart_grading ${CMAKE_SOURCE_DIR}/cases/bui2008_experiment.toml
+                 ${GRANFLOW_SHORT_RUN})
+set_tests_properties(cli_restart_other_grading PROPERTIES LABELS cli
+                     PASS_REGULAR_EXPRESSION "the checkpoint is of the domain [^;]*\\(planar\\); the case's is [^\n]*\\(planar\\), grading \\[5, 0.2\\]")
 # An output path that is a file, a misspelt command, a solver PETSc does not know, a PETSc option
 # nothing reads.
 add_test(NAME cli_output_is_a_file

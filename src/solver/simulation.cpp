@@ -295,8 +295,12 @@ std::vector<Field*> Simulation::checkpoint_fields() {
 // The domain as a checkpoint records it, so that a restart cannot take the fields of another one.
 std::string Simulation::domain() const {
   const auto& m = config_.mesh;
-  return fmt::format("[{:.9g}, {:.9g}] x [{:.9g}, {:.9g}] ({})", m.lower[0], m.upper[0], m.lower[1], m.upper[1],
-                     m.axisymmetric ? "axisymmetric" : "planar");
+  std::string text = fmt::format("[{:.9g}, {:.9g}] x [{:.9g}, {:.9g}] ({})", m.lower[0], m.upper[0], m.lower[1],
+                                 m.upper[1], m.axisymmetric ? "axisymmetric" : "planar");
+  // Graded cells lie elsewhere: a restart on other grading would read the fields into wrong cells.
+  if (m.grading != std::array<double, 2>{1.0, 1.0})
+    text += fmt::format(", grading [{:.9g}, {:.9g}]", m.grading[0], m.grading[1]);
+  return text;
 }
 
 // The materials and gravity, as a checkpoint records them: a restart with others is most likely

@@ -187,6 +187,13 @@ TEST(CaseFile, AirBandNeedsTheCoupledSolveAndAnOpenTop) {
   EXPECT_NE(no_soil.find("numerics.air_band"), std::string::npos) << no_soil;
 }
 
+TEST(CaseFile, CoupledSolveNeedsAnAtmosphere) {
+  const std::string e = error_of(minimal, {"numerics.pressure_coupling=coupled"});
+  EXPECT_NE(e.find("numerics.pressure_coupling"), std::string::npos) << e;
+  EXPECT_NE(e.find("atmosphere"), std::string::npos) << e;
+  EXPECT_NO_THROW(parse_case(minimal, {"numerics.pressure_coupling=coupled", "boundary.north={type=\"atmosphere\"}"}));
+}
+
 TEST(CaseFile, ShippedCasesAreValid) {
   for (const char* name : {"lid_driven_cavity_re100", "lid_driven_cavity_re1000", "bui2008_experiment"})
     EXPECT_NO_THROW(load_case(std::string(GRANFLOW_SOURCE_DIR) + "/cases/" + name + ".toml")) << name;
