@@ -67,7 +67,24 @@ set_tests_properties(cli_restart_other_grading PROPERTIES LABELS cli
 add_test(NAME cli_output_is_a_file
          COMMAND sh -c "touch \"$1\"; \"$0\" run \"$2\" -o \"$1\" 2>&1"
                  $<TARGET_FILE:granflow> ${CMAKE_CURRENT_BINARY_DIR}/output_file ${CMAKE_SOURCE_DIR}/cases/lid_driven_cavity_re100.toml)
-set_tests_properties(cli_output_is_a_file PROPERTIES LABELS cli PASS_REGULAR_EXPRESSION "error: -o [^\n]*output_file: cannot make the output directory: Not a directory")
+set_tests_properties(cli_output_is_a_file PROPERTIES LABELS cli PASS_REGULAR_EXPRESSION "error: -o [^\n]*output_file: not a directory")
+add_test(NAME cli_output_is_a_file_overwrite
+         COMMAND sh -c "touch \"$1\"; \"$0\" run \"$2\" -o \"$1\" --overwrite 2>&1; test -f \"$1\""
+                 $<TARGET_FILE:granflow> ${CMAKE_CURRENT_BINARY_DIR}/output_file_overwrite ${CMAKE_SOURCE_DIR}/cases/lid_driven_cavity_re100.toml)
+set_tests_properties(cli_output_is_a_file_overwrite PROPERTIES LABELS cli PASS_REGULAR_EXPRESSION "^error: -o [^\n]*output_file_overwrite: not a directory\n$")
+# --overwrite leaves none of the earlier run's files: a shorter run does not keep the longer one's
+# later outputs. A run that wrote only line samples is an earlier run too.
+add_test(NAME cli_overwrite_removes_the_earlier_run
+         COMMAND sh -c "g=$0; d=$1; c=$2; shift 2; rm -rf \"$d\"; \"$g\" run \"$c\" -o \"$d\" \"$@\" --set time.end=0.04 > /dev/null && test -f \"$d/surface_00004.csv\" && \"$g\" run \"$c\" -o \"$d\" --overwrite \"$@\" > /dev/null && ! ls \"$d\" | grep -q '_0000[34]' && test -f \"$d/surface_00002.csv\""
+                 $<TARGET_FILE:granflow> ${CMAKE_CURRENT_BINARY_DIR}/overwrite_removes ${CMAKE_SOURCE_DIR}/cases/bui2008_experiment.toml
+                 ${GRANFLOW_SHORT_RUN})
+set_tests_properties(cli_overwrite_removes_the_earlier_run PROPERTIES LABELS cli)
+add_test(NAME cli_earlier_run_of_line_samples_refused
+         COMMAND sh -c "g=$0; d=$1; c=$2; shift 2; rm -rf \"$d\"; \"$g\" run \"$c\" -o \"$d\" \"$@\" > /dev/null || exit 1; \"$g\" run \"$c\" -o \"$d\" \"$@\" 2>&1"
+                 $<TARGET_FILE:granflow> ${CMAKE_CURRENT_BINARY_DIR}/earlier_lines ${CMAKE_SOURCE_DIR}/cases/lid_driven_cavity_re100.toml
+                 --set "mesh.cells=[8,8]" --set time.end=0.02 --set output.fields=false --set output.checkpoints=false --set output.progress_seconds=0)
+set_tests_properties(cli_earlier_run_of_line_samples_refused PROPERTIES LABELS cli
+                     PASS_REGULAR_EXPRESSION "holds an earlier run [(][^)]*centreline[^)]*[)]")
 add_test(NAME cli_unknown_command COMMAND granflow runn ${CMAKE_SOURCE_DIR}/cases/lid_driven_cavity_re100.toml)
 set_tests_properties(cli_unknown_command PROPERTIES LABELS cli PASS_REGULAR_EXPRESSION "error: unknown command 'runn'")
 add_test(NAME cli_check_unknown_solver

@@ -16,6 +16,8 @@
 #include "io/case_error.hpp"
 #include "io/case_file.hpp"
 #include "io/checkpoint.hpp"
+#include "io/collective_failure.hpp"
+#include "io/run_directory.hpp"
 #include "models/rheology/element_test.hpp"
 #include "solver/linear_solver.hpp"
 #include "solver/simulation.hpp"
@@ -31,13 +33,6 @@ void check_solver_methods(const granflow::CaseConfig& c) {
       throw granflow::CaseError(fmt::format("{}: solver.{}.{}", c.source.string(), name, problem));
 }
 
-// A run's own files in `dir`, if there are any: a new run there would replace them.
-std::string earlier_run_in(const std::filesystem::path& dir) {
-  for (const char* name : {"history.csv", "checkpoint", "fields.pvd"})
-    if (std::filesystem::exists(dir / name)) return (dir / name).string();
-  return {};
-}
-
 int run_case(const std::string& case_file, const std::vector<std::string>& overrides, std::string out_dir,
              bool restart, bool overwrite) {
   using namespace granflow;
@@ -51,14 +46,30 @@ int run_case(const std::string& case_file, const std::vector<std::string>& overr
   // output path that cannot be a directory is the simulation's to report, as it makes the directory.
   if (restart && !std::filesystem::exists(out_dir))
     throw CheckpointError(fmt::format("no checkpoint to restart from in {}: no such directory", out_dir));
-  if (!restart && !overwrite)
-    if (auto earlier = earlier_run_in(out_dir); !earlier.empty())
-      throw CaseError(fmt::format("{} holds an earlier run ({}): continue it with --restart, replace it with "
-                                  "--overwrite, or choose another directory with -o", out_dir, earlier));
-  // An earlier run's checkpoint must not outlive it: a later --restart would continue that run.
-  if (overwrite && rank == 0)
-    for (const char* name : {"checkpoint", "checkpoint.old", "checkpoint.partial"})
-      std::filesystem::remove_all(std::filesystem::path(out_dir) / name);
+  {
+    std::error_code ec;
+    if (std::filesystem::exists(out_dir, ec) && !std::filesystem::is_directory(out_dir, ec))
+      throw CaseError(fmt::format("-o {}: not a directory", out_dir));
+  }
+  const auto earlier = run_files_in(out_dir);
+  if (!restart && !overwrite && !earlier.empty())
+    throw CaseError(fmt::format("{} holds an earlier run ({}): continue it with --restart, replace it with "
+                                "--overwrite, or choose another directory with -o", out_dir, earlier.front().string()));
+  // Every file of the earlier run goes, its checkpoint above all (a later --restart would continue
+  // that run), and its later outputs, which the new run might not write again.
+  if (overwrite && !restart) {
+    std::string problem;
+    if (rank == 0)
+      for (const auto& file : earlier) {
+        std::error_code ec;
+        std::filesystem::remove_all(file, ec);
+        if (ec) {
+          problem = fmt::format("--overwrite: cannot remove {}: {}", file.string(), ec.message());
+          break;
+        }
+      }
+    if (auto text = first_failure(PETSC_COMM_WORLD, problem); !text.empty()) throw CaseError(text);
+  }
   Simulation sim(PETSC_COMM_WORLD, config, out_dir);
   if (restart) sim.restart();
   if (rank == 0)

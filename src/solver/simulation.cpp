@@ -2,10 +2,12 @@
 
 #include <fmt/format.h>
 #include <fmt/ostream.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <fstream>
 
 #include "io/atomic_file.hpp"
 #include "io/case_error.hpp"
@@ -47,6 +49,12 @@ Simulation::Simulation(MPI_Comm comm, const CaseConfig& config, std::filesystem:
       std::error_code ec;
       std::filesystem::create_directories(out_, ec);
       if (ec) problem = fmt::format("-o {}: cannot make the output directory: {}", out_.string(), ec.message());
+      // Found now rather than at the first output, which may come after much of the run.
+      if (problem.empty()) {
+        const auto probe = out_ / fmt::format(".granflow_probe_{}", ::getpid());
+        if (!std::ofstream(probe)) problem = fmt::format("-o {}: cannot write into the output directory", out_.string());
+        std::filesystem::remove(probe, ec);
+      }
     }
     if (auto text = first_failure(comm, problem); !text.empty()) throw CaseError(text);  // on every rank
     series_ = std::make_unique<VtkSeries>(out_, "fields");
