@@ -355,6 +355,7 @@ CaseConfig read_case(const toml::table& root, const std::filesystem::path& sourc
     for (TableReader l : o.tables("line")) {
       LineSample s;
       s.name = l.required_string("name");
+      if (s.name.empty()) throw CaseError(fmt::format("{}.name: must not be empty", l.path()));
       for (char ch : s.name)
         if (!(std::isalnum(static_cast<unsigned char>(ch)) || ch == '_' || ch == '-'))
           throw CaseError(fmt::format("{}.name: '{}' may hold only letters, digits, '_' and '-'", l.path(), s.name));
@@ -362,6 +363,12 @@ CaseConfig read_case(const toml::table& root, const std::filesystem::path& sourc
       for (const char* own : {"history", "surface", "failure_line", "column_height", "lode_dissipation", "fields"})
         if (s.name == own)
           throw CaseError(fmt::format("{}.name: '{}' is the name of one of the run's own output files", l.path(), s.name));
+      // Numbered files are NAME_NNNNN.csv: a name ending in '_' and five digits could be one of them.
+      if (const size_t u = s.name.find_last_of('_');
+          u != std::string::npos && s.name.size() - u > 5 &&
+          std::all_of(s.name.begin() + long(u) + 1, s.name.end(), [](char ch) { return std::isdigit(static_cast<unsigned char>(ch)); }))
+        throw CaseError(fmt::format("{}.name: '{}' ends in '_' and five digits, like the numbered output "
+                                    "files (NAME_NNNNN.csv) it could overwrite", l.path(), s.name));
       for (const auto& other : c.output.lines)
         if (other.name == s.name) throw CaseError(fmt::format("{}.name: a second line named '{}'", l.path(), s.name));
       s.start = l.required_pair("start");

@@ -194,6 +194,18 @@ TEST(CaseFile, CoupledSolveNeedsAnAtmosphere) {
   EXPECT_NO_THROW(parse_case(minimal, {"numerics.pressure_coupling=coupled", "boundary.north={type=\"atmosphere\"}"}));
 }
 
+TEST(CaseFile, LineNamesCannotBeThoseOfOtherOutputFiles) {
+  const auto line = [](const std::string& name) {
+    return std::string(minimal) + "[[output.line]]\nname = \"" + name + "\"\nstart = [0.0, 0.5]\nend = [1.0, 0.5]\n";
+  };
+  EXPECT_EQ(error_of(line("profile_2")), "");
+  EXPECT_EQ(error_of(line("x_1a")), "");
+  for (const char* bad : {"", "surface_00001", "a_00000", "history", "a b"}) {
+    const std::string e = error_of(line(bad));
+    EXPECT_NE(e.find("output.line"), std::string::npos) << "'" << bad << "': " << e;
+  }
+}
+
 TEST(CaseFile, ShippedCasesAreValid) {
   for (const char* name : {"lid_driven_cavity_re100", "lid_driven_cavity_re1000", "bui2008_experiment"})
     EXPECT_NO_THROW(load_case(std::string(GRANFLOW_SOURCE_DIR) + "/cases/" + name + ".toml")) << name;
