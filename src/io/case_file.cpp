@@ -146,7 +146,10 @@ interface::Shape read_shape(TableReader r) {
     r.require_range("radius", c.radius, 1e-300, 1e300, "positive");
     out = c;
   } else {
-    out = interface::Polygon{r.pairs("points", 3)};
+    interface::Polygon polygon{r.pairs("points", 3)};
+    if (interface::self_intersecting(polygon))
+      throw CaseError(fmt::format("{}.points: the polygon crosses itself (two of its edges meet)", r.path()));
+    out = polygon;
   }
   r.finish();
   return out;
@@ -391,7 +394,7 @@ CaseConfig read_case(const toml::table& root, const std::filesystem::path& sourc
     // A shape may reach past the domain (it is clipped), but one wholly outside it holds no soil.
     for (size_t k = 0; k < c.soil->initial_soil.size(); ++k) {
       const auto [lo, hi] = interface::bounding_box(c.soil->initial_soil[k]);
-      if (!(lo[0] < c.mesh.upper[0] && hi[0] > c.mesh.lower[0] && lo[1] < c.mesh.upper[1] && hi[1] > c.mesh.lower[1]))
+      if (!interface::overlaps(c.soil->initial_soil[k], c.mesh.lower, c.mesh.upper))
         throw CaseError(fmt::format("initial.soil[{}]: the shape, within [{}, {}] x [{}, {}], lies outside the domain "
                                     "[{}, {}] x [{}, {}]", k, lo[0], hi[0], lo[1], hi[1], c.mesh.lower[0],
                                     c.mesh.upper[0], c.mesh.lower[1], c.mesh.upper[1]));

@@ -48,6 +48,62 @@ bool union_contains(const std::vector<Shape>& shapes, double x, double y) {
   return false;
 }
 
+namespace {
+// Orientation of c against the line a -> b: > 0 left, < 0 right, 0 on it.
+double orient(const Point& a, const Point& b, const Point& c) {
+  return (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]);
+}
+bool on_segment(const Point& a, const Point& b, const Point& c) {  // c on the line ab: within its extent?
+  return std::min(a[0], b[0]) <= c[0] && c[0] <= std::max(a[0], b[0]) && std::min(a[1], b[1]) <= c[1] &&
+         c[1] <= std::max(a[1], b[1]);
+}
+// Segments ab and cd cross or touch.
+bool segments_meet(const Point& a, const Point& b, const Point& c, const Point& d) {
+  const double o1 = orient(a, b, c), o2 = orient(a, b, d), o3 = orient(c, d, a), o4 = orient(c, d, b);
+  if (((o1 > 0 && o2 < 0) || (o1 < 0 && o2 > 0)) && ((o3 > 0 && o4 < 0) || (o3 < 0 && o4 > 0))) return true;
+  return (o1 == 0 && on_segment(a, b, c)) || (o2 == 0 && on_segment(a, b, d)) || (o3 == 0 && on_segment(c, d, a)) ||
+         (o4 == 0 && on_segment(c, d, b));
+}
+// Segments ab and cd cross at a point inside both (not at an end, not along a common line).
+bool segments_cross(const Point& a, const Point& b, const Point& c, const Point& d) {
+  const double o1 = orient(a, b, c), o2 = orient(a, b, d), o3 = orient(c, d, a), o4 = orient(c, d, b);
+  return ((o1 > 0 && o2 < 0) || (o1 < 0 && o2 > 0)) && ((o3 > 0 && o4 < 0) || (o3 < 0 && o4 > 0));
+}
+}  // namespace
+
+bool overlaps(const Shape& shape, const Point& lower, const Point& upper) {
+  if (const auto* b = std::get_if<Box>(&shape))
+    return b->lower[0] < upper[0] && b->upper[0] > lower[0] && b->lower[1] < upper[1] && b->upper[1] > lower[1];
+  if (const auto* c = std::get_if<Circle>(&shape)) {
+    const double dx = c->centre[0] - std::clamp(c->centre[0], lower[0], upper[0]);
+    const double dy = c->centre[1] - std::clamp(c->centre[1], lower[1], upper[1]);
+    return dx * dx + dy * dy < c->radius * c->radius;
+  }
+  // A polygon covers some of the rectangle if a vertex lies inside it, the rectangle's centre lies
+  // inside the polygon, or an edge crosses one of the rectangle's.
+  const auto& v = std::get<Polygon>(shape).vertices;
+  for (const auto& p : v)
+    if (p[0] > lower[0] && p[0] < upper[0] && p[1] > lower[1] && p[1] < upper[1]) return true;
+  if (contains(shape, 0.5 * (lower[0] + upper[0]), 0.5 * (lower[1] + upper[1]))) return true;
+  const Point corners[4] = {lower, {upper[0], lower[1]}, upper, {lower[0], upper[1]}};
+  for (std::size_t a = 0, b = v.size() - 1; a < v.size(); b = a++)
+    for (int k = 0; k < 4; ++k)
+      if (segments_cross(v[b], v[a], corners[k], corners[(k + 1) % 4])) return true;
+  return false;
+}
+
+bool self_intersecting(const Polygon& polygon) {
+  const auto& v = polygon.vertices;
+  const std::size_t n = v.size();
+  for (std::size_t a = 0; a < n; ++a)
+    for (std::size_t b = a + 1; b < n; ++b) {
+      const bool adjacent = b == a + 1 || (a == 0 && b == n - 1);
+      if (adjacent) continue;
+      if (segments_meet(v[a], v[(a + 1) % n], v[b], v[(b + 1) % n])) return true;
+    }
+  return false;
+}
+
 double union_fraction(const std::vector<Shape>& shapes, double x0, double x1, double y0, double y1, int samples) {
   // Fast path: the four corners and the centre agree (cells are small against the shapes).
   const int probe = union_contains(shapes, x0, y0) + union_contains(shapes, x1, y0) + union_contains(shapes, x0, y1) +

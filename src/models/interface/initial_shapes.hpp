@@ -24,6 +24,10 @@ bool contains(const Shape& shape, double x, double y);
 // The smallest axis-aligned box around the shape: {lower, upper}.
 std::array<Point, 2> bounding_box(const Shape& shape);
 bool union_contains(const std::vector<Shape>& shapes, double x, double y);
+// Whether the shape covers some area of the rectangle [lower, upper] (touching it is not enough).
+bool overlaps(const Shape& shape, const Point& lower, const Point& upper);
+// Whether two edges of the polygon that do not share a vertex cross or touch (a "bow tie").
+bool self_intersecting(const Polygon& polygon);
 
 // Fraction of the cell [x0,x1] x [y0,y1] inside the union, by samples x samples midpoint sampling
 // (error O(1/samples) only in cells the boundary crosses).

@@ -1,0 +1,45 @@
+// Initial soil shapes: whether a shape reaches into the domain at all, and whether a polygon crosses
+// itself, the two checks a case file's shapes get.
+#include "models/interface/initial_shapes.hpp"
+
+#include <gtest/gtest.h>
+
+namespace granflow::interface {
+namespace {
+
+const Point lower{0.0, 0.0}, upper{0.6, 0.2};
+
+TEST(InitialShapes, BoxesOverlapTheDomainOnlyWithSomeArea) {
+  EXPECT_TRUE(overlaps(Box{{0.0, 0.0}, {0.2, 0.1}}, lower, upper));
+  EXPECT_TRUE(overlaps(Box{{-1.0, -1.0}, {2.0, 2.0}}, lower, upper));  // around the domain
+  EXPECT_FALSE(overlaps(Box{{0.6, 0.0}, {0.8, 0.1}}, lower, upper));   // touching its side
+  EXPECT_FALSE(overlaps(Box{{0.7, 0.0}, {0.8, 0.1}}, lower, upper));
+}
+
+TEST(InitialShapes, CirclesOverlapByTheirDistanceFromTheDomain) {
+  // Its bounding box reaches into the domain, the circle does not (a corner of the domain lies
+  // 0.141 from its centre).
+  EXPECT_FALSE(overlaps(Circle{{0.7, 0.3}, 0.12}, lower, upper));
+  EXPECT_TRUE(overlaps(Circle{{0.7, 0.3}, 0.15}, lower, upper));
+  EXPECT_TRUE(overlaps(Circle{{0.3, 0.1}, 0.01}, lower, upper));   // inside
+  EXPECT_TRUE(overlaps(Circle{{0.3, 0.1}, 10.0}, lower, upper));   // around
+  EXPECT_FALSE(overlaps(Circle{{0.3, -0.1}, 0.1}, lower, upper));  // touching the floor
+}
+
+TEST(InitialShapes, PolygonsOverlapByVertexCentreOrCrossingEdge) {
+  EXPECT_TRUE(overlaps(Polygon{{{0.1, 0.05}, {0.2, 0.05}, {0.15, 0.1}}}, lower, upper));            // a vertex inside
+  EXPECT_TRUE(overlaps(Polygon{{{-1.0, -1.0}, {2.0, -1.0}, {0.3, 3.0}}}, lower, upper));            // around
+  EXPECT_TRUE(overlaps(Polygon{{{0.3, -0.1}, {0.4, 0.3}, {0.2, 0.3}}}, lower, upper));              // edges cross
+  // Its bounding box covers the domain's corner, the triangle does not.
+  EXPECT_FALSE(overlaps(Polygon{{{0.5, 0.3}, {0.8, 0.3}, {0.8, 0.1}}}, lower, upper));
+}
+
+TEST(InitialShapes, SelfIntersectingPolygonsAreFound) {
+  EXPECT_FALSE(self_intersecting(Polygon{{{0.0, 0.0}, {0.2, 0.0}, {0.2, 0.1}, {0.0, 0.1}}}));
+  EXPECT_FALSE(self_intersecting(Polygon{{{0.0, 0.0}, {0.2, 0.0}, {0.1, 0.05}, {0.2, 0.1}, {0.0, 0.1}}}));  // concave
+  EXPECT_TRUE(self_intersecting(Polygon{{{0.0, 0.0}, {0.2, 0.1}, {0.2, 0.0}, {0.0, 0.1}}}));  // a bow tie
+  EXPECT_TRUE(self_intersecting(Polygon{{{0.0, 0.0}, {0.2, 0.0}, {0.1, 0.0}, {0.1, 0.1}}}));  // an edge doubling back
+}
+
+}  // namespace
+}  // namespace granflow::interface
