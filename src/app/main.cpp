@@ -55,8 +55,10 @@ int run_case(const std::string& case_file, const std::vector<std::string>& overr
   if (!restart && !overwrite && !earlier.empty())
     throw CaseError(fmt::format("{} holds an earlier run ({}): continue it with --restart, replace it with "
                                 "--overwrite, or choose another directory with -o", out_dir, earlier.front().string()));
-  // Every file of the earlier run goes, its checkpoint above all (a later --restart would continue
-  // that run), and its later outputs, which the new run might not write again.
+  Simulation sim(PETSC_COMM_WORLD, config, out_dir);  // checks what the case file alone cannot
+  // Only now, with the case found good, every file of the earlier run goes: its checkpoint above all
+  // (a later --restart would continue that run), and its later outputs, which the new run might not
+  // write again.
   if (overwrite && !restart) {
     std::string problem;
     if (rank == 0)
@@ -70,7 +72,6 @@ int run_case(const std::string& case_file, const std::vector<std::string>& overr
       }
     if (auto text = first_failure(PETSC_COMM_WORLD, problem); !text.empty()) throw CaseError(text);
   }
-  Simulation sim(PETSC_COMM_WORLD, config, out_dir);
   if (restart) sim.restart();
   if (rank == 0)
     fmt::print("granflow: {} on {} x {} cells {}to t = {} s, output in {}\n", config.title, config.mesh.cells[0],

@@ -43,6 +43,9 @@ Simulation::Simulation(MPI_Comm comm, const CaseConfig& config, std::filesystem:
   flow_->set_hydrostatic_pressure();
   flow_->update_properties();  // the granular viscosity needs the pressure
   if (soil_) initial_soil_volume_ = soil_->budget(*flow_).soil_volume;
+  if (soil_ && !(initial_soil_volume_ > 0.0))  // the budget is summed over all ranks: all stop alike
+    throw CaseError(fmt::format("initial.soil: the shapes cover no part of any cell's samples on this {} x {} mesh "
+                                "(a shape far smaller than a cell)", grid_->nx(), grid_->ny()));
   if (!out_.empty()) {
     std::string problem;
     if (rank_ == 0) {

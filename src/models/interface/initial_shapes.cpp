@@ -105,11 +105,18 @@ bool self_intersecting(const Polygon& polygon) {
 }
 
 double union_fraction(const std::vector<Shape>& shapes, double x0, double x1, double y0, double y1, int samples) {
-  // Fast path: the four corners and the centre agree (cells are small against the shapes).
+  // Fast path: the four corners and the centre agree (cells are small against the shapes). Not for
+  // a shape narrower or lower than the cell that reaches into it, which could lie between the probes.
+  bool small_shape_here = false;
+  for (const auto& s : shapes) {
+    const auto [lo, hi] = bounding_box(s);
+    if (lo[0] < x1 && hi[0] > x0 && lo[1] < y1 && hi[1] > y0 && (hi[0] - lo[0] < x1 - x0 || hi[1] - lo[1] < y1 - y0))
+      small_shape_here = true;
+  }
   const int probe = union_contains(shapes, x0, y0) + union_contains(shapes, x1, y0) + union_contains(shapes, x0, y1) +
                     union_contains(shapes, x1, y1) + union_contains(shapes, 0.5 * (x0 + x1), 0.5 * (y0 + y1));
-  if (probe == 0) return 0.0;
-  if (probe == 5) return 1.0;
+  if (probe == 0 && !small_shape_here) return 0.0;
+  if (probe == 5 && !small_shape_here) return 1.0;
   int hits = 0;
   for (int a = 0; a < samples; ++a)
     for (int b = 0; b < samples; ++b) {

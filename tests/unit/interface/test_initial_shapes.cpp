@@ -4,6 +4,8 @@
 
 #include <gtest/gtest.h>
 
+#include <vector>
+
 namespace granflow::interface {
 namespace {
 
@@ -39,6 +41,16 @@ TEST(InitialShapes, SelfIntersectingPolygonsAreFound) {
   EXPECT_FALSE(self_intersecting(Polygon{{{0.0, 0.0}, {0.2, 0.0}, {0.1, 0.05}, {0.2, 0.1}, {0.0, 0.1}}}));  // concave
   EXPECT_TRUE(self_intersecting(Polygon{{{0.0, 0.0}, {0.2, 0.1}, {0.2, 0.0}, {0.0, 0.1}}}));  // a bow tie
   EXPECT_TRUE(self_intersecting(Polygon{{{0.0, 0.0}, {0.2, 0.0}, {0.1, 0.0}, {0.1, 0.1}}}));  // an edge doubling back
+}
+
+// A shape smaller than the cell, between the cell's corners and centre, is not lost by the fast path
+// that reads those five points.
+TEST(InitialShapes, AShapeSmallerThanTheCellIsSampled) {
+  const std::vector<Shape> small{Circle{{0.305, 0.105}, 0.002}};
+  const double f = union_fraction(small, 0.3, 0.32, 0.1, 0.12);
+  const double exact = 3.14159265 * 0.002 * 0.002 / (0.02 * 0.02);  // 0.0314
+  EXPECT_NEAR(f, exact, 0.2 * exact);
+  EXPECT_EQ(union_fraction(small, 0.32, 0.34, 0.1, 0.12), 0.0);  // the next cell: none
 }
 
 }  // namespace
