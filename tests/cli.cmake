@@ -161,3 +161,11 @@ add_test(NAME cli_line_sample_soil_columns
                  $<TARGET_FILE:granflow> ${CMAKE_SOURCE_DIR}/cases/bui2008_experiment.toml ${CMAKE_CURRENT_BINARY_DIR}/line_sample_soil)
 set_tests_properties(cli_line_sample_soil_columns PROPERTIES LABELS cli
                      PASS_REGULAR_EXPRESSION "^x,y,u,v,p,viscosity,soil_fraction,strain_norm,strain_rate_norm\n0[.]1,0,0,0,[0-9.e+]+,[0-9.e+]+,1,")
+# A linear solver that fails inside (hypre on a closed mesh of two cells) ends the run with one
+# message, not PETSc's error trace.
+add_test(NAME cli_linear_solver_failure_named
+         COMMAND granflow run ${CMAKE_SOURCE_DIR}/cases/lid_driven_cavity_re100.toml -o ${CMAKE_CURRENT_BINARY_DIR}/solver_failure
+                 --overwrite --set "mesh.cells=[1,2]" --set time.end=0.05 --set output.progress_seconds=0)
+set_tests_properties(cli_linear_solver_failure_named PROPERTIES LABELS cli
+                     PASS_REGULAR_EXPRESSION "error: linear solver 'pressure' failed: [^\n]*another solver.pressure.pc_type may do"
+                     FAIL_REGULAR_EXPRESSION "PETSC ERROR")

@@ -5,9 +5,17 @@
 #include <algorithm>
 #include <stdexcept>
 
+#include "io/collective_failure.hpp"
 #include "solver/divergence_error.hpp"
 
 namespace granflow {
+
+namespace {
+// The case file's table of a solver from its options prefix (momentum_x and momentum_y: momentum).
+std::string solver_table_name(const std::string& prefix) {
+  return prefix.rfind("momentum", 0) == 0 ? "momentum" : prefix;
+}
+}  // namespace
 
 std::string unknown_method(const LinearSolverSettings& s) {
   KSP ksp;
@@ -61,7 +69,13 @@ LinearSolver::LinearSolver(MPI_Comm comm, const std::string& prefix, const Linea
   if (std::string(type) == KSPPREONLY) KSPSetInitialGuessNonzero(ksp_, PETSC_FALSE);
 }
 
-LinearSolver::~LinearSolver() { KSPDestroy(&ksp_); }
+LinearSolver::~LinearSolver() {
+  // Quietly: after a failed solve a library's state may be left half made (hypre's vectors), and
+  // PETSc would print a second trace while the run is already stopping with its message.
+  PetscPushErrorHandler(PetscReturnErrorHandler, nullptr);
+  KSPDestroy(&ksp_);
+  PetscPopErrorHandler();
+}
 
 void LinearSolver::set_operator(Mat a) {
   PetscCallAbort(PETSC_COMM_WORLD, KSPSetOperators(ksp_, a, a));
@@ -73,7 +87,21 @@ int LinearSolver::solve(Vec b, Vec x) {
   const bool rebuild = !built_ || (changes_since_setup_ > 0 && (changes_since_setup_ >= max_reuse_ ||
                                    last_iterations_ > 2 * std::max(iterations_after_setup_, 2)));
   KSPSetReusePreconditioner(ksp_, rebuild ? PETSC_FALSE : PETSC_TRUE);
-  PetscCallAbort(PETSC_COMM_WORLD, KSPSolve(ksp_, b, x));
+  // A failure inside the solve (an external library's, a preconditioner that cannot be built) ends
+  // the run with one message instead of PETSc's error trace and an abort.
+  PetscPushErrorHandler(PetscReturnErrorHandler, nullptr);
+  const PetscErrorCode error = KSPSolve(ksp_, b, x);
+  PetscPopErrorHandler();
+  std::string problem;
+  if (error) {
+    const char* text = nullptr;
+    PetscErrorMessage(error, &text, nullptr);
+    problem = fmt::format("linear solver '{}' failed: {} (PETSc error {}); another solver.{}.pc_type may do",
+                          prefix_, text ? text : "unknown error", int(error), solver_table_name(prefix_));
+  }
+  MPI_Comm comm;
+  PetscObjectGetComm(reinterpret_cast<PetscObject>(ksp_), &comm);
+  if (auto text = first_failure(comm, problem); !text.empty()) throw DivergenceError(text);
   KSPConvergedReason reason;
   PetscInt its;
   KSPGetConvergedReason(ksp_, &reason);
