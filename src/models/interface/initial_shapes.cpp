@@ -1,6 +1,7 @@
 #include "models/interface/initial_shapes.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <cstddef>
 
 namespace granflow::interface {
@@ -64,11 +65,6 @@ bool segments_meet(const Point& a, const Point& b, const Point& c, const Point& 
   return (o1 == 0 && on_segment(a, b, c)) || (o2 == 0 && on_segment(a, b, d)) || (o3 == 0 && on_segment(c, d, a)) ||
          (o4 == 0 && on_segment(c, d, b));
 }
-// Segments ab and cd cross at a point inside both (not at an end, not along a common line).
-bool segments_cross(const Point& a, const Point& b, const Point& c, const Point& d) {
-  const double o1 = orient(a, b, c), o2 = orient(a, b, d), o3 = orient(c, d, a), o4 = orient(c, d, b);
-  return ((o1 > 0 && o2 < 0) || (o1 < 0 && o2 > 0)) && ((o3 > 0 && o4 < 0) || (o3 < 0 && o4 > 0));
-}
 }  // namespace
 
 bool overlaps(const Shape& shape, const Point& lower, const Point& upper) {
@@ -79,17 +75,33 @@ bool overlaps(const Shape& shape, const Point& lower, const Point& upper) {
     const double dy = c->centre[1] - std::clamp(c->centre[1], lower[1], upper[1]);
     return dx * dx + dy * dy < c->radius * c->radius;
   }
-  // A polygon covers some of the rectangle if a vertex lies inside it, the rectangle's centre lies
-  // inside the polygon, or an edge crosses one of the rectangle's.
-  const auto& v = std::get<Polygon>(shape).vertices;
-  for (const auto& p : v)
-    if (p[0] > lower[0] && p[0] < upper[0] && p[1] > lower[1] && p[1] < upper[1]) return true;
-  if (contains(shape, 0.5 * (lower[0] + upper[0]), 0.5 * (lower[1] + upper[1]))) return true;
-  const Point corners[4] = {lower, {upper[0], lower[1]}, upper, {lower[0], upper[1]}};
-  for (std::size_t a = 0, b = v.size() - 1; a < v.size(); b = a++)
-    for (int k = 0; k < 4; ++k)
-      if (segments_cross(v[b], v[a], corners[k], corners[(k + 1) % 4])) return true;
-  return false;
+  // A polygon: the area of its part inside the rectangle, clipped edge by edge (Sutherland-Hodgman,
+  // which keeps the area of a concave polygon right though it may leave edges along the sides).
+  std::vector<Point> clipped = std::get<Polygon>(shape).vertices;
+  for (int axis = 0; axis < 2; ++axis)
+    for (double side : {-1.0, 1.0}) {
+      const double bound = side < 0 ? lower[axis] : upper[axis];
+      const auto inside = [&](const Point& p) { return side * (p[axis] - bound) <= 0.0; };
+      std::vector<Point> next;
+      for (std::size_t k = 0; k < clipped.size(); ++k) {
+        const Point& p = clipped[k];
+        const Point& q = clipped[(k + 1) % clipped.size()];
+        if (inside(p)) next.push_back(p);
+        if (inside(p) != inside(q)) {
+          const double t = (bound - p[axis]) / (q[axis] - p[axis]);
+          next.push_back({p[0] + t * (q[0] - p[0]), p[1] + t * (q[1] - p[1])});
+        }
+      }
+      clipped.swap(next);
+      if (clipped.empty()) return false;
+    }
+  double twice_area = 0.0;
+  for (std::size_t k = 0; k < clipped.size(); ++k) {
+    const Point& p = clipped[k];
+    const Point& q = clipped[(k + 1) % clipped.size()];
+    twice_area += p[0] * q[1] - q[0] * p[1];
+  }
+  return std::abs(twice_area) > 1e-12 * (upper[0] - lower[0]) * (upper[1] - lower[1]);
 }
 
 bool self_intersecting(const Polygon& polygon) {

@@ -28,10 +28,13 @@ TEST(InitialShapes, CirclesOverlapByTheirDistanceFromTheDomain) {
   EXPECT_FALSE(overlaps(Circle{{0.3, -0.1}, 0.1}, lower, upper));  // touching the floor
 }
 
-TEST(InitialShapes, PolygonsOverlapByVertexCentreOrCrossingEdge) {
+TEST(InitialShapes, PolygonsOverlapByTheAreaOfTheirPartInside) {
   EXPECT_TRUE(overlaps(Polygon{{{0.1, 0.05}, {0.2, 0.05}, {0.15, 0.1}}}, lower, upper));            // a vertex inside
   EXPECT_TRUE(overlaps(Polygon{{{-1.0, -1.0}, {2.0, -1.0}, {0.3, 3.0}}}, lower, upper));            // around
   EXPECT_TRUE(overlaps(Polygon{{{0.3, -0.1}, {0.4, 0.3}, {0.2, 0.3}}}, lower, upper));              // edges cross
+  // On the domain's sides, as a wedge against the wall and the floor.
+  EXPECT_TRUE(overlaps(Polygon{{{0.0, 0.0}, {0.3, 0.0}, {0.0, 0.1}}}, lower, upper));
+  EXPECT_FALSE(overlaps(Polygon{{{0.0, 0.0}, {0.3, 0.0}, {0.3, -0.1}}}, lower, upper));  // below the floor
   // Its bounding box covers the domain's corner, the triangle does not.
   EXPECT_FALSE(overlaps(Polygon{{{0.5, 0.3}, {0.8, 0.3}, {0.8, 0.1}}}, lower, upper));
 }
