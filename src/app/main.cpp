@@ -43,7 +43,7 @@ int run_case(const std::string& case_file, const std::vector<std::string>& overr
   MPI_Comm_rank(PETSC_COMM_WORLD, &rank);
   // Checked before the simulation makes the output directory, so a mistyped one is not left behind.
   // Every rank sees the same files here (the output directory is shared), so all stop alike. An
-  // output path that cannot be a directory is the simulation's to report, as it makes the directory.
+  // output directory that cannot be made or written into is the simulation's to report, as it makes it.
   if (restart && !std::filesystem::exists(out_dir))
     throw CheckpointError(fmt::format("no checkpoint to restart from in {}: no such directory", out_dir));
   {
@@ -51,7 +51,9 @@ int run_case(const std::string& case_file, const std::vector<std::string>& overr
     if (std::filesystem::exists(out_dir, ec) && !std::filesystem::is_directory(out_dir, ec))
       throw CaseError(fmt::format("-o {}: not a directory", out_dir));
   }
-  const auto earlier = run_files_in(out_dir);
+  std::vector<std::string> line_names;
+  for (const auto& line : config.output.lines) line_names.push_back(line.name);
+  const auto earlier = run_files_in(out_dir, line_names);
   if (!restart && !overwrite && !earlier.empty())
     throw CaseError(fmt::format("{} holds an earlier run ({}): continue it with --restart, replace it with "
                                 "--overwrite, or choose another directory with -o", out_dir, earlier.front().string()));

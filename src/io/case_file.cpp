@@ -147,6 +147,13 @@ interface::Shape read_shape(TableReader r) {
     out = c;
   } else {
     interface::Polygon polygon{r.pairs("points", 3)};
+    // A point repeated next to itself, or the first point repeated at the end to close the outline,
+    // adds an edge of no length; it is dropped.
+    auto& v = polygon.vertices;
+    v.erase(std::unique(v.begin(), v.end()), v.end());
+    while (v.size() > 1 && v.back() == v.front()) v.pop_back();
+    if (v.size() < 3)
+      throw CaseError(fmt::format("{}.points: the polygon needs at least 3 distinct points", r.path()));
     if (interface::self_intersecting(polygon))
       throw CaseError(fmt::format("{}.points: the polygon crosses itself (two of its edges meet)", r.path()));
     out = polygon;

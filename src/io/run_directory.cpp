@@ -1,48 +1,68 @@
 #include "io/run_directory.hpp"
 
 #include <algorithm>
+#include <fstream>
 #include <set>
-#include <string>
 #include <system_error>
+
+#include "io/atomic_file.hpp"
 
 namespace granflow {
 
 namespace {
-// NAME_NNNNN.EXT with five digits: the stem NAME, or "" if `name` is not of that form.
+// NAME_NNNNN.EXT with five or more digits: the stem NAME, or "" if `name` is not of that form.
 std::string numbered_stem(const std::string& name, const std::string& extension) {
-  const size_t digits = 5, tail = 1 + digits + extension.size();  // _NNNNN.ext
-  if (name.size() <= tail || name.compare(name.size() - extension.size(), extension.size(), extension) != 0)
+  if (name.size() <= extension.size() || name.compare(name.size() - extension.size(), extension.size(), extension) != 0)
     return {};
-  const size_t underscore = name.size() - tail;
-  if (name[underscore] != '_') return {};
-  for (size_t k = underscore + 1; k < underscore + 1 + digits; ++k)
-    if (name[k] < '0' || name[k] > '9') return {};
-  return name.substr(0, underscore);
+  const std::string base = name.substr(0, name.size() - extension.size());
+  const size_t underscore = base.find_last_of('_');
+  if (underscore == std::string::npos || base.size() - underscore <= 5) return {};
+  if (!std::all_of(base.begin() + long(underscore) + 1, base.end(), [](char c) { return c >= '0' && c <= '9'; }))
+    return {};
+  return base.substr(0, underscore);
+}
+
+std::set<std::string> recorded_lines(const std::filesystem::path& dir) {
+  std::set<std::string> names;
+  std::ifstream in(dir / run_record_name);
+  std::string line;
+  while (std::getline(in, line))
+    if (line.rfind("line ", 0) == 0) names.insert(line.substr(5));
+  return names;
 }
 }  // namespace
 
-std::vector<std::filesystem::path> run_files_in(const std::filesystem::path& dir) {
+std::vector<std::filesystem::path> run_files_in(const std::filesystem::path& dir, const std::vector<std::string>& lines) {
   namespace fs = std::filesystem;
   std::vector<fs::path> files;
   std::error_code ec;
   if (!fs::is_directory(dir, ec)) return files;
-  std::set<std::string> series;
+  std::set<std::string> line_names = recorded_lines(dir);
+  line_names.insert(lines.begin(), lines.end());
+  const std::set<std::string> csv_series{"surface", "failure_line", "column_height"};
   for (const auto& entry : fs::directory_iterator(dir, ec)) {
     const std::string name = entry.path().filename().string();
-    if (name == "fields.pvd" || name == "history.csv" || name == "lode_dissipation.csv" || name == "checkpoint" ||
-        name == "checkpoint.old" || name == "checkpoint.partial") {
-      files.push_back(entry.path());
-    } else if (auto stem = numbered_stem(name, ".csv"); !stem.empty()) {
-      files.push_back(entry.path());
-      series.insert(stem);
-    } else if (!numbered_stem(name, ".vtr").empty()) {
-      files.push_back(entry.path());
-    }
+    const bool fixed = name == "fields.pvd" || name == "history.csv" || name == "lode_dissipation.csv" ||
+                       name == "checkpoint" || name == "checkpoint.old" || name == "checkpoint.partial" ||
+                       name == run_record_name;
+    const std::string csv_stem = numbered_stem(name, ".csv");
+    const bool series = csv_series.count(csv_stem) || line_names.count(csv_stem) ||
+                        numbered_stem(name, ".vtr") == "fields";
+    const bool latest_line = name.size() > 4 && name.compare(name.size() - 4, 4, ".csv") == 0 &&
+                             line_names.count(name.substr(0, name.size() - 4));
+    if (fixed || series || latest_line) files.push_back(entry.path());
   }
-  for (const auto& stem : series)
-    if (fs::exists(dir / (stem + ".csv"), ec)) files.push_back(dir / (stem + ".csv"));
   std::sort(files.begin(), files.end());
   return files;
+}
+
+void record_run(const std::filesystem::path& dir, const std::vector<std::string>& lines) {
+  std::set<std::string> names = recorded_lines(dir);
+  names.insert(lines.begin(), lines.end());
+  write_file_atomically(dir / run_record_name, [&](std::ostream& out) {
+    out << "# A granflow run's output directory; its line samples (a later run's --overwrite removes their files)\n";
+    for (const auto& n : names) out << "line " << n << "\n";
+  });
 }
 
 }  // namespace granflow

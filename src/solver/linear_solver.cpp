@@ -3,9 +3,9 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cstdio>
 #include <stdexcept>
 
-#include "io/collective_failure.hpp"
 #include "solver/divergence_error.hpp"
 
 namespace granflow {
@@ -88,7 +88,8 @@ int LinearSolver::solve(Vec b, Vec x) {
                                    last_iterations_ > 2 * std::max(iterations_after_setup_, 2)));
   KSPSetReusePreconditioner(ksp_, rebuild ? PETSC_FALSE : PETSC_TRUE);
   // A failure inside the solve (an external library's, a preconditioner that cannot be built) ends
-  // the run with one message instead of PETSc's error trace and an abort.
+  // the run with one message instead of PETSc's error trace: on one rank as a DivergenceError, on
+  // several with an abort.
   PetscPushErrorHandler(PetscReturnErrorHandler, nullptr);
   const PetscErrorCode error = KSPSolve(ksp_, b, x);
   PetscPopErrorHandler();
@@ -99,9 +100,18 @@ int LinearSolver::solve(Vec b, Vec x) {
     problem = fmt::format("linear solver '{}' failed: {} (PETSc error {}); another solver.{}.pc_type may do",
                           prefix_, text ? text : "unknown error", int(error), solver_table_name(prefix_));
   }
-  MPI_Comm comm;
-  PetscObjectGetComm(reinterpret_cast<PetscObject>(ksp_), &comm);
-  if (auto text = first_failure(comm, problem); !text.empty()) throw DivergenceError(text);
+  if (!problem.empty()) {
+    MPI_Comm comm;
+    PetscObjectGetComm(reinterpret_cast<PetscObject>(ksp_), &comm);
+    int size;
+    MPI_Comm_size(comm, &size);
+    if (size == 1) throw DivergenceError(problem);
+    // On several ranks the others may still wait inside the solve for this one, where no collective
+    // call of ours can meet them: only an abort stops them all.
+    fmt::print(stderr, "error: {}\n", problem);
+    std::fflush(stderr);
+    MPI_Abort(comm, 3);
+  }
   KSPConvergedReason reason;
   PetscInt its;
   KSPGetConvergedReason(ksp_, &reason);

@@ -16,6 +16,7 @@
 #include "io/contour.hpp"
 #include "io/field_sample.hpp"
 #include "io/gather.hpp"
+#include "io/run_directory.hpp"
 
 namespace granflow {
 
@@ -58,6 +59,7 @@ Simulation::Simulation(MPI_Comm comm, const CaseConfig& config, std::filesystem:
         if (!std::ofstream(probe)) problem = fmt::format("-o {}: cannot write into the output directory", out_.string());
         std::filesystem::remove(probe, ec);
       }
+
     }
     if (auto text = first_failure(comm, problem); !text.empty()) throw CaseError(text);  // on every rank
     series_ = std::make_unique<VtkSeries>(out_, "fields");
@@ -116,6 +118,14 @@ double Simulation::choose_dt(double dt_previous) const {
 void Simulation::write_output() {
   if (out_.empty()) return;
   const Grid& g = *grid_;
+  // The record of the line samples goes with the first output, after a --overwrite has cleared the
+  // directory of the earlier run (io/run_directory.hpp).
+  if (!run_recorded_ && rank_ == 0) {
+    std::vector<std::string> lines;
+    for (const auto& line : config_.output.lines) lines.push_back(line.name);
+    record_run(out_, lines);
+  }
+  run_recorded_ = true;
   // The strain norm behind the failure line is a diagnostic: bring it up to date for the soil lines
   // as well as for the fields, which may be switched off.
   if (soil_) soil_->compute_diagnostics(*flow_);

@@ -86,6 +86,7 @@ class Simulation {
   bool restarted_ = false;
   long steps_ = 0;  // steps of the whole run, over restarts (time.max_steps counts these)
   int output_index_ = 0;
+  bool run_recorded_ = false;  // the record of the run's line samples is written (io/run_directory.hpp)
   int rank_ = 0;
 };
 

@@ -206,6 +206,19 @@ TEST(CaseFile, LineNamesCannotBeThoseOfOtherOutputFiles) {
   }
 }
 
+TEST(CaseFile, PolygonsMayCloseTheirOutlineButNotCrossIt) {
+  const auto with_polygon = [](const std::string& points) {
+    return std::vector<std::string>{"soil.rheology.friction_angle=30",
+                                    "initial.soil=[{shape = \"polygon\", points = " + points + "}]"};
+  };
+  const CaseConfig closed = parse_case(two_phase, with_polygon("[[0,0],[0.2,0],[0.2,0.1],[0,0.1],[0,0]]"));
+  EXPECT_EQ(std::get<interface::Polygon>(closed.soil->initial_soil[0]).vertices.size(), 4u);
+  const std::string bow_tie = error_of(two_phase, with_polygon("[[0,0],[0.2,0.1],[0.2,0],[0,0.1]]"));
+  EXPECT_NE(bow_tie.find("crosses itself"), std::string::npos) << bow_tie;
+  const std::string degenerate = error_of(two_phase, with_polygon("[[0,0],[0.2,0],[0.2,0],[0,0]]"));
+  EXPECT_NE(degenerate.find("3 distinct points"), std::string::npos) << degenerate;
+}
+
 TEST(CaseFile, ShippedCasesAreValid) {
   for (const char* name : {"lid_driven_cavity_re100", "lid_driven_cavity_re1000", "bui2008_experiment"})
     EXPECT_NO_THROW(load_case(std::string(GRANFLOW_SOURCE_DIR) + "/cases/" + name + ".toml")) << name;

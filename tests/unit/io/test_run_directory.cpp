@@ -1,0 +1,52 @@
+// The files of an earlier run in an output directory: the run's own series and the line samples it
+// recorded or the new run names, never a file of another name.
+#include "io/run_directory.hpp"
+
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <vector>
+
+namespace granflow {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::vector<std::string> names_of(const std::vector<fs::path>& files) {
+  std::vector<std::string> names;
+  for (const auto& f : files) names.push_back(f.filename().string());
+  std::sort(names.begin(), names.end());
+  return names;
+}
+
+TEST(RunDirectory, FindsTheRunsFilesAndLeavesOthers) {
+  const fs::path dir = fs::temp_directory_path() / ("granflow_run_directory_" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  fs::create_directories(dir / "checkpoint");
+  for (const char* name : {"fields.pvd", "fields_00000.vtr", "history.csv", "lode_dissipation.csv", "surface_00003.csv",
+                           "failure_line_00003.csv", "column_height_00003.csv", "old_line.csv", "old_line_00002.csv",
+                           "new_line_00000.csv", "survey.csv", "survey_20240.csv", "notes.txt", "fields_1.vtr"})
+    std::ofstream(dir / name) << "x\n";
+  EXPECT_EQ(names_of(run_files_in(dir, {})),
+            (std::vector<std::string>{"checkpoint", "column_height_00003.csv", "failure_line_00003.csv", "fields.pvd",
+                                      "fields_00000.vtr", "history.csv", "lode_dissipation.csv", "surface_00003.csv"}));
+  record_run(dir, {"old_line"});
+  const auto with_lines = names_of(run_files_in(dir, {"new_line"}));
+  for (const char* name : {"old_line.csv", "old_line_00002.csv", "new_line_00000.csv", run_record_name})
+    EXPECT_TRUE(std::count(with_lines.begin(), with_lines.end(), name)) << name;
+  for (const char* name : {"survey.csv", "survey_20240.csv", "notes.txt", "fields_1.vtr"})
+    EXPECT_FALSE(std::count(with_lines.begin(), with_lines.end(), name)) << name;
+  record_run(dir, {"new_line"});  // keeps the earlier record's names
+  const auto both = names_of(run_files_in(dir, {}));
+  EXPECT_TRUE(std::count(both.begin(), both.end(), "old_line.csv"));
+  EXPECT_TRUE(std::count(both.begin(), both.end(), "new_line_00000.csv"));
+  EXPECT_TRUE(run_files_in(dir / "notes.txt", {}).empty());  // not a directory
+  fs::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace granflow
