@@ -381,7 +381,8 @@ CaseConfig read_case(const toml::table& root, const std::filesystem::path& sourc
       // Numbered files are NAME_NNNNN.csv: a name ending in '_' and five digits could be one of them.
       if (const size_t u = s.name.find_last_of('_');
           u != std::string::npos && s.name.size() - u > 5 &&
-          std::all_of(s.name.begin() + long(u) + 1, s.name.end(), [](char ch) { return std::isdigit(static_cast<unsigned char>(ch)); }))
+          std::all_of(s.name.begin() + long(u) + 1, s.name.end(),
+                      [](char ch) { return std::isdigit(static_cast<unsigned char>(ch)); }))
         throw CaseError(fmt::format("{}.name: '{}' ends in '_' and five digits, like the numbered output "
                                     "files (NAME_NNNNN.csv) it could overwrite", l.path(), s.name));
       for (const auto& other : c.output.lines)

@@ -32,7 +32,8 @@ std::set<std::string> recorded_lines(const std::filesystem::path& dir) {
 }
 }  // namespace
 
-std::vector<std::filesystem::path> run_files_in(const std::filesystem::path& dir, const std::vector<std::string>& lines) {
+std::vector<std::filesystem::path> run_files_in(const std::filesystem::path& dir,
+                                                const std::vector<std::string>& lines) {
   namespace fs = std::filesystem;
   std::vector<fs::path> files;
   std::error_code ec;

@@ -56,10 +56,10 @@ Simulation::Simulation(MPI_Comm comm, const CaseConfig& config, std::filesystem:
       // Found now rather than at the first output, which may come after much of the run.
       if (problem.empty()) {
         const auto probe = out_ / fmt::format(".granflow_probe_{}", ::getpid());
-        if (!std::ofstream(probe)) problem = fmt::format("-o {}: cannot write into the output directory", out_.string());
+        if (!std::ofstream(probe))
+          problem = fmt::format("-o {}: cannot write into the output directory", out_.string());
         std::filesystem::remove(probe, ec);
       }
-
     }
     if (auto text = first_failure(comm, problem); !text.empty()) throw CaseError(text);  // on every rank
     series_ = std::make_unique<VtkSeries>(out_, "fields");
