@@ -35,3 +35,15 @@ add_test(NAME cli_output_directory_cannot_be_made_2_ranks
 set_tests_properties(cli_output_directory_cannot_be_made_2_ranks PROPERTIES
   LABELS parallel TIMEOUT 120
   ENVIRONMENT "OMPI_ALLOW_RUN_AS_ROOT=1;OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1;OMPI_MCA_rmaps_base_oversubscribe=1")
+
+# Line samples on 2 ranks are those of 1 rank (the fields are gathered to the root before sampling),
+# up to the solver tolerance; the profile through a soil layer included.
+file(WRITE ${CMAKE_CURRENT_BINARY_DIR}/compare_line_samples.py
+"import sys\nimport numpy as np\na = np.genfromtxt(sys.argv[1], delimiter=',', skip_header=2)\nb = np.genfromtxt(sys.argv[2], delimiter=',', skip_header=2)\nassert a.shape == b.shape and a.shape[1] == 9, (a.shape, b.shape)\nd = np.abs(a - b).max(axis=0) / np.maximum(np.abs(a).max(axis=0), 1e-30)\nprint('largest relative difference per column:', ' '.join(f'{x:.1e}' for x in d))\nsys.exit(0 if d.max() < 1e-6 else 1)\n")
+add_test(NAME cli_line_samples_2_ranks_as_1
+         COMMAND sh -c "m=$0; g=$1; d=$2; c=$3; { cat \"$c\"; printf '[[output.line]]\\nname = \"profile\"\\nstart = [0.1, 0.0]\\nend = [0.1, 0.1]\\npoints = 41\\n'; } > \"$d.toml\" && for n in 1 2; do $m -np $n --oversubscribe \"$g\" run \"$d.toml\" -o \"$d$n\" --overwrite --set 'mesh.cells=[60,20]' --set time.end=0.05 --set output.fields=false --set output.progress_seconds=0 > /dev/null || exit 1; done; /usr/bin/python3 \"$4\" \"$d\"1/profile.csv \"$d\"2/profile.csv"
+                 ${MPIRUN} $<TARGET_FILE:granflow> ${CMAKE_CURRENT_BINARY_DIR}/line_ranks ${CMAKE_SOURCE_DIR}/cases/bui2008_experiment.toml
+                 ${CMAKE_CURRENT_BINARY_DIR}/compare_line_samples.py)
+set_tests_properties(cli_line_samples_2_ranks_as_1 PROPERTIES
+  LABELS parallel TIMEOUT 300 PASS_REGULAR_EXPRESSION "largest relative difference per column"
+  ENVIRONMENT "OMPI_ALLOW_RUN_AS_ROOT=1;OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1;OMPI_MCA_rmaps_base_oversubscribe=1")
