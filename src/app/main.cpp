@@ -51,9 +51,7 @@ int run_case(const std::string& case_file, const std::vector<std::string>& overr
     if (std::filesystem::exists(out_dir, ec) && !std::filesystem::is_directory(out_dir, ec))
       throw CaseError(fmt::format("-o {}: not a directory", out_dir));
   }
-  std::vector<std::string> line_names;
-  for (const auto& line : config.output.lines) line_names.push_back(line.name);
-  const auto earlier = run_files_in(out_dir, line_names);
+  const auto earlier = run_files_in(out_dir, config.output.lines);
   if (!restart && !overwrite && !earlier.empty())
     throw CaseError(fmt::format("{} holds an earlier run ({}): continue it with --restart, replace it with "
                                 "--overwrite, or choose another directory with -o", out_dir, earlier.front().string()));

@@ -32,14 +32,13 @@ std::set<std::string> recorded_lines(const std::filesystem::path& dir) {
 }
 }  // namespace
 
-std::vector<std::filesystem::path> run_files_in(const std::filesystem::path& dir,
-                                                const std::vector<std::string>& lines) {
+std::vector<std::filesystem::path> run_files_in(const std::filesystem::path& dir, const std::vector<LineSample>& lines) {
   namespace fs = std::filesystem;
   std::vector<fs::path> files;
   std::error_code ec;
   if (!fs::is_directory(dir, ec)) return files;
   std::set<std::string> line_names = recorded_lines(dir);
-  line_names.insert(lines.begin(), lines.end());
+  for (const auto& line : lines) line_names.insert(line.name);
   const std::set<std::string> csv_series{"surface", "failure_line", "column_height"};
   for (const auto& entry : fs::directory_iterator(dir, ec)) {
     const std::string name = entry.path().filename().string();
@@ -57,9 +56,9 @@ std::vector<std::filesystem::path> run_files_in(const std::filesystem::path& dir
   return files;
 }
 
-void record_run(const std::filesystem::path& dir, const std::vector<std::string>& lines) {
+void record_run(const std::filesystem::path& dir, const std::vector<LineSample>& lines) {
   std::set<std::string> names = recorded_lines(dir);
-  names.insert(lines.begin(), lines.end());
+  for (const auto& line : lines) names.insert(line.name);
   write_file_atomically(dir / run_record_name, [&](std::ostream& out) {
     out << "# A granflow run's output directory; its line samples (a later run's --overwrite removes their files)\n";
     for (const auto& n : names) out << "line " << n << "\n";

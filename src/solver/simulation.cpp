@@ -120,11 +120,7 @@ void Simulation::write_output() {
   const Grid& g = *grid_;
   // The record of the line samples goes with the first output, after a --overwrite has cleared the
   // directory of the earlier run (io/run_directory.hpp).
-  if (!run_recorded_ && rank_ == 0) {
-    std::vector<std::string> lines;
-    for (const auto& line : config_.output.lines) lines.push_back(line.name);
-    record_run(out_, lines);
-  }
+  if (!run_recorded_ && rank_ == 0) record_run(out_, config_.output.lines);
   run_recorded_ = true;
   // The strain norm behind the failure line is a diagnostic: bring it up to date for the soil lines
   // as well as for the fields, which may be switched off.

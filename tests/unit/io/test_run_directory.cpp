@@ -6,6 +6,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <initializer_list>
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -15,6 +16,12 @@ namespace granflow {
 namespace {
 
 namespace fs = std::filesystem;
+
+std::vector<LineSample> lines(std::initializer_list<const char*> names) {
+  std::vector<LineSample> out;
+  for (const char* n : names) out.push_back({n});
+  return out;
+}
 
 std::vector<std::string> names_of(const std::vector<fs::path>& files) {
   std::vector<std::string> names;
@@ -34,13 +41,13 @@ TEST(RunDirectory, FindsTheRunsFilesAndLeavesOthers) {
   EXPECT_EQ(names_of(run_files_in(dir, {})),
             (std::vector<std::string>{"checkpoint", "column_height_00003.csv", "failure_line_00003.csv", "fields.pvd",
                                       "fields_00000.vtr", "history.csv", "lode_dissipation.csv", "surface_00003.csv"}));
-  record_run(dir, {"old_line"});
-  const auto with_lines = names_of(run_files_in(dir, {"new_line"}));
+  record_run(dir, lines({"old_line"}));
+  const auto with_lines = names_of(run_files_in(dir, lines({"new_line"})));
   for (const char* name : {"old_line.csv", "old_line_00002.csv", "new_line_00000.csv", run_record_name})
     EXPECT_TRUE(std::count(with_lines.begin(), with_lines.end(), name)) << name;
   for (const char* name : {"survey.csv", "survey_20240.csv", "notes.txt", "fields_1.vtr"})
     EXPECT_FALSE(std::count(with_lines.begin(), with_lines.end(), name)) << name;
-  record_run(dir, {"new_line"});  // keeps the earlier record's names
+  record_run(dir, lines({"new_line"}));  // keeps the earlier record's names
   const auto both = names_of(run_files_in(dir, {}));
   EXPECT_TRUE(std::count(both.begin(), both.end(), "old_line.csv"));
   EXPECT_TRUE(std::count(both.begin(), both.end(), "new_line_00000.csv"));
