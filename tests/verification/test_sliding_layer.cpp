@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "io/gather.hpp"
+#include "models/rheology/drucker_prager_bingham.hpp"
 #include "solver/simulation.hpp"
 #include "collapse_measures.hpp"
 #include "test_support.hpp"
@@ -22,11 +23,9 @@
 namespace granflow {
 namespace {
 
-// 3 alpha_phi, with alpha_phi of [VoF] Eq. 8 for the friction angle phi (degrees): the cone's
-// friction in simple shear.
+// 3 alpha_phi ([VoF] Eq. 8) for the friction angle phi (degrees): the cone's friction in simple shear.
 double cone_friction_in_simple_shear(double phi_degrees) {
-  const double t = std::tan(phi_degrees * std::numbers::pi / 180.0);
-  return 3.0 * t / std::sqrt(9.0 + 12.0 * t * t);
+  return 3.0 * rheology::DruckerPragerBingham::from_friction_angle(phi_degrees * std::numbers::pi / 180.0, 0.0).alpha_phi;
 }
 
 // Mean x velocity of the soil whose cell centres lie in x_lo < x < x_hi (gathered fields, rank 0).
