@@ -25,7 +25,8 @@ namespace {
 
 // 3 alpha_phi ([VoF] Eq. 8) for the friction angle phi (degrees): the cone's friction in simple shear.
 double cone_friction_in_simple_shear(double phi_degrees) {
-  return 3.0 * rheology::DruckerPragerBingham::from_friction_angle(phi_degrees * std::numbers::pi / 180.0, 0.0).alpha_phi;
+  const double phi = phi_degrees * std::numbers::pi / 180.0;
+  return 3.0 * rheology::DruckerPragerBingham::from_friction_angle(phi, 0.0).alpha_phi;
 }
 
 // Mean x velocity of the soil whose cell centres lie in x_lo < x < x_hi (gathered fields, rank 0).
