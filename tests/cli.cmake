@@ -69,9 +69,9 @@ add_test(NAME cli_output_is_a_file
                  $<TARGET_FILE:granflow> ${CMAKE_CURRENT_BINARY_DIR}/output_file ${CMAKE_SOURCE_DIR}/cases/lid_driven_cavity_re100.toml)
 set_tests_properties(cli_output_is_a_file PROPERTIES LABELS cli PASS_REGULAR_EXPRESSION "error: -o [^\n]*output_file: not a directory")
 add_test(NAME cli_output_is_a_file_overwrite
-         COMMAND sh -c "touch \"$1\"; \"$0\" run \"$2\" -o \"$1\" --overwrite 2>&1; test -f \"$1\""
+         COMMAND sh -c "touch \"$1\"; \"$0\" run \"$2\" -o \"$1\" --overwrite 2>&1; test -f \"$1\" && echo file kept"
                  $<TARGET_FILE:granflow> ${CMAKE_CURRENT_BINARY_DIR}/output_file_overwrite ${CMAKE_SOURCE_DIR}/cases/lid_driven_cavity_re100.toml)
-set_tests_properties(cli_output_is_a_file_overwrite PROPERTIES LABELS cli PASS_REGULAR_EXPRESSION "^error: -o [^\n]*output_file_overwrite: not a directory\n$")
+set_tests_properties(cli_output_is_a_file_overwrite PROPERTIES LABELS cli PASS_REGULAR_EXPRESSION "^error: -o [^\n]*output_file_overwrite: not a directory\nfile kept\n$")
 # --overwrite leaves none of the earlier run's files: a shorter run does not keep the longer one's
 # later outputs. A run that wrote only line samples is an earlier run too.
 add_test(NAME cli_overwrite_removes_the_earlier_run

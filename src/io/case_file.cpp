@@ -408,7 +408,7 @@ CaseConfig read_case(const toml::table& root, const std::filesystem::path& sourc
     for (size_t k = 0; k < c.soil->initial_soil.size(); ++k) {
       const auto [lo, hi] = interface::bounding_box(c.soil->initial_soil[k]);
       if (!interface::overlaps(c.soil->initial_soil[k], c.mesh.lower, c.mesh.upper))
-        throw CaseError(fmt::format("initial.soil[{}]: the shape, within [{}, {}] x [{}, {}], lies outside the domain "
+        throw CaseError(fmt::format("initial.soil[{}]: the shape, within [{}, {}] x [{}, {}], covers no area of the domain "
                                     "[{}, {}] x [{}, {}]", k, lo[0], hi[0], lo[1], hi[1], c.mesh.lower[0],
                                     c.mesh.upper[0], c.mesh.lower[1], c.mesh.upper[1]));
     }

@@ -27,7 +27,7 @@ std::set<std::string> recorded_lines(const std::filesystem::path& dir) {
   std::ifstream in(dir / run_record_name);
   std::string line;
   while (std::getline(in, line))
-    if (line.rfind("line ", 0) == 0) names.insert(line.substr(5));
+    if (line.rfind("line ", 0) == 0 && line.size() > 5) names.insert(line.substr(5));
   return names;
 }
 }  // namespace
@@ -46,7 +46,7 @@ std::vector<std::filesystem::path> run_files_in(const std::filesystem::path& dir
                        name == "checkpoint" || name == "checkpoint.old" || name == "checkpoint.partial" ||
                        name == run_record_name;
     const std::string csv_stem = numbered_stem(name, ".csv");
-    const bool series = csv_series.count(csv_stem) || line_names.count(csv_stem) ||
+    const bool series = (!csv_stem.empty() && (csv_series.count(csv_stem) || line_names.count(csv_stem))) ||
                         numbered_stem(name, ".vtr") == "fields";
     const bool latest_line = name.size() > 4 && name.compare(name.size() - 4, 4, ".csv") == 0 &&
                              line_names.count(name.substr(0, name.size() - 4));

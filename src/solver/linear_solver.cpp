@@ -97,8 +97,8 @@ int LinearSolver::solve(Vec b, Vec x) {
   if (error) {
     const char* text = nullptr;
     PetscErrorMessage(error, &text, nullptr);
-    problem = fmt::format("linear solver '{}' failed: {} (PETSc error {}); another solver.{}.pc_type may do",
-                          prefix_, text ? text : "unknown error", int(error), solver_table_name(prefix_));
+    problem = fmt::format("linear solver '{}' failed: {}PETSc error {}; another solver.{}.pc_type may do", prefix_,
+                          text ? fmt::format("{}, ", text) : "", int(error), solver_table_name(prefix_));
   }
   if (!problem.empty()) {
     MPI_Comm comm;

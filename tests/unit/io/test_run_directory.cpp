@@ -52,6 +52,11 @@ TEST(RunDirectory, FindsTheRunsFilesAndLeavesOthers) {
   EXPECT_TRUE(std::count(both.begin(), both.end(), "old_line.csv"));
   EXPECT_TRUE(std::count(both.begin(), both.end(), "new_line_00000.csv"));
   EXPECT_TRUE(run_files_in(dir / "notes.txt", {}).empty());  // not a directory
+  // A record edited by hand to hold an empty name does not make every file the run's.
+  std::ofstream(dir / run_record_name) << "line \n";
+  const auto edited = names_of(run_files_in(dir, {}));
+  EXPECT_FALSE(std::count(edited.begin(), edited.end(), "notes.txt"));
+  EXPECT_FALSE(std::count(edited.begin(), edited.end(), "survey.csv"));
   fs::remove_all(dir);
 }
 
