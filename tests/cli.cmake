@@ -169,3 +169,11 @@ add_test(NAME cli_linear_solver_failure_named
 set_tests_properties(cli_linear_solver_failure_named PROPERTIES LABELS cli
                      PASS_REGULAR_EXPRESSION "error: linear solver 'pressure' failed: [^\n]*another solver.pressure.pc_type may do"
                      FAIL_REGULAR_EXPRESSION "PETSC ERROR")
+# Any other PETSc error is one line, not PETSc's trace (GRANFLOW_PETSC_TRACE=1 keeps the trace).
+add_test(NAME cli_petsc_error_one_line
+         COMMAND granflow run ${CMAKE_SOURCE_DIR}/cases/lid_driven_cavity_re100.toml -o ${CMAKE_CURRENT_BINARY_DIR}/petsc_error
+                 --overwrite --set "mesh.cells=[8,8]" --set time.end=0.01 --set output.progress_seconds=0
+                 "--petsc=-pressure_ksp_type bogus")
+set_tests_properties(cli_petsc_error_one_line PROPERTIES LABELS cli
+                     PASS_REGULAR_EXPRESSION "^error: PETSc: [^\n]*KSP type bogus [(]PETSc error [0-9]+ in KSPSetType[^\n]*\n$"
+                     FAIL_REGULAR_EXPRESSION "PETSC ERROR")

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -107,6 +108,29 @@ void warn_unused_petsc_options(int rank) {
       if (std::find(std::begin(at_finalize), std::end(at_finalize), std::string_view(names[k])) == std::end(at_finalize))
         fmt::print(stderr, "warning: PETSc option -{} was given but not used (misspelt, or no such solver)\n", names[k]);
   PetscOptionsLeftRestore(nullptr, &n, &names, &values);
+}
+
+// PETSc's errors as one line, where PETSc would print its whole trace: the first report of an error
+// (PETSC_ERROR_INITIAL) is printed, the frames it passes through on its way up are not. Every such
+// error ends the run (the calls that may fail and are handled push PETSc's quiet handler over this
+// one), so a single process exits here, before an abort adds Open MPI's banner; several ranks abort.
+// Running out of memory while the grid is made is the common case. GRANFLOW_PETSC_TRACE=1 keeps
+// PETSc's own trace.
+PetscErrorCode one_line_petsc_error(MPI_Comm, int line, const char* function, const char* file, PetscErrorCode code,
+                                    PetscErrorType type, const char* message, void*) {
+  if (type != PETSC_ERROR_INITIAL) return code;
+  const bool memory = code == PETSC_ERR_MEM || std::string_view(function) == "PetscMallocAlign";
+  const char* text = nullptr;
+  PetscErrorMessage(code, &text, nullptr);
+  std::string what = memory ? "out of memory (a coarser mesh may do)"
+                            : text ? text : "error";
+  if (!memory && message && *message && std::string_view(message) != what) what += fmt::format(": {}", message);
+  fmt::print(stderr, "error: PETSc: {} (PETSc error {} in {}, {}:{})\n", what, int(code), function, file, line);
+  std::fflush(stderr);
+  int world_size = 1;
+  MPI_Comm_size(MPI_COMM_WORLD, &world_size);
+  if (world_size == 1) std::_Exit(1);
+  return code;
 }
 
 // PETSc stops inside PetscInitialize, with its error trace, on an options file it cannot read: say
@@ -225,6 +249,8 @@ int main(int argc, char** argv) {
   int rank = 0, size = 1;
   MPI_Comm_rank(PETSC_COMM_WORLD, &rank);
   MPI_Comm_size(PETSC_COMM_WORLD, &size);
+  if (const char* trace = std::getenv("GRANFLOW_PETSC_TRACE"); !trace || std::string_view(trace) != "1")
+    PetscPushErrorHandler(one_line_petsc_error, nullptr);
 
   if (*check) {
     int status = 0;
