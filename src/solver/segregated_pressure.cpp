@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "mesh/face_loop.hpp"
 #include "solver/cell_faces.hpp"
 #include "solver/flow_solver.hpp"
 
@@ -142,38 +143,26 @@ int FlowSolver::solve_pressure(double) {
     ConstFieldArray u0 = local_read(grid_, *vel_old_[0]), v0 = local_read(grid_, *vel_old_[1]);
     ConstFieldArray fx0 = local_read(grid_, *face_old_[0]), fy0 = local_read(grid_, *face_old_[1]);
     ConstFieldArray rho = local_read(grid_, *rho_);
-    FieldArray fxv = local_array(grid_, *face_[0]), fyv = local_array(grid_, *face_[1]);
-    FieldArray ffx = local_array(grid_, *face_force_[0]), ffy = local_array(grid_, *face_force_[1]);
-    for (int j = b.ys; j < b.ye(); ++j)
-      for (int i = b.xs - 1; i < b.xe(); ++i) {
-        if (i == -1 || i == nx - 1) {
-          const Side s = i == -1 ? Side::west : Side::east;
-          const int ic = i == -1 ? 0 : i;
-          if (boundary(settings_.boundaries, s).kind == BoundaryKind::atmosphere) {
-            fxv[j][i] = hx[j][ic] + rx[j][ic] * ffx[j][i];
-          } else {
-            fxv[j][i] = 0.0;  // impermeable; the face force stays zero (pressure hydrostatic at the wall)
-          }
-          continue;
-        }
-        const double ustar = predicted(i, j, i + 1, j, hx.data(), wx.data(), u0.data(), fx0[j][i]);
-        fxv[j][i] = ustar + face_coefficient(rx.data(), rho.data(), i, j, i + 1, j) * ffx[j][i];
-      }
-    for (int j = b.ys - 1; j < b.ye(); ++j)
-      for (int i = b.xs; i < b.xe(); ++i) {
-        if (j == -1 || j == ny - 1) {
-          const Side s = j == -1 ? Side::south : Side::north;
-          const int jc = j == -1 ? 0 : j;
-          if (boundary(settings_.boundaries, s).kind == BoundaryKind::atmosphere) {
-            fyv[j][i] = hy[jc][i] + ry[jc][i] * ffy[j][i];
-          } else {
-            fyv[j][i] = 0.0;  // impermeable; the face force stays zero (pressure hydrostatic at the wall)
-          }
-          continue;
-        }
-        const double vstar = predicted(i, j, i, j + 1, hy.data(), wy.data(), v0.data(), fy0[j][i]);
-        fyv[j][i] = vstar + face_coefficient(ry.data(), rho.data(), i, j, i, j + 1) * ffy[j][i];
-      }
+    ConstFieldArray ffx = local_read(grid_, *face_force_[0]), ffy = local_read(grid_, *face_force_[1]);
+    const double* const* h[2] = {hx.data(), hy.data()};
+    const double* const* ra[2] = {rx.data(), ry.data()};
+    const double* const* w[2] = {wx.data(), wy.data()};
+    const double* const* q0[2] = {u0.data(), v0.data()};
+    const double* const* face_old[2] = {fx0.data(), fy0.data()};
+    const double* const* ff[2] = {ffx.data(), ffy.data()};
+    fill_owned_faces(
+        grid_, *face_[0], *face_[1],
+        [&](int axis, int i, int j) {
+          const int in = axis == 0 ? i + 1 : i, jn = axis == 0 ? j : j + 1;
+          const double star = predicted(i, j, in, jn, h[axis], w[axis], q0[axis], face_old[axis][j][i]);
+          return star + face_coefficient(ra[axis], rho.data(), i, j, in, jn) * ff[axis][j][i];
+        },
+        [&](int axis, int i, int j, int sign) {
+          // Walls are impermeable and their face force stays zero (pressure hydrostatic at the wall).
+          if (boundary(settings_.boundaries, side_of(axis, sign)).kind != BoundaryKind::atmosphere) return 0.0;
+          const int fi = axis == 0 && sign < 0 ? i - 1 : i, fj = axis == 1 && sign < 0 ? j - 1 : j;
+          return h[axis][j][i] + ra[axis][j][i] * ff[axis][fj][fi];
+        });
     // Cell velocities from the reconstructed cell force.
     FieldArray u(grid_.field_dm(), vel_[0]->global()), v(grid_.field_dm(), vel_[1]->global());
     for (int j = b.ys; j < b.ye(); ++j)
@@ -201,4 +190,5 @@ int FlowSolver::solve_pressure(double) {
   }
   return iterations;
 }
+
 }  // namespace granflow
