@@ -16,7 +16,10 @@ namespace granflow {
 
 namespace {
 
-constexpr std::uint64_t magic = 0x31544b43464e5247ull;  // "GRNFCKT1"
+// The format's version is the magic's last character: "GRNFCKT2" since history.csv holds the
+// forces on the sides (a version 1 checkpoint's history rows lack them).
+constexpr std::uint64_t magic = 0x32544b43464e5247ull;  // "GRNFCKT2"
+constexpr std::uint64_t magic_version_1 = 0x31544b43464e5247ull;
 
 struct RankHeader {
   std::uint64_t magic;
@@ -50,6 +53,10 @@ std::string read_rank(const std::filesystem::path& path, const RankHeader& expec
   if (!in) return fmt::format("cannot read {}", path.string());
   RankHeader h{};
   in.read(reinterpret_cast<char*>(&h), sizeof h);
+  if (in && h.magic == magic_version_1)
+    return fmt::format("{} was written by an earlier version of granflow, whose history has no side forces; run "
+                       "the case anew",
+                       path.string());
   if (!in || h.magic != magic) return fmt::format("{} is not a granflow checkpoint", path.string());
   if (h.ranks != expected.ranks)
     return fmt::format("the checkpoint was written on {} ranks; restart it on {} ranks, not {}", h.ranks, h.ranks,

@@ -17,5 +17,32 @@ inline constexpr FaceGeometry faces_of_cell[4] = {
     {Side::north, 1, +1.0, 0, +1},
     {Side::south, 1, -1.0, 0, -1},
 };
+// The face of a cell that lies on side s of the domain when the cell is next to it.
+constexpr const FaceGeometry& face_on(Side s) {
+  for (const auto& f : faces_of_cell)
+    if (f.side == s) return f;
+  return faces_of_cell[0];  // unreachable: every side is listed
+}
+
+// The lagged part of the viscous stress on face fg of cell (i, j) for the component c tangential to
+// it, over mu: (d v_n / d x_c) - (d v_c / d n), the remainder of Jasak & Weller (2000) after the
+// implicit 2 mu grad(v_c) (momentum_equation.cpp). vel holds both components as local arrays;
+// boundary faces read the ghosts, which encode the boundary condition.
+inline double lagged_transpose_gradient(const Grid& g, const double* const* const vel[2], int i, int j,
+                                        const FaceGeometry& fg, int c) {
+  const int in = i + fg.di, jn = j + fg.dj;
+  const double* const* qn = vel[fg.axis];  // normal component, differentiated along c
+  const double* const* qc = vel[c];        // component c, differentiated along the normal
+  double tangential;
+  if (c == 0)  // d v_n / dx at a north/south face
+    tangential = 0.5 * ((qn[j][i + 1] - qn[j][i - 1]) / (g.xc(i + 1) - g.xc(i - 1)) +
+                        (qn[jn][i + 1] - qn[jn][i - 1]) / (g.xc(i + 1) - g.xc(i - 1)));
+  else  // d v_n / dy at an east/west face
+    tangential = 0.5 * ((qn[j + 1][i] - qn[j - 1][i]) / (g.yc(j + 1) - g.yc(j - 1)) +
+                        (qn[j + 1][in] - qn[j - 1][in]) / (g.yc(j + 1) - g.yc(j - 1)));
+  const double dn = fg.axis == 0 ? g.xc(in) - g.xc(i) : g.yc(jn) - g.yc(j);
+  const double normal = (qc[jn][in] - qc[j][i]) / dn;
+  return tangential - normal;
+}
 
 }  // namespace granflow

@@ -10,6 +10,7 @@
 //     corrections (segregated_pressure.cpp);
 //   - gravity enters as a face force rho_f g next to the pressure gradient, and cell forces are
 //     reconstructed from face forces, so a fluid at rest under gravity stays at rest exactly.
+#include <array>
 #include <functional>
 #include <memory>
 #include <vector>
@@ -108,6 +109,10 @@ class FlowSolver {
   FastestCell fastest_cell() const;
   // Largest |div v| * V over owned cells, from the face velocities (volumetric imbalance, m^2/s in 2D).
   double max_divergence() const;
+  // Force of the flow on each side of the domain, indexed by Side, summed over ranks (N per metre of
+  // depth; per radian in axisymmetric cases): the pressure and viscous traction on a wall or slip
+  // side, the boundary pressure on an atmosphere side (side_force.cpp). Collective.
+  std::array<std::array<double, 2>, 4> side_forces() const;
 
  private:
   void fill_velocity_ghosts();

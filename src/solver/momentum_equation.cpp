@@ -57,21 +57,8 @@ void FlowSolver::assemble_momentum(double dt) {
         // iteration is stable at any viscosity, and at convergence the stress is exactly the symmetric
         // one. Boundary faces read the ghosts, which encode the boundary condition.
         if (num.transpose_stress) {
-          for (int c = 0; c < 2; ++c) {
-            if (c == fg.axis) continue;
-            const double* const* qn = vel[fg.axis];  // normal component, differentiated along c
-            const double* const* qc = vel[c];        // component c, differentiated along the normal
-            double tangential;
-            if (c == 0)  // d v_n / dx at a north/south face
-              tangential = 0.5 * ((qn[j][i + 1] - qn[j][i - 1]) / (grid_.xc(i + 1) - grid_.xc(i - 1)) +
-                                  (qn[jn][i + 1] - qn[jn][i - 1]) / (grid_.xc(i + 1) - grid_.xc(i - 1)));
-            else  // d v_n / dy at an east/west face
-              tangential = 0.5 * ((qn[j + 1][i] - qn[j - 1][i]) / (grid_.yc(j + 1) - grid_.yc(j - 1)) +
-                                  (qn[j + 1][in] - qn[j - 1][in]) / (grid_.yc(j + 1) - grid_.yc(j - 1)));
-            const double dn = fg.axis == 0 ? grid_.xc(in) - grid_.xc(i) : grid_.yc(jn) - grid_.yc(j);
-            const double normal = (qc[jn][in] - qc[j][i]) / dn;
-            src[c] += fg.sign * mu_face * (tangential - normal) * area;
-          }
+          for (int c = 0; c < 2; ++c)
+            if (c != fg.axis) src[c] += fg.sign * mu_face * lagged_transpose_gradient(grid_, vel, i, j, fg, c) * area;
         }
         if (is_boundary) {
           const auto& bc = boundary(settings_.boundaries, fg.side);

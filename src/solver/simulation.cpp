@@ -238,19 +238,24 @@ void Simulation::record_history(double dt) {
   dissipated_energy_ += b.dissipation_rate * dt;
   soil_->accumulate_lode_energy(dt);
   const auto c = gather_to_root(*grid_, soil_->soil_fraction());
+  const auto force = flow_->side_forces();
   if (rank_ != 0) return;
   const PileShape shape = pile_shape(*grid_, c);
   const double toe_contour = toe_of(iso_line(*grid_, c, 0.5));
-  history_.push_back(fmt::format("{:.9g},{:.6g},{:.15g},{:.15g},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g},{:.12g},{:.15g}", time_, dt,
-                                 b.soil_volume, b.air_volume, b.kinetic_energy, b.potential_energy, dissipated_energy_,
-                                 toe_contour, shape.toe_thickness, shape.wall_height, b.mixture_mass, b.soil_outflow));
+  std::string row = fmt::format("{:.9g},{:.6g},{:.15g},{:.15g},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g},{:.12g},{:.15g}", time_, dt,
+                                b.soil_volume, b.air_volume, b.kinetic_energy, b.potential_energy, dissipated_energy_,
+                                toe_contour, shape.toe_thickness, shape.wall_height, b.mixture_mass, b.soil_outflow);
+  for (const auto& f : force) row += fmt::format(",{:.12g},{:.12g}", f[0], f[1]);
+  history_.push_back(std::move(row));
 }
 
 void Simulation::write_history() const {
   if (rank_ != 0) return;
   write_file_atomically(out_ / "history.csv", [&](std::ostream& out) {
     fmt::print(out, "time,dt,soil_volume,air_volume,kinetic_energy,potential_energy,dissipated_energy,"
-                    "toe_contour,toe_one_cell,wall_height,mixture_mass,soil_outflow\n");
+                    "toe_contour,toe_one_cell,wall_height,mixture_mass,soil_outflow");
+    for (Side side : all_sides) fmt::print(out, ",force_{0}_x,force_{0}_y", side_name(side));
+    fmt::print(out, "\n");
     for (const auto& row : history_) fmt::print(out, "{}\n", row);
   });
 }

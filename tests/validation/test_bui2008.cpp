@@ -25,6 +25,9 @@ struct Bui2008Run {
   double toe_contour = 0, toe_cell = 0, rms = 0, contour_drift = 0, cell_drift = 0, volume_error = 0, outflow = 0;
   double released = 0, accounted = 0, soil_speed = 0;
   double failure_line = 0;  // mean distance of the experiment's failure points from the computed line
+  // At the end: the pile's weight (mixture mass times g), what the four sides carry of it, and the
+  // wall's thrust as an earth pressure coefficient K = 2 F / (rho_s g H^2), H the soil height there.
+  double weight = 0, sides_vertical = 0, sides_horizontal = 0, wall_thrust = 0, earth_pressure_coefficient = 0;
 };
 
 Bui2008Run run_bui2008(int nx, const std::string& case_name = "bui2008_experiment",
@@ -53,6 +56,16 @@ Bui2008Run run_bui2008(int nx, const std::string& case_name = "bui2008_experimen
   r.volume_error = budget.volume_error;
   r.released = budget.released;
   r.accounted = budget.accounted;
+  // The sides carry the pile at rest: the floor its weight, the wall and the floor's friction its thrust.
+  const double g = 9.81;
+  r.weight = history["mixture_mass"][n - 1] * g;
+  for (const char* side : {"west", "east", "south", "north"}) {
+    r.sides_horizontal += history[std::string("force_") + side + "_x"][n - 1];
+    r.sides_vertical += history[std::string("force_") + side + "_y"][n - 1];
+  }
+  r.wall_thrust = -history["force_west_x"][n - 1];
+  const double wall_height = history["wall_height"][n - 1];
+  r.earth_pressure_coefficient = 2 * r.wall_thrust / (2650.0 * g * wall_height * wall_height);
   // Surface: column heights at the experiment's points.
   auto heights = test::read_csv(test::last_output(out, "column_height"));
   auto exp_surface = test::read_csv(test::repo_path("validation/refdata/bui2008_al_bar_collapse_final_surface.csv"));
@@ -77,11 +90,13 @@ Bui2008Run run_bui2008(int nx, const std::string& case_name = "bui2008_experimen
       "  run-out %.4f m (contour), %.4f m (one cell) vs 0.442: %+.1f %% / %+.1f %%\n"
       "  surface RMS %.2f mm; failure line %.2f mm from the experiment's; run-out drift between t = 1 s and the end %.2f cells (contour), %.0f (one cell)\n"
       "  soil volume error %.2e, with %.2e of it carried out through the open side\n"
-      "  energy: released %.4f J/m, kinetic + dissipated %.4f J/m (%+.1f %%); largest soil speed at the end %.2e m/s\n",
+      "  energy: released %.4f J/m, kinetic + dissipated %.4f J/m (%+.1f %%); largest soil speed at the end %.2e m/s\n"
+      "  sides carry (%.6g, %.6g) N/m of a weight of %.6g N/m; wall thrust %.4g N/m, K = %.3f\n",
       case_name.c_str(), nx, nx / 3, run.time, run.steps, run.wall_seconds, r.toe_contour, r.toe_cell, 100 * (r.toe_contour / experiment_runout - 1),
       100 * (r.toe_cell / experiment_runout - 1), 1000 * r.rms, 1000 * r.failure_line, r.contour_drift / r.dx, r.cell_drift / r.dx,
       r.volume_error, r.outflow / history["soil_volume"][0], r.released,
-      r.accounted, 100 * (r.accounted / r.released - 1), r.soil_speed);
+      r.accounted, 100 * (r.accounted / r.released - 1), r.soil_speed, r.sides_horizontal, r.sides_vertical, r.weight,
+      r.wall_thrust, r.earth_pressure_coefficient);
   return r;
 }
 
@@ -103,6 +118,13 @@ TEST(Bui2008Experiment, HalfResolutionVolumeEnergyRestAndPile) {
   EXPECT_LT(std::abs(r.toe_cell / experiment_runout - 1), 0.08);
   EXPECT_LT(r.rms, 0.005);
   EXPECT_LT(r.failure_line, 0.011);  // 8.3 mm
+  // At rest the sides carry the weight (measured: to 1e-7 of it, and a net horizontal force of
+  // 4e-6 of it). The wall's thrust lies between Rankine's active K_a = (1 - sin phi)/(1 + sin phi) =
+  // 0.49 and a fluid's 1 (measured K = 0.64, near Jaky's K_0 = 1 - sin phi = 0.66 for a soil at rest).
+  EXPECT_NEAR(-r.sides_vertical / r.weight, 1.0, 1e-5);
+  EXPECT_LT(std::abs(r.sides_horizontal), 1e-5 * r.weight);
+  EXPECT_GT(r.earth_pressure_coefficient, 0.49);
+  EXPECT_LT(r.earth_pressure_coefficient, 1.0);
 }
 
 // A stress on the yield surface does not depend on the rate it is divided by, so the floor's

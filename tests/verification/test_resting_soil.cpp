@@ -70,6 +70,21 @@ progress_seconds = 0
               label, s.steps, speed, p_change / p_scale);
   EXPECT_LT(speed, 1e-8);
   EXPECT_LT(p_change / p_scale, 1e-10);
+
+  // The sides carry the layer: the floor its weight (the mixture's mass, to round-off on this uniform
+  // mesh: the face forces telescope to the side pressures plus the weight), the side walls its
+  // thrust, which cancel, and which a soil pressure rho_s g (h - y) makes rho_s g h^2 / 2.
+  const auto force = sim.flow().side_forces();
+  const auto at = [&](Side side) { return force[static_cast<int>(side)]; };
+  const double weight = sim.soil()->budget(sim.flow()).mixture_mass * 9.81;
+  double vertical = 0.0;
+  for (const auto& f : force) vertical += f[1];
+  const double h = 0.1025, thrust = 2650.0 * 9.81 * h * h / 2;
+  std::printf("  floor carries %.12g N/m of a weight of %.12g N/m; west wall thrust %.6g N/m against rho g h^2/2 = %.6g, "
+              "east %.6g\n", -vertical, weight, -at(Side::west)[0], thrust, at(Side::east)[0]);
+  EXPECT_NEAR(-vertical / weight, 1.0, 1e-10);
+  EXPECT_NEAR(at(Side::east)[0] / -at(Side::west)[0], 1.0, 1e-10);
+  EXPECT_NEAR(-at(Side::west)[0] / thrust, 1.0, 0.01);
 }
 
 TEST(RestingSoil, FlatHeavyLayerStaysAtRestWithHydrostaticPressure) { check_resting_layer("wall", "closed sides"); }

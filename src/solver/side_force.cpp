@@ -1,0 +1,88 @@
+// The force the flow exerts on each side of the domain (FlowSolver::side_forces): what a wall, a
+// barrier or a bed carries, e.g. the thrust of a landslide on a retaining wall.
+#include <mpi.h>
+
+#include "operators/strain_rate.hpp"
+#include "solver/cell_faces.hpp"
+#include "solver/flow_solver.hpp"
+
+namespace granflow {
+
+// Each boundary face contributes the pressure on it and the viscous traction that the momentum
+// equation applies there (momentum_equation.cpp), with the opposite sign: the side pushes the flow
+// with exactly what the flow pushes it with.
+//   - Pressure at a wall or slip face: p_P + rho_P g.(x_f - x_P), the pressure at which the face's
+//     balanced force (-grad p + rho g) vanishes, as the wall faces of the momentum equation take it.
+//     On a uniform mesh the face forces then sum exactly to the pressure on the sides plus the
+//     weight, so at rest the sides carry the weight of what they hold.
+//   - Viscous traction: the momentum equation's own terms, the implicit 2 mu_f (v_c - v_wall,c) / (h/2)
+//     at a wall (normal component only at a slip side) with the quadratic wall gradient where the case
+//     asks for it, and the lagged transpose part, which at a wall leaves mu_f (v_t - v_wall) / (h/2)
+//     for the tangential component.
+//   - At an atmosphere side: the boundary pressure the solver imposes and the lagged transpose part
+//     of the viscous stress; the momentum carried through the side is not a force on it.
+std::array<std::array<double, 2>, 4> FlowSolver::side_forces() const {
+  const auto& b = grid_.owned();
+  const int nx = grid_.nx(), ny = grid_.ny();
+  const auto& g = settings_.gravity;
+  const auto& num = settings_.numerics;
+  const double stress_factor = num.transpose_stress ? 2.0 : 1.0;  // as in the momentum equation
+  ConstFieldArray p = local_read(grid_, *p_), rho = local_read(grid_, *rho_);
+  ConstFieldArray u = local_read(grid_, *vel_[0]), v = local_read(grid_, *vel_[1]);
+  ConstFieldArray fmx = local_read(grid_, *face_mu_[0]), fmy = local_read(grid_, *face_mu_[1]);
+  ConstFieldArray fvx = local_read(grid_, *face_[0]), fvy = local_read(grid_, *face_[1]);
+  const double* const* vel[2] = {u.data(), v.data()};
+
+  std::array<double, 8> force{};  // (x, y) per side, in the order of Side
+  auto add_face = [&](Side s, int i, int j) {
+    const auto& bc = boundary(settings_.boundaries, s);
+    const FaceGeometry& fg = face_on(s);
+    const int axis = fg.axis;
+    const double sign = fg.sign;
+    const double area = grid_.face_area(axis, i, j, sign);
+    const double h = axis == 0 ? grid_.dx(i) : grid_.dy(j);
+    const double d_half = 0.5 * h;
+    const double mu = axis == 0 ? fmx[j][sign > 0 ? i : i - 1] : fmy[sign > 0 ? j : j - 1][i];
+    double* f = &force[2 * static_cast<int>(s)];
+    // The lagged part of the viscous stress, on every kind of side (an open one included).
+    if (num.transpose_stress)
+      for (int c = 0; c < 2; ++c)
+        if (c != axis) f[c] -= sign * mu * lagged_transpose_gradient(grid_, vel, i, j, fg, c) * area;
+    if (bc.kind == BoundaryKind::atmosphere) {
+      const double yb = grid_.yc(j) + (axis == 1 ? sign * d_half : 0.0);
+      const double face_vel = axis == 0 ? (sign > 0 ? fvx[j][i] : fvx[j][i - 1]) : (sign > 0 ? fvy[j][i] : fvy[j - 1][i]);
+      const double pb = atmosphere_pressure(bc, boundary_head(s, j, rho[j][i], yb), rho[j][i], sign * face_vel,
+                                            u[j][i] * u[j][i] + v[j][i] * v[j][i]);
+      f[axis] += pb * area * sign;
+      return;
+    }
+    f[axis] += (p[j][i] + rho[j][i] * g[axis] * sign * d_half) * area * sign;
+    // The implicit part, 2 mu (v_c - v_wall,c) / (h/2) (mu without the transpose stress), on both
+    // components at a wall and on the normal one at a slip side.
+    for (int c = 0; c < 2; ++c) {
+      if (bc.kind == BoundaryKind::slip && c != axis) continue;  // no shear on a slip side
+      const double wall = c == axis ? 0.0 : bc.wall_velocity[c];
+      const double u1 = vel[c][j][i];
+      f[c] += stress_factor * mu * area * (u1 - wall) / d_half;
+      if (num.quadratic_wall_gradient) {
+        const double h2 = axis == 0 ? grid_.dx(i - fg.di) : grid_.dy(j - fg.dj);
+        const double quadratic = quadratic_wall_derivative(u1, vel[c][j - fg.dj][i - fg.di], wall, d_half, h + 0.5 * h2);
+        f[c] += (c == axis ? stress_factor : 1.0) * mu * area * (quadratic - (u1 - wall) / d_half);
+      }
+    }
+  };
+  for (int j = b.ys; j < b.ye(); ++j) {
+    if (b.xs == 0) add_face(Side::west, 0, j);
+    if (b.xe() == nx) add_face(Side::east, nx - 1, j);
+  }
+  for (int i = b.xs; i < b.xe(); ++i) {
+    if (b.ys == 0) add_face(Side::south, i, 0);
+    if (b.ye() == ny) add_face(Side::north, i, ny - 1);
+  }
+  MPI_Allreduce(MPI_IN_PLACE, force.data(), 8, MPI_DOUBLE, MPI_SUM, grid_.comm());
+  std::array<std::array<double, 2>, 4> out;
+  for (int s = 0; s < 4; ++s) out[s] = {force[2 * s], force[2 * s + 1]};
+  return out;
+}
+
+}  // namespace granflow
