@@ -88,6 +88,8 @@ FlowSolver::FlowSolver(const Grid& grid, const FlowSettings& settings) : grid_(g
     if (boundary(settings.boundaries, s).kind == BoundaryKind::atmosphere) has_pressure_boundary_ = true;
     if (boundary(settings.boundaries, s).kind == BoundaryKind::slip) shared_momentum_matrix_ = false;
   }
+  // The hoop stress 2 mu u_r / r^2 is on the radial component's diagonal alone.
+  if (grid.axisymmetric()) shared_momentum_matrix_ = false;
   if (settings.numerics.pressure_coupling == PressureCoupling::coupled) {
     if (!has_pressure_boundary_)
       throw std::invalid_argument("numerics.pressure_coupling = \"coupled\" needs an atmosphere boundary to fix the pressure level");
