@@ -346,11 +346,17 @@ CaseConfig read_case(const toml::table& root, const std::filesystem::path& sourc
     c.flow.momentum_solver = read_linear_solver(s.table("momentum"), c.flow.momentum_solver);
     c.flow.pressure_solver = read_linear_solver(s.table("pressure"), c.flow.pressure_solver);
     c.flow.coupled_solver = read_linear_solver(s.table("coupled"), c.flow.coupled_solver);
-    // Cholesky factors need a symmetric positive definite matrix; on the saddle point they do not stop.
-    for (const char* spd_only : {"icc", "cholesky"})
+    // Cholesky factors need a symmetric positive definite matrix. On the saddle point they do not
+    // stop; on the momentum matrix (not symmetric: convection) they solve another system, silently.
+    for (const char* spd_only : {"icc", "cholesky"}) {
       if (c.flow.coupled_solver.pc_type == spd_only)
         throw CaseError(fmt::format("solver.coupled.pc_type: '{}' needs a symmetric positive definite matrix, and the "
                                     "coupled velocity-pressure system is a saddle point (use \"lu\")", spd_only));
+      if (c.flow.momentum_solver.pc_type == spd_only)
+        throw CaseError(fmt::format("solver.momentum.pc_type: '{}' needs a symmetric positive definite matrix, and the "
+                                    "momentum matrix is not symmetric (convection); use \"hypre\", \"ilu\" or \"lu\"",
+                                    spd_only));
+    }
     s.finish();
   }
   {

@@ -194,6 +194,17 @@ TEST(CaseFile, CoupledSolveNeedsAnAtmosphere) {
   EXPECT_NO_THROW(parse_case(minimal, {"numerics.pressure_coupling=coupled", "boundary.north={type=\"atmosphere\"}"}));
 }
 
+// A Cholesky factor of a matrix that is not symmetric positive definite solves another system.
+TEST(CaseFile, CholeskyOnlyForThePressure) {
+  for (const char* pc : {"icc", "cholesky"}) {
+    const std::string momentum = error_of(minimal, {std::string("solver.momentum.pc_type=") + pc});
+    EXPECT_NE(momentum.find("solver.momentum.pc_type"), std::string::npos) << momentum;
+    const std::string coupled = error_of(minimal, {std::string("solver.coupled.pc_type=") + pc});
+    EXPECT_NE(coupled.find("solver.coupled.pc_type"), std::string::npos) << coupled;
+    EXPECT_EQ(error_of(minimal, {std::string("solver.pressure.pc_type=") + pc}), "") << pc;
+  }
+}
+
 TEST(CaseFile, LineNamesCannotBeThoseOfOtherOutputFiles) {
   const auto line = [](const std::string& name) {
     return std::string(minimal) + "[[output.line]]\nname = \"" + name + "\"\nstart = [0.0, 0.5]\nend = [1.0, 0.5]\n";
