@@ -1,5 +1,6 @@
 #pragma once
 // Boundary conditions of the flow, one per side of the box.
+#include <algorithm>
 #include <array>
 
 #include "mesh/grid.hpp"
@@ -24,6 +25,23 @@ struct BoundaryCondition {
 using BoundarySet = std::array<BoundaryCondition, 4>;  // indexed by Side
 
 inline const BoundaryCondition& boundary(const BoundarySet& b, Side s) { return b[static_cast<int>(s)]; }
+
+// The pressure of the surroundings, Pa: the p0 of the north side if it is open, else the lowest p0
+// of the open sides; 0 in a closed domain, whose pressure is held at zero on its top
+// (FlowSolver). A granular phase's yield stress takes the pressure above it: dry soil under air at
+// p0 is no stronger than at 0.
+inline double ambient_pressure(const BoundarySet& b) {
+  const auto& north = b[static_cast<int>(Side::north)];
+  if (north.kind == BoundaryKind::atmosphere) return north.pressure;
+  double lowest = 0.0;
+  bool open = false;
+  for (const auto& bc : b)
+    if (bc.kind == BoundaryKind::atmosphere) {
+      lowest = open ? std::min(lowest, bc.pressure) : bc.pressure;
+      open = true;
+    }
+  return lowest;
+}
 
 // Outward unit normal component of a side along an axis (0 = x, 1 = y).
 inline double outward_normal(Side s, int axis) {

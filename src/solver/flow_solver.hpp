@@ -143,6 +143,7 @@ class FlowSolver {
   double face_coefficient(const double* const* rau, const double* const* rho, int i, int j, int in, int jn) const;
   void assemble_pressure_matrix(double dt);
   int solve_pressure(double dt);
+  void hold_pressure_at_top();  // closed domains: the pressure level
 
   const Grid& grid_;
   FlowSettings settings_;

@@ -188,7 +188,30 @@ int FlowSolver::solve_pressure(double) {
     fill_scalar_ghosts(*p_);
     compute_face_forces();
   }
+  if (!has_pressure_boundary_) hold_pressure_at_top();
   return iterations;
+}
+
+// A closed domain fixes its pressure only up to a constant, which the Krylov solve leaves wherever
+// its iterations end; the yield stress of a granular phase reads the level. Held as the initial
+// hydrostatic pressure holds it: zero on the top side on average (the top face pressure p_P + rho_P
+// g_y dy/2, as at any wall). A constant changes no face force.
+void FlowSolver::hold_pressure_at_top() {
+  const auto& b = grid_.owned();
+  const int ny = grid_.ny();
+  double sums[2] = {0.0, 0.0};  // area-weighted top pressure, area
+  {
+    ConstFieldArray p(grid_.field_dm(), p_->global()), rho(grid_.field_dm(), rho_->global());
+    if (b.ye() == ny)
+      for (int i = b.xs; i < b.xe(); ++i) {
+        const double area = grid_.face_area(1, i, ny - 1, 1.0);
+        sums[0] += (p[ny - 1][i] + rho[ny - 1][i] * settings_.gravity[1] * 0.5 * grid_.dy(ny - 1)) * area;
+        sums[1] += area;
+      }
+  }
+  MPI_Allreduce(MPI_IN_PLACE, sums, 2, MPI_DOUBLE, MPI_SUM, grid_.comm());
+  VecShift(p_->global(), -sums[0] / sums[1]);
+  fill_scalar_ghosts(*p_);
 }
 
 }  // namespace granflow

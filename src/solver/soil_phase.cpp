@@ -28,7 +28,7 @@ double mpi_max(MPI_Comm comm, double v) {
 }  // namespace
 
 SoilPhase::SoilPhase(const Grid& grid, const FlowSettings& flow, const SoilSettings& settings)
-    : grid_(grid), flow_settings_(flow), settings_(settings) {
+    : grid_(grid), flow_settings_(flow), settings_(settings), ambient_pressure_(ambient_pressure(flow.boundaries)) {
   if (settings.rheology) rheology_.emplace(*settings.rheology);
   auto make = [&] { return std::make_unique<Field>(grid); };
   c_ = make();
@@ -133,11 +133,12 @@ void SoilPhase::fill_displacement_ghosts() {
   }
 }
 
-// Viscosity of a mixture at soil fraction c: the soil's from the rheology at the given pressure and
-// strain rate (or its Newtonian value), mixed with the air's.
+// Viscosity of a mixture at soil fraction c: the soil's from the rheology at the given pressure (its
+// excess over the ambient pressure) and strain rate (or its Newtonian value), mixed with the air's.
 double SoilPhase::mixture_viscosity(double c, double pressure, const rheology::StrainRate& rate) const {
   const auto& s = settings_;
-  const double mu_soil = rheology_ && c > 0.0 ? rheology_->dynamic_viscosity(rate, pressure) : s.soil_viscosity;
+  const double mu_soil =
+      rheology_ && c > 0.0 ? rheology_->dynamic_viscosity(rate, pressure - ambient_pressure_) : s.soil_viscosity;
   return s.viscosity_mixing(c, s.air_viscosity, mu_soil);
 }
 
@@ -155,7 +156,7 @@ void SoilPhase::update_properties(FlowSolver& flow) const {
     for (int i = b.xs; i < b.xe(); ++i) {
       const double cc = c[j][i];
       rho[j][i] = s.density_mixing(cc, s.air_density, s.soil_density);
-      const double pressure = floor ? std::max(p[j][i], (*overburden)[j][i]) : p[j][i];
+      const double pressure = floor ? std::max(p[j][i], ambient_pressure_ + (*overburden)[j][i]) : p[j][i];
       mu[j][i] = mixture_viscosity(cc, pressure, cell_strain_rate(grid_, u.data(), v.data(), i, j));
     }
 }

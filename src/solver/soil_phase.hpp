@@ -90,6 +90,7 @@ class SoilPhase {
   const Grid& grid_;
   const FlowSettings& flow_settings_;
   SoilSettings settings_;
+  double ambient_pressure_;  // the yield stress takes the pressure in excess of it (solver/boundary.hpp)
   FieldSnapshot saved_;
   int saved_parity_ = 0;
   double outflow_ = 0.0, saved_outflow_ = 0.0;  // this rank's soil volume carried out of the domain

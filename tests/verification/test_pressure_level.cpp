@@ -1,0 +1,79 @@
+// The level of the pressure: a constant added to it changes no face force, but the yield stress of
+// a granular phase reads the pressure itself. Two ways a level entered it: the ambient pressure p0 of
+// the open sides, and the constant a closed domain's pressure solve leaves free.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "io/gather.hpp"
+#include "solver/simulation.hpp"
+#include "test_support.hpp"
+
+namespace granflow {
+namespace {
+
+struct CollapseState {
+  double toe = 0.0, kinetic_energy = 0.0;
+};
+
+// The Bui et al. collapse at 60 x 20 to t = 0.3 s with the open sides at the ambient pressure p0.
+CollapseState collapse_under(double p0) {
+  const std::vector<std::string> overrides = {
+      "mesh.cells=[60,20]", "time.end=0.3", "output.progress_seconds=0",
+      "boundary.north={type = \"atmosphere\", pressure = " + std::to_string(p0) + "}",
+      "boundary.east={type = \"atmosphere\", pressure = " + std::to_string(p0) + "}"};
+  Simulation sim(PETSC_COMM_WORLD, load_case(test::repo_path("cases/bui2008_experiment.toml"), overrides), "");
+  sim.run();
+  CollapseState s;
+  const SoilBudget b = sim.soil()->budget(sim.flow());
+  s.kinetic_energy = b.kinetic_energy;
+  const auto c = gather_to_root(sim.grid(), sim.soil()->soil_fraction());
+  if (test::is_root())
+    for (int i = 0; i < sim.grid().nx(); ++i)
+      for (int j = 0; j < sim.grid().ny(); ++j)
+        if (c[size_t(j) * sim.grid().nx() + i] >= 0.5) s.toe = std::max(s.toe, sim.grid().xf(i));
+  return s;
+}
+
+// Dry soil under air at atmospheric pressure is no stronger than under none: the yield stress takes
+// the pressure in excess of the ambient one (solver/boundary.hpp). Before, p0 = 1e5 Pa added
+// 3 alpha_phi p0 to it and the column did not collapse at all (kinetic energy 7e-16 J/m at t = 0.3 s).
+TEST(PressureLevel, AmbientPressureDoesNotStrengthenTheSoil) {
+  const CollapseState gauge = collapse_under(0.0), atmospheric = collapse_under(101325.0);
+  if (!test::is_root()) return;
+  std::printf("collapse at t = 0.3 s: toe %.4f / %.4f m, kinetic energy %.9g / %.9g J/m under p0 = 0 / 101325 Pa\n",
+              gauge.toe, atmospheric.toe, gauge.kinetic_energy, atmospheric.kinetic_energy);
+  EXPECT_GT(gauge.toe, 0.3);
+  EXPECT_EQ(atmospheric.toe, gauge.toe);
+  EXPECT_NEAR(atmospheric.kinetic_energy / gauge.kinetic_energy, 1.0, 1e-4);
+}
+
+// A closed domain's pressure is held at zero on its top side, as the initial hydrostatic pressure
+// is: the yield stress must not read whatever constant the iterative pressure solve ends with.
+TEST(PressureLevel, ClosedDomainHoldsZeroOnItsTop) {
+  const std::vector<std::string> overrides = {
+      "mesh.cells=[40,20]", "time.end=0.1", "output.progress_seconds=0", "boundary.north={type = \"wall\"}",
+      "solver.pressure.rtol=1e-3"};  // a loose solve leaves the level far off
+  Simulation sim(PETSC_COMM_WORLD, load_case(test::repo_path("cases/water_dam_break.toml"), overrides), "");
+  sim.run();
+  const Grid& g = sim.grid();
+  const auto p = gather_to_root(g, sim.flow().pressure());
+  const auto rho = gather_to_root(g, sim.flow().density());
+  if (!test::is_root()) return;
+  double top = 0.0, area = 0.0, largest = 0.0;
+  const int j = g.ny() - 1;
+  for (int i = 0; i < g.nx(); ++i) {
+    const size_t k = size_t(j) * g.nx() + i;
+    top += (p[k] - rho[k] * 9.81 * 0.5 * g.dy(j)) * g.dx(i);
+    area += g.dx(i);
+  }
+  for (double x : p) largest = std::max(largest, std::abs(x));
+  std::printf("closed tank at t = 0.1 s: mean pressure on the top %.3e Pa, largest |p| %.4g Pa\n", top / area, largest);
+  EXPECT_LT(std::abs(top / area), 1e-10 * largest);
+}
+
+}  // namespace
+}  // namespace granflow
