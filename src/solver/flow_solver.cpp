@@ -348,13 +348,17 @@ void FlowSolver::compute_face_forces() {
 //  - projection: accelerations f/rho_f are averaged to the cell (balanced force), and the face
 //    coefficient is dt/rho_f. Stable at any ratio of viscous to inertial stiffness: the pressure step
 //    never overshoots, because dt/rho bounds the inverse momentum operator from above.
-//  - piso: forces are averaged to the cell and the face coefficient is the interpolated V/a_P
-//    (Rhie-Chow). With a momentum predictor it overshoots where viscosity dominates a_P; without one
-//    (velocity from HbyA of the previous iterate) it is stable and keeps rigid regions rigid.
+//  - piso: accelerations are averaged to the cell as in the projection, and the face coefficient is
+//    the interpolated V/a_P (Rhie-Chow). With the faces' forces averaged instead, a water cell under
+//    the free surface took half the force of the face to the air, whose mean density is half the
+//    water's, and a water dam break gained 40 % energy by t = 0.2 s (the harmonic mean of V/a_P, the
+//    face's own, with it keeps the budget as well, but diverges at once where soil meets air
+//    without a predictor).
+//    With a momentum predictor it overshoots where viscosity dominates a_P; without one (velocity
+//    from HbyA of the previous iterate) it is stable and keeps rigid regions rigid.
 
 double FlowSolver::cell_force(int axis, int i, int j, const double* const* ff, const double* const* rho) const {
   const int di = axis == 0 ? 1 : 0, dj = 1 - di;
-  if (settings_.numerics.pressure_coupling == PressureCoupling::piso) return 0.5 * (ff[j][i] + ff[j - dj][i - di]);
   const double rho_hi = (axis == 0 ? i + 1 < grid_.nx() : j + 1 < grid_.ny()) ? 0.5 * (rho[j][i] + rho[j + dj][i + di]) : rho[j][i];
   const double rho_lo = (axis == 0 ? i > 0 : j > 0) ? 0.5 * (rho[j][i] + rho[j - dj][i - di]) : rho[j][i];
   return rho[j][i] * 0.5 * (ff[j][i] / rho_hi + ff[j - dj][i - di] / rho_lo);
