@@ -99,6 +99,8 @@ int FlowSolver::solve_coupled() {
     for (int c = 0; c < 2; ++c) rau_[c]->scatter_to_local();
   }
   store_cell_forces();
+  for (Side side : all_sides)  // NaN: a face the system below does not hold (outside the air band's region)
+    solved_boundary_pressure_[static_cast<int>(side)].assign(normal_axis(side) == 0 ? ny : nx, std::nan(""));
   {
     ConstFieldArray rho = local_read(grid_, *rho_), u = local_read(grid_, *vel_[0]), v = local_read(grid_, *vel_[1]);
     ConstFieldArray fxv = local_read(grid_, *face_[0]), fyv = local_read(grid_, *face_[1]);
@@ -116,6 +118,7 @@ int FlowSolver::solve_coupled() {
       const double face_vel = axis == 0 ? (s > 0 ? fxv[j][i] : fxv[j][i - 1]) : (s > 0 ? fyv[j][i] : fyv[j - 1][i]);
       pb = atmosphere_pressure(bc, boundary_head(bs, j, rhoP, yb), rhoP, s * face_vel,
                                u[j][i] * u[j][i] + v[j][i] * v[j][i]);
+      solved_boundary_pressure_[static_cast<int>(bs)][axis == 0 ? j : i] = pb;
       return true;
     };
     // The rows of the cells `wanted(i, j)`, each handed to `emit(i, j, unknown, n, cols, vals, rhs)`.
@@ -285,7 +288,34 @@ int FlowSolver::solve_coupled() {
   fill_velocity_ghosts();
   fill_scalar_ghosts(*p_);
   // Face velocities with exactly the flux of the continuity rows (divergence-free to the tolerance).
+  // An atmosphere face keeps the pressure the rows were built with: with total pressure, inflow
+  // enters at p0 - rho |v_P|^2 / 2, and v_P has just changed. Taken anew, it gave an open top under
+  // a falling water column a flux of its own, and the water's volume grew by 2e-5.
   compute_face_forces();
+  {
+    ConstFieldArray p = local_read(grid_, *p_), rho = local_read(grid_, *rho_);
+    for (int c = 0; c < 2; ++c) {
+      FieldArray ff = local_array(grid_, *face_force_[c]);
+      for (Side side : all_sides) {
+        if (normal_axis(side) != c) continue;
+        const double sign = outward_normal(side, c);
+        const auto& solved = solved_boundary_pressure_[static_cast<int>(side)];
+        const bool low = sign < 0;
+        if (c == 0 && (low ? b.xs == 0 : b.xe() == nx))
+          for (int j = b.ys; j < b.ye(); ++j) {
+            const int i = low ? 0 : nx - 1;
+            if (!std::isnan(solved[j]))
+              ff[j][low ? -1 : i] = -sign * (solved[j] - p[j][i]) / (0.5 * grid_.dx(i)) + rho[j][i] * g[0];
+          }
+        if (c == 1 && (low ? b.ys == 0 : b.ye() == ny))
+          for (int i = b.xs; i < b.xe(); ++i) {
+            const int j = low ? 0 : ny - 1;
+            if (!std::isnan(solved[i]))
+              ff[low ? -1 : j][i] = -sign * (solved[i] - p[j][i]) / (0.5 * grid_.dy(j)) + rho[j][i] * g[1];
+          }
+      }
+    }
+  }
   {
     ConstFieldArray u = local_read(grid_, *vel_[0]), v = local_read(grid_, *vel_[1]);
     ConstFieldArray rx = local_read(grid_, *rau_[0]), ry = local_read(grid_, *rau_[1]);

@@ -178,6 +178,9 @@ class FlowSolver {
   std::unique_ptr<LinearSolver> coupled_solver_;  // numerics.air_band = 0
   std::unique_ptr<SolveRegion> solve_region_;      // numerics.air_band > 0
   std::unique_ptr<Field> cell_force_[2];  // lagged balanced cell force of the Rhie-Chow flux
+  // The atmosphere's pressure on each boundary face as the last coupled system took it, per side
+  // along the side (NaN where the system held no row).
+  std::array<std::vector<double>, 4> solved_boundary_pressure_;
   std::vector<double> side_head_[2];  // west, east: hydrostatic head of the boundary column per row
   bool has_pressure_boundary_ = false;
   bool shared_momentum_matrix_ = true;  // no slip walls: u and v share their matrix
