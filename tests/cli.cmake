@@ -169,6 +169,12 @@ add_test(NAME cli_linear_solver_failure_named
 set_tests_properties(cli_linear_solver_failure_named PROPERTIES LABELS cli
                      PASS_REGULAR_EXPRESSION "error: linear solver 'pressure' failed: [^\n]*another solver.pressure.pc_type may do"
                      FAIL_REGULAR_EXPRESSION "PETSC ERROR")
+# A solve stopped at its iteration limit is accepted (the outer iterations may finish the job) but
+# said: a warning at the first, and the count at the end.
+add_test(NAME cli_linear_solver_iteration_limit_counted
+         COMMAND sh -c "out=$(\"$0\" run \"$1\" -o \"$2\" --overwrite --set 'mesh.cells=[16,16]' --set time.end=0.05 --set output.progress_seconds=0 --set solver.pressure.pc_type=none --set solver.pressure.max_iterations=1 2>&1) || exit 1; echo \"$out\" | grep -q \"warning: linear solver 'pressure' stopped at solver.pressure.max_iterations = 1\" && echo \"$out\" | grep -q 'warning: [1-9][0-9]* linear solves stopped at'"
+                 $<TARGET_FILE:granflow> ${CMAKE_SOURCE_DIR}/cases/lid_driven_cavity_re100.toml ${CMAKE_CURRENT_BINARY_DIR}/iteration_limit)
+set_tests_properties(cli_linear_solver_iteration_limit_counted PROPERTIES LABELS cli)
 # Any other PETSc error is one line, not PETSc's trace (GRANFLOW_PETSC_TRACE=1 keeps the trace).
 add_test(NAME cli_petsc_error_one_line
          COMMAND granflow run ${CMAKE_SOURCE_DIR}/cases/lid_driven_cavity_re100.toml -o ${CMAKE_CURRENT_BINARY_DIR}/petsc_error

@@ -90,6 +90,10 @@ int run_case(const std::string& case_file, const std::vector<std::string>& overr
                "momentum iterations {}, pressure solves {} ({:.1f} iterations each)\n",
                s.outer_iterations, s.steps_outer_unconverged, s.steps, s.momentum_iterations, s.pressure_solves,
                s.pressure_solves ? double(s.pressure_iterations) / s.pressure_solves : 0.0);
+    if (s.solves_at_iteration_limit > 0)
+      fmt::print("warning: {} linear solves stopped at their solver's max_iterations before its rtol; the face fluxes "
+                 "carry their residual (check the soil volume in history.csv)\n",
+                 s.solves_at_iteration_limit);
   }
   return 0;
 }

@@ -500,6 +500,14 @@ double FlowSolver::max_courant(double dt, const Field* region) const {
   return mpi_max(grid_.comm(), co);
 }
 
+long FlowSolver::solves_at_iteration_limit() const {
+  long n = 0;
+  for (const auto* s : {momentum_solver_[0].get(), momentum_solver_[1].get(), pressure_solver_.get(), coupled_solver_.get()})
+    if (s) n += s->solves_at_iteration_limit();
+  if (solve_region_) n += solve_region_->solves_at_iteration_limit();
+  return n;
+}
+
 double FlowSolver::max_speed() const {
   double s = 0.0;
   for (int a = 0; a < 2; ++a) {

@@ -95,6 +95,8 @@ class FlowSolver {
   // air beyond is held at rest at its hydrostatic pressure. Without an air band both are no-ops.
   bool solve_region_covers(const Field& cells) const;
   void set_solve_region(const Field& cells);
+  // Linear solves so far that stopped at their max_iterations before their rtol (LinearSolver).
+  long solves_at_iteration_limit() const;
   // Cells the last coupled solve covered, over all ranks (all of them without an air band).
   long solve_region_cells() const { return solve_region_ ? solve_region_->cell_count() : grid_.cell_count(); }
 

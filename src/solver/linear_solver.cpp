@@ -122,6 +122,19 @@ int LinearSolver::solve(Vec b, Vec x) {
     iterations_after_setup_ = int(its);
   }
   last_iterations_ = int(its);
+  if (reason == KSP_DIVERGED_ITS && solves_at_limit_++ == 0) {
+    MPI_Comm comm;
+    PetscObjectGetComm(reinterpret_cast<PetscObject>(ksp_), &comm);
+    int rank;
+    MPI_Comm_rank(comm, &rank);
+    PetscInt max_iterations;
+    KSPGetTolerances(ksp_, nullptr, nullptr, nullptr, &max_iterations);
+    if (rank == 0)
+      fmt::print(stderr,
+                 "warning: linear solver '{}' stopped at solver.{}.max_iterations = {} before its rtol; the run goes "
+                 "on and counts such solves in its last line\n",
+                 prefix_, solver_table_name(prefix_), max_iterations);
+  }
   // The converged reason is the same on every rank, so all stop together, as for a diverged flow.
   if (reason < 0 && reason != KSP_DIVERGED_ITS)
     throw DivergenceError(fmt::format("linear solver '{}' failed: {}", prefix_, KSPConvergedReasons[reason]));

@@ -36,6 +36,12 @@ class LinearSolver {
   int solve(Vec b, Vec x);
   KSP ksp() const { return ksp_; }
   const std::string& name() const { return prefix_; }
+  // Solves that stopped at max_iterations before rtol (accepted: the outer iterations may converge
+  // the rest, and a reused factorisation may be asked for a few iterations only; but the face
+  // fluxes then carry the residual, and the soil volume with them).
+  long solves_at_iteration_limit() const { return solves_at_limit_; }
+  // A solver that takes over from another (a new pattern) goes on with its count, and its warning.
+  void continue_count(const LinearSolver& before) { solves_at_limit_ = before.solves_at_limit_; }
 
  private:
   KSP ksp_ = nullptr;
@@ -45,6 +51,7 @@ class LinearSolver {
   int changes_since_setup_ = 0;  // operator changes since the preconditioner was built
   int iterations_after_setup_ = 0;
   int last_iterations_ = 0;
+  long solves_at_limit_ = 0;
 };
 
 }  // namespace granflow

@@ -497,6 +497,7 @@ RunSummary Simulation::run(const StepObserver& after_step) {
     summary.soil_volume_error = soil_->budget(*flow_).soil_volume / initial_soil_volume_ - 1.0;
   summary.time = time_;
   summary.wall_seconds = std::chrono::duration<double>(clock::now() - start).count();
+  summary.solves_at_iteration_limit = flow_->solves_at_iteration_limit();
   return summary;
 }
 

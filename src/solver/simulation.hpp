@@ -26,6 +26,7 @@ struct RunSummary {
   long momentum_iterations = 0;
   long pressure_iterations = 0;
   long pressure_solves = 0;
+  long solves_at_iteration_limit = 0;  // linear solves that stopped at max_iterations before rtol
   bool reached_steady_state = false;
 };
 

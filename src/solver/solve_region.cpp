@@ -95,7 +95,9 @@ long SolveRegion::prepare() {
   PetscCallAbort(comm, MatSetOption(matrix_, MAT_NO_OFF_PROC_ENTRIES, PETSC_TRUE));  // rows are set where owned
   PetscCallAbort(comm, MatCreateVecs(matrix_, &solution_, &rhs_));
   // A new pattern needs a new factorisation analysis; a fresh solver also takes the new sizes.
-  solver_ = std::make_unique<LinearSolver>(comm, "coupled", solver_settings_);
+  auto solver = std::make_unique<LinearSolver>(comm, "coupled", solver_settings_);
+  if (solver_) solver->continue_count(*solver_);
+  solver_ = std::move(solver);
   return cell_count_;
 }
 

@@ -43,6 +43,8 @@ class SolveRegion {
   long prepare();
   // Cells in the region over all ranks, after the last prepare().
   long cell_count() const { return cell_count_; }
+  // Solves that stopped at their max_iterations (LinearSolver), over every pattern so far.
+  long solves_at_iteration_limit() const { return solver_ ? solver_->solves_at_iteration_limit() : 0; }
 
   // Fills the region's rows, one (cell, unknown) at a time, while it lives; the matrix is
   // assembled when it goes. Columns are given as grid stencils; those outside the region are
