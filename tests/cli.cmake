@@ -62,6 +62,11 @@ add_test(NAME cli_restart_other_grading
                  ${GRANFLOW_SHORT_RUN})
 set_tests_properties(cli_restart_other_grading PROPERTIES LABELS cli
                      PASS_REGULAR_EXPRESSION "the checkpoint is of the domain [^;]*\\(planar\\); the case's is [^\n]*\\(planar\\), grading \\[5, 0.2\\]")
+# A restart honours a lower time.max_dt from its first step (the stopped run's next step was 1.4 ms).
+add_test(NAME cli_restart_takes_the_new_max_dt
+         COMMAND sh -c "g=$0; d=$1; c=$2; rm -rf \"$d\"; \"$g\" run \"$c\" -o \"$d\" --set time.end=0.1 --set 'mesh.cells=[74,32]' --set 'mesh.upper=[0.35242, 0.1524]' --set output.fields=false --set output.progress_seconds=0 > /dev/null || exit 1; \"$g\" run \"$c\" -o \"$d\" --restart --set time.end=0.101 --set time.max_dt=1e-4 --set 'mesh.cells=[74,32]' --set 'mesh.upper=[0.35242, 0.1524]' --set output.fields=false --set output.progress_seconds=0 > /dev/null || exit 1; awk -F, 'NR > 1 && $1 > 0.1 + 1e-9 { n++; if ($2 > 1.0000001e-4) bad++ } END { exit !(n >= 10 && bad == 0) }' \"$d/history.csv\""
+                 $<TARGET_FILE:granflow> ${CMAKE_CURRENT_BINARY_DIR}/restart_max_dt ${CMAKE_SOURCE_DIR}/cases/water_dam_break.toml)
+set_tests_properties(cli_restart_takes_the_new_max_dt PROPERTIES LABELS cli)
 # An output path that is a file, a misspelt command, a solver PETSc does not know, a PETSc option
 # nothing reads.
 add_test(NAME cli_output_is_a_file

@@ -383,7 +383,11 @@ RunSummary Simulation::run(const StepObserver& after_step) {
   auto last_progress = start;
   RunSummary summary;
   const auto& tc = config_.time;
-  double dt = restarted_ ? restart_dt_ : std::min(tc.dt, tc.max_dt);
+  // A restart goes on with the step the stopped run would have taken, within the case's present
+  // bounds: a lower time.max_dt, or a fixed time.dt, applies from the first step (a new courant
+  // number from the second, as the step is chosen from the flow).
+  double dt = !restarted_ ? std::min(tc.dt, tc.max_dt)
+                          : (tc.adaptive ? std::min(restart_dt_, tc.max_dt) : std::min(tc.dt, tc.max_dt));
   if (!restarted_) write_output();
   Vec previous[2];
   for (int a = 0; a < 2; ++a) VecDuplicate(flow_->velocity(a).global(), &previous[a]);
