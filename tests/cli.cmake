@@ -50,6 +50,18 @@ add_test(NAME cli_restart_damaged_checkpoint
                  $<TARGET_FILE:granflow> ${CMAKE_CURRENT_BINARY_DIR}/restart_damaged ${CMAKE_SOURCE_DIR}/cases/bui2008_experiment.toml
                  ${GRANFLOW_SHORT_RUN})
 set_tests_properties(cli_restart_damaged_checkpoint PROPERTIES LABELS cli PASS_REGULAR_EXPRESSION "checkpoint is damaged: .*run.txt: 'abc' is not a count for 'output_index'")
+add_test(NAME cli_restart_damaged_clock
+         COMMAND sh -c "g=$0; d=$1; c=$2; shift 2; rm -rf \"$d\"; \"$g\" run \"$c\" -o \"$d\" \"$@\" > /dev/null || exit 1; sed -i 's/^time .*/time garbage/' \"$d/checkpoint/run.txt\"; \"$g\" run \"$c\" -o \"$d\" --restart \"$@\" --set time.end=0.05 2>&1"
+                 $<TARGET_FILE:granflow> ${CMAKE_CURRENT_BINARY_DIR}/restart_clock ${CMAKE_SOURCE_DIR}/cases/bui2008_experiment.toml
+                 ${GRANFLOW_SHORT_RUN})
+set_tests_properties(cli_restart_damaged_clock PROPERTIES LABELS cli PASS_REGULAR_EXPRESSION "checkpoint is damaged: .*run.txt: the clock \\(time nan")
+# A run out of steps says so; a restart must raise time.max_steps, which counts the whole run's.
+add_test(NAME cli_max_steps_said
+         COMMAND sh -c "g=$0; d=$1; c=$2; shift 2; rm -rf \"$d\"; \"$g\" run \"$c\" -o \"$d\" \"$@\" --set time.max_steps=3 2>&1 || exit 1; \"$g\" run \"$c\" -o \"$d\" --restart \"$@\" --set time.max_steps=3 2>&1"
+                 $<TARGET_FILE:granflow> ${CMAKE_CURRENT_BINARY_DIR}/max_steps ${CMAKE_SOURCE_DIR}/cases/bui2008_experiment.toml
+                 ${GRANFLOW_SHORT_RUN})
+set_tests_properties(cli_max_steps_said PROPERTIES LABELS cli PASS_REGULAR_EXPRESSION
+                     "in 3 steps [^\n]*, stopped at time.max_steps = 3 before time.end = 0.02 s\n.*error: time.max_steps = 3 is not past the checkpoint's 3 steps")
 add_test(NAME cli_restart_other_domain
          COMMAND sh -c "g=$0; d=$1; c=$2; shift 2; rm -rf \"$d\"; \"$g\" run \"$c\" -o \"$d\" \"$@\" > /dev/null || exit 1; \"$g\" run \"$c\" -o \"$d\" --restart \"$@\" --set time.end=0.05 --set mesh.upper=[0.7,0.2] 2>&1"
                  $<TARGET_FILE:granflow> ${CMAKE_CURRENT_BINARY_DIR}/restart_domain ${CMAKE_SOURCE_DIR}/cases/bui2008_experiment.toml

@@ -85,7 +85,10 @@ int run_case(const std::string& case_file, const std::vector<std::string>& overr
   if (rank == 0) {
     fmt::print("done: t = {:.6g} s in {} steps ({} taken again with a smaller step), {:.2f} s wall ({:.3g} cell-steps/s){}\n",
                s.time, s.steps, s.retried_steps, s.wall_seconds, double(sim.grid().cell_count()) * s.steps / s.wall_seconds,
-               s.reached_steady_state ? ", steady state reached" : "");
+               s.reached_steady_state   ? ", steady state reached"
+               : s.stopped_at_max_steps ? fmt::format(", stopped at time.max_steps = {} before time.end = {} s",
+                                                      sim.config().time.max_steps, sim.config().time.end)
+                                        : std::string());
     fmt::print("outer iterations {} ({} of {} steps stopped at numerics.outer_iterations, not at outer_tolerance), "
                "momentum iterations {}, pressure solves {} ({:.1f} iterations each)\n",
                s.outer_iterations, s.steps_outer_unconverged, s.steps, s.momentum_iterations, s.pressure_solves,

@@ -98,7 +98,13 @@ void write_run(const std::filesystem::path& path, const RunCheckpoint& r) {
   });
 }
 
-double hex_double(const std::string& s) { return std::strtod(s.c_str(), nullptr); }
+// A number as write_run prints it (hexadecimal floating point); NaN if the text is not one, which
+// the checks of the clock then refuse.
+double hex_double(const std::string& s) {
+  char* end = nullptr;
+  const double x = std::strtod(s.c_str(), &end);
+  return end == s.c_str() || *end != '\0' ? std::nan("") : x;
+}
 
 RunCheckpoint read_run(const std::filesystem::path& path) {
   std::ifstream in(path);
@@ -130,6 +136,8 @@ RunCheckpoint read_run(const std::filesystem::path& path) {
   for (size_t k = 0; k < n_series; ++k) {
     std::string t, f;
     if (!(in >> t >> f)) throw CheckpointError(fmt::format("{} is truncated", path.string()));
+    if (!std::isfinite(hex_double(t)))
+      throw CheckpointError(fmt::format("{}: '{}' is not the time of an output", path.string(), t));
     r.series.emplace_back(hex_double(t), f);
   }
   const size_t n_history = count("history");

@@ -357,6 +357,10 @@ void Simulation::restart() {
   if (!(config_.time.end > run.time * (1 + 1e-12)))
     throw CheckpointError(fmt::format("time.end = {} s is not past the checkpoint's t = {:.9g} s: raise it to run on",
                                       config_.time.end, run.time));
+  if (run.steps >= config_.time.max_steps)
+    throw CheckpointError(fmt::format("time.max_steps = {} is not past the checkpoint's {} steps (it counts the "
+                                      "whole run's): raise it to run on",
+                                      config_.time.max_steps, run.steps));
   const size_t expected = 1 + (soil_ ? soil_->checkpoint_scalars().size() : 0);
   if (scalars.size() != expected) throw CheckpointError("the checkpoint's state does not match this case's model");
   flow_->set_last_dt(scalars[0]);
@@ -500,6 +504,7 @@ RunSummary Simulation::run(const StepObserver& after_step) {
   if (soil_ && initial_soil_volume_ > 0.0)
     summary.soil_volume_error = soil_->budget(*flow_).soil_volume / initial_soil_volume_ - 1.0;
   summary.time = time_;
+  summary.stopped_at_max_steps = !summary.reached_steady_state && steps_ >= tc.max_steps && time_ < tc.end * (1 - 1e-12);
   summary.wall_seconds = std::chrono::duration<double>(clock::now() - start).count();
   summary.solves_at_iteration_limit = flow_->solves_at_iteration_limit();
   return summary;
