@@ -3,19 +3,36 @@
 #include <fmt/format.h>
 #include <unistd.h>
 
+#include <cerrno>
+#include <cstring>
 #include <fstream>
 #include <stdexcept>
 
 namespace granflow {
 void write_file_atomically(const std::filesystem::path& target, const std::function<void(std::ostream&)>& body) {
   const auto tmp = target.parent_path() / fmt::format(".{}.tmp{}", target.filename().string(), ::getpid());
+  // The reason, as the system gave it (a full disk, a quota); the stream itself keeps none.
+  auto failed = [&](const char* what) {
+    const int error = errno;
+    std::error_code ignored;
+    std::filesystem::remove(tmp, ignored);  // no half-written file is left behind
+    return std::runtime_error(fmt::format("cannot {} {}{}", what, target.string(),
+                                          error ? fmt::format(": {}", std::strerror(error)) : std::string()));
+  };
   {
+    errno = 0;
     std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
-    if (!out)
-      throw std::runtime_error(fmt::format("cannot write {} (through {})", target.string(), tmp.filename().string()));
-    body(out);
+    if (!out) throw failed("write");
+    try {
+      body(out);
+    } catch (...) {
+      std::error_code ignored;
+      std::filesystem::remove(tmp, ignored);
+      throw;
+    }
     out.flush();
-    if (!out) throw std::runtime_error(fmt::format("writing {} failed", tmp.string()));
+    out.close();
+    if (!out) throw failed("finish writing");
   }
   std::filesystem::rename(tmp, target);
 }

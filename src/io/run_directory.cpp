@@ -40,8 +40,7 @@ std::vector<std::filesystem::path> run_files_in(const std::filesystem::path& dir
   std::set<std::string> line_names = recorded_lines(dir);
   for (const auto& line : lines) line_names.insert(line.name);
   const std::set<std::string> csv_series{"surface", "failure_line", "column_height"};
-  for (const auto& entry : fs::directory_iterator(dir, ec)) {
-    const std::string name = entry.path().filename().string();
+  auto is_run_file = [&](const std::string& name) {
     const bool fixed = name == "fields.pvd" || name == "history.csv" || name == "lode_dissipation.csv" ||
                        name == "checkpoint" || name == "checkpoint.old" || name == "checkpoint.partial" ||
                        name == run_record_name;
@@ -50,7 +49,18 @@ std::vector<std::filesystem::path> run_files_in(const std::filesystem::path& dir
                         numbered_stem(name, ".vtr") == "fields";
     const bool latest_line = name.size() > 4 && name.compare(name.size() - 4, 4, ".csv") == 0 &&
                              line_names.count(name.substr(0, name.size() - 4));
-    if (fixed || series || latest_line) files.push_back(entry.path());
+    return fixed || series || latest_line;
+  };
+  // .NAME.tmpPID: a file being written (io/atomic_file.cpp) when its run was killed.
+  auto is_left_over = [&](const std::string& name) {
+    const size_t tmp = name.rfind(".tmp");
+    if (name.size() < 2 || name[0] != '.' || tmp == std::string::npos || tmp + 4 == name.size()) return false;
+    if (!std::all_of(name.begin() + long(tmp) + 4, name.end(), [](char c) { return c >= '0' && c <= '9'; })) return false;
+    return is_run_file(name.substr(1, tmp - 1));
+  };
+  for (const auto& entry : fs::directory_iterator(dir, ec)) {
+    const std::string name = entry.path().filename().string();
+    if (is_run_file(name) || is_left_over(name)) files.push_back(entry.path());
   }
   std::sort(files.begin(), files.end());
   return files;

@@ -60,5 +60,17 @@ TEST(RunDirectory, FindsTheRunsFilesAndLeavesOthers) {
   fs::remove_all(dir);
 }
 
+// A run killed while it wrote a file leaves .NAME.tmpPID (io/atomic_file.cpp): the run's, if NAME is.
+TEST(RunDirectory, FilesLeftHalfWrittenAreTheRuns) {
+  const fs::path dir = fs::temp_directory_path() / ("granflow_run_left_over_" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  for (const char* name : {".fields_00001.vtr.tmp4242", ".history.csv.tmp17", ".survey.csv.tmp17", ".history.csv.tmp",
+                           ".history.csv.tmpx1", ".tmp12"})
+    std::ofstream(dir / name) << "x\n";
+  EXPECT_EQ(names_of(run_files_in(dir, {})), (std::vector<std::string>{".fields_00001.vtr.tmp4242", ".history.csv.tmp17"}));
+  fs::remove_all(dir);
+}
+
 }  // namespace
 }  // namespace granflow
