@@ -114,6 +114,14 @@ add_test(NAME cli_unused_petsc_option
                  --petsc=-presure_ksp_monitor)
 set_tests_properties(cli_unused_petsc_option PROPERTIES LABELS cli
                      PASS_REGULAR_EXPRESSION "warning: PETSc option -presure_ksp_monitor was given but not used")
+# Another preconditioner reads none of the BoomerAMG defaults granflow sets: no warning for those.
+add_test(NAME cli_other_preconditioner_no_warning
+         COMMAND granflow run ${CMAKE_SOURCE_DIR}/cases/lid_driven_cavity_re100.toml -o ${CMAKE_CURRENT_BINARY_DIR}/other_pc
+                 --overwrite --set "mesh.cells=[8,8]" --set time.end=0.01 --set output.progress_seconds=0
+                 "--petsc=-pressure_pc_type gamg")
+set_tests_properties(cli_other_preconditioner_no_warning PROPERTIES LABELS cli
+                     PASS_REGULAR_EXPRESSION "done: t = 0.01 s"
+                     FAIL_REGULAR_EXPRESSION "was given but not used;error:")
 # PETSc options read at start-up (-log_view) work through --petsc, and one --petsc may hold several.
 add_test(NAME cli_petsc_start_up_option
          COMMAND granflow run ${CMAKE_SOURCE_DIR}/cases/lid_driven_cavity_re100.toml -o ${CMAKE_CURRENT_BINARY_DIR}/log_view

@@ -112,7 +112,8 @@ void warn_unused_petsc_options(int rank) {
                                               "malloc_dump",  "malloc_view",  "objects_dump"};
   if (rank == 0)
     for (PetscInt k = 0; k < n; ++k)
-      if (std::find(std::begin(at_finalize), std::end(at_finalize), std::string_view(names[k])) == std::end(at_finalize))
+      if (std::find(std::begin(at_finalize), std::end(at_finalize), std::string_view(names[k])) == std::end(at_finalize) &&
+          !granflow::is_default_petsc_option(names[k]))
         fmt::print(stderr, "warning: PETSc option -{} was given but not used (misspelt, or no such solver)\n", names[k]);
   PetscOptionsLeftRestore(nullptr, &n, &names, &values);
 }

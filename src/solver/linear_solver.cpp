@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <set>
 #include <stdexcept>
 
 #include "solver/divergence_error.hpp"
@@ -32,6 +33,23 @@ std::string unknown_method(const LinearSolverSettings& s) {
   return {};
 }
 
+namespace {
+std::set<std::string>& defaults_set() {
+  static std::set<std::string> names;
+  return names;
+}
+// An option granflow sets as a default (the user's own option of that name takes precedence).
+void set_default_option(const std::string& key, const char* value) {
+  PetscBool set;
+  PetscOptionsHasName(nullptr, nullptr, key.c_str(), &set);
+  if (set) return;
+  PetscOptionsSetValue(nullptr, key.c_str(), value);
+  defaults_set().insert(key.substr(1));
+}
+}  // namespace
+
+bool is_default_petsc_option(const std::string& name) { return defaults_set().count(name) > 0; }
+
 LinearSolver::LinearSolver(MPI_Comm comm, const std::string& prefix, const LinearSolverSettings& s)
     : prefix_(prefix), max_reuse_(std::max(1, s.max_reuse)) {
   PetscCallAbort(comm, KSPCreate(comm, &ksp_));
@@ -42,21 +60,13 @@ LinearSolver::LinearSolver(MPI_Comm comm, const std::string& prefix, const Linea
   PetscCallAbort(comm, PCSetType(pc, s.pc_type.c_str()));
   PetscCallAbort(comm, KSPSetTolerances(ksp_, s.rtol, s.atol, PETSC_DEFAULT, s.max_iterations));
   PetscCallAbort(comm, KSPSetInitialGuessNonzero(ksp_, PETSC_TRUE));
-  if (s.pc_type == "lu") {  // a parallel direct solver, unless the user names another
-    const std::string key = "-" + prefix + "_pc_factor_mat_solver_type";
-    PetscBool set;
-    PetscOptionsHasName(nullptr, nullptr, key.c_str(), &set);
-    if (!set) PetscOptionsSetValue(nullptr, key.c_str(), "mumps");
-  }
+  if (s.pc_type == "lu")  // a parallel direct solver, unless the user names another
+    set_default_option("-" + prefix + "_pc_factor_mat_solver_type", "mumps");
   if (s.pc_type == "hypre") {
     // BoomerAMG with a symmetric smoother, so that it is a valid preconditioner for CG, and the
     // cheaper HMIS coarsening; each is only a default that the user's own options override.
     const std::string p = "-" + prefix + "_pc_hypre_boomeramg_";
-    auto set_default = [&](const std::string& key, const char* value) {
-      PetscBool set;
-      PetscOptionsHasName(nullptr, nullptr, (p + key).c_str(), &set);
-      if (!set) PetscOptionsSetValue(nullptr, (p + key).c_str(), value);
-    };
+    auto set_default = [&](const std::string& key, const char* value) { set_default_option(p + key, value); };
     set_default("relax_type_all", "symmetric-SOR/Jacobi");
     set_default("coarsen_type", "HMIS");
     set_default("interp_type", "ext+i");

@@ -23,6 +23,10 @@ struct LinearSolverSettings {
 // pc_type is found before a run starts, not as a PETSc error trace inside it. Needs PETSc initialised.
 std::string unknown_method(const LinearSolverSettings& settings);
 
+// Whether granflow itself set the PETSc option `name` (without its '-') as a solver's default:
+// the user's --petsc may make another preconditioner read none of them, which is no mistake.
+bool is_default_petsc_option(const std::string& name);
+
 class LinearSolver {
  public:
   LinearSolver(MPI_Comm comm, const std::string& prefix, const LinearSolverSettings& settings);
