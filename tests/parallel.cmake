@@ -47,3 +47,10 @@ add_test(NAME cli_line_samples_2_ranks_as_1
 set_tests_properties(cli_line_samples_2_ranks_as_1 PROPERTIES
   LABELS parallel TIMEOUT 300
   ENVIRONMENT "OMPI_ALLOW_RUN_AS_ROOT=1;OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1;OMPI_MCA_rmaps_base_oversubscribe=1")
+
+# `check` on two ranks says its verdict once.
+add_test(NAME cli_check_2_ranks_says_once
+         COMMAND sh -c "out=$(\"$0\" -np 2 --oversubscribe \"$1\" check \"$2\" 2>&1) || exit 1; test $(echo \"$out\" | grep -c 'valid (') -eq 1"
+                 ${MPIRUN} $<TARGET_FILE:granflow> ${CMAKE_SOURCE_DIR}/cases/bui2008_experiment.toml)
+set_tests_properties(cli_check_2_ranks_says_once PROPERTIES LABELS parallel
+  ENVIRONMENT "OMPI_ALLOW_RUN_AS_ROOT=1;OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1")

@@ -265,10 +265,12 @@ int main(int argc, char** argv) {
     try {
       const auto c = granflow::load_case(case_file, overrides);
       check_solver_methods(c);
-      fmt::print("{}: valid ({} x {} cells, t_end = {} s)\n", case_file, c.mesh.cells[0], c.mesh.cells[1], c.time.end);
-      for (const auto& line : granflow::case_advice(c)) fmt::print(stderr, "warning: {}\n", line);
+      if (rank == 0) {  // every rank checks the same file alike; one says so
+        fmt::print("{}: valid ({} x {} cells, t_end = {} s)\n", case_file, c.mesh.cells[0], c.mesh.cells[1], c.time.end);
+        for (const auto& line : granflow::case_advice(c)) fmt::print(stderr, "warning: {}\n", line);
+      }
     } catch (const granflow::CaseError& e) {
-      fmt::print(stderr, "error: {}\n", e.what());
+      if (rank == 0) fmt::print(stderr, "error: {}\n", e.what());
       status = 2;
     }
     PetscFinalize();
