@@ -53,9 +53,13 @@ int run_case(const std::string& case_file, const std::vector<std::string>& overr
       throw CaseError(fmt::format("-o {}: not a directory", out_dir));
   }
   const auto earlier = run_files_in(out_dir, config.output.lines);
-  if (!restart && !overwrite && !earlier.empty())
-    throw CaseError(fmt::format("{} holds an earlier run ({}): continue it with --restart, replace it with "
-                                "--overwrite, or choose another directory with -o", out_dir, earlier.front().string()));
+  if (!restart && !overwrite && !earlier.empty()) {
+    std::error_code ec;
+    const bool resumable = std::filesystem::exists(std::filesystem::path(out_dir) / "checkpoint", ec);
+    throw CaseError(fmt::format("{} holds an earlier run ({}): {}replace it with --overwrite, or choose another "
+                                "directory with -o",
+                                out_dir, earlier.front().string(), resumable ? "continue it with --restart, " : ""));
+  }
   Simulation sim(PETSC_COMM_WORLD, config, out_dir);  // checks what the case file alone cannot
   // Only now, with the case found good, every file of the earlier run goes: its checkpoint above all
   // (a later --restart would continue that run), and its later outputs, which the new run might not
