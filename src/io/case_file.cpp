@@ -95,7 +95,7 @@ mixture::MixtureInterpolation read_mixing(TableReader& m, const std::string& pro
     mix.M = m.number("arctan_M", 0.0);
     m.require_range("arctan_M", mix.M, -0.5, 0.5);
     mix.N = m.number("arctan_N", 1.0);
-    m.require_range("arctan_N", mix.N, 1e-6, 1e6, "positive");
+    m.require_range("arctan_N", mix.N, 1e-6, 1e6);
   }
   return mix;
 }
@@ -228,9 +228,11 @@ CaseConfig read_case(const toml::table& root, const std::filesystem::path& sourc
     if (!m.present()) throw CaseError("mesh: missing table [mesh]");
     auto cells = m.numbers("cells", {}, 2);
     if (cells.size() != 2) throw CaseError("mesh.cells: expected two integers [nx, ny]");
-    for (double n : cells)
-      if (n < 1 || n != std::floor(n) || n > 1e8)
+    for (double n : cells) {
+      if (n < 1 || n != std::floor(n))
         throw CaseError(fmt::format("mesh.cells: {} is not a positive whole number of cells", n));
+      if (n > 1e8) throw CaseError(fmt::format("mesh.cells: {:.0f} cells along an axis, more than 1e8", n));
+    }
     c.mesh.cells = {int(cells[0]), int(cells[1])};
     // PETSc's indices here are 32-bit; the coupled solve's matrix holds about 3 x 35 entries a cell.
     constexpr double max_cells = 2e7;

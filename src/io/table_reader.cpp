@@ -96,7 +96,8 @@ std::vector<double> TableReader::numbers(std::string_view key, std::vector<doubl
   std::vector<double> out;
   for (const auto& e : *arr) {
     auto v = e.value<double>();
-    if (!v || !std::isfinite(*v)) type_error(key, "an array of numbers");
+    if (!v) type_error(key, "an array of numbers");
+    if (!std::isfinite(*v)) type_error(key, "an array of finite numbers");
     out.push_back(*v);
   }
   if (out.size() < min_size) type_error(key, fmt::format("at least {} numbers", min_size).c_str());
@@ -128,7 +129,8 @@ std::vector<std::array<double, 2>> TableReader::pairs(std::string_view key, size
     const toml::array* pt = e.as_array();
     if (!pt || pt->size() != 2) type_error(key, "a list of [x, y] points");
     auto x = (*pt)[0].value<double>(), y = (*pt)[1].value<double>();
-    if (!x || !y || !std::isfinite(*x) || !std::isfinite(*y)) type_error(key, "a list of [x, y] points");
+    if (!x || !y) type_error(key, "a list of [x, y] points");
+    if (!std::isfinite(*x) || !std::isfinite(*y)) type_error(key, "a list of [x, y] points of finite numbers");
     out.push_back({*x, *y});
   }
   if (out.size() < min_size) type_error(key, fmt::format("at least {} points", min_size).c_str());

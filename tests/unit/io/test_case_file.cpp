@@ -161,6 +161,15 @@ TEST(CaseFile, RheologyParametersAreValidated) {
                                          "soil.yield_pressure=face", "soil.face_fraction=face"}));
 }
 
+// The message states the rule that was broken.
+TEST(CaseFile, MessagesStateTheRuleBroken) {
+  EXPECT_NE(error_of(minimal, {"mesh.upper=[1.0, nan]"}).find("finite"), std::string::npos);
+  EXPECT_NE(error_of(minimal, {"mesh.cells=[100000001, 1]"}).find("more than 1e8"), std::string::npos);
+  EXPECT_NE(error_of(two_phase, {"soil.rheology.friction_angle=30", "mixture.density=\"arctan\"", "mixture.arctan_N=2e6"}).find("[1e-06, 1000000]"),
+            std::string::npos)
+      << error_of(two_phase, {"soil.rheology.friction_angle=30", "mixture.density=\"arctan\"", "mixture.arctan_N=2e6"});
+}
+
 TEST(CaseFile, AirBandNeedsTheCoupledSolveAndAnOpenTop) {
   const std::vector<std::string> valid{"soil.rheology.friction_angle=30", "numerics.pressure_coupling=coupled"};
   auto with = [&](const std::string& extra) {
