@@ -64,7 +64,8 @@ LinearSolverSettings read_linear_solver(TableReader r, LinearSolverSettings d) {
   return d;
 }
 
-BoundaryCondition read_boundary(TableReader r, bool& is_axis) {
+// two_phase_keys: collects the keys given that only a case with soil uses.
+BoundaryCondition read_boundary(TableReader r, bool& is_axis, std::vector<std::string>& two_phase_keys) {
   if (!r.present()) throw CaseError(fmt::format("{}: missing (every side needs a boundary type)", r.path()));
   BoundaryCondition bc;
   const std::string type = r.choice("type", "", {"wall", "slip", "symmetry", "atmosphere", "axis"});
@@ -80,6 +81,7 @@ BoundaryCondition read_boundary(TableReader r, bool& is_axis) {
     bc.kind = BoundaryKind::atmosphere;
     bc.pressure = r.number("pressure", 0.0);
     bc.total_pressure = r.choice("pressure_kind", "total", {"total", "static"}) == "total";
+    if (r.has("inflow_soil_fraction")) two_phase_keys.push_back(r.key_path("inflow_soil_fraction"));
     bc.inflow_soil_fraction = r.number("inflow_soil_fraction", 0.0);
     r.require_range("inflow_soil_fraction", bc.inflow_soil_fraction, 0.0, 1.0);
   }
@@ -220,6 +222,7 @@ CaseConfig read_case(const toml::table& root, const std::filesystem::path& sourc
   CaseConfig c;
   c.source = source;
   double interface_courant = 0.45;
+  std::vector<std::string> two_phase_keys;  // given, but used only with soil
   TableReader top(&root, "");
   c.title = top.string("title", source.stem().string());
 
@@ -263,6 +266,8 @@ CaseConfig read_case(const toml::table& root, const std::filesystem::path& sourc
     c.time.adaptive = t.boolean("adaptive", true);
     c.time.courant = t.number("courant", 0.5);
     t.require_range("courant", c.time.courant, 1e-6, 1e3);
+    for (const char* key : {"courant_region", "interface_courant", "interface_substeps"})
+      if (t.has(key)) two_phase_keys.push_back(t.key_path(key));
     c.time.courant_region = t.choice("courant_region", "all", {"all", "soil"}) == "soil" ? CourantRegion::soil : CourantRegion::all;
     c.time.max_dt = t.number("max_dt", inf);
     if (!(c.time.max_dt > 0)) throw CaseError("time.max_dt: must be positive");
@@ -299,7 +304,7 @@ CaseConfig read_case(const toml::table& root, const std::filesystem::path& sourc
     if (!b.present()) throw CaseError("boundary: missing table [boundary] (west, east, south, north)");
     for (Side s : all_sides) {
       bool is_axis = false;
-      c.flow.boundaries[int(s)] = read_boundary(b.table(side_name(s)), is_axis);
+      c.flow.boundaries[int(s)] = read_boundary(b.table(side_name(s)), is_axis, two_phase_keys);
       if (is_axis && !(s == Side::west && c.mesh.axisymmetric && c.mesh.lower[0] == 0.0))
         throw CaseError(fmt::format("boundary.{}.type: \"axis\" is the west side at r = 0 of an axisymmetric mesh "
                                     "(mesh.geometry = \"axisymmetric\", mesh.lower[0] = 0)", side_name(s)));
@@ -410,6 +415,8 @@ CaseConfig read_case(const toml::table& root, const std::filesystem::path& sourc
     o.finish();
   }
   top.finish();
+  if (!c.soil && !two_phase_keys.empty())
+    throw CaseError(fmt::format("{}: applies to cases with soil only (this case has [fluid], no [soil])", two_phase_keys.front()));
   if (c.soil) {
     c.soil->interface_courant = interface_courant;
     // A shape may reach past the domain (it is clipped), but one wholly outside it holds no soil.

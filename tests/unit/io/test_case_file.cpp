@@ -83,15 +83,6 @@ TEST(CaseFile, SetOverridesAnyKey) {
   EXPECT_EQ(c.flow.numerics.convection, ConvectionScheme::upwind);
 }
 
-TEST(CaseFile, InterfaceSubstepsMustBeAPositiveWholeNumber) {
-  EXPECT_EQ(parse_case(minimal, {"time.interface_substeps=3"}).time.interface_substeps, 3);
-  EXPECT_EQ(parse_case(minimal).time.interface_substeps, 1);
-  for (const char* bad : {"time.interface_substeps=0", "time.interface_substeps=1.5"}) {
-    const std::string e = error_of(minimal, {bad});
-    EXPECT_NE(e.find("time.interface_substeps"), std::string::npos) << bad << ": " << e;
-  }
-}
-
 TEST(CaseFile, SymmetryIsASlipWall) {
   const CaseConfig c = parse_case(minimal, {"boundary.west={type=\"symmetry\"}", "boundary.east={type=\"slip\"}"});
   EXPECT_EQ(c.flow.boundaries[int(Side::west)].kind, BoundaryKind::slip);
@@ -168,6 +159,26 @@ TEST(CaseFile, MessagesStateTheRuleBroken) {
   EXPECT_NE(error_of(two_phase, {"soil.rheology.friction_angle=30", "mixture.density=\"arctan\"", "mixture.arctan_N=2e6"}).find("[1e-06, 1000000]"),
             std::string::npos)
       << error_of(two_phase, {"soil.rheology.friction_angle=30", "mixture.density=\"arctan\"", "mixture.arctan_N=2e6"});
+}
+
+TEST(CaseFile, InterfaceSubstepsMustBeAPositiveWholeNumber) {
+  const std::vector<std::string> soil{"soil.rheology.friction_angle=30", "time.interface_substeps=3"};
+  EXPECT_EQ(parse_case(two_phase, soil).time.interface_substeps, 3);
+  EXPECT_EQ(parse_case(minimal).time.interface_substeps, 1);
+  for (const char* bad : {"time.interface_substeps=0", "time.interface_substeps=1.5"}) {
+    const std::string e = error_of(two_phase, {"soil.rheology.friction_angle=30", bad});
+    EXPECT_NE(e.find("time.interface_substeps"), std::string::npos) << bad << ": " << e;
+  }
+}
+
+// Keys that only a case with soil reads are refused in a single-phase case, not ignored.
+TEST(CaseFile, TwoPhaseKeysRefusedWithoutSoil) {
+  for (const char* key : {"time.interface_substeps=3", "time.interface_courant=0.3", "time.courant_region=\"soil\"",
+                          "boundary.north={type = \"atmosphere\", inflow_soil_fraction = 0.5}"}) {
+    const std::string e = error_of(minimal, {key});
+    EXPECT_NE(e.find("applies to cases with soil only"), std::string::npos) << key << ": " << e;
+  }
+  EXPECT_EQ(error_of(two_phase, {"soil.rheology.friction_angle=30", "time.interface_substeps=3"}), "");
 }
 
 TEST(CaseFile, AirBandNeedsTheCoupledSolveAndAnOpenTop) {
