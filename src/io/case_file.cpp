@@ -415,6 +415,10 @@ CaseConfig read_case(const toml::table& root, const std::filesystem::path& sourc
     o.finish();
   }
   top.finish();
+  for (auto& bc : c.flow.boundaries)
+    if (bc.kind == BoundaryKind::atmosphere)
+      bc.outside_density = c.soil ? c.soil->density_mixing(bc.inflow_soil_fraction, c.soil->air_density, c.soil->soil_density)
+                                  : c.fluid.density;
   if (!c.soil && !two_phase_keys.empty())
     throw CaseError(fmt::format("{}: applies to cases with soil only (this case has [fluid], no [soil])", two_phase_keys.front()));
   if (c.soil) {

@@ -20,6 +20,9 @@ struct BoundaryCondition {
   bool total_pressure = true;                     // false: p0 is the static pressure also for inflow
   // Soil fraction carried in by inflow through an atmosphere boundary.
   double inflow_soil_fraction = 0.0;
+  // Density of what lies beyond an open bottom (the mixture at inflow_soil_fraction; the fluid of a
+  // single-phase case), whose hydrostatic head below the top the bottom's pressure is. 0: unset.
+  double outside_density = 0.0;
 };
 
 using BoundarySet = std::array<BoundaryCondition, 4>;  // indexed by Side

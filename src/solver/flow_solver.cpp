@@ -296,7 +296,10 @@ void FlowSolver::update_boundary_heads() {
 double FlowSolver::boundary_head(Side s, int j, double rho, double y_face) const {
   if (s == Side::west) return side_head_[0][j];
   if (s == Side::east) return side_head_[1][j];
-  return rho * settings_.gravity[1] * (y_face - grid_.spec().upper[1]);
+  // The top's head is zero. An open bottom lies under what is beyond it: with the adjacent cell's
+  // density soil there took the head of a column of soil up to the top and was held up, as by a floor.
+  const double outside = boundary(settings_.boundaries, s).outside_density;
+  return (s == Side::south && outside > 0.0 ? outside : rho) * settings_.gravity[1] * (y_face - grid_.spec().upper[1]);
 }
 
 void FlowSolver::compute_face_forces() {

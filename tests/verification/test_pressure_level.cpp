@@ -75,5 +75,50 @@ TEST(PressureLevel, ClosedDomainHoldsZeroOnItsTop) {
   EXPECT_LT(std::abs(top / area), 1e-10 * largest);
 }
 
+// An open bottom lies under the outside's air: a water layer on it falls freely, at g. Its pressure
+// was once the hydrostatic head of the adjacent cell's density up to the top, that of a column of
+// water 0.2 m high under a layer of 0.05 m, which threw the layer up (its potential energy rose from
+// 1.24 to 2.01 J/m in 0.05 s).
+TEST(PressureLevel, LayerOnAnOpenBottomFallsFreely) {
+  const std::string text = R"(
+[mesh]
+cells = [10, 20]
+upper = [0.1, 0.2]
+[time]
+end = 0.04
+dt = 1e-4
+[physics]
+gravity = [0.0, -9.81]
+[air]
+density = 1.0
+viscosity = 1.8e-5
+[soil]
+density = 1000.0
+viscosity = 1e-3
+[[initial.soil]]
+shape = "box"
+lower = [0.0, 0.0]
+upper = [0.1, 0.05]
+[boundary]
+west = { type = "wall" }
+east = { type = "wall" }
+south = { type = "atmosphere" }
+north = { type = "atmosphere" }
+[output]
+progress_seconds = 0
+)";
+  Simulation sim(PETSC_COMM_WORLD, parse_case(text), "");
+  sim.run();
+  const SoilBudget b = sim.soil()->budget(sim.flow());
+  const double t = sim.time(), g = 9.81, width = 0.1;
+  const double fallen = 0.5 * g * t * t * width;                                // volume out, m^2
+  const double speed = std::sqrt(2.0 * b.kinetic_energy / (1000.0 * b.soil_volume));  // of the water left
+  if (!test::is_root()) return;
+  std::printf("layer on an open bottom at t = %.3f s: %.4g m^2 out (free fall %.4g), speed %.4f m/s (g t = %.4f)\n", t,
+              b.soil_outflow, fallen, speed, g * t);
+  EXPECT_NEAR(b.soil_outflow / fallen, 1.0, 0.15);  // 0.92: the last cell drains at the face's fraction
+  EXPECT_NEAR(speed / (g * t), 1.0, 0.05);
+}
+
 }  // namespace
 }  // namespace granflow
