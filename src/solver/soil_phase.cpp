@@ -332,35 +332,51 @@ void SoilPhase::advect(const FlowSolver& flow, double dt) {
 
 void SoilPhase::transport_displacement(const FlowSolver& flow, double dt) {
   if (!settings_.displacement) return;
-  fill_displacement_ghosts();
   const auto& b = grid_.owned();
   const int nx = grid_.nx(), ny = grid_.ny();
   ConstFieldArray c(grid_.field_dm(), c_->local());
   ConstFieldArray fx = local_read(grid_, flow.face_velocity(0)), fy = local_read(grid_, flow.face_velocity(1));
   ConstFieldArray u = local_read(grid_, flow.velocity(0)), v = local_read(grid_, flow.velocity(1));
   const double* const* vel[2] = {u.data(), v.data()};
-  for (int a = 0; a < 2; ++a) {
-    ConstFieldArray d(grid_.field_dm(), disp_[a]->local());
-    FieldArray dn(grid_.field_dm(), disp_new_[a]->global());
-    for (int j = b.ys; j < b.ye(); ++j)
-      for (int i = b.xs; i < b.xe(); ++i) {
-        // Soil flux (c v . n A)_f of each face ([VoF] Eq. 20), donor-cell displacement.
-        auto face_term = [&](double face_vel, int in, int jn, double area, double sign) {
-          const bool outside = in < 0 || in >= nx || jn < 0 || jn >= ny;
-          const double cf = outside ? c[j][i] : 0.5 * (c[j][i] + c[jn][in]);
-          const double flux = sign * face_vel * area * cf;  // outward
-          return flux * (flux >= 0.0 ? d[j][i] : d[jn][in]);
-        };
-        // Face areas carry the radius in axisymmetric geometry; with no swirl the r-component of
-        // div(c v u) has no extra hoop term, so the planar form holds component by component.
-        const double out = face_term(fx[j][i], i + 1, j, grid_.face_area(0, i, j, 1.0), 1.0) +
-                           face_term(fx[j][i - 1], i - 1, j, grid_.face_area(0, i, j, -1.0), -1.0) +
-                           face_term(fy[j][i], i, j + 1, grid_.face_area(1, i, j, 1.0), 1.0) +
-                           face_term(fy[j - 1][i], i, j - 1, grid_.face_area(1, i, j, -1.0), -1.0);
-        dn[j][i] = d[j][i] + dt * (c[j][i] * vel[a][j][i] - out / grid_.volume(i, j));
-      }
+  // Soil flux (c v . n A)_f of a face of (i, j) ([VoF] Eq. 20), outward.
+  auto soil_flux = [&](int i, int j, double face_vel, int in, int jn, double area, double sign) {
+    const bool outside = in < 0 || in >= nx || jn < 0 || jn >= ny;
+    const double cf = outside ? c[j][i] : 0.5 * (c[j][i] + c[jn][in]);
+    return sign * face_vel * area * cf;
+  };
+  // Face areas carry the radius in axisymmetric geometry; with no swirl the r-component of
+  // div(c v u) has no extra hoop term, so the planar form holds component by component.
+  auto faces = [&](int i, int j, auto&& visit) {
+    visit(soil_flux(i, j, fx[j][i], i + 1, j, grid_.face_area(0, i, j, 1.0), 1.0), i + 1, j);
+    visit(soil_flux(i, j, fx[j][i - 1], i - 1, j, grid_.face_area(0, i, j, -1.0), -1.0), i - 1, j);
+    visit(soil_flux(i, j, fy[j][i], i, j + 1, grid_.face_area(1, i, j, 1.0), 1.0), i, j + 1);
+    visit(soil_flux(i, j, fy[j - 1][i], i, j - 1, grid_.face_area(1, i, j, -1.0), -1.0), i, j - 1);
+  };
+  // The donor-cell update is stable while no cell sends out more than it holds in one sweep: the
+  // flow step may be longer (time.courant > 1, several VoF sweeps), so the step is split as needed.
+  double most_out = 0.0;
+  for (int j = b.ys; j < b.ye(); ++j)
+    for (int i = b.xs; i < b.xe(); ++i) {
+      double out = 0.0;
+      faces(i, j, [&](double flux, int, int) { out += std::max(flux, 0.0); });
+      most_out = std::max(most_out, out * dt / grid_.volume(i, j));
+    }
+  const int sweeps = std::max(1, int(std::ceil(mpi_max(grid_.comm(), most_out) - 1e-12)));
+  const double h = dt / sweeps;
+  for (int sweep = 0; sweep < sweeps; ++sweep) {
+    fill_displacement_ghosts();
+    for (int a = 0; a < 2; ++a) {
+      ConstFieldArray d(grid_.field_dm(), disp_[a]->local());
+      FieldArray dn(grid_.field_dm(), disp_new_[a]->global());
+      for (int j = b.ys; j < b.ye(); ++j)
+        for (int i = b.xs; i < b.xe(); ++i) {
+          double out = 0.0;  // donor-cell displacement
+          faces(i, j, [&](double flux, int in, int jn) { out += flux * (flux >= 0.0 ? d[j][i] : d[jn][in]); });
+          dn[j][i] = d[j][i] + h * (c[j][i] * vel[a][j][i] - out / grid_.volume(i, j));
+        }
+    }
+    for (int a = 0; a < 2; ++a) VecCopy(disp_new_[a]->global(), disp_[a]->global());
   }
-  for (int a = 0; a < 2; ++a) VecCopy(disp_new_[a]->global(), disp_[a]->global());
 }
 
 void SoilPhase::compute_diagnostics(const FlowSolver& flow) {

@@ -41,7 +41,8 @@ class SoilPhase {
   void advect(const FlowSolver& flow, double dt);
   // Refreshes what depends on c alone (the overburden pressure), after initialise() or advect().
   void refresh(const FlowSolver& flow);
-  // Eulerian displacement ([VoF] Eq. 16) with the soil velocity c v, explicit upwind.
+  // Eulerian displacement ([VoF] Eq. 16) with the soil velocity c v, explicit upwind, in as many
+  // sweeps as keep it stable over dt.
   void transport_displacement(const FlowSolver& flow, double dt);
   // Largest Courant number of one VoF sweep for a step dt, over the faces that can carry soil in
   // `substeps` sub-steps: those within that many cells of it (interface::soil_region).
