@@ -89,7 +89,9 @@ void FlowSolver::assemble_momentum(double dt) {
               src[c] -= factor * mu_face * area * (quadratic - two_point);
             }
           }
-          continue;  // atmosphere: zero gradient, no viscous flux; convection has no correction
+          // atmosphere: zero-gradient velocity, so no implicit viscous flux (the lagged transpose part
+          // above stays: the side's shear traction mu dv_n/dt, side_force.cpp); convection has no correction
+          continue;
         }
         // Outward face velocity and flux.
         const double face_vel = fg.axis == 0 ? (fg.sign > 0 ? fx[j][i] : fx[j][i - 1])

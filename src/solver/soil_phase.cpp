@@ -420,17 +420,33 @@ double SoilPhase::compute_dissipation(const FlowSolver& flow) {
   ConstFieldArray fmx = local_read(grid_, flow.face_viscosity(0)), fmy = local_read(grid_, flow.face_viscosity(1));
   FieldArray out(grid_.field_dm(), dissipation_->global());
   const double* const* q[2] = {u.data(), v.data()};
-  // Work rate of a wall face of cell (i, j) on side s, with half-cell distance d and area A.
+  // As the momentum operator has it (momentum_equation.cpp): the normal part 2 mu (mu without the
+  // transpose stress), the tangential mu plus, with the transpose stress, its lagged cross term.
+  const auto& num = flow_settings_.numerics;
+  const double normal_factor = num.transpose_stress ? 2.0 : 1.0, cross = num.transpose_stress ? 1.0 : 0.0;
+  // Work rate of a wall face of cell (i, j) on side s, with half-cell distance d and area A: the
+  // wall's traction, factor mu A times the wall gradient (two-point or quadratic), times the
+  // velocity relative to the wall.
   auto wall_face = [&](Side s, int i, int j, double A, double d) {
     const auto& bc = boundary(flow_settings_.boundaries, s);
-    const int n = normal_axis(s), t = 1 - n;
+    const int n = normal_axis(s);
     if (bc.kind == BoundaryKind::atmosphere) return 0.0;
     const double mu_f = s == Side::west ? fmx[j][i - 1] : s == Side::east ? fmx[j][i]
                       : s == Side::south ? fmy[j - 1][i] : fmy[j][i];
-    const double dn = (0.0 - q[n][j][i]) / d;
-    if (bc.kind == BoundaryKind::slip) return mu_f * A * d * 2.0 * dn * dn;
-    const double dt = (bc.wall_velocity[t] - q[t][j][i]) / d;
-    return mu_f * A * d * (2.0 * dn * dn + dt * dt);
+    const int di = n == 0 ? int(outward_normal(s, 0)) : 0, dj = n == 1 ? int(outward_normal(s, 1)) : 0;
+    double work = 0.0;
+    for (int c = 0; c < 2; ++c) {
+      if (bc.kind == BoundaryKind::slip && c != n) continue;  // no shear on a slip side
+      const double wall = c == n ? 0.0 : bc.wall_velocity[c];
+      const double u1 = q[c][j][i], relative = u1 - wall;
+      double gradient = relative / d;
+      if (num.quadratic_wall_gradient) {
+        const double h1 = 2.0 * d, h2 = n == 0 ? grid_.dx(i - di) : grid_.dy(j - dj);
+        gradient = quadratic_wall_derivative(u1, q[c][j - dj][i - di], wall, d, h1 + 0.5 * h2);
+      }
+      work += (c == n ? normal_factor : 1.0) * mu_f * A * gradient * relative;
+    }
+    return work;
   };
   // Work rate of the interior face between (i, j) and (i+1, j).
   auto east_face = [&](int i, int j) {
@@ -438,7 +454,7 @@ double SoilPhase::compute_dissipation(const FlowSolver& flow) {
     const double hy = grid_.yc(j + 1) - grid_.yc(j - 1);
     const double g_nn = (u[j][i + 1] - u[j][i]) / d, g_tn = (v[j][i + 1] - v[j][i]) / d;
     const double g_nt = 0.5 * ((u[j + 1][i] - u[j - 1][i]) + (u[j + 1][i + 1] - u[j - 1][i + 1])) / hy;
-    return fmx[j][i] * A * d * (2.0 * g_nn * g_nn + g_tn * (g_tn + g_nt));
+    return fmx[j][i] * A * d * (normal_factor * g_nn * g_nn + g_tn * (g_tn + cross * g_nt));
   };
   // ... and between (i, j) and (i, j+1).
   auto north_face = [&](int i, int j) {
@@ -446,7 +462,7 @@ double SoilPhase::compute_dissipation(const FlowSolver& flow) {
     const double hx = grid_.xc(i + 1) - grid_.xc(i - 1);
     const double g_nn = (v[j + 1][i] - v[j][i]) / d, g_tn = (u[j + 1][i] - u[j][i]) / d;
     const double g_nt = 0.5 * ((v[j][i + 1] - v[j][i - 1]) + (v[j + 1][i + 1] - v[j + 1][i - 1])) / hx;
-    return fmy[j][i] * A * d * (2.0 * g_nn * g_nn + g_tn * (g_tn + g_nt));
+    return fmy[j][i] * A * d * (normal_factor * g_nn * g_nn + g_tn * (g_tn + cross * g_nt));
   };
   // Each face once: an owned cell takes its east and north faces and gives the neighbour its half;
   // faces on the rank's low edges are the other rank's too, which takes its own half of them.
