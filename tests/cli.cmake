@@ -108,6 +108,16 @@ add_test(NAME cli_check_unknown_solver
          COMMAND granflow check ${CMAKE_SOURCE_DIR}/cases/bui2008_experiment.toml --set solver.coupled.ksp_type=bogus)
 set_tests_properties(cli_check_unknown_solver PROPERTIES LABELS cli
                      PASS_REGULAR_EXPRESSION "solver.coupled.ksp_type: 'bogus' is not a Krylov method")
+# check lays out the initial state as a run does, and finds what only that shows.
+add_test(NAME cli_check_lays_out_the_initial_state
+         COMMAND granflow check ${CMAKE_SOURCE_DIR}/cases/bui2008_experiment.toml --set "mesh.cells=[30,10]"
+                 --set "initial.soil=[{shape = \"box\", lower = [0.3, 0.1], upper = [0.3001, 0.1001]}]")
+set_tests_properties(cli_check_lays_out_the_initial_state PROPERTIES LABELS cli WILL_FAIL TRUE)
+add_test(NAME cli_check_lays_out_the_initial_state_message
+         COMMAND granflow check ${CMAKE_SOURCE_DIR}/cases/bui2008_experiment.toml --set "mesh.cells=[30,10]"
+                 --set "initial.soil=[{shape = \"box\", lower = [0.3, 0.1], upper = [0.3001, 0.1001]}]")
+set_tests_properties(cli_check_lays_out_the_initial_state_message PROPERTIES LABELS cli
+                     PASS_REGULAR_EXPRESSION "error: initial.soil: the shapes cover no part of any cell's samples on this 30 x 10 mesh")
 add_test(NAME cli_unused_petsc_option
          COMMAND granflow run ${CMAKE_SOURCE_DIR}/cases/lid_driven_cavity_re100.toml -o ${CMAKE_CURRENT_BINARY_DIR}/unused_option
                  --overwrite --set "mesh.cells=[8,8]" --set time.end=0.01 --set output.progress_seconds=0

@@ -269,11 +269,17 @@ int main(int argc, char** argv) {
     try {
       const auto c = granflow::load_case(case_file, overrides);
       check_solver_methods(c);
+      // What the case file alone cannot tell (the mesh's layout on these ranks, initial shapes that
+      // miss every cell's samples) is found where a run finds it: in laying out the initial state.
+      granflow::Simulation initial_state(PETSC_COMM_WORLD, c, "");
       if (rank == 0) {  // every rank checks the same file alike; one says so
         fmt::print("{}: valid ({} x {} cells, t_end = {} s)\n", case_file, c.mesh.cells[0], c.mesh.cells[1], c.time.end);
         for (const auto& line : granflow::case_advice(c)) fmt::print(stderr, "warning: {}\n", line);
       }
     } catch (const granflow::CaseError& e) {
+      if (rank == 0) fmt::print(stderr, "error: {}\n", e.what());
+      status = 2;
+    } catch (const granflow::GridError& e) {
       if (rank == 0) fmt::print(stderr, "error: {}\n", e.what());
       status = 2;
     }
