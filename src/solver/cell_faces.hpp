@@ -1,6 +1,7 @@
 #pragma once
 // The four faces of a cell (i, j) as the finite-volume loops of the flow solver visit them.
 #include "mesh/grid.hpp"
+#include "operators/strain_rate.hpp"
 
 namespace granflow {
 
@@ -43,6 +44,19 @@ inline double lagged_transpose_gradient(const Grid& g, const double* const* cons
   const double dn = fg.axis == 0 ? g.xc(in) - g.xc(i) : g.yc(jn) - g.yc(j);
   const double normal = (qc[jn][in] - qc[j][i]) / dn;
   return tangential - normal;
+}
+
+// The wall-normal derivative of a velocity component q at the wall face fg of cell (i, j), whose
+// value at the wall is `wall`: the two-point (q_1 - wall) / (h/2), or the quadratic through the wall
+// and the first two centres (numerics.wall_gradient = "quadratic", operators/strain_rate.hpp).
+// Its magnitude, not its sign along the normal: the wall's traction on the cell is -mu times it.
+inline double wall_gradient(const Grid& g, const double* const* q, int i, int j, const FaceGeometry& fg, double wall,
+                            bool quadratic) {
+  const double h1 = fg.axis == 0 ? g.dx(i) : g.dy(j);
+  const double u1 = q[j][i];
+  if (!quadratic) return (u1 - wall) / (0.5 * h1);
+  const double h2 = fg.axis == 0 ? g.dx(i - fg.di) : g.dy(j - fg.dj);
+  return quadratic_wall_derivative(u1, q[j - fg.dj][i - fg.di], wall, 0.5 * h1, h1 + 0.5 * h2);
 }
 
 }  // namespace granflow

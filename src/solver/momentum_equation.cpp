@@ -73,18 +73,13 @@ void FlowSolver::assemble_momentum(double dt) {
             extra[fg.axis] += coeff;  // impermeable: normal component zero; no shear
           }
           if (num.quadratic_wall_gradient && bc.kind != BoundaryKind::atmosphere) {
-            // Deferred correction from the two-point wall gradient (u_1 - u_w)/s1 to the quadratic one
-            // through the wall and the first two cell centres (at s1 and s2 from the wall). The net
-            // two-point stress is mu per tangential and stress_factor mu for the normal component.
-            const double h1 = fg.axis == 0 ? dx : dy;
-            const double h2 = fg.axis == 0 ? grid_.dx(i - fg.di) : grid_.dy(j - fg.dj);
-            const double s1 = 0.5 * h1, s2 = h1 + 0.5 * h2;
+            // Deferred correction from the two-point wall gradient to the quadratic one (cell_faces.hpp).
+            // The net two-point stress is mu per tangential and stress_factor mu for the normal component.
             for (int c = 0; c < 2; ++c) {
               if (bc.kind == BoundaryKind::slip && c != fg.axis) continue;  // no shear at a slip wall
               const double uw = c == fg.axis ? 0.0 : bc.wall_velocity[c];
-              const double u1 = vel[c][j][i], u2 = vel[c][j - fg.dj][i - fg.di];
-              const double quadratic = quadratic_wall_derivative(u1, u2, uw, s1, s2);
-              const double two_point = (u1 - uw) / s1;
+              const double quadratic = wall_gradient(grid_, vel[c], i, j, fg, uw, true);
+              const double two_point = wall_gradient(grid_, vel[c], i, j, fg, uw, false);
               const double factor = c == fg.axis ? stress_factor : 1.0;
               src[c] -= factor * mu_face * area * (quadratic - two_point);
             }

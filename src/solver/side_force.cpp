@@ -2,6 +2,8 @@
 // barrier or a bed carries, e.g. the thrust of a landslide on a retaining wall.
 #include <mpi.h>
 
+#include <cmath>
+
 #include "operators/strain_rate.hpp"
 #include "solver/cell_faces.hpp"
 #include "solver/flow_solver.hpp"
@@ -40,8 +42,7 @@ std::array<std::array<double, 2>, 4> FlowSolver::side_forces() const {
     const int axis = fg.axis;
     const double sign = fg.sign;
     const double area = grid_.face_area(axis, i, j, sign);
-    const double h = axis == 0 ? grid_.dx(i) : grid_.dy(j);
-    const double d_half = 0.5 * h;
+    const double d_half = 0.5 * (axis == 0 ? grid_.dx(i) : grid_.dy(j));
     const double mu = axis == 0 ? fmx[j][sign > 0 ? i : i - 1] : fmy[sign > 0 ? j : j - 1][i];
     double* f = &force[2 * static_cast<int>(s)];
     // The lagged part of the viscous stress, on every kind of side (an open one included).
@@ -49,26 +50,30 @@ std::array<std::array<double, 2>, 4> FlowSolver::side_forces() const {
       for (int c = 0; c < 2; ++c)
         if (c != axis) f[c] -= sign * mu * lagged_transpose_gradient(grid_, vel, i, j, fg, c) * area;
     if (bc.kind == BoundaryKind::atmosphere) {
-      const double yb = grid_.yc(j) + (axis == 1 ? sign * d_half : 0.0);
-      const double face_vel = axis == 0 ? (sign > 0 ? fvx[j][i] : fvx[j][i - 1]) : (sign > 0 ? fvy[j][i] : fvy[j - 1][i]);
-      const double pb = atmosphere_pressure(bc, boundary_head(s, j, rho[j][i], yb), rho[j][i], sign * face_vel,
-                                            u[j][i] * u[j][i] + v[j][i] * v[j][i]);
+      // The coupled solve's own boundary pressure where it held the face (coupled_step.cpp); else as
+      // the segregated step takes it, from the present state.
+      const auto& solved = solved_boundary_pressure_[static_cast<int>(s)];
+      const size_t along = size_t(axis == 0 ? j : i);
+      double pb = along < solved.size() ? solved[along] : std::nan("");
+      if (std::isnan(pb)) {
+        const double yb = grid_.yc(j) + (axis == 1 ? sign * d_half : 0.0);
+        const double face_vel = axis == 0 ? (sign > 0 ? fvx[j][i] : fvx[j][i - 1]) : (sign > 0 ? fvy[j][i] : fvy[j - 1][i]);
+        pb = atmosphere_pressure(bc, boundary_head(s, j, rho[j][i], yb), rho[j][i], sign * face_vel,
+                                 u[j][i] * u[j][i] + v[j][i] * v[j][i]);
+      }
       f[axis] += pb * area * sign;
       return;
     }
     f[axis] += (p[j][i] + rho[j][i] * g[axis] * sign * d_half) * area * sign;
     // The implicit part, 2 mu (v_c - v_wall,c) / (h/2) (mu without the transpose stress), on both
-    // components at a wall and on the normal one at a slip side.
+    // components at a wall and on the normal one at a slip side, with the case's wall gradient.
     for (int c = 0; c < 2; ++c) {
       if (bc.kind == BoundaryKind::slip && c != axis) continue;  // no shear on a slip side
       const double wall = c == axis ? 0.0 : bc.wall_velocity[c];
-      const double u1 = vel[c][j][i];
-      f[c] += stress_factor * mu * area * (u1 - wall) / d_half;
-      if (num.quadratic_wall_gradient) {
-        const double h2 = axis == 0 ? grid_.dx(i - fg.di) : grid_.dy(j - fg.dj);
-        const double quadratic = quadratic_wall_derivative(u1, vel[c][j - fg.dj][i - fg.di], wall, d_half, h + 0.5 * h2);
-        f[c] += (c == axis ? stress_factor : 1.0) * mu * area * (quadratic - (u1 - wall) / d_half);
-      }
+      const double two_point = wall_gradient(grid_, vel[c], i, j, fg, wall, false);
+      const double gradient = wall_gradient(grid_, vel[c], i, j, fg, wall, num.quadratic_wall_gradient);
+      // stress_factor on the implicit two-point part, as assembled; the quadratic correction on top
+      f[c] += stress_factor * mu * area * two_point + (c == axis ? stress_factor : 1.0) * mu * area * (gradient - two_point);
     }
   };
   for (int j = b.ys; j < b.ye(); ++j) {

@@ -13,6 +13,7 @@
 #include "models/interface/wetted_fraction.hpp"
 #include "models/rheology/invariants.hpp"
 #include "models/strain/euler_almansi.hpp"
+#include "solver/cell_faces.hpp"
 #include "solver/divergence_error.hpp"
 #include "operators/face_interpolation.hpp"
 #include "operators/strain_rate.hpp"
@@ -427,24 +428,19 @@ double SoilPhase::compute_dissipation(const FlowSolver& flow) {
   // Work rate of a wall face of cell (i, j) on side s, with half-cell distance d and area A: the
   // wall's traction, factor mu A times the wall gradient (two-point or quadratic), times the
   // velocity relative to the wall.
-  auto wall_face = [&](Side s, int i, int j, double A, double d) {
+  auto wall_face = [&](Side s, int i, int j, double A) {
     const auto& bc = boundary(flow_settings_.boundaries, s);
     const int n = normal_axis(s);
     if (bc.kind == BoundaryKind::atmosphere) return 0.0;
     const double mu_f = s == Side::west ? fmx[j][i - 1] : s == Side::east ? fmx[j][i]
                       : s == Side::south ? fmy[j - 1][i] : fmy[j][i];
-    const int di = n == 0 ? int(outward_normal(s, 0)) : 0, dj = n == 1 ? int(outward_normal(s, 1)) : 0;
+    const FaceGeometry& fg = face_on(s);
     double work = 0.0;
     for (int c = 0; c < 2; ++c) {
       if (bc.kind == BoundaryKind::slip && c != n) continue;  // no shear on a slip side
       const double wall = c == n ? 0.0 : bc.wall_velocity[c];
-      const double u1 = q[c][j][i], relative = u1 - wall;
-      double gradient = relative / d;
-      if (num.quadratic_wall_gradient) {
-        const double h1 = 2.0 * d, h2 = n == 0 ? grid_.dx(i - di) : grid_.dy(j - dj);
-        gradient = quadratic_wall_derivative(u1, q[c][j - dj][i - di], wall, d, h1 + 0.5 * h2);
-      }
-      work += (c == n ? normal_factor : 1.0) * mu_f * A * gradient * relative;
+      const double gradient = wall_gradient(grid_, q[c], i, j, fg, wall, num.quadratic_wall_gradient);
+      work += (c == n ? normal_factor : 1.0) * mu_f * A * gradient * (q[c][j][i] - wall);
     }
     return work;
   };
@@ -470,24 +466,23 @@ double SoilPhase::compute_dissipation(const FlowSolver& flow) {
     for (int i = b.xs; i < b.xe(); ++i) out[j][i] = 0.0;
   for (int j = b.ys; j < b.ye(); ++j)
     for (int i = b.xs; i < b.xe(); ++i) {
-      const double hx = 0.5 * grid_.dx(i), hy = 0.5 * grid_.dy(j);
       if (i + 1 < nx) {
         const double w = 0.5 * east_face(i, j);
         out[j][i] += w;
         if (i + 1 < b.xe()) out[j][i + 1] += w;
       } else {
-        out[j][i] += wall_face(Side::east, i, j, grid_.face_area(0, i, j, 1.0), hx);
+        out[j][i] += wall_face(Side::east, i, j, grid_.face_area(0, i, j, 1.0));
       }
-      if (i == 0) out[j][i] += wall_face(Side::west, i, j, grid_.face_area(0, i, j, -1.0), hx);
+      if (i == 0) out[j][i] += wall_face(Side::west, i, j, grid_.face_area(0, i, j, -1.0));
       else if (i == b.xs) out[j][i] += 0.5 * east_face(i - 1, j);
       if (j + 1 < ny) {
         const double w = 0.5 * north_face(i, j);
         out[j][i] += w;
         if (j + 1 < b.ye()) out[j + 1][i] += w;
       } else {
-        out[j][i] += wall_face(Side::north, i, j, grid_.face_area(1, i, j, 1.0), hy);
+        out[j][i] += wall_face(Side::north, i, j, grid_.face_area(1, i, j, 1.0));
       }
-      if (j == 0) out[j][i] += wall_face(Side::south, i, j, grid_.face_area(1, i, j, -1.0), hy);
+      if (j == 0) out[j][i] += wall_face(Side::south, i, j, grid_.face_area(1, i, j, -1.0));
       else if (j == b.ys) out[j][i] += 0.5 * north_face(i, j - 1);
     }
   std::fill(lode_rate_.values().begin(), lode_rate_.values().end(), 0.0);
