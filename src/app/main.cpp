@@ -55,7 +55,9 @@ int run_case(const std::string& case_file, const std::vector<std::string>& overr
   const auto earlier = run_files_in(out_dir, config.output.lines);
   if (!restart && !overwrite && !earlier.empty()) {
     std::error_code ec;
-    const bool resumable = std::filesystem::exists(std::filesystem::path(out_dir) / "checkpoint", ec);
+    // As read_checkpoint finds one: checkpoint/, or checkpoint.old/ left by a run killed while it wrote.
+    const bool resumable = std::filesystem::exists(std::filesystem::path(out_dir) / "checkpoint" / "run.txt", ec) ||
+                           std::filesystem::exists(std::filesystem::path(out_dir) / "checkpoint.old" / "run.txt", ec);
     throw CaseError(fmt::format("{} holds an earlier run ({}): {}replace it with --overwrite, or choose another "
                                 "directory with -o",
                                 out_dir, earlier.front().string(), resumable ? "continue it with --restart, " : ""));
@@ -271,7 +273,7 @@ int main(int argc, char** argv) {
       check_solver_methods(c);
       // What the case file alone cannot tell (the mesh's layout on these ranks, initial shapes that
       // miss every cell's samples) is found where a run finds it: in laying out the initial state.
-      granflow::Simulation initial_state(PETSC_COMM_WORLD, c, "");
+      granflow::check_initial_state(PETSC_COMM_WORLD, c);
       if (rank == 0) {  // every rank checks the same file alike; one says so
         fmt::print("{}: valid ({} x {} cells, t_end = {} s)\n", case_file, c.mesh.cells[0], c.mesh.cells[1], c.time.end);
         for (const auto& line : granflow::case_advice(c)) fmt::print(stderr, "warning: {}\n", line);

@@ -54,8 +54,8 @@ std::string read_rank(const std::filesystem::path& path, const RankHeader& expec
   RankHeader h{};
   in.read(reinterpret_cast<char*>(&h), sizeof h);
   if (in && h.magic == magic_version_1)
-    return fmt::format("{} was written by an earlier version of granflow, whose history has no side forces; run "
-                       "the case anew",
+    return fmt::format("{} was written by an earlier version of granflow (checkpoint format 1, before the history "
+                       "held the side forces); run the case anew",
                        path.string());
   if (!in || h.magic != magic) return fmt::format("{} is not a granflow checkpoint", path.string());
   if (h.ranks != expected.ranks)

@@ -17,8 +17,17 @@
 #include "io/field_sample.hpp"
 #include "io/gather.hpp"
 #include "io/run_directory.hpp"
+#include "models/interface/initial_shapes.hpp"
 
 namespace granflow {
+
+namespace {
+CaseError no_initial_soil(const Grid& g) {
+  return CaseError(fmt::format("initial.soil: the shapes cover no part of any cell's samples on this {} x {} mesh "
+                               "(a shape far smaller than a cell)", g.nx(), g.ny()));
+}
+}  // namespace
+
 
 Simulation::Simulation(MPI_Comm comm, const CaseConfig& config, std::filesystem::path output_dir)
     : config_(config), out_(std::move(output_dir)) {
@@ -45,8 +54,7 @@ Simulation::Simulation(MPI_Comm comm, const CaseConfig& config, std::filesystem:
   flow_->update_properties();  // the granular viscosity needs the pressure
   if (soil_) initial_soil_volume_ = soil_->budget(*flow_).soil_volume;
   if (soil_ && !(initial_soil_volume_ > 0.0))  // the budget is summed over all ranks: all stop alike
-    throw CaseError(fmt::format("initial.soil: the shapes cover no part of any cell's samples on this {} x {} mesh "
-                                "(a shape far smaller than a cell)", grid_->nx(), grid_->ny()));
+    throw no_initial_soil(*grid_);
   if (!out_.empty()) {
     std::string problem;
     if (rank_ == 0) {
@@ -67,6 +75,21 @@ Simulation::Simulation(MPI_Comm comm, const CaseConfig& config, std::filesystem:
 }
 
 Simulation::~Simulation() = default;
+
+void check_initial_state(MPI_Comm comm, const CaseConfig& config) {
+  const Grid grid(comm, config.mesh);
+  if (!config.soil) return;
+  const auto& b = grid.owned();
+  double volume = 0.0;
+  for (int j = b.ys; j < b.ye(); ++j)
+    for (int i = b.xs; i < b.xe(); ++i) {
+      const double x0 = grid.xc(i) - 0.5 * grid.dx(i), y0 = grid.yc(j) - 0.5 * grid.dy(j);
+      volume += interface::union_fraction(config.soil->initial_soil, x0, x0 + grid.dx(i), y0, y0 + grid.dy(j)) *
+                grid.volume(i, j);
+    }
+  MPI_Allreduce(MPI_IN_PLACE, &volume, 1, MPI_DOUBLE, MPI_SUM, comm);
+  if (!(volume > 0.0)) throw no_initial_soil(grid);
+}
 
 double Simulation::next_output_time() const {
   double next = config_.time.end;

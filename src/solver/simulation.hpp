@@ -32,6 +32,11 @@ struct RunSummary {
 };
 
 
+// What a run's start finds that the case file alone cannot: a mesh that cannot be laid out on the
+// ranks of comm (GridError), initial shapes that miss every cell's samples (CaseError). Collective;
+// it lays out the grid only, not the solver (granflow check).
+void check_initial_state(MPI_Comm comm, const CaseConfig& config);
+
 class Simulation {
  public:
   // output_dir empty: no files are written (tests).

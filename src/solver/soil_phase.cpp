@@ -362,7 +362,9 @@ void SoilPhase::transport_displacement(const FlowSolver& flow, double dt) {
       faces(i, j, [&](double flux, int, int) { out += std::max(flux, 0.0); });
       most_out = std::max(most_out, out * dt / grid_.volume(i, j));
     }
-  const int sweeps = std::max(1, int(std::ceil(mpi_max(grid_.comm(), most_out) - 1e-12)));
+  // A flow that runs away (the step's divergence check comes after) gets no more than a bounded count.
+  constexpr double most_sweeps = 1000.0;
+  const int sweeps = int(std::clamp(std::ceil(mpi_max(grid_.comm(), most_out) - 1e-12), 1.0, most_sweeps));
   const double h = dt / sweeps;
   for (int sweep = 0; sweep < sweeps; ++sweep) {
     fill_displacement_ghosts();
