@@ -4,7 +4,6 @@
 
 #include <cmath>
 
-#include "operators/strain_rate.hpp"
 #include "solver/cell_faces.hpp"
 #include "solver/flow_solver.hpp"
 
