@@ -476,9 +476,13 @@ RunSummary Simulation::run(const StepObserver& after_step) {
     if (!std::isfinite(speed) || speed > 1e6) {
       if (soil_) write_history();  // the steps up to the failure, for finding where it began
       const auto f = flow_->fastest_cell();
+      const long at_limit = flow_->solves_at_iteration_limit();
       throw DivergenceError(fmt::format("the solution diverged at t = {:.6g} s (step {}): largest speed {:.3g} m/s "
-                                        "at x = {:.4g} m, y = {:.4g} m; the last good output is kept",
-                                        time_, summary.steps, f.speed, f.x, f.y));
+                                        "at x = {:.4g} m, y = {:.4g} m; the last good output is kept{}",
+                                        time_, summary.steps, f.speed, f.x, f.y,
+                                        at_limit > 0 ? fmt::format(" ({} linear solves had stopped at their "
+                                                                   "max_iterations)", at_limit)
+                                                     : std::string()));
     }
     const bool at_output = time_ >= t_out - 1e-12 * std::max(1.0, t_out);
     if (at_output) {
