@@ -108,16 +108,12 @@ int FlowSolver::solve_coupled() {
     ConstFieldArray fcx = local_read(grid_, *cell_force_[0]), fcy = local_read(grid_, *cell_force_[1]);
     const double* const* rau[2] = {rx.data(), ry.data()};
     const double* const* fcell[2] = {fcx.data(), fcy.data()};
-    // The pressure pb of the atmosphere at the boundary face of (i, j) on side s along `axis`, d from
-    // the centre; false where the side is a wall.
-    auto boundary_pressure = [&](int axis, int s, int i, int j, double rhoP, double d, double& pb) {
+    // The pressure pb of the atmosphere at the boundary face of (i, j) on side s along `axis`; false
+    // where the side is a wall.
+    auto boundary_pressure = [&](int axis, int s, int i, int j, double& pb) {
       const Side bs = axis == 0 ? (s > 0 ? Side::east : Side::west) : (s > 0 ? Side::north : Side::south);
-      const auto& bc = boundary(settings_.boundaries, bs);
-      if (bc.kind != BoundaryKind::atmosphere) return false;
-      const double yb = grid_.yc(j) + (axis == 1 ? s * d : 0.0);
-      const double face_vel = axis == 0 ? (s > 0 ? fxv[j][i] : fxv[j][i - 1]) : (s > 0 ? fyv[j][i] : fyv[j - 1][i]);
-      pb = atmosphere_pressure(bc, boundary_head(bs, j, rhoP, yb), rhoP, s * face_vel,
-                               u[j][i] * u[j][i] + v[j][i] * v[j][i]);
+      if (boundary(settings_.boundaries, bs).kind != BoundaryKind::atmosphere) return false;
+      pb = atmosphere_face_pressure(bs, i, j, rho.data(), u.data(), v.data(), fxv.data(), fyv.data());
       solved_boundary_pressure_[static_cast<int>(bs)][axis == 0 ? j : i] = pb;
       return true;
     };
@@ -152,7 +148,7 @@ int FlowSolver::solve_coupled() {
               if (in < 0 || in >= nx || jn < 0 || jn >= ny) {
                 const double d = 0.5 * (c == 0 ? grid_.dx(i) : grid_.dy(j));
                 double pb;
-                if (!boundary_pressure(c, s, i, j, rhoP, d, pb)) continue;  // walls carry no face force
+                if (!boundary_pressure(c, s, i, j, pb)) continue;  // walls carry no face force
                 // -V/2 f_b with f_b = -s (p_b - p_P)/d + rho_P g_c: p_b enters like a neighbour pressure.
                 const double w = Vol / (2 * d);
                 p_centre += -s * w;
@@ -186,7 +182,7 @@ int FlowSolver::solve_coupled() {
               if (in < 0 || in >= nx || jn < 0 || jn >= ny) {
                 const double d = 0.5 * (axis == 0 ? grid_.dx(i) : grid_.dy(j));
                 double pb;
-                if (!boundary_pressure(axis, s, i, j, rhoP, d, pb)) continue;
+                if (!boundary_pressure(axis, s, i, j, pb)) continue;
                 const double m = rau[axis][j][i];
                 u_centre[axis] += s * area;
                 p_centre += m * area / d;

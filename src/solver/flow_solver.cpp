@@ -303,6 +303,18 @@ double FlowSolver::boundary_head(Side s, int j, double rho, double y_face) const
   return (s == Side::south && outside > 0.0 ? outside : rho) * settings_.gravity[1] * (y_face - grid_.spec().upper[1]);
 }
 
+double FlowSolver::atmosphere_face_pressure(Side s, int i, int j, const double* const* rho, const double* const* u,
+                                            const double* const* v, const double* const* fx,
+                                            const double* const* fy) const {
+  const int axis = normal_axis(s);
+  const double sign = outward_normal(s, axis);
+  const double d_half = 0.5 * (axis == 0 ? grid_.dx(i) : grid_.dy(j));
+  const double y_face = grid_.yc(j) + (axis == 1 ? sign * d_half : 0.0);
+  const double face_vel = axis == 0 ? (sign > 0 ? fx[j][i] : fx[j][i - 1]) : (sign > 0 ? fy[j][i] : fy[j - 1][i]);
+  return atmosphere_pressure(boundary(settings_.boundaries, s), boundary_head(s, j, rho[j][i], y_face), rho[j][i],
+                             sign * face_vel, u[j][i] * u[j][i] + v[j][i] * v[j][i]);
+}
+
 void FlowSolver::compute_face_forces() {
   const auto& b = grid_.owned();
   const int nx = grid_.nx(), ny = grid_.ny();
@@ -311,24 +323,21 @@ void FlowSolver::compute_face_forces() {
   ConstFieldArray u = local_read(grid_, *vel_[0]), v = local_read(grid_, *vel_[1]);
   ConstFieldArray fx_vel = local_read(grid_, *face_[0]), fy_vel = local_read(grid_, *face_[1]);
   FieldArray fx = local_array(grid_, *face_force_[0]), fy = local_array(grid_, *face_force_[1]);
-  auto boundary_force = [&](Side s, int i, int j, double face_vel) {
-    const auto& bc = boundary(settings_.boundaries, s);
+  auto boundary_force = [&](Side s, int i, int j) {
     const int axis = normal_axis(s);
     const double sign = outward_normal(s, axis);
     const double d = 0.5 * (axis == 0 ? grid_.dx(i) : grid_.dy(j));
-    const double yb = grid_.yc(j) + (axis == 1 ? sign * d : 0.0);
-    const double pb = atmosphere_pressure(bc, boundary_head(s, j, rho[j][i], yb), rho[j][i], sign * face_vel,
-                                          u[j][i] * u[j][i] + v[j][i] * v[j][i]);
+    const double pb = atmosphere_face_pressure(s, i, j, rho.data(), u.data(), v.data(), fx_vel.data(), fy_vel.data());
     return -sign * (pb - p[j][i]) / d + rho[j][i] * g[axis];
   };
   for (int j = b.ys; j < b.ye(); ++j)
     for (int i = b.xs - 1; i < b.xe(); ++i) {
       if (i == -1) {
         if (boundary(settings_.boundaries, Side::west).kind == BoundaryKind::atmosphere)
-          fx[j][i] = boundary_force(Side::west, 0, j, fx_vel[j][i]);
+          fx[j][i] = boundary_force(Side::west, 0, j);
       } else if (i == nx - 1) {
         if (boundary(settings_.boundaries, Side::east).kind == BoundaryKind::atmosphere)
-          fx[j][i] = boundary_force(Side::east, i, j, fx_vel[j][i]);
+          fx[j][i] = boundary_force(Side::east, i, j);
       } else {
         fx[j][i] = -(p[j][i + 1] - p[j][i]) / (grid_.xc(i + 1) - grid_.xc(i)) + 0.5 * (rho[j][i] + rho[j][i + 1]) * g[0];
       }
@@ -337,10 +346,10 @@ void FlowSolver::compute_face_forces() {
     for (int i = b.xs; i < b.xe(); ++i) {
       if (j == -1) {
         if (boundary(settings_.boundaries, Side::south).kind == BoundaryKind::atmosphere)
-          fy[j][i] = boundary_force(Side::south, i, 0, fy_vel[j][i]);
+          fy[j][i] = boundary_force(Side::south, i, 0);
       } else if (j == ny - 1) {
         if (boundary(settings_.boundaries, Side::north).kind == BoundaryKind::atmosphere)
-          fy[j][i] = boundary_force(Side::north, i, j, fy_vel[j][i]);
+          fy[j][i] = boundary_force(Side::north, i, j);
       } else {
         fy[j][i] = -(p[j + 1][i] - p[j][i]) / (grid_.yc(j + 1) - grid_.yc(j)) + 0.5 * (rho[j][i] + rho[j + 1][i]) * g[1];
       }

@@ -122,6 +122,11 @@ class FlowSolver {
   void update_boundary_heads();
   // Hydrostatic head below the top at an atmosphere face of side s in row j (y_face: the face's height).
   double boundary_head(Side s, int j, double rho, double y_face) const;
+  // The pressure the atmosphere of side s imposes on the boundary face of cell (i, j), from the state
+  // in the given local arrays (density, cell velocities, face velocities): p0 plus the head below
+  // the top, less rho |v_P|^2 / 2 where it flows in at total pressure.
+  double atmosphere_face_pressure(Side s, int i, int j, const double* const* rho, const double* const* u,
+                                  const double* const* v, const double* const* fx, const double* const* fy) const;
   void fill_scalar_ghosts(Field& f);
   void face_viscosity_from_cells();
   void compute_face_forces();

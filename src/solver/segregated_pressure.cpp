@@ -103,11 +103,7 @@ int FlowSolver::solve_pressure(double) {
             const auto& bc = boundary(settings_.boundaries, fg.side);
             if (bc.kind != BoundaryKind::atmosphere) continue;  // walls: no flux
             const double d_half = 0.5 * (fg.axis == 0 ? grid_.dx(i) : grid_.dy(j));
-            const double yb = grid_.yc(j) + (fg.axis == 1 ? fg.sign * d_half : 0.0);
-            const double face_vel = fg.axis == 0 ? (fg.sign > 0 ? fxv[j][i] : fxv[j][i - 1])
-                                                 : (fg.sign > 0 ? fyv[j][i] : fyv[j - 1][i]);
-            const double pb = atmosphere_pressure(bc, boundary_head(fg.side, j, rho[j][i], yb), rho[j][i],
-                                                  fg.sign * face_vel, u[j][i] * u[j][i] + v[j][i] * v[j][i]);
+            const double pb = atmosphere_face_pressure(fg.side, i, j, rho.data(), u.data(), v.data(), fxv.data(), fyv.data());
             const double K = ra[j][i] * area / d_half;
             rhs -= fg.sign * (h[j][i] + ra[j][i] * rho[j][i] * g[fg.axis]) * area;
             rhs += K * pb;

@@ -54,12 +54,7 @@ std::array<std::array<double, 2>, 4> FlowSolver::side_forces() const {
       const auto& solved = solved_boundary_pressure_[static_cast<int>(s)];
       const size_t along = size_t(axis == 0 ? j : i);
       double pb = along < solved.size() ? solved[along] : std::nan("");
-      if (std::isnan(pb)) {
-        const double yb = grid_.yc(j) + (axis == 1 ? sign * d_half : 0.0);
-        const double face_vel = axis == 0 ? (sign > 0 ? fvx[j][i] : fvx[j][i - 1]) : (sign > 0 ? fvy[j][i] : fvy[j - 1][i]);
-        pb = atmosphere_pressure(bc, boundary_head(s, j, rho[j][i], yb), rho[j][i], sign * face_vel,
-                                 u[j][i] * u[j][i] + v[j][i] * v[j][i]);
-      }
+      if (std::isnan(pb)) pb = atmosphere_face_pressure(s, i, j, rho.data(), u.data(), v.data(), fvx.data(), fvy.data());
       f[axis] += pb * area * sign;
       return;
     }
