@@ -443,11 +443,6 @@ CaseConfig read_case(const toml::table& root, const std::filesystem::path& sourc
     if (c.flow.gravity[0] != 0.0)
       throw CaseError("numerics.air_band: needs gravity along y (the air beyond the band is hydrostatic)");
   }
-  if (c.flow.numerics.pressure_coupling == PressureCoupling::coupled &&
-      std::none_of(c.flow.boundaries.begin(), c.flow.boundaries.end(),
-                   [](const BoundaryCondition& b) { return b.kind == BoundaryKind::atmosphere; }))
-    throw CaseError("numerics.pressure_coupling: \"coupled\" needs an atmosphere boundary to fix the pressure level "
-                    "(use \"projection\" or \"piso\" in a closed domain)");
   return c;
 }
 

@@ -106,8 +106,11 @@ int FlowSolver::solve_coupled() {
     ConstFieldArray fxv = local_read(grid_, *face_[0]), fyv = local_read(grid_, *face_[1]);
     ConstFieldArray rx = local_read(grid_, *rau_[0]), ry = local_read(grid_, *rau_[1]);
     ConstFieldArray fcx = local_read(grid_, *cell_force_[0]), fcy = local_read(grid_, *cell_force_[1]);
+    ConstFieldArray p_now = local_read(grid_, *p_);
     const double* const* rau[2] = {rx.data(), ry.data()};
     const double* const* fcell[2] = {fcx.data(), fcy.data()};
+    // Without an open side nothing else fixes the pressure's level (the air band needs an open top).
+    const bool pins_pressure_level = !has_pressure_boundary_;
     // The pressure pb of the atmosphere at the boundary face of (i, j) on side s along `axis`; false
     // where the side is a wall.
     auto boundary_pressure = [&](int axis, int s, int i, int j, double& pb) {
@@ -206,6 +209,13 @@ int FlowSolver::solve_coupled() {
             vals[n++] = u_centre[1];
             cols[n] = row;
             vals[n++] = p_centre;
+            if (pins_pressure_level && i == 0 && j == ny - 1) {
+              // A closed domain's continuity rows sum to zero (every face's flux enters two of them
+              // with opposite signs), so one of them is implied by the others; this cell's holds the
+              // pressure level at the last iterate's instead, scaled like the row it replaces.
+              std::fill(vals, vals + n - 1, 0.0);
+              r = p_centre * p_now[j][i];
+            }
             emit(i, j, int(P), n, cols, vals, r);
           }
         }
@@ -283,6 +293,7 @@ int FlowSolver::solve_coupled() {
   }
   fill_velocity_ghosts();
   fill_scalar_ghosts(*p_);
+  if (!has_pressure_boundary_) hold_pressure_at_top();  // the pinned level, moved to zero on the top
   // Face velocities with exactly the flux of the continuity rows (divergence-free to the tolerance).
   // An atmosphere face keeps the pressure the rows were built with: with total pressure, inflow
   // enters at p0 - rho |v_P|^2 / 2, and v_P has just changed. Taken anew, it gave an open top under

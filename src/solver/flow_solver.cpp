@@ -90,11 +90,7 @@ FlowSolver::FlowSolver(const Grid& grid, const FlowSettings& settings) : grid_(g
   }
   // The hoop stress 2 mu u_r / r^2 is on the radial component's diagonal alone.
   if (grid.axisymmetric()) shared_momentum_matrix_ = false;
-  if (settings.numerics.pressure_coupling == PressureCoupling::coupled) {
-    if (!has_pressure_boundary_)
-      throw std::invalid_argument("numerics.pressure_coupling = \"coupled\" needs an atmosphere boundary to fix the pressure level");
-    create_coupled_system();
-  }
+  if (settings.numerics.pressure_coupling == PressureCoupling::coupled) create_coupled_system();
   update_boundary_heads();
   if (!has_pressure_boundary_) {
     PetscCallAbort(comm, MatNullSpaceCreate(comm, PETSC_TRUE, 0, nullptr, &pressure_null_space_));
