@@ -108,6 +108,11 @@ add_test(NAME cli_check_unknown_solver
          COMMAND granflow check ${CMAKE_SOURCE_DIR}/cases/bui2008_experiment.toml --set solver.coupled.ksp_type=bogus)
 set_tests_properties(cli_check_unknown_solver PROPERTIES LABELS cli
                      PASS_REGULAR_EXPRESSION "solver.coupled.ksp_type: 'bogus' is not a Krylov method")
+# check takes a run's --petsc: valid options pass, an unreadable options file is exit 2 with its name.
+add_test(NAME cli_check_takes_the_runs_petsc_options
+         COMMAND sh -c "\"$0\" check \"$1\" --petsc=-coupled_ksp_monitor | grep -q ': valid (' && out=$(\"$0\" check \"$1\" '--petsc=-options_file /no/such/options' 2>&1); test $? -eq 2 && echo \"$out\" | grep -q 'cannot read /no/such/options'"
+                 $<TARGET_FILE:granflow> ${CMAKE_SOURCE_DIR}/cases/bui2008_experiment.toml)
+set_tests_properties(cli_check_takes_the_runs_petsc_options PROPERTIES LABELS cli)
 # check lays out the initial state as a run does, and finds what only that shows: exit 2 and the message.
 add_test(NAME cli_check_lays_out_the_initial_state
          COMMAND sh -c "out=$(\"$0\" check \"$1\" --set 'mesh.cells=[30,10]' --set \"$2\" 2>&1); test $? -eq 2 && echo \"$out\" | grep -q \"error: initial.soil: the shapes cover no part of any cell's samples on this 30 x 10 mesh\""

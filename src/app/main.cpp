@@ -185,6 +185,9 @@ int main(int argc, char** argv) {
   auto* check = app.add_subcommand("check", "validate a case file without running it");
   check->add_option("case", case_file, "case file (TOML)")->required();
   check->add_option("--set", overrides, "override a case key: KEY=VALUE (repeatable)");
+  check->add_option("--petsc", petsc_options,
+                    "the run's PETSc options, so that a run's command line can be checked as it is (their form and "
+                    "options files are checked; their values when a run builds its solvers)");
 
   double phi_deg = 36.5;
   bool csv = false;
