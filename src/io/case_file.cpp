@@ -440,9 +440,6 @@ CaseConfig read_case(const toml::table& root, const std::filesystem::path& sourc
     if (c.flow.numerics.pressure_coupling != PressureCoupling::coupled)
       throw CaseError("numerics.air_band: applies to pressure_coupling = \"coupled\" only");
     if (!c.soil) throw CaseError("numerics.air_band: needs a [soil] phase to solve around");
-    if (c.flow.boundaries[int(Side::north)].kind != BoundaryKind::atmosphere)
-      throw CaseError("numerics.air_band: needs an atmosphere at the north side (the air beyond the band takes "
-                      "the pressure below it)");
     if (c.flow.gravity[0] != 0.0)
       throw CaseError("numerics.air_band: needs gravity along y (the air beyond the band is hydrostatic)");
   }

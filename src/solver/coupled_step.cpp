@@ -58,10 +58,11 @@ void FlowSolver::set_solve_region(const Field& cells) {
   if (solve_region_) solve_region_->assign(cells);
 }
 
-// Pressure of air at rest in row j below the north atmosphere (gravity along y, checked by the case).
+// Pressure of air at rest in row j below the top at the ambient pressure, as the initial pressure
+// starts (gravity along y, checked by the case): p0 under an open top, 0 under a closed domain's top.
 double FlowSolver::pressure_at_rest(double rho, int j) const {
   const double y_top = grid_.spec().upper[1];
-  return boundary(settings_.boundaries, Side::north).pressure - rho * settings_.gravity[1] * (y_top - grid_.yc(j));
+  return ambient_pressure(settings_.boundaries) - rho * settings_.gravity[1] * (y_top - grid_.yc(j));
 }
 
 // Rhie-Chow mobility of the face between (i,j) and (in,jn) along `axis`: harmonic mean of V/a_P.
@@ -109,8 +110,9 @@ int FlowSolver::solve_coupled() {
     ConstFieldArray p_now = local_read(grid_, *p_);
     const double* const* rau[2] = {rx.data(), ry.data()};
     const double* const* fcell[2] = {fcx.data(), fcy.data()};
-    // Without an open side nothing else fixes the pressure's level (the air band needs an open top).
-    const bool pins_pressure_level = !has_pressure_boundary_;
+    // Without an open side nothing else fixes the pressure's level, unless an air band's region leaves
+    // out some cells, whose air at rest under a zero top then holds it.
+    pins_pressure_level_ = false;
     // The pressure pb of the atmosphere at the boundary face of (i, j) on side s along `axis`; false
     // where the side is a wall.
     auto boundary_pressure = [&](int axis, int s, int i, int j, double& pb) {
@@ -209,7 +211,7 @@ int FlowSolver::solve_coupled() {
             vals[n++] = u_centre[1];
             cols[n] = row;
             vals[n++] = p_centre;
-            if (pins_pressure_level && i == 0 && j == ny - 1) {
+            if (pins_pressure_level_ && i == 0 && j == ny - 1) {
               // A closed domain's continuity rows sum to zero (every face's flux enters two of them
               // with opposite signs), so one of them is implied by the others; this cell's holds the
               // pressure level at the last iterate's instead, scaled like the row it replaces.
@@ -222,7 +224,9 @@ int FlowSolver::solve_coupled() {
     };
     if (solve_region_) {
       // Only the region's rows; outside, air at rest under the pressure of the air column above it.
-      if (solve_region_->prepare() > 0) {
+      const long region_cells = solve_region_->prepare();
+      pins_pressure_level_ = !has_pressure_boundary_ && region_cells == long(nx) * ny;
+      if (region_cells > 0) {
         auto outside = [&](int i, int j, int unknown) {
           return unknown == P ? pressure_at_rest(rho[j][i], j) : 0.0;
         };
@@ -233,6 +237,7 @@ int FlowSolver::solve_coupled() {
                   });
       }
     } else {
+      pins_pressure_level_ = !has_pressure_boundary_;
       PetscScalar*** rhs;
       DMDAVecGetArrayDOF(coupled_dm_, coupled_rhs_, &rhs);
       fill_rows([](int, int) { return true; },
@@ -293,7 +298,7 @@ int FlowSolver::solve_coupled() {
   }
   fill_velocity_ghosts();
   fill_scalar_ghosts(*p_);
-  if (!has_pressure_boundary_) hold_pressure_at_top();  // the pinned level, moved to zero on the top
+  if (pins_pressure_level_) hold_pressure_at_top();  // the pinned level, moved to zero on the top
   // Face velocities with exactly the flux of the continuity rows (divergence-free to the tolerance).
   // An atmosphere face keeps the pressure the rows were built with: with total pressure, inflow
   // enters at p0 - rho |v_P|^2 / 2, and v_P has just changed. Taken anew, it gave an open top under

@@ -190,6 +190,7 @@ class FlowSolver {
   std::array<std::vector<double>, 4> solved_boundary_pressure_;
   std::vector<double> side_head_[2];  // west, east: hydrostatic head of the boundary column per row
   bool has_pressure_boundary_ = false;
+  bool pins_pressure_level_ = false;  // the last coupled system held the level in a row (closed domain)
   bool shared_momentum_matrix_ = true;  // no slip walls: u and v share their matrix
   double dt_ = 0.0;        // the last step's size
   double saved_dt_ = 0.0;  // save_state()
