@@ -417,6 +417,7 @@ CaseConfig read_case(const toml::table& root, const std::filesystem::path& sourc
     }
     o.finish();
   }
+  for (TableReader obstacle : top.tables("obstacle")) c.obstacles.push_back(read_shape(obstacle));
   top.finish();
   for (auto& bc : c.flow.boundaries)
     if (bc.kind == BoundaryKind::atmosphere)
@@ -434,6 +435,20 @@ CaseConfig read_case(const toml::table& root, const std::filesystem::path& sourc
                                     "[{}, {}] x [{}, {}]", k, lo[0], hi[0], lo[1], hi[1], c.mesh.lower[0],
                                     c.mesh.upper[0], c.mesh.lower[1], c.mesh.upper[1]));
     }
+  }
+  for (size_t k = 0; k < c.obstacles.size(); ++k) {
+    const auto [lo, hi] = interface::bounding_box(c.obstacles[k]);
+    if (!interface::overlaps(c.obstacles[k], c.mesh.lower, c.mesh.upper))
+      throw CaseError(fmt::format("obstacle[{}]: the shape, within [{}, {}] x [{}, {}], covers no area of the domain "
+                                  "[{}, {}] x [{}, {}]", k, lo[0], hi[0], lo[1], hi[1], c.mesh.lower[0],
+                                  c.mesh.upper[0], c.mesh.lower[1], c.mesh.upper[1]));
+  }
+  if (!c.obstacles.empty()) {
+    // The obstacles' walls are built into the coupled solve's rows and the operators it uses.
+    if (c.flow.numerics.pressure_coupling != PressureCoupling::coupled)
+      throw CaseError("obstacle: needs numerics.pressure_coupling = \"coupled\" (the projection and PISO do not "
+                      "know blocked cells)");
+    if (c.mesh.axisymmetric) throw CaseError("obstacle: planar meshes only (mesh.axisymmetric = true)");
   }
   if (c.flow.numerics.air_band > 0) {
     // The air beyond the band is held at rest under the pressure of the air column above it.

@@ -59,6 +59,9 @@ struct CaseConfig {
   PhaseSettings fluid;              // single-phase runs
   std::optional<SoilSettings> soil;  // two-phase soil and air runs
   OutputSettings output;
+  // Obstacles and terrain ([[obstacle]]): a cell whose centre lies in any of these shapes is blocked,
+  // and its faces to open cells are no-slip walls (mesh/obstacles.hpp).
+  std::vector<interface::Shape> obstacles;
 };
 
 // "key.path=value" overrides; value is parsed as TOML (number, bool, array, quoted string) and

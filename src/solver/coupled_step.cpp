@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "mesh/obstacles.hpp"
 #include "operators/face_interpolation.hpp"
 #include "solver/flow_solver.hpp"
 
@@ -123,10 +124,24 @@ int FlowSolver::solve_coupled() {
       return true;
     };
     // The rows of the cells `wanted(i, j)`, each handed to `emit(i, j, unknown, n, cols, vals, rhs)`.
+    // A blocked cell's faces to open cells are walls (mesh/obstacles.hpp): no flux, no face force,
+    // no coupling; the cell itself has no unknowns (outside the region, or held at rest).
+    const BlockedView mask(grid_, blocked_);
+    auto open_neighbour = [&](int in, int jn) {
+      return in >= 0 && in < nx && jn >= 0 && jn < ny && !is_blocked(mask.data(), in, jn);
+    };
     auto fill_rows = [&](auto&& wanted, auto&& emit) {
       for (int j = b.ys; j < b.ye(); ++j)
         for (int i = b.xs; i < b.xe(); ++i) {
           if (!wanted(i, j)) continue;
+          if (is_blocked(mask.data(), i, j)) {  // at rest, its pressure kept
+            const double one = 1.0;
+            for (int unknown : {int(U), int(V), int(P)}) {
+              const MatStencil row{0, j, i, unknown};
+              emit(i, j, unknown, 1, &row, &one, unknown == P ? p_now[j][i] : 0.0);
+            }
+            continue;
+          }
           const size_t k = size_t(j - b.ys) * b.xm + (i - b.xs);
           const double Vol = grid_.volume(i, j), rhoP = rho[j][i];
           // Momentum rows: a_P v_P - sum a_nb v_nb - V f_cell(p) = source.
@@ -141,7 +156,7 @@ int FlowSolver::solve_coupled() {
             const double anb[4] = {a_east_[k], a_west_[k], a_north_[k], a_south_[k]};
             for (int f = 0; f < 4; ++f) {
               const int in = i + di[f], jn = j + dj[f];
-              if (in < 0 || in >= nx || jn < 0 || jn >= ny) continue;
+              if (!open_neighbour(in, jn)) continue;
               cols[n] = MatStencil{0, jn, in, c};
               vals[n++] = -anb[f];
             }
@@ -150,6 +165,7 @@ int FlowSolver::solve_coupled() {
             for (int side = 0; side < 2; ++side) {  // high then low face along c
               const int s = side == 0 ? 1 : -1;
               const int in = i + (c == 0 ? s : 0), jn = j + (c == 1 ? s : 0);
+              if (is_blocked(mask.data(), in, jn)) continue;  // an obstacle's wall carries no face force
               if (in < 0 || in >= nx || jn < 0 || jn >= ny) {
                 const double d = 0.5 * (c == 0 ? grid_.dx(i) : grid_.dy(j));
                 double pb;
@@ -184,6 +200,7 @@ int FlowSolver::solve_coupled() {
               const int s = (f % 2 == 0) ? 1 : -1;
               const int in = i + (axis == 0 ? s : 0), jn = j + (axis == 1 ? s : 0);
               const double area = grid_.face_area(axis, i, j, s);
+              if (is_blocked(mask.data(), in, jn)) continue;  // no flux through an obstacle's wall
               if (in < 0 || in >= nx || jn < 0 || jn >= ny) {
                 const double d = 0.5 * (axis == 0 ? grid_.dx(i) : grid_.dy(j));
                 double pb;
@@ -211,7 +228,7 @@ int FlowSolver::solve_coupled() {
             vals[n++] = u_centre[1];
             cols[n] = row;
             vals[n++] = p_centre;
-            if (pins_pressure_level_ && i == 0 && j == ny - 1) {
+            if (pins_pressure_level_ && i == pin_i_ && j == pin_j_) {
               // A closed domain's continuity rows sum to zero (every face's flux enters two of them
               // with opposite signs), so one of them is implied by the others; this cell's holds the
               // pressure level at the last iterate's instead, scaled like the row it replaces.
@@ -334,8 +351,13 @@ int FlowSolver::solve_coupled() {
     ConstFieldArray fcx = local_read(grid_, *cell_force_[0]), fcy = local_read(grid_, *cell_force_[1]);
     ConstFieldArray ffx = local_read(grid_, *face_force_[0]), ffy = local_read(grid_, *face_force_[1]);
     FieldArray fxv = local_array(grid_, *face_[0]), fyv = local_array(grid_, *face_[1]);
+    const BlockedView mask(grid_, blocked_);
     for (int j = b.ys; j < b.ye(); ++j)
       for (int i = b.xs - 1; i < b.xe(); ++i) {
+        if (is_blocked(mask.data(), i, j) || is_blocked(mask.data(), i + 1, j)) {
+          fxv[j][i] = 0.0;  // an obstacle's wall
+          continue;
+        }
         if (i == -1 || i == nx - 1) {
           const Side s = i == -1 ? Side::west : Side::east;
           const int ic = i == -1 ? 0 : i;
@@ -349,6 +371,10 @@ int FlowSolver::solve_coupled() {
       }
     for (int j = b.ys - 1; j < b.ye(); ++j)
       for (int i = b.xs; i < b.xe(); ++i) {
+        if (is_blocked(mask.data(), i, j) || is_blocked(mask.data(), i, j + 1)) {
+          fyv[j][i] = 0.0;
+          continue;
+        }
         if (j == -1 || j == ny - 1) {
           const Side s = j == -1 ? Side::south : Side::north;
           const int jc = j == -1 ? 0 : j;

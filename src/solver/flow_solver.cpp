@@ -1,6 +1,7 @@
 #include "solver/flow_solver.hpp"
 
 #include "mesh/face_loop.hpp"
+#include "mesh/obstacles.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -118,9 +119,27 @@ FlowSolver::~FlowSolver() {
 // Ghosts: interior ghosts come from neighbouring ranks; ghosts outside the domain encode the
 // boundary conditions (mirror images), so that stencils near walls need no special cases.
 
+void FlowSolver::set_blocked(const Field* mask) {
+  blocked_ = mask;
+  if (solve_region_) solve_region_->set_blocked(mask);
+  // The closed domain's pinned row: the open cell nearest the top-left corner, row by row from the top.
+  long key = grid_.cell_count();
+  {
+    BlockedView m(grid_, blocked_);
+    const auto& b = grid_.owned();
+    for (int j = b.ys; j < b.ye(); ++j)
+      for (int i = b.xs; i < b.xe(); ++i)
+        if (!is_blocked(m.data(), i, j)) key = std::min(key, long(grid_.ny() - 1 - j) * grid_.nx() + i);
+  }
+  MPI_Allreduce(MPI_IN_PLACE, &key, 1, MPI_LONG, MPI_MIN, grid_.comm());
+  pin_i_ = int(key % grid_.nx());
+  pin_j_ = grid_.ny() - 1 - int(key / grid_.nx());
+}
+
 void FlowSolver::fill_scalar_ghosts(Field& f) {
   f.scatter_to_local();
   FieldArray a = local_array(grid_, f);
+  mirror_into_blocked(grid_, BlockedView(grid_, blocked_).data(), a.data(), 1.0);
   const auto& b = grid_.owned();
   const int nx = grid_.nx(), ny = grid_.ny();
   for (int k = 1; k <= Grid::ghost_width; ++k) {
@@ -141,6 +160,10 @@ void FlowSolver::fill_velocity_ghosts() {
   for (int a = 0; a < 2; ++a) vel_[a]->scatter_to_local();
   FieldArray u(grid_.field_dm(), vel_[0]->local()), v(grid_.field_dm(), vel_[1]->local());
   double** comp[2] = {u.data(), v.data()};
+  {
+    const BlockedView mask(grid_, blocked_);  // an obstacle's walls are static and no-slip
+    for (auto* f : comp) mirror_into_blocked(grid_, mask.data(), f, -1.0);
+  }
   const auto& b = grid_.owned();
   const int nx = grid_.nx(), ny = grid_.ny();
   // value of the ghost at distance k outside a boundary whose mirror interior cell holds `inner`
@@ -195,7 +218,7 @@ void FlowSolver::face_viscosity_from_cells() {
   fill_owned_faces(
       grid_, *face_mu_[0], *face_mu_[1],
       [&](int axis, int i, int j) { return face_mean(kind, mu[j][i], axis == 0 ? mu[j][i + 1] : mu[j + 1][i]); },
-      [&](int, int i, int j, int) { return mu[j][i]; });
+      [&](int, int i, int j, int) { return mu[j][i]; }, BlockedView(grid_, blocked_).data());
 }
 
 void FlowSolver::sync_velocity_from_cells() {
@@ -203,10 +226,13 @@ void FlowSolver::sync_velocity_from_cells() {
   const auto& b = grid_.owned();
   ConstFieldArray u = local_read(grid_, *vel_[0]), v = local_read(grid_, *vel_[1]);
   FieldArray fx = local_array(grid_, *face_[0]), fy = local_array(grid_, *face_[1]);
+  const BlockedView mask(grid_, blocked_);
   for (int j = b.ys - 1; j < b.ye(); ++j)
     for (int i = b.xs - 1; i < b.xe(); ++i) {
-      const bool x_boundary = (i == -1 || i == grid_.nx() - 1);
-      const bool y_boundary = (j == -1 || j == grid_.ny() - 1);
+      const bool x_boundary = (i == -1 || i == grid_.nx() - 1) || is_blocked(mask.data(), i, j) ||
+                              is_blocked(mask.data(), i + 1, j);
+      const bool y_boundary = (j == -1 || j == grid_.ny() - 1) || is_blocked(mask.data(), i, j) ||
+                              is_blocked(mask.data(), i, j + 1);
       if (j >= b.ys) fx[j][i] = x_boundary ? 0.0 : 0.5 * (u[j][i] + u[j][i + 1]);
       if (i >= b.xs) fy[j][i] = y_boundary ? 0.0 : 0.5 * (v[j][i] + v[j + 1][i]);
     }
@@ -319,6 +345,7 @@ void FlowSolver::compute_face_forces() {
   ConstFieldArray u = local_read(grid_, *vel_[0]), v = local_read(grid_, *vel_[1]);
   ConstFieldArray fx_vel = local_read(grid_, *face_[0]), fy_vel = local_read(grid_, *face_[1]);
   FieldArray fx = local_array(grid_, *face_force_[0]), fy = local_array(grid_, *face_force_[1]);
+  const BlockedView mask(grid_, blocked_);
   auto boundary_force = [&](Side s, int i, int j) {
     const int axis = normal_axis(s);
     const double sign = outward_normal(s, axis);
@@ -330,10 +357,12 @@ void FlowSolver::compute_face_forces() {
     for (int i = b.xs - 1; i < b.xe(); ++i) {
       if (i == -1) {
         if (boundary(settings_.boundaries, Side::west).kind == BoundaryKind::atmosphere)
-          fx[j][i] = boundary_force(Side::west, 0, j);
+          fx[j][i] = is_blocked(mask.data(), 0, j) ? 0.0 : boundary_force(Side::west, 0, j);
       } else if (i == nx - 1) {
         if (boundary(settings_.boundaries, Side::east).kind == BoundaryKind::atmosphere)
-          fx[j][i] = boundary_force(Side::east, i, j);
+          fx[j][i] = is_blocked(mask.data(), i, j) ? 0.0 : boundary_force(Side::east, i, j);
+      } else if (is_blocked(mask.data(), i, j) || is_blocked(mask.data(), i + 1, j)) {
+        fx[j][i] = 0.0;  // an obstacle's wall
       } else {
         fx[j][i] = -(p[j][i + 1] - p[j][i]) / (grid_.xc(i + 1) - grid_.xc(i)) + 0.5 * (rho[j][i] + rho[j][i + 1]) * g[0];
       }
@@ -342,10 +371,12 @@ void FlowSolver::compute_face_forces() {
     for (int i = b.xs; i < b.xe(); ++i) {
       if (j == -1) {
         if (boundary(settings_.boundaries, Side::south).kind == BoundaryKind::atmosphere)
-          fy[j][i] = boundary_force(Side::south, i, 0);
+          fy[j][i] = is_blocked(mask.data(), i, 0) ? 0.0 : boundary_force(Side::south, i, 0);
       } else if (j == ny - 1) {
         if (boundary(settings_.boundaries, Side::north).kind == BoundaryKind::atmosphere)
-          fy[j][i] = boundary_force(Side::north, i, j);
+          fy[j][i] = is_blocked(mask.data(), i, j) ? 0.0 : boundary_force(Side::north, i, j);
+      } else if (is_blocked(mask.data(), i, j) || is_blocked(mask.data(), i, j + 1)) {
+        fy[j][i] = 0.0;
       } else {
         fy[j][i] = -(p[j + 1][i] - p[j][i]) / (grid_.yc(j + 1) - grid_.yc(j)) + 0.5 * (rho[j][i] + rho[j + 1][i]) * g[1];
       }
@@ -530,9 +561,11 @@ double FlowSolver::max_speed() const {
 FlowSolver::FastestCell FlowSolver::fastest_cell() const {
   const auto& b = grid_.owned();
   ConstFieldArray u = local_read(grid_, *vel_[0]), v = local_read(grid_, *vel_[1]);
+  const BlockedView mask(grid_, blocked_);  // their local values mirror the flow's
   FastestCell f;
   for (int j = b.ys; j < b.ye(); ++j)
     for (int i = b.xs; i < b.xe(); ++i) {
+      if (is_blocked(mask.data(), i, j)) continue;
       const double s = std::hypot(u[j][i], v[j][i]);
       if (!(s <= f.speed)) f = {s, grid_.xc(i), grid_.yc(j)};  // NaN wins, so it is found
     }

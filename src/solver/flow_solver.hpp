@@ -65,6 +65,11 @@ class FlowSolver {
   Field& body_force(int axis) { return *body_force_[axis]; }
   const Field& face_velocity(int axis) const { return *face_[axis]; }
 
+  // Obstacles and terrain (mesh/obstacles.hpp): the mask of blocked cells, with ghosts, kept by the
+  // caller; set once, before the initial state. Their faces to open cells are no-slip walls.
+  void set_blocked(const Field* mask);
+  const Field* blocked() const { return blocked_; }
+
   void set_property_update(PropertyUpdate f) { property_update_ = std::move(f); }
   // Fills face_viscosity() after the cell properties and their ghosts; without it the faces take
   // the mean of their cells' viscosities (numerics.face_viscosity).
@@ -115,9 +120,12 @@ class FlowSolver {
   // depth; per radian in axisymmetric cases): the pressure and viscous traction on a wall or slip
   // side, the boundary pressure on an atmosphere side (side_force.cpp). Collective.
   std::array<std::array<double, 2>, 4> side_forces() const;
+  // Force of the flow on the obstacles, all together (N/m), as on a static no-slip wall. Collective.
+  std::array<double, 2> obstacle_force() const;
 
  private:
   void fill_velocity_ghosts();
+  std::array<double, 10> wall_forces() const;  // side_forces, then obstacle_force (side_force.cpp)
   std::vector<Field*> state_fields();  // what a step starts from: velocities, face velocities and forces, p
   void update_boundary_heads();
   // Hydrostatic head below the top at an atmosphere face of side s in row j (y_face: the face's height).
@@ -190,7 +198,9 @@ class FlowSolver {
   std::array<std::vector<double>, 4> solved_boundary_pressure_;
   std::vector<double> side_head_[2];  // west, east: hydrostatic head of the boundary column per row
   bool has_pressure_boundary_ = false;
-  bool pins_pressure_level_ = false;  // the last coupled system held the level in a row (closed domain)
+  bool pins_pressure_level_ = false;
+  const Field* blocked_ = nullptr;  // set_blocked
+  int pin_i_ = 0, pin_j_ = 0;      // the cell whose continuity row holds a closed domain's level  // the last coupled system held the level in a row (closed domain)
   bool shared_momentum_matrix_ = true;  // no slip walls: u and v share their matrix
   double dt_ = 0.0;        // the last step's size
   double saved_dt_ = 0.0;  // save_state()

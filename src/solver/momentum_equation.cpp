@@ -7,6 +7,7 @@
 
 #include "operators/convection_scheme.hpp"
 #include "operators/strain_rate.hpp"
+#include "mesh/obstacles.hpp"
 #include "solver/cell_faces.hpp"
 #include "solver/flow_solver.hpp"
 
@@ -31,6 +32,8 @@ void FlowSolver::assemble_momentum(double dt) {
   }
 
   const double stress_factor = num.transpose_stress ? 2.0 : 1.0;  // implicit share, see below
+  const BlockedView mask(grid_, blocked_);
+  static const BoundaryCondition obstacle_wall{};  // an obstacle's faces: static no-slip walls
   for (int j = b.ys; j < b.ye(); ++j)
     for (int i = b.xs; i < b.xe(); ++i) {
       const size_t k = size_t(j - b.ys) * b.xm + (i - b.xs);
@@ -49,7 +52,8 @@ void FlowSolver::assemble_momentum(double dt) {
         const FaceGeometry& fg = faces_of_cell[f];
         const int in = i + fg.di, jn = j + fg.dj;
         const double area = grid_.face_area(fg.axis, i, j, fg.sign);
-        const bool is_boundary = in < 0 || in >= nx || jn < 0 || jn >= ny;
+        const bool is_obstacle = is_blocked(mask.data(), in, jn);
+        const bool is_boundary = in < 0 || in >= nx || jn < 0 || jn >= ny || is_obstacle;
         const double mu_face = fg.axis == 0 ? fmx[j][fg.sign > 0 ? i : i - 1] : fmy[fg.sign > 0 ? j : j - 1][i];
         // Full viscous stress div(mu (grad v + grad v^T)), split as in Jasak & Weller (2000): the
         // implicit part is 2 mu grad(v_c) on every face, and the lagged remainder on faces tangential
@@ -61,7 +65,7 @@ void FlowSolver::assemble_momentum(double dt) {
             if (c != fg.axis) src[c] += fg.sign * mu_face * lagged_transpose_gradient(grid_, vel, i, j, fg, c) * area;
         }
         if (is_boundary) {
-          const auto& bc = boundary(settings_.boundaries, fg.side);
+          const auto& bc = is_obstacle ? obstacle_wall : boundary(settings_.boundaries, fg.side);
           const double d_half = 0.5 * (fg.axis == 0 ? dx : dy);
           const double coeff = stress_factor * mu_face * area / d_half;
           if (bc.kind == BoundaryKind::wall) {

@@ -6,6 +6,7 @@
 
 #include "mesh/face_loop.hpp"
 #include "solver/cell_faces.hpp"
+#include "mesh/obstacles.hpp"
 #include "solver/flow_solver.hpp"
 
 namespace granflow {
@@ -198,14 +199,17 @@ void FlowSolver::hold_pressure_at_top() {
   double sums[2] = {0.0, 0.0};  // area-weighted top pressure, area
   {
     ConstFieldArray p(grid_.field_dm(), p_->global()), rho(grid_.field_dm(), rho_->global());
+    const BlockedView mask(grid_, blocked_);
     if (b.ye() == ny)
       for (int i = b.xs; i < b.xe(); ++i) {
+        if (is_blocked(mask.data(), i, ny - 1)) continue;  // an obstacle at the top: no fluid there
         const double area = grid_.face_area(1, i, ny - 1, 1.0);
         sums[0] += (p[ny - 1][i] + rho[ny - 1][i] * settings_.gravity[1] * 0.5 * grid_.dy(ny - 1)) * area;
         sums[1] += area;
       }
   }
   MPI_Allreduce(MPI_IN_PLACE, sums, 2, MPI_DOUBLE, MPI_SUM, grid_.comm());
+  if (sums[1] == 0.0) return;  // the top blocked all along: the pinned row's level stands
   VecShift(p_->global(), -sums[0] / sums[1]);
   fill_scalar_ghosts(*p_);
 }

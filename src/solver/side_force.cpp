@@ -4,6 +4,7 @@
 
 #include <cmath>
 
+#include "mesh/obstacles.hpp"
 #include "solver/cell_faces.hpp"
 #include "solver/flow_solver.hpp"
 
@@ -22,7 +23,9 @@ namespace granflow {
 //     for the tangential component.
 //   - At an atmosphere side: the boundary pressure the solver imposes and the lagged transpose part
 //     of the viscous stress; the momentum carried through the side is not a force on it.
-std::array<std::array<double, 2>, 4> FlowSolver::side_forces() const {
+//   - On an obstacle (mesh/obstacles.hpp): each face between an open and a blocked cell, as a
+//     static no-slip wall.
+std::array<double, 10> FlowSolver::wall_forces() const {
   const auto& b = grid_.owned();
   const int nx = grid_.nx(), ny = grid_.ny();
   const auto& g = settings_.gravity;
@@ -34,16 +37,18 @@ std::array<std::array<double, 2>, 4> FlowSolver::side_forces() const {
   ConstFieldArray fvx = local_read(grid_, *face_[0]), fvy = local_read(grid_, *face_[1]);
   const double* const* vel[2] = {u.data(), v.data()};
 
-  std::array<double, 8> force{};  // (x, y) per side, in the order of Side
-  auto add_face = [&](Side s, int i, int j) {
-    const auto& bc = boundary(settings_.boundaries, s);
+  std::array<double, 10> force{};  // (x, y) per side, in the order of Side, then the obstacles'
+  const BlockedView mask(grid_, blocked_);
+  static const BoundaryCondition obstacle_wall{};  // static, no-slip
+  // The face of cell (i, j) on its side s, into f.
+  auto add_face = [&](Side s, int i, int j, const BoundaryCondition& bc, double* f) {
+    if (is_blocked(mask.data(), i, j)) return;  // no flow there
     const FaceGeometry& fg = face_on(s);
     const int axis = fg.axis;
     const double sign = fg.sign;
     const double area = grid_.face_area(axis, i, j, sign);
     const double d_half = 0.5 * (axis == 0 ? grid_.dx(i) : grid_.dy(j));
     const double mu = axis == 0 ? fmx[j][sign > 0 ? i : i - 1] : fmy[sign > 0 ? j : j - 1][i];
-    double* f = &force[2 * static_cast<int>(s)];
     // The lagged part of the viscous stress, on every kind of side (an open one included).
     if (num.transpose_stress)
       for (int c = 0; c < 2; ++c)
@@ -70,18 +75,34 @@ std::array<std::array<double, 2>, 4> FlowSolver::side_forces() const {
       f[c] += stress_factor * mu * area * two_point + (c == axis ? stress_factor : 1.0) * mu * area * (gradient - two_point);
     }
   };
+  auto on_side = [&](Side s) { return &force[2 * static_cast<int>(s)]; };
   for (int j = b.ys; j < b.ye(); ++j) {
-    if (b.xs == 0) add_face(Side::west, 0, j);
-    if (b.xe() == nx) add_face(Side::east, nx - 1, j);
+    if (b.xs == 0) add_face(Side::west, 0, j, boundary(settings_.boundaries, Side::west), on_side(Side::west));
+    if (b.xe() == nx) add_face(Side::east, nx - 1, j, boundary(settings_.boundaries, Side::east), on_side(Side::east));
   }
   for (int i = b.xs; i < b.xe(); ++i) {
-    if (b.ys == 0) add_face(Side::south, i, 0);
-    if (b.ye() == ny) add_face(Side::north, i, ny - 1);
+    if (b.ys == 0) add_face(Side::south, i, 0, boundary(settings_.boundaries, Side::south), on_side(Side::south));
+    if (b.ye() == ny) add_face(Side::north, i, ny - 1, boundary(settings_.boundaries, Side::north), on_side(Side::north));
   }
-  MPI_Allreduce(MPI_IN_PLACE, force.data(), 8, MPI_DOUBLE, MPI_SUM, grid_.comm());
+  if (mask.data())
+    for (int j = b.ys; j < b.ye(); ++j)
+      for (int i = b.xs; i < b.xe(); ++i)
+        for (const auto& fg : faces_of_cell)
+          if (is_blocked(mask.data(), i + fg.di, j + fg.dj)) add_face(fg.side, i, j, obstacle_wall, &force[8]);
+  MPI_Allreduce(MPI_IN_PLACE, force.data(), 10, MPI_DOUBLE, MPI_SUM, grid_.comm());
+  return force;
+}
+
+std::array<std::array<double, 2>, 4> FlowSolver::side_forces() const {
+  const auto force = wall_forces();
   std::array<std::array<double, 2>, 4> out;
   for (int s = 0; s < 4; ++s) out[s] = {force[2 * s], force[2 * s + 1]};
   return out;
+}
+
+std::array<double, 2> FlowSolver::obstacle_force() const {
+  const auto force = wall_forces();
+  return {force[8], force[9]};
 }
 
 }  // namespace granflow

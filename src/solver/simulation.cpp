@@ -17,14 +17,49 @@
 #include "io/field_sample.hpp"
 #include "io/gather.hpp"
 #include "io/run_directory.hpp"
+#include "mesh/obstacles.hpp"
 #include "models/interface/initial_shapes.hpp"
 
 namespace granflow {
 
 namespace {
-CaseError no_initial_soil(const Grid& g) {
+CaseError no_initial_soil(const Grid& g, bool obstacles) {
   return CaseError(fmt::format("initial.soil: the shapes cover no part of any cell's samples on this {} x {} mesh "
-                               "(a shape far smaller than a cell)", g.nx(), g.ny()));
+                               "(a shape far smaller than a cell{})", g.nx(), g.ny(),
+                               obstacles ? ", or soil only in the obstacles' cells, which hold none" : ""));
+}
+
+// Marks the cells of the case's obstacles into mask (mesh/obstacles.hpp). A cell is blocked whole,
+// by its centre: an obstacle that holds no cell's centre on this mesh would be silently missing,
+// and one that blocks every cell leaves no flow. Collective; every rank throws alike.
+void lay_out_obstacles(const Grid& g, const CaseConfig& config, Field& mask) {
+  std::vector<long> centres(config.obstacles.size(), 0);
+  const auto& b = g.owned();
+  for (int j = b.ys; j < b.ye(); ++j)
+    for (int i = b.xs; i < b.xe(); ++i)
+      for (size_t k = 0; k < centres.size(); ++k) centres[k] += interface::contains(config.obstacles[k], g.xc(i), g.yc(j));
+  MPI_Allreduce(MPI_IN_PLACE, centres.data(), int(centres.size()), MPI_LONG, MPI_SUM, g.comm());
+  for (size_t k = 0; k < centres.size(); ++k)
+    if (centres[k] == 0)
+      throw CaseError(fmt::format("obstacle[{}]: the shape holds no cell centre on this {} x {} mesh (cells are "
+                                  "blocked whole, by their centres)", k, g.nx(), g.ny()));
+  if (mark_blocked_cells(g, config.obstacles, mask) == g.cell_count())
+    throw CaseError("obstacle: the obstacles block every cell of the domain");
+}
+
+// The soil volume the initial shapes place in open cells (all ranks' sum).
+double initial_soil_in_open_cells(const Grid& g, const CaseConfig& config, const Field* mask) {
+  const BlockedView blocked(g, mask);
+  const auto& b = g.owned();
+  double volume = 0.0;
+  for (int j = b.ys; j < b.ye(); ++j)
+    for (int i = b.xs; i < b.xe(); ++i) {
+      if (is_blocked(blocked.data(), i, j)) continue;
+      const double x0 = g.xc(i) - 0.5 * g.dx(i), y0 = g.yc(j) - 0.5 * g.dy(j);
+      volume += interface::union_fraction(config.soil->initial_soil, x0, x0 + g.dx(i), y0, y0 + g.dy(j)) * g.volume(i, j);
+    }
+  MPI_Allreduce(MPI_IN_PLACE, &volume, 1, MPI_DOUBLE, MPI_SUM, g.comm());
+  return volume;
 }
 }  // namespace
 
@@ -33,9 +68,23 @@ Simulation::Simulation(MPI_Comm comm, const CaseConfig& config, std::filesystem:
     : config_(config), out_(std::move(output_dir)) {
   MPI_Comm_rank(comm, &rank_);
   grid_ = std::make_unique<Grid>(comm, config.mesh);
+  if (!config.obstacles.empty()) {
+    blocked_ = std::make_unique<Field>(*grid_);
+    lay_out_obstacles(*grid_, config, *blocked_);
+    // The west wall the history's wall height is read at: the first column with an open cell.
+    const BlockedView mask(*grid_, blocked_.get());
+    const auto& b = grid_->owned();
+    int first = grid_->nx();
+    for (int j = b.ys; j < b.ye(); ++j)
+      for (int i = b.xs; i < b.xe(); ++i)
+        if (!is_blocked(mask.data(), i, j)) first = std::min(first, i);
+    MPI_Allreduce(&first, &wall_column_, 1, MPI_INT, MPI_MIN, comm);
+  }
   flow_ = std::make_unique<FlowSolver>(*grid_, config.flow);
+  flow_->set_blocked(blocked_.get());
   if (config.soil) {
     soil_ = std::make_unique<SoilPhase>(*grid_, flow_->settings(), *config.soil);
+    soil_->set_blocked(blocked_.get());
     soil_->initialise();
     soil_->refresh(*flow_);
     flow_->set_property_update([soil = soil_.get()](FlowSolver& f) { soil->update_properties(f); });
@@ -54,7 +103,7 @@ Simulation::Simulation(MPI_Comm comm, const CaseConfig& config, std::filesystem:
   flow_->update_properties();  // the granular viscosity needs the pressure
   if (soil_) initial_soil_volume_ = soil_->budget(*flow_).soil_volume;
   if (soil_ && !(initial_soil_volume_ > 0.0))  // the budget is summed over all ranks: all stop alike
-    throw no_initial_soil(*grid_);
+    throw no_initial_soil(*grid_, blocked_ != nullptr);
   if (!out_.empty()) {
     std::string problem;
     if (rank_ == 0) {
@@ -78,17 +127,13 @@ Simulation::~Simulation() = default;
 
 void check_initial_state(MPI_Comm comm, const CaseConfig& config) {
   const Grid grid(comm, config.mesh);
+  std::unique_ptr<Field> blocked;
+  if (!config.obstacles.empty()) {
+    blocked = std::make_unique<Field>(grid);
+    lay_out_obstacles(grid, config, *blocked);
+  }
   if (!config.soil) return;
-  const auto& b = grid.owned();
-  double volume = 0.0;
-  for (int j = b.ys; j < b.ye(); ++j)
-    for (int i = b.xs; i < b.xe(); ++i) {
-      const double x0 = grid.xc(i) - 0.5 * grid.dx(i), y0 = grid.yc(j) - 0.5 * grid.dy(j);
-      volume += interface::union_fraction(config.soil->initial_soil, x0, x0 + grid.dx(i), y0, y0 + grid.dy(j)) *
-                grid.volume(i, j);
-    }
-  MPI_Allreduce(MPI_IN_PLACE, &volume, 1, MPI_DOUBLE, MPI_SUM, comm);
-  if (!(volume > 0.0)) throw no_initial_soil(grid);
+  if (!(initial_soil_in_open_cells(grid, config, blocked.get()) > 0.0)) throw no_initial_soil(grid, blocked != nullptr);
 }
 
 double Simulation::next_output_time() const {
@@ -160,6 +205,7 @@ void Simulation::write_output() {
       vel[3 * k + 1] = v[k];
     }
     std::vector<CellData> data{{"velocity", 3, vel}, {"pressure", 1, p}, {"density", 1, rho}, {"viscosity", 1, mu}};
+    if (blocked_) data.push_back({"obstacle", 1, gather_to_root(g, *blocked_)});  // 1 in a blocked cell
     if (soil_) {
       auto dx = gather_to_root(g, soil_->displacement(0)), dy = gather_to_root(g, soil_->displacement(1));
       std::vector<double> disp(dx.size() * 3, 0.0);
@@ -239,12 +285,13 @@ struct PileShape {
   double toe_thickness = 0.0;  // largest x whose column holds at least one cell of soil
   double wall_height = 0.0;    // soil height in the first column
 };
-PileShape pile_shape(const Grid& g, const std::vector<double>& c) {
+// wall_column: the first column with an open cell (0 but where obstacles block whole columns at the west).
+PileShape pile_shape(const Grid& g, const std::vector<double>& c, int wall_column) {
   PileShape s;
   for (int i = 0; i < g.nx(); ++i) {
     double h = 0.0;
     for (int j = 0; j < g.ny(); ++j) h += c[size_t(j) * g.nx() + i] * g.dy(j);
-    if (i == 0) s.wall_height = h;
+    if (i == wall_column) s.wall_height = h;
     if (h >= g.dy(0)) s.toe_thickness = g.xf(i);
   }
   return s;
@@ -262,13 +309,15 @@ void Simulation::record_history(double dt) {
   soil_->accumulate_lode_energy(dt);
   const auto c = gather_to_root(*grid_, soil_->soil_fraction());
   const auto force = flow_->side_forces();
+  const auto obstacle = blocked_ ? flow_->obstacle_force() : std::array<double, 2>{};
   if (rank_ != 0) return;
-  const PileShape shape = pile_shape(*grid_, c);
+  const PileShape shape = pile_shape(*grid_, c, wall_column_);
   const double toe_contour = toe_of(iso_line(*grid_, c, 0.5));
   std::string row = fmt::format("{:.9g},{:.6g},{:.15g},{:.15g},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g},{:.12g},{:.15g}", time_, dt,
                                 b.soil_volume, b.air_volume, b.kinetic_energy, b.potential_energy, dissipated_energy_,
                                 toe_contour, shape.toe_thickness, shape.wall_height, b.mixture_mass, b.soil_outflow);
   for (const auto& f : force) row += fmt::format(",{:.12g},{:.12g}", f[0], f[1]);
+  if (blocked_) row += fmt::format(",{:.12g},{:.12g}", obstacle[0], obstacle[1]);
   history_.push_back(std::move(row));
 }
 
@@ -278,6 +327,7 @@ void Simulation::write_history() const {
     fmt::print(out, "time,dt,soil_volume,air_volume,kinetic_energy,potential_energy,dissipated_energy,"
                     "toe_contour,toe_one_cell,wall_height,mixture_mass,soil_outflow");
     for (Side side : all_sides) fmt::print(out, ",force_{0}_x,force_{0}_y", side_name(side));
+    if (blocked_) fmt::print(out, ",force_obstacle_x,force_obstacle_y");
     fmt::print(out, "\n");
     for (const auto& row : history_) fmt::print(out, "{}\n", row);
   });

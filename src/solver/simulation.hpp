@@ -82,6 +82,8 @@ class Simulation {
   CaseConfig config_;
   std::filesystem::path out_;
   std::unique_ptr<Grid> grid_;
+  std::unique_ptr<Field> blocked_;  // the obstacles' cells (mesh/obstacles.hpp); null without obstacles
+  int wall_column_ = 0;             // the first column with an open cell: the history's wall height
   std::unique_ptr<FlowSolver> flow_;
   std::unique_ptr<SoilPhase> soil_;
   std::unique_ptr<VtkSeries> series_;

@@ -1,6 +1,7 @@
 #include "solver/soil_phase.hpp"
 
 #include "mesh/face_loop.hpp"
+#include "mesh/obstacles.hpp"
 
 #include <fmt/format.h>
 
@@ -95,8 +96,17 @@ void SoilPhase::initialise() {
 // Ghosts of c: soil carried in through an atmosphere boundary has the boundary's inflow fraction;
 // walls mirror, which gives interface normals meeting a wall at right angles.
 void SoilPhase::fill_fraction_ghosts(Field& f) const {
+  const BlockedView mask(grid_, blocked_);
+  if (mask.data()) {  // no soil in a blocked cell (a sweep leaves there the mirror it read)
+    FieldArray a(grid_.field_dm(), f.global());
+    const auto& b = grid_.owned();
+    for (int j = b.ys; j < b.ye(); ++j)
+      for (int i = b.xs; i < b.xe(); ++i)
+        if (is_blocked(mask.data(), i, j)) a[j][i] = 0.0;
+  }
   f.scatter_to_local();
   FieldArray a(grid_.field_dm(), f.local());
+  mirror_into_blocked(grid_, mask.data(), a.data(), 1.0);  // an obstacle's walls mirror, as the domain's
   const auto& b = grid_.owned();
   const int nx = grid_.nx(), ny = grid_.ny(), gw = Grid::ghost_width;
   auto value = [&](Side s, double mirror) {
@@ -121,6 +131,7 @@ void SoilPhase::fill_displacement_ghosts() {
   for (int a = 0; a < 2; ++a) {
     disp_[a]->scatter_to_local();
     FieldArray d(grid_.field_dm(), disp_[a]->local());
+    mirror_into_blocked(grid_, BlockedView(grid_, blocked_).data(), d.data(), 1.0);
     for (int k = 1; k <= gw; ++k)
       for (int j = b.ys - gw; j < b.ye() + gw; ++j) {
         if (b.xs == 0) d[j][-k] = d[j][0];
@@ -195,6 +206,8 @@ void SoilPhase::update_face_viscosity(FlowSolver& flow) const {
         return face(axis, i, j, 0.5 * (p[j][i] + p[jn][in]));
       },
       [&](int axis, int i, int j, int sign) {  // the cell's pressure carried hydrostatically to the wall
+        const int in = i + (axis == 0 ? sign : 0), jn = j + (axis == 1 ? sign : 0);
+        const bool obstacle = in >= 0 && in < grid_.nx() && jn >= 0 && jn < grid_.ny();  // a blocked neighbour
         const double half = 0.5 * sign * (axis == 0 ? grid_.dx(i) : grid_.dy(j));
         const double pressure = p[j][i] + rho[j][i] * g[axis] * half;
         if (at_face) {  // the face between the ghost and the cell, the ghost's velocity encoding the wall
@@ -204,7 +217,8 @@ void SoilPhase::update_face_viscosity(FlowSolver& flow) const {
           const double cf = face_fraction ? interface::wetted_side_fraction(c.data(), grid_.dx_data(), grid_.dy_data(),
                                                                             i, j, axis, sign)
                                           : c[j][i];
-          const auto& bc = boundary(flow_settings_.boundaries, side_of(axis, sign));
+          static const BoundaryCondition obstacle_wall{};  // static, no-slip
+          const auto& bc = obstacle ? obstacle_wall : boundary(flow_settings_.boundaries, side_of(axis, sign));
           const auto rate = quadratic_wall && bc.kind != BoundaryKind::atmosphere
                                 ? quadratic_wall_strain_rate(grid_, u.data(), v.data(), axis, i, j, sign,
                                                              bc.wall_velocity, bc.kind == BoundaryKind::slip)
@@ -212,7 +226,8 @@ void SoilPhase::update_face_viscosity(FlowSolver& flow) const {
           return mixture_viscosity(cf, pressure, rate);
         }
         return mixture_viscosity(c[j][i], pressure, cell_strain_rate(grid_, u.data(), v.data(), i, j));
-      });
+      },
+      BlockedView(grid_, blocked_).data());
 }
 
 void SoilPhase::refresh(const FlowSolver& flow) {
@@ -358,7 +373,7 @@ void SoilPhase::transport_displacement(const FlowSolver& flow, double dt) {
   double most_out = 0.0;
   for (int j = b.ys; j < b.ye(); ++j)
     for (int i = b.xs; i < b.xe(); ++i) {
-      double out = 0.0;
+      double out = 0.0;  // a blocked cell's faces are walls, of no flux
       faces(i, j, [&](double flux, int, int) { out += std::max(flux, 0.0); });
       most_out = std::max(most_out, out * dt / grid_.volume(i, j));
     }
@@ -366,6 +381,7 @@ void SoilPhase::transport_displacement(const FlowSolver& flow, double dt) {
   constexpr double most_sweeps = 1000.0;
   const int sweeps = int(std::clamp(std::ceil(mpi_max(grid_.comm(), most_out) - 1e-12), 1.0, most_sweeps));
   const double h = dt / sweeps;
+  const BlockedView mask(grid_, blocked_);
   for (int sweep = 0; sweep < sweeps; ++sweep) {
     fill_displacement_ghosts();
     for (int a = 0; a < 2; ++a) {
@@ -373,6 +389,10 @@ void SoilPhase::transport_displacement(const FlowSolver& flow, double dt) {
       FieldArray dn(grid_.field_dm(), disp_new_[a]->global());
       for (int j = b.ys; j < b.ye(); ++j)
         for (int i = b.xs; i < b.xe(); ++i) {
+          if (is_blocked(mask.data(), i, j)) {  // its local values mirror the soil's
+            dn[j][i] = 0.0;
+            continue;
+          }
           double out = 0.0;  // donor-cell displacement
           faces(i, j, [&](double flux, int in, int jn) { out += flux * (flux >= 0.0 ? d[j][i] : d[jn][in]); });
           dn[j][i] = d[j][i] + h * (c[j][i] * vel[a][j][i] - out / grid_.volume(i, j));
@@ -389,8 +409,14 @@ void SoilPhase::compute_diagnostics(const FlowSolver& flow) {
   ConstFieldArray u = local_read(grid_, flow.velocity(0)), v = local_read(grid_, flow.velocity(1));
   FieldArray en(grid_.field_dm(), strain_norm_->global()), rn(grid_.field_dm(), rate_norm_->global()),
       lo(grid_.field_dm(), lode_->global()), ratio(grid_.field_dm(), stress_ratio_->global());
+  const BlockedView mask(grid_, blocked_);
   for (int j = b.ys; j < b.ye(); ++j)
     for (int i = b.xs; i < b.xe(); ++i) {
+      if (is_blocked(mask.data(), i, j)) {  // no soil, no flow
+        en[j][i] = rn[j][i] = lo[j][i] = 0.0;
+        ratio[j][i] = 1.0;
+        continue;
+      }
       const double hx = grid_.xc(i + 1) - grid_.xc(i - 1), hy = grid_.yc(j + 1) - grid_.yc(j - 1);
       strain::DisplacementGradient g{(dx[j][i + 1] - dx[j][i - 1]) / hx, (dx[j + 1][i] - dx[j - 1][i]) / hy,
                                      (dy[j][i + 1] - dy[j][i - 1]) / hx, (dy[j + 1][i] - dy[j - 1][i]) / hy};
@@ -430,8 +456,7 @@ double SoilPhase::compute_dissipation(const FlowSolver& flow) {
   // Work rate of a wall face of cell (i, j) on side s, with half-cell distance d and area A: the
   // wall's traction, factor mu A times the wall gradient (two-point or quadratic), times the
   // velocity relative to the wall.
-  auto wall_face = [&](Side s, int i, int j, double A) {
-    const auto& bc = boundary(flow_settings_.boundaries, s);
+  auto wall_face = [&](const BoundaryCondition& bc, Side s, int i, int j, double A) {
     const int n = normal_axis(s);
     if (bc.kind == BoundaryKind::atmosphere) return 0.0;
     const double mu_f = s == Side::west ? fmx[j][i - 1] : s == Side::east ? fmx[j][i]
@@ -466,26 +491,53 @@ double SoilPhase::compute_dissipation(const FlowSolver& flow) {
   // faces on the rank's low edges are the other rank's too, which takes its own half of them.
   for (int j = b.ys; j < b.ye(); ++j)
     for (int i = b.xs; i < b.xe(); ++i) out[j][i] = 0.0;
+  // A face between an open and a blocked cell is a static wall of an obstacle: all its work goes to
+  // the open cell, if owned. Domain sides of a blocked cell carry no flow.
+  const BlockedView mask(grid_, blocked_);
+  static const BoundaryCondition obstacle_wall{};
+  auto blocked = [&](int i, int j) { return is_blocked(mask.data(), i, j); };
+  auto side = [&](Side s) -> const BoundaryCondition& { return boundary(flow_settings_.boundaries, s); };
   for (int j = b.ys; j < b.ye(); ++j)
     for (int i = b.xs; i < b.xe(); ++i) {
+      const bool here = blocked(i, j);
       if (i + 1 < nx) {
-        const double w = 0.5 * east_face(i, j);
-        out[j][i] += w;
-        if (i + 1 < b.xe()) out[j][i + 1] += w;
-      } else {
-        out[j][i] += wall_face(Side::east, i, j, grid_.face_area(0, i, j, 1.0));
+        if (!here && !blocked(i + 1, j)) {
+          const double w = 0.5 * east_face(i, j);
+          out[j][i] += w;
+          if (i + 1 < b.xe()) out[j][i + 1] += w;
+        } else if (!here) {
+          out[j][i] += wall_face(obstacle_wall, Side::east, i, j, grid_.face_area(0, i, j, 1.0));
+        } else if (!blocked(i + 1, j) && i + 1 < b.xe()) {
+          out[j][i + 1] += wall_face(obstacle_wall, Side::west, i + 1, j, grid_.face_area(0, i + 1, j, -1.0));
+        }
+      } else if (!here) {
+        out[j][i] += wall_face(side(Side::east), Side::east, i, j, grid_.face_area(0, i, j, 1.0));
       }
-      if (i == 0) out[j][i] += wall_face(Side::west, i, j, grid_.face_area(0, i, j, -1.0));
-      else if (i == b.xs) out[j][i] += 0.5 * east_face(i - 1, j);
+      if (i == 0) {
+        if (!here) out[j][i] += wall_face(side(Side::west), Side::west, i, j, grid_.face_area(0, i, j, -1.0));
+      } else if (i == b.xs && !here) {  // the face shared with the rank to the west
+        if (!blocked(i - 1, j)) out[j][i] += 0.5 * east_face(i - 1, j);
+        else out[j][i] += wall_face(obstacle_wall, Side::west, i, j, grid_.face_area(0, i, j, -1.0));
+      }
       if (j + 1 < ny) {
-        const double w = 0.5 * north_face(i, j);
-        out[j][i] += w;
-        if (j + 1 < b.ye()) out[j + 1][i] += w;
-      } else {
-        out[j][i] += wall_face(Side::north, i, j, grid_.face_area(1, i, j, 1.0));
+        if (!here && !blocked(i, j + 1)) {
+          const double w = 0.5 * north_face(i, j);
+          out[j][i] += w;
+          if (j + 1 < b.ye()) out[j + 1][i] += w;
+        } else if (!here) {
+          out[j][i] += wall_face(obstacle_wall, Side::north, i, j, grid_.face_area(1, i, j, 1.0));
+        } else if (!blocked(i, j + 1) && j + 1 < b.ye()) {
+          out[j + 1][i] += wall_face(obstacle_wall, Side::south, i, j + 1, grid_.face_area(1, i, j + 1, -1.0));
+        }
+      } else if (!here) {
+        out[j][i] += wall_face(side(Side::north), Side::north, i, j, grid_.face_area(1, i, j, 1.0));
       }
-      if (j == 0) out[j][i] += wall_face(Side::south, i, j, grid_.face_area(1, i, j, -1.0));
-      else if (j == b.ys) out[j][i] += 0.5 * north_face(i, j - 1);
+      if (j == 0) {
+        if (!here) out[j][i] += wall_face(side(Side::south), Side::south, i, j, grid_.face_area(1, i, j, -1.0));
+      } else if (j == b.ys && !here) {  // the face shared with the rank to the south
+        if (!blocked(i, j - 1)) out[j][i] += 0.5 * north_face(i, j - 1);
+        else out[j][i] += wall_face(obstacle_wall, Side::south, i, j, grid_.face_area(1, i, j, -1.0));
+      }
     }
   std::fill(lode_rate_.values().begin(), lode_rate_.values().end(), 0.0);
   double rate = 0.0;
@@ -526,8 +578,10 @@ SoilBudget SoilPhase::budget(const FlowSolver& flow) {
   ConstFieldArray u = local_read(grid_, flow.velocity(0)), v = local_read(grid_, flow.velocity(1));
   ConstFieldArray rho(grid_.field_dm(), flow.density().global());
   double s[7] = {0, 0, 0, 0, compute_dissipation(flow), 0, outflow_};
+  const BlockedView mask(grid_, blocked_);
   for (int j = b.ys; j < b.ye(); ++j)
     for (int i = b.xs; i < b.xe(); ++i) {
+      if (is_blocked(mask.data(), i, j)) continue;  // solid, not the flow's
       const double V = grid_.volume(i, j);
       const double phase_density = rho_s * c[j][i] + rho_a * (1.0 - c[j][i]);
       s[0] += c[j][i] * V;

@@ -29,7 +29,10 @@ class SoilPhase {
  public:
   SoilPhase(const Grid& grid, const FlowSettings& flow, const SoilSettings& settings);
 
-  // Soil fraction from the initial shapes.
+  // Obstacles and terrain (mesh/obstacles.hpp): the mask of blocked cells, kept by the caller; set
+  // before initialise(). A blocked cell holds no soil; its faces to open cells are walls.
+  void set_blocked(const Field* mask) { blocked_ = mask; }
+  // Soil fraction from the initial shapes (none in blocked cells).
   void initialise();
   // Properties for the flow solver: density and viscosity of the mixture ([VoF] Eq. 1 or App. A),
   // with the granular viscosity of the soil from the current strain rate and pressure.
@@ -104,6 +107,7 @@ class SoilPhase {
   std::unique_ptr<Field> overburden_;  // rho_s g times the soil depth above each centre (Pa)
   void compute_overburden(const std::array<double, 2>& gravity);
   int sweep_parity_ = 0;
+  const Field* blocked_ = nullptr;
 };
 
 }  // namespace granflow

@@ -1,5 +1,7 @@
 #include "solver/solve_region.hpp"
 
+#include "mesh/obstacles.hpp"
+
 namespace granflow {
 
 namespace {
@@ -23,10 +25,11 @@ SolveRegion::~SolveRegion() {
 bool SolveRegion::covers(const Field& needed) const {
   const auto& b = grid_.owned();
   ConstFieldArray in(grid_.field_dm(), needed.global()), mine(grid_.field_dm(), cells_.global());
+  const BlockedView mask(grid_, blocked_);
   int missing = 0;
   for (int j = b.ys; j < b.ye() && !missing; ++j)
     for (int i = b.xs; i < b.xe(); ++i)
-      if (in[j][i] != 0.0 && mine[j][i] == 0.0) {
+      if (in[j][i] != 0.0 && mine[j][i] == 0.0 && !is_blocked(mask.data(), i, j)) {
         missing = 1;
         break;
       }
@@ -40,8 +43,9 @@ void SolveRegion::assign(const Field& wanted) {
   {
     ConstFieldArray in(grid_.field_dm(), wanted.global());
     FieldArray mine(grid_.field_dm(), cells_.global());
+    const BlockedView mask(grid_, blocked_);
     for (int j = b.ys; j < b.ye(); ++j)
-      for (int i = b.xs; i < b.xe(); ++i) mine[j][i] = in[j][i] != 0.0 ? 1.0 : 0.0;
+      for (int i = b.xs; i < b.xe(); ++i) mine[j][i] = in[j][i] != 0.0 && !is_blocked(mask.data(), i, j) ? 1.0 : 0.0;
   }
   cells_.scatter_to_local();
 }

@@ -35,8 +35,10 @@ class SolveRegion {
   const Field& cells() const { return cells_; }
   // Whether every cell where `needed` is non-zero lies in the region (on every rank).
   bool covers(const Field& needed) const;
-  // The region becomes the cells where `wanted` is non-zero.
+  // The region becomes the cells where `wanted` is non-zero, less the blocked ones.
   void assign(const Field& wanted);
+  // Cells no region holds: an obstacle's (mesh/obstacles.hpp), whose local mask is kept by the caller.
+  void set_blocked(const Field* mask) { blocked_ = mask; }
 
   // Numbers the region's cells anew (and makes a new matrix and solver) if the mask changed since
   // the last call; returns the region's cells over all ranks. Call before filling the rows.
@@ -97,6 +99,7 @@ class SolveRegion {
   LinearSolverSettings solver_settings_;
   Field cells_;
   Field index_;                 // region number of each cell (-1 outside), with ghosts
+  const Field* blocked_ = nullptr;
   std::vector<int> owned_;      // owned region cells as (j - ys) xm + (i - xs), of the last prepare()
   long cell_count_ = 0;
   PetscInt first_row_ = 0;      // the first of this rank's rows in the region's numbering

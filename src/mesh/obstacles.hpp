@@ -1,0 +1,45 @@
+#pragma once
+// Obstacles and terrain as blocked cells (SPEC 3): a 0/1 mask over the cells, 1 where the cell is
+// solid. A face between an open and a blocked cell is a no-slip wall, treated as the domain's walls
+// are; a blocked cell holds no soil, no flow and no unknowns of the coupled solve.
+//
+// Stencils that reach across a wall read the ghost values behind it (FlowSolver, SoilPhase). The
+// domain's walls get theirs from the boundary conditions; an obstacle's blocked cells get them from
+// mirror_into_blocked, in the local (ghosted) arrays only: the global vectors keep zero there.
+#include <optional>
+#include <vector>
+
+#include "mesh/field.hpp"
+#include "mesh/grid.hpp"
+#include "models/interface/initial_shapes.hpp"
+
+namespace granflow {
+
+// Whether cell (i, j) is blocked, from a local mask array (null: no obstacles). Cells outside the
+// domain are not: their ghosts hold 0.
+inline bool is_blocked(const double* const* mask, int i, int j) { return mask && mask[j][i] > 0.5; }
+
+// Read access to the local mask of blocked cells, or none (data() null) without obstacles.
+class BlockedView {
+ public:
+  BlockedView(const Grid& g, const Field* mask) {
+    if (mask) array_.emplace(g.field_dm(), mask->local());
+  }
+  const double* const* data() const { return array_ ? array_->data() : nullptr; }
+
+ private:
+  std::optional<ConstFieldArray> array_;
+};
+
+// Marks the cells whose centre lies in any of the shapes (1, else 0), ghosts included; returns the
+// number of blocked cells over all ranks. Collective.
+long mark_blocked_cells(const Grid& g, const std::vector<interface::Shape>& shapes, Field& mask);
+
+// Fills the blocked cells of the local array `a` as ghosts of the walls they form: a blocked cell k
+// cells behind a wall takes sign times the open cell k - 1 cells in front of it (sign -1: a no-slip
+// velocity, +1: a scalar of zero normal gradient), as the domain's ghosts do. Along x first, then
+// along y, which overrides, as the domain's corner ghosts are filled. Open cells are those inside the
+// domain; cells without an open cell within reach are left as they are.
+void mirror_into_blocked(const Grid& g, const double* const* mask, double** a, double sign);
+
+}  // namespace granflow
