@@ -261,3 +261,39 @@ TEST(CaseFile, ShippedCasesAreValid) {
 
 }  // namespace
 }  // namespace granflow
+
+namespace granflow {
+namespace {
+
+// [[obstacle]]: the shapes of initial.soil, refused where the solver does not know blocked cells.
+TEST(CaseFile, ObstaclesTakeShapesAndNeedTheCoupledPlanarSolve) {
+  const std::vector<std::string> coupled{"soil.rheology.friction_angle=30", "numerics.pressure_coupling=coupled"};
+  auto with = [&](std::vector<std::string> extra) {
+    auto o = coupled;
+    o.insert(o.end(), extra.begin(), extra.end());
+    return o;
+  };
+  const std::string step = "obstacle=[{shape = \"box\", lower = [0.6, 0.0], upper = [1.0, 0.2]}, "
+                           "{shape = \"circle\", centre = [0.8, 0.6], radius = 0.1}]";
+  const CaseConfig c = parse_case(two_phase, with({step}));
+  ASSERT_EQ(c.obstacles.size(), 2u);
+  EXPECT_TRUE(std::holds_alternative<interface::Circle>(c.obstacles[1]));
+  EXPECT_TRUE(parse_case(two_phase, coupled).obstacles.empty());
+  const std::string projection = error_of(two_phase, {"soil.rheology.friction_angle=30", step});
+  EXPECT_NE(projection.find("obstacle"), std::string::npos) << projection;
+  EXPECT_NE(projection.find("coupled"), std::string::npos) << projection;
+  const std::string outside =
+      error_of(two_phase, with({"obstacle=[{shape = \"box\", lower = [2.0, 0.0], upper = [3.0, 1.0]}]"}));
+  EXPECT_NE(outside.find("obstacle[0]"), std::string::npos) << outside;
+  EXPECT_NE(outside.find("covers no area of the domain"), std::string::npos) << outside;
+  const std::string misspelt = error_of(two_phase, with({"obstacle=[{shape = \"box\", lower = [0.6, 0.0], uper = [1.0, 0.2]}]"}));
+  EXPECT_NE(misspelt.find("obstacle"), std::string::npos) << misspelt;
+  EXPECT_NE(misspelt.find("obstacle[0].upper"), std::string::npos) << misspelt;
+  const std::string axisymmetric = error_of(
+      two_phase, with({step, "mesh.geometry=axisymmetric", "boundary.west={type = \"axis\"}"}));
+  EXPECT_NE(axisymmetric.find("obstacle"), std::string::npos) << axisymmetric;
+  EXPECT_NE(axisymmetric.find("planar"), std::string::npos) << axisymmetric;
+}
+
+}  // namespace
+}  // namespace granflow

@@ -1,0 +1,167 @@
+// Obstacles and terrain as blocked cells ([[obstacle]], mesh/obstacles.hpp): a face between an open
+// and a blocked cell is a static no-slip wall, as the domain's own walls are.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <string>
+#include <vector>
+
+#include "io/gather.hpp"
+#include "solver/simulation.hpp"
+#include "test_support.hpp"
+
+namespace granflow {
+namespace {
+
+struct Collapse {
+  std::vector<double> c, u, v;
+  std::vector<std::array<double, 2>> forces;  // west, east, south, north, obstacle
+  double kinetic = 0.0, dissipated = 0.0, toe = 0.0, wall_height = 0.0, volume_error = 0.0;
+  int nx = 0, ny = 0;
+};
+
+Collapse collapse(std::vector<std::string> overrides) {
+  overrides.insert(overrides.end(), {"output.progress_seconds=0", "time.end=0.3", "output.interval=0.3"});
+  Simulation sim(PETSC_COMM_WORLD, load_case(test::repo_path("cases/bui2008_experiment.toml"), overrides), "");
+  const RunSummary s = sim.run();
+  Collapse o;
+  o.nx = sim.grid().nx();
+  o.ny = sim.grid().ny();
+  o.c = gather_to_root(sim.grid(), sim.soil()->soil_fraction());
+  o.u = gather_to_root(sim.grid(), sim.flow().velocity(0));
+  o.v = gather_to_root(sim.grid(), sim.flow().velocity(1));
+  const auto sides = sim.flow().side_forces();
+  o.forces.assign(sides.begin(), sides.end());
+  o.forces.push_back(sim.flow().obstacle_force());
+  const SoilBudget b = sim.soil()->budget(sim.flow());
+  o.kinetic = b.kinetic_energy;
+  o.volume_error = std::abs(s.soil_volume_error);
+  return o;
+}
+
+// The collapse on 60 x 20 cells against the same with its floor and its west wall built of three
+// rows and three columns of blocked cells below and left of it: the flow is the same to round-off,
+// and the obstacle carries what the floor and the wall carried.
+TEST(Obstacles, BlockedFloorAndWallAreTheDomainsOwn) {
+  const Collapse plain = collapse({"mesh.cells=[60,20]"});
+  const Collapse built = collapse({"mesh.cells=[63,23]", "mesh.lower=[-0.03,-0.03]",
+                                   "obstacle=[{shape = \"box\", lower = [-1.0, -1.0], upper = [1.0, 0.0]}, "
+                                   "{shape = \"box\", lower = [-1.0, -1.0], upper = [0.0, 1.0]}]"});
+  if (!test::is_root()) return;
+  double largest = 0.0, scale = 0.0, c_diff = 0.0, blocked_soil = 0.0;
+  for (int j = 0; j < built.ny; ++j)
+    for (int i = 0; i < built.nx; ++i) {
+      const size_t k = size_t(j) * built.nx + i;
+      if (i < 3 || j < 3) {  // blocked: no soil, at rest
+        blocked_soil = std::max({blocked_soil, std::abs(built.c[k]), std::abs(built.u[k]), std::abs(built.v[k])});
+        continue;
+      }
+      const size_t m = size_t(j - 3) * plain.nx + (i - 3);
+      largest = std::max({largest, std::abs(built.u[k] - plain.u[m]), std::abs(built.v[k] - plain.v[m])});
+      scale = std::max({scale, std::abs(plain.u[m]), std::abs(plain.v[m])});
+      c_diff = std::max(c_diff, std::abs(built.c[k] - plain.c[m]));
+    }
+  const auto& wall = plain.forces[0];
+  const auto& floor = plain.forces[2];
+  const auto& obstacle = built.forces[4];
+  std::printf("collapse to t = 0.3 s with a floor and a wall of blocked cells against the domain's own: velocities "
+              "apart by %.2e m/s of %.3f, soil fractions by %.2e, kinetic energy %.12g / %.12g J/m, soil volume error "
+              "%.1e; in the blocked cells |c|, |v| at most %.1e; obstacle force (%.6f, %.6f) N/m against floor + wall "
+              "(%.6f, %.6f); the domain's own floor under the blocked rows (%.3g, %.3g)\n",
+              largest, scale, c_diff, built.kinetic, plain.kinetic, built.volume_error, blocked_soil, obstacle[0],
+              obstacle[1], floor[0] + wall[0], floor[1] + wall[1], built.forces[2][0], built.forces[2][1]);
+  EXPECT_LT(largest, 1e-9 * scale);
+  EXPECT_LT(c_diff, 1e-9);
+  EXPECT_NEAR(built.kinetic, plain.kinetic, 1e-9 * plain.kinetic);
+  EXPECT_LT(built.volume_error, 1e-12);
+  EXPECT_EQ(blocked_soil, 0.0);
+  const double weight_scale = std::abs(floor[1]);
+  EXPECT_NEAR(obstacle[0], floor[0] + wall[0], 1e-4 * weight_scale);
+  EXPECT_NEAR(obstacle[1], floor[1] + wall[1], 1e-4 * weight_scale);
+  EXPECT_EQ(built.forces[2][0], 0.0);  // nothing flows along the domain's floor under the obstacle
+  EXPECT_EQ(built.forces[2][1], 0.0);
+}
+
+// A heavy layer at rest on a stepped bed (terrain: 3 cm high on the left half, 6 cm on the right),
+// its surface cutting a row of cells: it stays at rest, its pressure hydrostatic, and the bed, the
+// walls and the floor carry its weight.
+TEST(Obstacles, LayerAtRestOnASteppedBed) {
+  const std::string text = R"(
+[mesh]
+cells = [40, 40]
+upper = [0.2, 0.2]
+[time]
+end = 1e9
+dt = 1e-3
+adaptive = false
+max_steps = 100
+[physics]
+gravity = [0.0, -9.81]
+[air]
+density = 1.0
+viscosity = 1e-5
+[soil]
+density = 2650.0
+viscosity = 1e3
+[mixture]
+density = "linear"
+viscosity = "linear"
+[[initial.soil]]
+shape = "box"
+lower = [-1.0, -1.0]
+upper = [1.0, 0.1025]
+[[obstacle]]
+shape = "polygon"
+points = [[-1.0, -1.0], [1.0, -1.0], [1.0, 0.06], [0.1, 0.06], [0.1, 0.03], [-1.0, 0.03]]
+[boundary]
+west = { type = "wall" }
+east = { type = "wall" }
+south = { type = "wall" }
+north = { type = "atmosphere" }
+[numerics]
+pressure_coupling = "coupled"
+[output]
+progress_seconds = 0
+)";
+  Simulation sim(PETSC_COMM_WORLD, parse_case(text), "");
+  const double volume0 = sim.soil()->budget(sim.flow()).soil_volume;
+  const Grid& g = sim.grid();
+  const auto p0 = gather_to_root(g, sim.flow().pressure());
+  const RunSummary s = sim.run();
+  const double speed = sim.flow().max_speed();
+  const auto p1 = gather_to_root(g, sim.flow().pressure());
+  double p_scale = 0.0, p_change = 0.0;  // over the open cells (a blocked cell's pressure is no fluid's)
+  for (int j = 0; j < g.ny() && test::is_root(); ++j)
+    for (int i = 0; i < g.nx(); ++i) {
+      const double y = g.yc(j), x = g.xc(i);
+      if (y < 0.03 || (x > 0.1 && y < 0.06)) continue;
+      const size_t k = size_t(j) * g.nx() + i;
+      p_scale = std::max(p_scale, std::abs(p0[k]));
+      p_change = std::max(p_change, std::abs(p1[k] - p0[k]));
+    }
+  const SoilBudget b = sim.soil()->budget(sim.flow());
+  const auto sides = sim.flow().side_forces();
+  const auto obstacle = sim.flow().obstacle_force();
+  double vertical = obstacle[1];
+  for (const auto& f : sides) vertical += f[1];
+  const double weight = b.mixture_mass * 9.81;
+  // The soil held back by the step: h = 0.1025 - 0.03 on the left, 0.1025 - 0.06 on the right.
+  const double step_thrust = 2650.0 * 9.81 * (std::pow(0.1025 - 0.03, 2) - std::pow(0.1025 - 0.06, 2)) / 2;
+  if (!test::is_root()) return;
+  std::printf("layer on a stepped bed after %ld steps: max |v| = %.3e m/s, pressure change %.3e of its largest, soil "
+              "volume error %.1e; the walls and the bed carry %.12g N/m of a weight of %.12g; the step's face pushed "
+              "%.4f N/m against rho g (h1^2 - h2^2) / 2 = %.4f\n",
+              s.steps, speed, p_change / p_scale, b.soil_volume / volume0 - 1, -vertical, weight, obstacle[0],
+              step_thrust);
+  EXPECT_EQ(s.steps, 100);
+  EXPECT_LT(speed, 1e-8);
+  EXPECT_LT(p_change / p_scale, 1e-10);
+  EXPECT_LT(std::abs(b.soil_volume / volume0 - 1), 1e-12);
+  EXPECT_NEAR(-vertical / weight, 1.0, 1e-10);
+  EXPECT_NEAR(obstacle[0] / step_thrust, 1.0, 0.02);
+}
+
+}  // namespace
+}  // namespace granflow
