@@ -94,5 +94,13 @@ TEST(RankConsistency, CollapseWithAirBandOneAndTwoRanksAgree) {
                           1e-9);  // m/s; measured 1.5e-13, room as above
 }
 
+// A barrier of blocked cells on the second rank (50 columns split 25 | 25 at x = 0.3 m): the wall
+// faces of its cells and the mirrored values behind them, which stencils of open cells read, come
+// from both ranks' cells.
+TEST(RankConsistency, CollapseAgainstABarrierOneAndTwoRanksAgree) {
+  expect_rank_independent("cases/barrier_collapse.toml",
+                          {"mesh.cells=[50,20]", "time.end=0.4", "output.progress_seconds=0"}, 1e-9);
+}
+
 }  // namespace
 }  // namespace granflow

@@ -163,5 +163,39 @@ progress_seconds = 0
   EXPECT_NEAR(obstacle[0] / step_thrust, 1.0, 0.02);
 }
 
+// cases/barrier_collapse.toml to t = 1.5 s: the barrier 28 mm high at x = 0.4 m holds back the tongue
+// that runs on to 0.47 m without it (150 x 50). Nothing passes it, the pile comes to rest against it,
+// and the horizontal forces on the walls, the floor and the barrier balance.
+TEST(Obstacles, BarrierHoldsBackTheCollapse) {
+  Simulation sim(PETSC_COMM_WORLD,
+                 load_case(test::repo_path("cases/barrier_collapse.toml"),
+                           {"time.end=1.5", "output.progress_seconds=0"}),
+                 "");
+  const RunSummary s = sim.run();
+  const Grid& g = sim.grid();
+  const auto c = gather_to_root(g, sim.soil()->soil_fraction());
+  const auto u = gather_to_root(g, sim.flow().velocity(0)), v = gather_to_root(g, sim.flow().velocity(1));
+  const auto sides = sim.flow().side_forces();
+  const auto barrier = sim.flow().obstacle_force();
+  double horizontal = barrier[0];
+  for (const auto& f : sides) horizontal += f[0];
+  if (!test::is_root()) return;
+  double beyond = 0.0, soil_speed = 0.0;
+  for (int j = 0; j < g.ny(); ++j)
+    for (int i = 0; i < g.nx(); ++i) {
+      const size_t k = size_t(j) * g.nx() + i;
+      if (g.xc(i) > 0.412) beyond += c[k] * g.volume(i, j);
+      if (c[k] >= 0.5) soil_speed = std::max(soil_speed, std::hypot(u[k], v[k]));
+    }
+  std::printf("barrier at t = 1.5 s: soil beyond it %.2e m^2, largest soil speed %.2e m/s, soil volume error %.1e; the "
+              "barrier carries %.4f N/m along x, the west wall %.4f, the floor %.4f, their sum %.2e\n",
+              beyond, soil_speed, s.soil_volume_error, barrier[0], sides[0][0], sides[2][0], horizontal);
+  EXPECT_EQ(beyond, 0.0);
+  EXPECT_LT(soil_speed, 1e-3);
+  EXPECT_LT(std::abs(s.soil_volume_error), 1e-12);
+  EXPECT_GT(barrier[0], 1.0);  // pushed downstream
+  EXPECT_LT(std::abs(horizontal), 1e-3 * barrier[0]);
+}
+
 }  // namespace
 }  // namespace granflow
