@@ -113,6 +113,12 @@ add_test(NAME cli_check_takes_the_runs_petsc_options
          COMMAND sh -c "\"$0\" check \"$1\" --petsc=-coupled_ksp_monitor | grep -q ': valid (' && out=$(\"$0\" check \"$1\" '--petsc=-options_file /no/such/options' 2>&1); test $? -eq 2 && echo \"$out\" | grep -q 'cannot read /no/such/options'"
                  $<TARGET_FILE:granflow> ${CMAKE_SOURCE_DIR}/cases/bui2008_experiment.toml)
 set_tests_properties(cli_check_takes_the_runs_petsc_options PROPERTIES LABELS cli)
+# Obstacles are laid out by check as by a run: one that holds no cell centre, obstacles that block
+# every cell, and initial soil only in blocked cells are each exit 2 with the message.
+add_test(NAME cli_check_lays_out_the_obstacles
+         COMMAND sh -c "for bad in \"obstacle=[{shape='box', lower=[0.401,0.0], upper=[0.402,0.01]}]|the shape holds no cell centre on this 30 x 10 mesh\" \"obstacle=[{shape='box', lower=[-1,-1], upper=[1,1]}]|the obstacles block every cell\" \"obstacle=[{shape='box', lower=[-1,-1], upper=[0.3,0.15]}]|the shapes place no soil in any open cell\"; do out=$(\"$0\" check \"$1\" --set 'mesh.cells=[30,10]' --set \"\${bad%%|*}\" 2>&1); test $? -eq 2 && echo \"$out\" | grep -q \"\${bad#*|}\" || { echo \"$out\"; exit 1; }; done"
+                 $<TARGET_FILE:granflow> ${CMAKE_SOURCE_DIR}/cases/barrier_collapse.toml)
+set_tests_properties(cli_check_lays_out_the_obstacles PROPERTIES LABELS cli)
 # check lays out the initial state as a run does, and finds what only that shows: exit 2 and the message.
 add_test(NAME cli_check_lays_out_the_initial_state
          COMMAND sh -c "out=$(\"$0\" check \"$1\" --set 'mesh.cells=[30,10]' --set \"$2\" 2>&1); test $? -eq 2 && echo \"$out\" | grep -q \"error: initial.soil: the shapes cover no part of any cell's samples on this 30 x 10 mesh\""

@@ -24,9 +24,12 @@ namespace granflow {
 
 namespace {
 CaseError no_initial_soil(const Grid& g, bool obstacles) {
+  if (obstacles)
+    return CaseError(fmt::format("initial.soil: the shapes place no soil in any open cell on this {} x {} mesh (what "
+                                 "they cover lies in the obstacles' blocked cells, or a shape is far smaller than a "
+                                 "cell)", g.nx(), g.ny()));
   return CaseError(fmt::format("initial.soil: the shapes cover no part of any cell's samples on this {} x {} mesh "
-                               "(a shape far smaller than a cell{})", g.nx(), g.ny(),
-                               obstacles ? ", or soil only in the obstacles' cells, which hold none" : ""));
+                               "(a shape far smaller than a cell)", g.nx(), g.ny()));
 }
 
 // Marks the cells of the case's obstacles into mask (mesh/obstacles.hpp). A cell is blocked whole,
