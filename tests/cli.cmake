@@ -108,6 +108,12 @@ add_test(NAME cli_check_unknown_solver
          COMMAND granflow check ${CMAKE_SOURCE_DIR}/cases/bui2008_experiment.toml --set solver.coupled.ksp_type=bogus)
 set_tests_properties(cli_check_unknown_solver PROPERTIES LABELS cli
                      PASS_REGULAR_EXPRESSION "solver.coupled.ksp_type: 'bogus' is not a Krylov method")
+# Options may come before the case file, each --set taking one value; blanks around a key are the
+# TOML line's; a command line that is refused is status 2, as a refused case is.
+add_test(NAME cli_options_before_the_case_and_status_2
+         COMMAND sh -c "\"$0\" check --set 'time.end = 0.05' --petsc=-log_view \"$1\" --set output.fields=false | grep -q 't_end = 0.05 s' && \"$0\" check \"$1\" --bogus; test $? -eq 2"
+                 $<TARGET_FILE:granflow> ${CMAKE_SOURCE_DIR}/cases/water_dam_break.toml)
+set_tests_properties(cli_options_before_the_case_and_status_2 PROPERTIES LABELS cli)
 # check takes a run's --petsc: valid options pass, an unreadable options file is exit 2 with its name.
 add_test(NAME cli_check_takes_the_runs_petsc_options
          COMMAND sh -c "\"$0\" check \"$1\" --petsc=-coupled_ksp_monitor | grep -q ': valid (' && out=$(\"$0\" check \"$1\" '--petsc=-options_file /no/such/options' 2>&1); test $? -eq 2 && echo \"$out\" | grep -q 'cannot read /no/such/options'"

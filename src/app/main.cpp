@@ -174,8 +174,9 @@ int main(int argc, char** argv) {
   auto* run = app.add_subcommand("run", "run a case");
   run->add_option("case", case_file, "case file (TOML)")->required();
   run->add_option("-o,--output", out_dir, "output directory (default out/<case name>)");
-  run->add_option("--set", overrides, "override a case key: KEY=VALUE (repeatable)");
-  run->add_option("--petsc", petsc_options, "options passed to PETSc, e.g. --petsc=-pressure_ksp_monitor");
+  run->add_option("--set", overrides, "override a case key: KEY=VALUE (repeatable)")->allow_extra_args(false);
+  run->add_option("--petsc", petsc_options, "options passed to PETSc, e.g. --petsc=-pressure_ksp_monitor")
+      ->allow_extra_args(false);
   auto* restart_flag = run->add_flag("--restart", restart,
                 "continue from the checkpoint in the output directory (written at each output time; same case, "
                 "mesh and number of ranks)");
@@ -184,10 +185,11 @@ int main(int argc, char** argv) {
 
   auto* check = app.add_subcommand("check", "validate a case file without running it");
   check->add_option("case", case_file, "case file (TOML)")->required();
-  check->add_option("--set", overrides, "override a case key: KEY=VALUE (repeatable)");
+  check->add_option("--set", overrides, "override a case key: KEY=VALUE (repeatable)")->allow_extra_args(false);
   check->add_option("--petsc", petsc_options,
                     "the run's PETSc options, so that a run's command line can be checked as it is (their form and "
-                    "options files are checked; their values when a run builds its solvers)");
+                    "options files are checked; their values when a run builds its solvers)")
+      ->allow_extra_args(false);
 
   double phi_deg = 36.5;
   bool csv = false;
@@ -205,7 +207,12 @@ int main(int argc, char** argv) {
       return 2;
     }
   }
-  CLI11_PARSE(app, argc, argv);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    // CLI11's message (or the help, status 0); a command line it refuses is status 2, as a case is.
+    return app.exit(e) == 0 ? 0 : 2;
+  }
   if (run->count("--output") && out_dir.empty()) {
     fmt::print(stderr, "error: -o/--output: the output directory is empty\n");
     return 2;

@@ -22,7 +22,11 @@ void apply_override(toml::table& root, const std::string& assignment) {
   const auto eq = assignment.find('=');
   if (eq == std::string::npos || eq == 0)
     throw CaseError(fmt::format("--set '{}': expected KEY=VALUE", assignment));
-  const std::string key = assignment.substr(0, eq);
+  // Blanks around the key and its dots are the TOML line's, not the key's ("time.end = 0.1").
+  std::string key;
+  for (char ch : assignment.substr(0, eq))
+    if (ch != ' ' && ch != '\t') key += ch;
+  if (key.empty()) throw CaseError(fmt::format("--set '{}': expected KEY=VALUE", assignment));
   const std::string value = assignment.substr(eq + 1);
   toml::table parsed;
   try {
