@@ -13,6 +13,10 @@ SolveRegion::SolveRegion(const Grid& grid, const LinearSolverSettings& solver)
     : grid_(grid), solver_settings_(solver), cells_(grid), index_(grid) {
   cells_.set(0.0);  // empty until assigned: the first step lays the band
   index_.set(-1.0);
+  // The solver is made with the region's first matrix, in the first step. Made once now, it reads
+  // the --petsc options of its prefix, so that one PETSc refuses stops the run before it starts
+  // (and before --overwrite removes an earlier run).
+  LinearSolver(grid.comm(), "coupled", solver_settings_);
 }
 
 SolveRegion::~SolveRegion() {
