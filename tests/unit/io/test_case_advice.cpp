@@ -34,5 +34,16 @@ TEST(CaseAdvice, ExponentialRegularisationUnderTheProjectionOrWithoutTheFaceFrac
                   .empty());
 }
 
+// A run shortened with --set time.end keeps its output times; those past the end are not written,
+// and the run's start says so.
+TEST(CaseAdvice, OutputTimesPastTheEnd) {
+  const auto ring = std::string(GRANFLOW_SOURCE_DIR) + "/cases/ring_collapse.toml";
+  const CaseConfig c = load_case(ring, {"time.end=0.1"});
+  const auto advice = case_advice(c);
+  ASSERT_EQ(advice.size(), 1u);
+  EXPECT_NE(advice[0].find("past time.end = 0.1 s and is not written"), std::string::npos) << advice[0];
+  EXPECT_TRUE(case_advice(load_case(ring)).empty());
+}
+
 }  // namespace
 }  // namespace granflow
