@@ -23,7 +23,7 @@ add_test(NAME cli_too_many_ranks_for_the_cells
          COMMAND ${MPIRUN} -np 2 --oversubscribe $<TARGET_FILE:granflow> run ${CMAKE_SOURCE_DIR}/cases/lid_driven_cavity_re100.toml
                  -o ${CMAKE_CURRENT_BINARY_DIR}/too_many_ranks --overwrite --set "mesh.cells=[3,3]" --set time.end=0.01)
 set_tests_properties(cli_too_many_ranks_for_the_cells PROPERTIES
-  LABELS parallel TIMEOUT 120 PASS_REGULAR_EXPRESSION "error: mesh.cells: 3 x 3 cells cannot be shared by 2 ranks"
+  LABELS parallel TIMEOUT 120 PASS_REGULAR_EXPRESSION "error: [^\n]*lid_driven_cavity_re100.toml: mesh.cells: 3 x 3 cells cannot be shared by 2 ranks"
   FAIL_REGULAR_EXPRESSION "PETSC ERROR"
   ENVIRONMENT "OMPI_ALLOW_RUN_AS_ROOT=1;OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1;OMPI_MCA_rmaps_base_oversubscribe=1")
 

@@ -291,8 +291,8 @@ int main(int argc, char** argv) {
     } catch (const granflow::CaseError& e) {
       if (rank == 0) fmt::print(stderr, "error: {}\n", e.what());
       status = 2;
-    } catch (const granflow::GridError& e) {
-      if (rank == 0) fmt::print(stderr, "error: {}\n", e.what());
+    } catch (const granflow::GridError& e) {  // the case's mesh on these ranks
+      if (rank == 0) fmt::print(stderr, "error: {}: {}\n", case_file, e.what());
       status = 2;
     }
     PetscFinalize();
@@ -310,8 +310,8 @@ int main(int argc, char** argv) {
   } catch (const granflow::CaseError& e) {
     if (rank == 0) fmt::print(stderr, "error: {}\n", e.what());
     status = 2;
-  } catch (const granflow::GridError& e) {
-    if (rank == 0) fmt::print(stderr, "error: {}\n", e.what());
+  } catch (const granflow::GridError& e) {  // the case's mesh on these ranks
+    if (rank == 0) fmt::print(stderr, "error: {}: {}\n", case_file, e.what());
     status = 2;
   } catch (const granflow::CheckpointError& e) {
     if (rank == 0) fmt::print(stderr, "error: {}\n", e.what());

@@ -417,6 +417,7 @@ CaseConfig read_case(const toml::table& root, const std::filesystem::path& sourc
             throw CaseError(fmt::format("{}.{}: [{}, {}] lies outside the domain [{}, {}] x [{}, {}]", l.path(), key,
                                         point[0], point[1], c.mesh.lower[0], c.mesh.upper[0], c.mesh.lower[1],
                                         c.mesh.upper[1]));
+      if (s.start == s.end) throw CaseError(fmt::format("{}.end: the line ends where it starts", l.path()));
       s.points = l.integer_in("points", 101, 2, 10000000);
       l.finish();
       c.output.lines.push_back(s);

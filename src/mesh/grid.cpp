@@ -60,9 +60,9 @@ void check_ranks_can_share(MPI_Comm comm, std::array<int, 2> cells) {
   if (M > N && m < n) std::swap(m, n);
   auto fits = [](long cells_along, long parts) { return parts == 1 || (cells_along >= parts && cells_along / parts >= Grid::ghost_width); };
   if (!fits(M, m) || !fits(N, n))
-    throw GridError(fmt::format("mesh.cells: {} x {} cells cannot be shared by {} ranks (each needs at least {} cells "
+    throw GridError(fmt::format("mesh.cells: {} x {} cells cannot be shared by {} rank{} (each needs at least {} cells "
                                 "along each axis it is split along); use fewer ranks or more cells",
-                                M, N, size, Grid::ghost_width));
+                                M, N, size, size == 1 ? "" : "s", Grid::ghost_width));
 }
 }  // namespace
 

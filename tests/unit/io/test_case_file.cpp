@@ -241,6 +241,13 @@ TEST(CaseFile, LineNamesCannotBeThoseOfOtherOutputFiles) {
   }
 }
 
+// A line that ends where it starts samples one point a hundred times.
+TEST(CaseFile, LineMustHaveALength) {
+  const std::string text =
+      std::string(minimal) + "[[output.line]]\nname = \"dot\"\nstart = [0.5, 0.5]\nend = [0.5, 0.5]\n";
+  EXPECT_NE(error_of(text).find("output.line[0].end: the line ends where it starts"), std::string::npos) << error_of(text);
+}
+
 TEST(CaseFile, PolygonsMayCloseTheirOutlineButNotCrossIt) {
   const auto with_polygon = [](const std::string& points) {
     return std::vector<std::string>{"soil.rheology.friction_angle=30",
