@@ -137,7 +137,7 @@ InclineResult slide_on_incline(double theta, double end) {
 
 // With converged outer iterations (10 per step to 1e-6; measured at t = 0.2 s: 8e-8 m/s at 15 deg,
 // 0.232 against 0.238 m/s at 25 deg). With the collapse's two the slide at 25 deg starts about 0.1 s
-// late (0.105 m/s at t = 0.2 s), the onset lag of docs/validation.md ("A vertical cut").
+// late (0.103 m/s at t = 0.2 s), the onset lag of docs/validation.md ("A vertical cut").
 TEST(SlidingLayer, OnAnInclinedBedStandsBelowTheConesFrictionAndSlidesAboveIt) {
   const double mu = cone_friction_in_simple_shear(19.8);  // tan 18.4 deg
   const double g = 9.81, degree = std::numbers::pi / 180.0;
