@@ -194,7 +194,7 @@ set_tests_properties(cli_restart_other_physics_warned PROPERTIES LABELS cli
                      PASS_REGULAR_EXPRESSION "warning: the case's physics [(][^)]*phi 30 deg[^)]*[)] differs from the checkpoint's run [(][^)]*phi 19.8 deg")
 # The example of docs/case_file.md is a valid case, and runs.
 add_test(NAME cli_docs_case_example
-         COMMAND sh -c "sed -n '/^```toml/,/^```$/p' \"$1\" | sed '1d;$d' > \"$2.toml\" && \"$0\" check \"$2.toml\" && \"$0\" run \"$2.toml\" -o \"$2\" --overwrite --set \"mesh.cells=[30,10]\" --set time.end=0.05 --set output.progress_seconds=0"
+         COMMAND sh -c "sed -n '/^## Example/,$p' \"$1\" | sed -n '/^```toml/,/^```$/p' | sed '1d;$d' > \"$2.toml\" && \"$0\" check \"$2.toml\" && \"$0\" run \"$2.toml\" -o \"$2\" --overwrite --set \"mesh.cells=[30,10]\" --set time.end=0.05 --set output.progress_seconds=0"
                  $<TARGET_FILE:granflow> ${CMAKE_SOURCE_DIR}/docs/case_file.md ${CMAKE_CURRENT_BINARY_DIR}/docs_case_example)
 set_tests_properties(cli_docs_case_example PROPERTIES LABELS cli PASS_REGULAR_EXPRESSION "done: t = 0.05 s"
                      FAIL_REGULAR_EXPRESSION "error:;warning:")
