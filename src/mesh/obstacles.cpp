@@ -30,6 +30,16 @@ long mark_blocked_cells(const Grid& g, const std::vector<interface::Shape>& shap
   return total;
 }
 
+void zero_blocked_cells(const Grid& g, const Field* mask, Field& f) {
+  if (!mask) return;
+  const BlockedView m(g, mask);
+  FieldArray a(g.field_dm(), f.global());
+  const auto& b = g.owned();
+  for (int j = b.ys; j < b.ye(); ++j)
+    for (int i = b.xs; i < b.xe(); ++i)
+      if (is_blocked(m.data(), i, j)) a[j][i] = 0.0;
+}
+
 void mirror_into_blocked(const Grid& g, const double* const* mask, double** a, double sign) {
   if (!mask) return;
   const auto& b = g.owned();
@@ -39,17 +49,24 @@ void mirror_into_blocked(const Grid& g, const double* const* mask, double** a, d
     return i >= i_lo && i < i_hi && j >= j_lo && j < j_hi && i >= 0 && i < g.nx() && j >= 0 && j < g.ny() &&
            mask[j][i] <= 0.5;
   };
-  // The mirror of blocked cell (i, j) along (di, dj): the wall lies `depth` cells on, 1 or 2.
-  auto mirror = [&](int i, int j, int di, int dj, double& value) {
-    for (int depth = 1; depth <= gw; ++depth) {
-      const int iw = i + depth * di, jw = j + depth * dj;  // the first cell beyond the wall if open
-      if (open(iw, jw)) {
-        const int im = iw + (depth - 1) * di, jm = jw + (depth - 1) * dj;
-        value = sign * (open(im, jm) ? a[jm][im] : a[jw][iw]);
-        return true;
-      }
-      if (!(iw >= i_lo && iw < i_hi && jw >= j_lo && jw < j_hi) || !is_blocked(mask, iw, jw)) return false;
+  // The mirror of blocked cell (i, j) across the wall `depth` cells away along (di, dj), if that is
+  // where the nearest open cell lies: the open cell depth - 1 beyond the wall (or the first one, if
+  // the open region there is thinner).
+  auto mirror = [&](int i, int j, int di, int dj, int depth, double& value) {
+    for (int k = 1; k < depth; ++k) {  // the cells between must be blocked (and in the local array)
+      const int ib = i + k * di, jb = j + k * dj;
+      if (ib < i_lo || ib >= i_hi || jb < j_lo || jb >= j_hi || !is_blocked(mask, ib, jb)) return false;
     }
+    const int iw = i + depth * di, jw = j + depth * dj;  // the first cell beyond the wall
+    if (!open(iw, jw)) return false;
+    const int im = iw + (depth - 1) * di, jm = jw + (depth - 1) * dj;
+    value = sign * (open(im, jm) ? a[jm][im] : a[jw][iw]);
+    return true;
+  };
+  // The nearest wall along an axis; on a tie (a wall on either side) the high side's.
+  auto nearest = [&](int i, int j, int di, int dj, double& value) {
+    for (int depth = 1; depth <= gw; ++depth)
+      if (mirror(i, j, di, dj, depth, value) || mirror(i, j, -di, -dj, depth, value)) return true;
     return false;
   };
   for (int pass = 0; pass < 2; ++pass)
@@ -57,8 +74,7 @@ void mirror_into_blocked(const Grid& g, const double* const* mask, double** a, d
       for (int i = i_lo; i < i_hi; ++i) {
         if (!is_blocked(mask, i, j)) continue;
         double value;
-        const int di = pass == 0 ? 1 : 0, dj = 1 - di;
-        if (mirror(i, j, di, dj, value) || mirror(i, j, -di, -dj, value)) a[j][i] = value;
+        if (nearest(i, j, pass == 0 ? 1 : 0, pass == 0 ? 0 : 1, value)) a[j][i] = value;
       }
 }
 

@@ -35,11 +35,17 @@ class BlockedView {
 // number of blocked cells over all ranks. Collective.
 long mark_blocked_cells(const Grid& g, const std::vector<interface::Shape>& shapes, Field& mask);
 
+// Sets the blocked cells of f's global vector to zero (its local vector is left as it is): after a
+// copy from the local values, e.g. a restored snapshot or a checkpoint, which hold the mirrors.
+void zero_blocked_cells(const Grid& g, const Field* mask, Field& f);
+
 // Fills the blocked cells of the local array `a` as ghosts of the walls they form: a blocked cell k
-// cells behind a wall takes sign times the open cell k - 1 cells in front of it (sign -1: a no-slip
-// velocity, +1: a scalar of zero normal gradient), as the domain's ghosts do. Along x first, then
-// along y, which overrides, as the domain's corner ghosts are filled. Open cells are those inside the
-// domain; cells without an open cell within reach are left as they are.
+// cells behind its nearest wall takes sign times the open cell k - 1 cells in front of it (sign -1:
+// a no-slip velocity, +1: a scalar of zero normal gradient), as the domain's ghosts do, for k up to
+// the ghost width. Along x first, then along y, which overrides, as the domain's corner ghosts are
+// filled. Open cells are those inside the domain; cells without an open cell within reach are left
+// as they are. A blocked cell with walls on both sides along one axis (an obstacle one cell thick)
+// cannot mirror both; lay_out_obstacles refuses such cells.
 void mirror_into_blocked(const Grid& g, const double* const* mask, double** a, double sign);
 
 }  // namespace granflow

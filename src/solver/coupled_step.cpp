@@ -242,7 +242,8 @@ int FlowSolver::solve_coupled() {
     if (solve_region_) {
       // Only the region's rows; outside, air at rest under the pressure of the air column above it.
       const long region_cells = solve_region_->prepare();
-      pins_pressure_level_ = !has_pressure_boundary_ && region_cells == long(nx) * ny;
+      // Blocked cells are never in the region: it covers every open cell if it holds as many.
+      pins_pressure_level_ = !has_pressure_boundary_ && region_cells == (blocked_ ? open_cells_ : long(nx) * ny);
       if (region_cells > 0) {
         auto outside = [&](int i, int j, int unknown) {
           return unknown == P ? pressure_at_rest(rho[j][i], j) : 0.0;

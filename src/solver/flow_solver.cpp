@@ -124,14 +124,19 @@ void FlowSolver::set_blocked(const Field* mask) {
   if (solve_region_) solve_region_->set_blocked(mask);
   // The closed domain's pinned row: the open cell nearest the top-left corner, row by row from the top.
   long key = grid_.cell_count();
+  open_cells_ = 0;
   {
     BlockedView m(grid_, blocked_);
     const auto& b = grid_.owned();
     for (int j = b.ys; j < b.ye(); ++j)
       for (int i = b.xs; i < b.xe(); ++i)
-        if (!is_blocked(m.data(), i, j)) key = std::min(key, long(grid_.ny() - 1 - j) * grid_.nx() + i);
+        if (!is_blocked(m.data(), i, j)) {
+          key = std::min(key, long(grid_.ny() - 1 - j) * grid_.nx() + i);
+          ++open_cells_;
+        }
   }
   MPI_Allreduce(MPI_IN_PLACE, &key, 1, MPI_LONG, MPI_MIN, grid_.comm());
+  MPI_Allreduce(MPI_IN_PLACE, &open_cells_, 1, MPI_LONG, MPI_SUM, grid_.comm());
   pin_i_ = int(key % grid_.nx());
   pin_j_ = grid_.ny() - 1 - int(key / grid_.nx());
 }
@@ -460,7 +465,15 @@ void FlowSolver::save_state() {
 }
 void FlowSolver::restore_state() {
   saved_.restore(state_fields());
+  clear_blocked_cells();
   dt_ = saved_dt_;
+}
+
+// Fields restored from local values (a snapshot, a checkpoint) carry the blocked cells' mirrors into
+// their global vectors; a blocked cell is at rest.
+void FlowSolver::clear_blocked_cells() {
+  if (!blocked_) return;
+  for (auto* f : {vel_[0].get(), vel_[1].get(), vel_old_[0].get(), vel_old_[1].get()}) zero_blocked_cells(grid_, blocked_, *f);
 }
 
 StepReport FlowSolver::step(double dt) {

@@ -90,6 +90,8 @@ class FlowSolver {
   // that a step that went wrong can be taken again with a smaller time step.
   void save_state();
   void restore_state();
+  // Zero velocity in the blocked cells' global values, after they were read from local ones.
+  void clear_blocked_cells();
   // What a checkpoint holds to continue a run exactly: the fields a step starts from, and the last
   // step's size (the look-ahead extrapolates with it).
   std::vector<Field*> checkpoint_fields() { return state_fields(); }
@@ -200,7 +202,8 @@ class FlowSolver {
   bool has_pressure_boundary_ = false;
   bool pins_pressure_level_ = false;
   const Field* blocked_ = nullptr;  // set_blocked
-  int pin_i_ = 0, pin_j_ = 0;      // the cell whose continuity row holds a closed domain's level  // the last coupled system held the level in a row (closed domain)
+  int pin_i_ = 0, pin_j_ = 0;      // the cell whose continuity row holds a closed domain's level
+  long open_cells_ = 0;            // cells not blocked, over all ranks (set_blocked; else all)  // the last coupled system held the level in a row (closed domain)
   bool shared_momentum_matrix_ = true;  // no slip walls: u and v share their matrix
   double dt_ = 0.0;        // the last step's size
   double saved_dt_ = 0.0;  // save_state()

@@ -5,6 +5,8 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <array>
+#include <cstdint>
 #include <chrono>
 #include <cmath>
 #include <fstream>
@@ -35,7 +37,66 @@ CaseError no_initial_soil(const Grid& g, bool obstacles) {
 // Marks the cells of the case's obstacles into mask (mesh/obstacles.hpp). A cell is blocked whole,
 // by its centre: an obstacle that holds no cell's centre on this mesh would be silently missing,
 // and one that blocks every cell leaves no flow. Collective; every rank throws alike.
-void lay_out_obstacles(const Grid& g, const CaseConfig& config, Field& mask) {
+// The checks the whole mask needs, on rank 0: no obstacle one cell thick (the values mirrored behind
+// a wall cannot serve both its sides, mesh/obstacles.hpp), and no open cells that the obstacles close
+// off from every open side (their pressure would have no level); a closed domain's open cells are one
+// region, whose level the coupled solve holds (coupled_step.cpp). Returns the problem, or "", and a
+// hash of the blocked cells into `hash`.
+std::string check_blocked_cells(const Grid& g, const CaseConfig& config, const std::vector<double>& m,
+                                std::uint64_t& hash) {
+  const int nx = g.nx(), ny = g.ny();
+  auto blocked = [&](int i, int j) { return m[size_t(j) * nx + i] > 0.5; };
+  auto open = [&](int i, int j) { return i >= 0 && i < nx && j >= 0 && j < ny && !blocked(i, j); };
+  hash = 1469598103934665603ULL;  // FNV-1a over the blocked cells' indices
+  for (int j = 0; j < ny; ++j)
+    for (int i = 0; i < nx; ++i)
+      if (blocked(i, j)) {
+        for (long v = long(j) * nx + i, k = 0; k < 8; ++k, v >>= 8) hash = (hash ^ std::uint64_t(v & 0xff)) * 1099511628211ULL;
+        if ((open(i - 1, j) && open(i + 1, j)) || (open(i, j - 1) && open(i, j + 1)))
+          return fmt::format("obstacle: the cell at x = {:.4g} m, y = {:.4g} m is a wall one cell thick, with the flow on "
+                             "both sides; make the obstacles at least two cells thick on this {} x {} mesh",
+                             g.xc(i), g.yc(j), nx, ny);
+      }
+  // Regions of open cells (4-connected), and whether each reaches an open side of the domain.
+  std::vector<int> region(size_t(nx) * ny, -1);
+  std::vector<bool> reaches_open_side;
+  std::vector<std::array<int, 2>> first_cell;
+  auto open_side = [&](int i, int j) {
+    auto is_open = [&](Side s) { return boundary(config.flow.boundaries, s).kind == BoundaryKind::atmosphere; };
+    return (i == 0 && is_open(Side::west)) || (i == nx - 1 && is_open(Side::east)) ||
+           (j == 0 && is_open(Side::south)) || (j == ny - 1 && is_open(Side::north));
+  };
+  std::vector<std::array<int, 2>> stack;
+  for (int j = ny - 1; j >= 0; --j)
+    for (int i = 0; i < nx; ++i) {
+      if (!open(i, j) || region[size_t(j) * nx + i] >= 0) continue;
+      const int r = int(reaches_open_side.size());
+      reaches_open_side.push_back(false);
+      first_cell.push_back({i, j});
+      stack.push_back({i, j});
+      region[size_t(j) * nx + i] = r;
+      while (!stack.empty()) {
+        const auto [ci, cj] = stack.back();
+        stack.pop_back();
+        if (open_side(ci, cj)) reaches_open_side[r] = true;
+        for (const auto& [di, dj] : {std::array<int, 2>{1, 0}, {-1, 0}, {0, 1}, {0, -1}})
+          if (open(ci + di, cj + dj) && region[size_t(cj + dj) * nx + ci + di] < 0) {
+            region[size_t(cj + dj) * nx + ci + di] = r;
+            stack.push_back({ci + di, cj + dj});
+          }
+      }
+    }
+  for (size_t r = 0; r < reaches_open_side.size(); ++r)
+    if (!reaches_open_side[r] && reaches_open_side.size() > 1)
+      return fmt::format("obstacle: the open cells around x = {:.4g} m, y = {:.4g} m are closed off by the obstacles "
+                         "from {} (their pressure would have no level); block them too, or open them to the rest",
+                         g.xc(first_cell[r][0]), g.yc(first_cell[r][1]),
+                         std::count(reaches_open_side.begin(), reaches_open_side.end(), true) > 0
+                             ? "every open side" : "the rest of the domain");
+  return {};
+}
+
+void lay_out_obstacles(const Grid& g, const CaseConfig& config, Field& mask, std::uint64_t& hash) {
   std::vector<long> centres(config.obstacles.size(), 0);
   const auto& b = g.owned();
   for (int j = b.ys; j < b.ye(); ++j)
@@ -48,6 +109,17 @@ void lay_out_obstacles(const Grid& g, const CaseConfig& config, Field& mask) {
                                   "blocked whole, by their centres)", k, g.nx(), g.ny()));
   if (mark_blocked_cells(g, config.obstacles, mask) == g.cell_count())
     throw CaseError("obstacle: the obstacles block every cell of the domain");
+  if (config.soil && config.soil->yield_pressure == YieldPressure::lithostatic_floor)
+    throw CaseError("obstacle: soil.yield_pressure = \"lithostatic_floor\" takes the soil above each cell up to the "
+                    "top, through any obstacle; use \"face\" or \"cell\" with obstacles");
+  const auto all = gather_to_root(g, mask);
+  std::string problem;
+  hash = 0;
+  int rank;
+  MPI_Comm_rank(g.comm(), &rank);
+  if (rank == 0) problem = check_blocked_cells(g, config, all, hash);
+  if (auto text = first_failure(g.comm(), problem); !text.empty()) throw CaseError(text);
+  MPI_Bcast(&hash, 1, MPI_UINT64_T, 0, g.comm());
 }
 
 // The soil volume the initial shapes place in open cells (all ranks' sum).
@@ -73,7 +145,9 @@ Simulation::Simulation(MPI_Comm comm, const CaseConfig& config, std::filesystem:
   grid_ = std::make_unique<Grid>(comm, config.mesh);
   if (!config.obstacles.empty()) {
     blocked_ = std::make_unique<Field>(*grid_);
-    lay_out_obstacles(*grid_, config, *blocked_);
+    std::uint64_t hash = 0;
+    lay_out_obstacles(*grid_, config, *blocked_, hash);
+    blocked_on_root_ = gather_to_root(*grid_, *blocked_);
     // The west wall the history's wall height is read at: the first column with an open cell.
     const BlockedView mask(*grid_, blocked_.get());
     const auto& b = grid_->owned();
@@ -82,6 +156,12 @@ Simulation::Simulation(MPI_Comm comm, const CaseConfig& config, std::filesystem:
       for (int i = b.xs; i < b.xe(); ++i)
         if (!is_blocked(mask.data(), i, j)) first = std::min(first, i);
     MPI_Allreduce(&first, &wall_column_, 1, MPI_INT, MPI_MIN, comm);
+    // What a checkpoint records of them: the fields of one set of obstacles are not another's state.
+    long count = 0;
+    for (int j = b.ys; j < b.ye(); ++j)
+      for (int i = b.xs; i < b.xe(); ++i) count += is_blocked(mask.data(), i, j);
+    MPI_Allreduce(MPI_IN_PLACE, &count, 1, MPI_LONG, MPI_SUM, comm);
+    obstacles_ = fmt::format(", obstacles blocking {} cells (hash {:016x})", count, hash);
   }
   flow_ = std::make_unique<FlowSolver>(*grid_, config.flow);
   flow_->set_blocked(blocked_.get());
@@ -133,7 +213,8 @@ void check_initial_state(MPI_Comm comm, const CaseConfig& config) {
   std::unique_ptr<Field> blocked;
   if (!config.obstacles.empty()) {
     blocked = std::make_unique<Field>(grid);
-    lay_out_obstacles(grid, config, *blocked);
+    std::uint64_t hash = 0;
+    lay_out_obstacles(grid, config, *blocked, hash);
   }
   if (!config.soil) return;
   if (!(initial_soil_in_open_cells(grid, config, blocked.get()) > 0.0)) throw no_initial_soil(grid, blocked != nullptr);
@@ -273,7 +354,8 @@ void Simulation::write_line_samples(const std::vector<double>& u, const std::vec
         const double x = line.start[0] + f * (line.end[0] - line.start[0]);
         const double y = line.start[1] + f * (line.end[1] - line.start[1]);
         fmt::print(out, "{:.9g},{:.9g}", x, y);
-        for (const auto& s : q) fmt::print(out, ",{:.12g}", sample_field(g, s.values, s.sides, x, y));
+        const bool solid = in_blocked_cell(x, y);  // inside an obstacle: no flow to sample
+        for (const auto& s : q) fmt::print(out, ",{:.12g}", solid ? std::nan("") : sample_field(g, s.values, s.sides, x, y));
         fmt::print(out, "\n");
       }
     };
@@ -306,6 +388,38 @@ double toe_of(const std::vector<Segment>& surface) {
 }
 }  // namespace
 
+// Whether the point lies in a blocked cell (on rank 0; a point on a face between two cells counts
+// as in the higher one, and one on the domain's high side as in the last cell).
+bool Simulation::in_blocked_cell(double x, double y) const {
+  if (!blocked_) return false;
+  const Grid& g = *grid_;
+  auto index = [](int n, double v, auto&& high_face) {
+    int lo = 0, hi = n - 1;
+    while (lo < hi) {  // the first cell whose high face lies beyond v
+      const int mid = (lo + hi) / 2;
+      if (high_face(mid) > v) hi = mid;
+      else lo = mid + 1;
+    }
+    return lo;
+  };
+  const int i = index(g.nx(), x, [&](int k) { return g.xf(k); }), j = index(g.ny(), y, [&](int k) { return g.yf(k); });
+  return blocked_on_root_[size_t(j) * g.nx() + i] > 0.5;
+}
+
+// The squares of four open cells, for the contours of the soil's surface (on rank 0): a blocked
+// cell holds c = 0, and a contour through it would draw where soil rests on an obstacle. Near an
+// obstacle the surface ends at the last open cells' centres, as it does at the domain's sides.
+std::function<bool(int, int)> Simulation::open_square() const {
+  if (!blocked_) return {};
+  return [this](int i, int j) {
+    const int nx = grid_->nx();
+    for (int dj = 0; dj < 2; ++dj)
+      for (int di = 0; di < 2; ++di)
+        if (blocked_on_root_[size_t(j + dj) * nx + i + di] > 0.5) return false;
+    return true;
+  };
+}
+
 void Simulation::record_history(double dt) {
   const SoilBudget b = soil_->budget(*flow_);
   dissipated_energy_ += b.dissipation_rate * dt;
@@ -315,7 +429,7 @@ void Simulation::record_history(double dt) {
   const auto obstacle = blocked_ ? flow_->obstacle_force() : std::array<double, 2>{};
   if (rank_ != 0) return;
   const PileShape shape = pile_shape(*grid_, c, wall_column_);
-  const double toe_contour = toe_of(iso_line(*grid_, c, 0.5));
+  const double toe_contour = toe_of(iso_line(*grid_, c, 0.5, open_square()));
   std::string row = fmt::format("{:.9g},{:.6g},{:.15g},{:.15g},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g},{:.12g},{:.15g}", time_, dt,
                                 b.soil_volume, b.air_volume, b.kinetic_energy, b.potential_energy, dissipated_energy_,
                                 toe_contour, shape.toe_thickness, shape.wall_height, b.mixture_mass, b.soil_outflow);
@@ -364,7 +478,7 @@ void Simulation::write_soil_lines() const {
       for (const auto& s : segs) fmt::print(out, "{:.9g},{:.9g},{:.9g},{:.9g}\n", s.x0, s.y0, s.x1, s.y1);
     });
   };
-  write_segments("surface", iso_line(g, c, 0.5));
+  write_segments("surface", iso_line(g, c, 0.5, open_square()));
   const int nx = g.nx();
   auto inside = [&](int i, int j) {
     return c[size_t(j) * nx + i] > 0.5 && c[size_t(j) * nx + i + 1] > 0.5 && c[size_t(j + 1) * nx + i] > 0.5 &&
@@ -398,7 +512,7 @@ std::string Simulation::domain() const {
   // Graded cells lie elsewhere: a restart on other grading would read the fields into wrong cells.
   if (m.grading != std::array<double, 2>{1.0, 1.0})
     text += fmt::format(", grading [{:.9g}, {:.9g}]", m.grading[0], m.grading[1]);
-  return text;
+  return text + obstacles_;
 }
 
 // The materials and gravity, as a checkpoint records them: a restart with others is most likely
@@ -430,6 +544,8 @@ void Simulation::restart() {
   const auto fields = checkpoint_fields();
   std::vector<double> scalars;
   RunCheckpoint run = read_checkpoint(grid_->comm(), out_, grid_->nx(), grid_->ny(), domain(), fields, scalars);
+  flow_->clear_blocked_cells();  // the fields were read with their ghosts, the blocked cells' mirrors among them
+  if (soil_) soil_->clear_blocked_cells();
   if (!(config_.time.end > run.time * (1 + 1e-12)))
     throw CheckpointError(fmt::format("time.end = {} s is not past the checkpoint's t = {:.9g} s: raise it to run on",
                                       config_.time.end, run.time));

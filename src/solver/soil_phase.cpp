@@ -74,8 +74,15 @@ void SoilPhase::restore_scalars(std::span<const double> values) {
   std::copy(values.begin() + 2, values.end(), lode_energy_.values().begin());
 }
 
+void SoilPhase::clear_blocked_cells() {
+  if (!blocked_) return;
+  for (auto* f : {c_.get(), disp_[0].get(), disp_[1].get()}) zero_blocked_cells(grid_, blocked_, *f);
+  fill_fraction_ghosts(*c_);
+}
+
 void SoilPhase::restore_state() {
   saved_.restore(state_fields());
+  clear_blocked_cells();
   sweep_parity_ = saved_parity_;
   outflow_ = saved_outflow_;
 }
@@ -272,6 +279,26 @@ const Field& SoilPhase::soil_region(int reach, double floor) const {
   // c's ghosts are current: every change of c ends with fill_fraction_ghosts. The region's own
   // domain-boundary ghosts stay 0 (set at construction); soil coming in through a boundary is in c's.
   const Field* in = c_.get();
+  if (blocked_) {
+    // c without the blocked cells' mirrors, nor the wall ghosts that mirror those: they are not
+    // soil, and a rank cannot mirror a ghost cell whose open side lies beyond its ghosts, so counting
+    // them made the region differ between rank layouts. A wall's ghosts mirror cells whose own 3 x 3
+    // boxes count them anyway; an open side's hold the soil coming in, and stay. The first pass reads
+    // this copy (region_[1], free until the second pass).
+    VecCopy(c_->local(), region_[1]->local());
+    FieldArray a(grid_.field_dm(), region_[1]->local());
+    const BlockedView mask(grid_, blocked_);
+    const auto& b = grid_.owned();
+    const int gw = Grid::ghost_width, nx = grid_.nx(), ny = grid_.ny();
+    auto open_side = [&](Side side) { return boundary(flow_settings_.boundaries, side).kind == BoundaryKind::atmosphere; };
+    for (int j = b.ys - gw; j < b.ye() + gw; ++j)
+      for (int i = b.xs - gw; i < b.xe() + gw; ++i) {
+        const bool outside = i < 0 || i >= nx || j < 0 || j >= ny;
+        const Side side = j < 0 ? Side::south : j >= ny ? Side::north : i < 0 ? Side::west : Side::east;
+        if (is_blocked(mask.data(), i, j) || (outside && !open_side(side))) a[j][i] = 0.0;
+      }
+    in = region_[1].get();
+  }
   for (int k = 0; k < std::max(reach, 1); ++k) {
     Field& out = *region_[k % 2];
     {
@@ -280,6 +307,14 @@ const Field& SoilPhase::soil_region(int reach, double floor) const {
       interface::soil_region(a.data(), grid_.owned(), r.data(), k == 0 ? floor : 0.0);
     }
     out.scatter_to_local();
+    if (k == 0 && in == region_[1].get()) {  // the copy's ghosts outside the domain: back to the region's 0
+      FieldArray a(grid_.field_dm(), region_[1]->local());
+      const auto& b = grid_.owned();
+      const int gw = Grid::ghost_width;
+      for (int j = b.ys - gw; j < b.ye() + gw; ++j)
+        for (int i = b.xs - gw; i < b.xe() + gw; ++i)
+          if (i < 0 || i >= grid_.nx() || j < 0 || j >= grid_.ny()) a[j][i] = 0.0;
+    }
     in = &out;
   }
   return *in;

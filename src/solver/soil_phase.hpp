@@ -79,6 +79,8 @@ class SoilPhase {
   // Snapshot of c and the displacement, for a step taken again (FlowSolver::save_state).
   void save_state();
   void restore_state();
+  // No soil and no displacement in the blocked cells' global values, after they were read from local ones.
+  void clear_blocked_cells();
   // What a checkpoint holds: c and the displacement; the sweep parity, this rank's outflow and
   // dissipated energy by Lode angle as numbers.
   std::vector<Field*> checkpoint_fields() { return state_fields(); }

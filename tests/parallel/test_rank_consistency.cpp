@@ -94,12 +94,14 @@ TEST(RankConsistency, CollapseWithAirBandOneAndTwoRanksAgree) {
                           1e-9);  // m/s; measured 1.5e-13, room as above
 }
 
-// A barrier of blocked cells on the second rank (50 columns split 25 | 25 at x = 0.3 m): the wall
-// faces of its cells and the mirrored values behind them, which stencils of open cells read, come
-// from both ranks' cells.
+// A barrier of blocked cells across the ranks' boundary (50 columns split 25 | 25 at x = 0.3 m; the
+// barrier's four columns 23-26 have two on each rank): its wall faces, and the values mirrored behind
+// them that stencils of open cells read, lie in both ranks' ghost layers.
 TEST(RankConsistency, CollapseAgainstABarrierOneAndTwoRanksAgree) {
   expect_rank_independent("cases/barrier_collapse.toml",
-                          {"mesh.cells=[50,20]", "time.end=0.4", "output.progress_seconds=0"}, 1e-9);
+                          {"mesh.cells=[50,20]", "time.end=0.4", "output.progress_seconds=0",
+                           "obstacle=[{shape = \"box\", lower = [0.28, 0.0], upper = [0.325, 0.028]}]"},
+                          1e-9);
 }
 
 }  // namespace
