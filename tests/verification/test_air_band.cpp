@@ -61,23 +61,32 @@ Outcome run_collapse(int air_band, std::vector<std::string> overrides = {}) {
   return o;
 }
 
+// Soil velocities over cells at least half soil in either run: the largest difference, the largest
+// speed, and the root-mean-square difference against the root-mean-square speed.
+struct VelocityDifference {
+  double largest = 0.0, scale = 0.0, rms_ratio = 0.0;
+};
+VelocityDifference soil_velocity_difference(const Outcome& whole, const Outcome& band) {
+  VelocityDifference d;
+  double sum_difference = 0.0, sum_speed = 0.0;
+  for (size_t k = 0; k < whole.c.size(); ++k)
+    if (whole.c[k] >= 0.5 || band.c[k] >= 0.5) {
+      const double du = whole.u[k] - band.u[k], dv = whole.v[k] - band.v[k];
+      d.largest = std::max({d.largest, std::abs(du), std::abs(dv)});
+      d.scale = std::max(d.scale, std::hypot(whole.u[k], whole.v[k]));
+      sum_difference += du * du + dv * dv;
+      sum_speed += whole.u[k] * whole.u[k] + whole.v[k] * whole.v[k];
+    }
+  d.rms_ratio = std::sqrt(sum_difference / sum_speed);
+  return d;
+}
+
 TEST(AirBand, CollapseMovesAsInTheWholeDomainWithTheAirBeyondAtRest) {
   constexpr int width = 8;
   const Outcome whole = run_collapse(0), band = run_collapse(width);
   if (!test::is_root()) return;
   const double dy = 0.2 / ny, g = 9.81, rho_air = 1.0;
-  // Soil velocities over cells at least half soil: largest and root-mean-square difference, against
-  // the largest speed and the root-mean-square speed.
-  double largest = 0.0, scale = 0.0, sum_difference = 0.0, sum_speed = 0.0;
-  for (size_t k = 0; k < whole.c.size(); ++k)
-    if (whole.c[k] >= 0.5 || band.c[k] >= 0.5) {
-      const double du = whole.u[k] - band.u[k], dv = whole.v[k] - band.v[k];
-      largest = std::max({largest, std::abs(du), std::abs(dv)});
-      scale = std::max(scale, std::hypot(whole.u[k], whole.v[k]));
-      sum_difference += du * du + dv * dv;
-      sum_speed += whole.u[k] * whole.u[k] + whole.v[k] * whole.v[k];
-    }
-  const double rms_ratio = std::sqrt(sum_difference / sum_speed);
+  const auto [largest, scale, rms_ratio] = soil_velocity_difference(whole, band);
   // The air farther than twice the band from any soil (the region, laid with the band and kept while
   // the soil stays half a band inside it, reaches at most 1.5 bands): at rest, and hydrostatic below
   // p = 0 at the top, to round-off.
@@ -135,20 +144,12 @@ TEST(AirBand, ClosedBoxCollapseMovesAsInTheWholeBox) {
   const std::vector<std::string> closed = {"boundary.north={type = \"wall\"}", "boundary.east={type = \"wall\"}"};
   const Outcome whole = run_collapse(0, closed), band = run_collapse(width, closed);
   if (!test::is_root()) return;
-  double largest = 0.0, scale = 0.0, sum_difference = 0.0, sum_speed = 0.0, top = 0.0;
-  for (size_t k = 0; k < whole.c.size(); ++k)
-    if (whole.c[k] >= 0.5 || band.c[k] >= 0.5) {
-      const double du = whole.u[k] - band.u[k], dv = whole.v[k] - band.v[k];
-      largest = std::max({largest, std::abs(du), std::abs(dv)});
-      scale = std::max(scale, std::hypot(whole.u[k], whole.v[k]));
-      sum_difference += du * du + dv * dv;
-      sum_speed += whole.u[k] * whole.u[k] + whole.v[k] * whole.v[k];
-    }
+  const auto [largest, scale, rms_ratio] = soil_velocity_difference(whole, band);
+  double top = 0.0;
   for (int i = 0; i < nx; ++i) {  // the whole box's mean pressure on its top face
     const size_t k = size_t(ny - 1) * nx + i;
     top += (whole.p[k] - whole.rho[k] * 9.81 * 0.5 * (0.2 / ny)) / nx;
   }
-  const double rms_ratio = std::sqrt(sum_difference / sum_speed);
   std::printf("closed box, collapse 60 x 20 to t = 0.3 s, air band %d cells against the whole box: soil velocities "
               "differ by at most %.2e m/s of %.3f m/s, root-mean-square %.2f %%; toe %.3f / %.3f m; kinetic energy "
               "%.4f / %.4f J/m; soil volume error %.1e / %.1e; solve over %ld of %d cells; whole box's top at %.1e Pa\n",
