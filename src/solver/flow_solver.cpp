@@ -92,6 +92,8 @@ FlowSolver::FlowSolver(const Grid& grid, const FlowSettings& settings) : grid_(g
   // The hoop stress 2 mu u_r / r^2 is on the radial component's diagonal alone.
   if (grid.axisymmetric()) shared_momentum_matrix_ = false;
   if (settings.numerics.pressure_coupling == PressureCoupling::coupled) create_coupled_system();
+  pin_j_ = grid.ny() - 1;  // the top-left cell, and every cell open, until set_blocked says otherwise
+  open_cells_ = grid.cell_count();
   update_boundary_heads();
   if (!has_pressure_boundary_) {
     PetscCallAbort(comm, MatNullSpaceCreate(comm, PETSC_TRUE, 0, nullptr, &pressure_null_space_));

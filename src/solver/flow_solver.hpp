@@ -203,7 +203,7 @@ class FlowSolver {
   bool pins_pressure_level_ = false;
   const Field* blocked_ = nullptr;  // set_blocked
   int pin_i_ = 0, pin_j_ = 0;      // the cell whose continuity row holds a closed domain's level
-  long open_cells_ = 0;            // cells not blocked, over all ranks (set_blocked; else all)  // the last coupled system held the level in a row (closed domain)
+  long open_cells_ = 0;            // cells not blocked, over all ranks  // the last coupled system held the level in a row (closed domain)
   bool shared_momentum_matrix_ = true;  // no slip walls: u and v share their matrix
   double dt_ = 0.0;        // the last step's size
   double saved_dt_ = 0.0;  // save_state()
