@@ -27,6 +27,9 @@ struct BoundaryCondition {
 
 using BoundarySet = std::array<BoundaryCondition, 4>;  // indexed by Side
 
+// The condition on an obstacle's faces (mesh/obstacles.hpp): a static no-slip wall.
+inline constexpr BoundaryCondition obstacle_wall{};
+
 inline const BoundaryCondition& boundary(const BoundarySet& b, Side s) { return b[static_cast<int>(s)]; }
 
 // The pressure of the surroundings, Pa: the p0 of the north side if it is open, else the lowest p0

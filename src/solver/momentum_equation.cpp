@@ -33,7 +33,6 @@ void FlowSolver::assemble_momentum(double dt) {
 
   const double stress_factor = num.transpose_stress ? 2.0 : 1.0;  // implicit share, see below
   const BlockedView mask(grid_, blocked_);
-  static const BoundaryCondition obstacle_wall{};  // an obstacle's faces: static no-slip walls
   for (int j = b.ys; j < b.ye(); ++j)
     for (int i = b.xs; i < b.xe(); ++i) {
       const size_t k = size_t(j - b.ys) * b.xm + (i - b.xs);

@@ -39,7 +39,6 @@ std::array<double, 10> FlowSolver::wall_forces() const {
 
   std::array<double, 10> force{};  // (x, y) per side, in the order of Side, then the obstacles'
   const BlockedView mask(grid_, blocked_);
-  static const BoundaryCondition obstacle_wall{};  // static, no-slip
   // The face of cell (i, j) on its side s, into f.
   auto add_face = [&](Side s, int i, int j, const BoundaryCondition& bc, double* f) {
     if (is_blocked(mask.data(), i, j)) return;  // no flow there

@@ -34,9 +34,6 @@ CaseError no_initial_soil(const Grid& g, bool obstacles) {
                                "(a shape far smaller than a cell)", g.nx(), g.ny()));
 }
 
-// Marks the cells of the case's obstacles into mask (mesh/obstacles.hpp). A cell is blocked whole,
-// by its centre: an obstacle that holds no cell's centre on this mesh would be silently missing,
-// and one that blocks every cell leaves no flow. Collective; every rank throws alike.
 // The checks the whole mask needs, on rank 0: no obstacle one cell thick (the values mirrored behind
 // a wall cannot serve both its sides, mesh/obstacles.hpp), and no open cells that the obstacles close
 // off from every open side (their pressure would have no level); a closed domain's open cells are one
@@ -96,7 +93,18 @@ std::string check_blocked_cells(const Grid& g, const CaseConfig& config, const s
   return {};
 }
 
-void lay_out_obstacles(const Grid& g, const CaseConfig& config, Field& mask, std::uint64_t& hash) {
+// What laying out the obstacles finds: the blocked cells' count and hash (all ranks), and the mask
+// gathered to rank 0 (empty elsewhere).
+struct ObstacleLayout {
+  long blocked_cells = 0;
+  std::uint64_t hash = 0;
+  std::vector<double> mask_on_root;
+};
+
+// Marks the cells of the case's obstacles into mask (mesh/obstacles.hpp). A cell is blocked whole,
+// by its centre: an obstacle that holds no cell's centre on this mesh would be silently missing,
+// and one that blocks every cell leaves no flow. Collective; every rank throws alike.
+ObstacleLayout lay_out_obstacles(const Grid& g, const CaseConfig& config, Field& mask) {
   std::vector<long> centres(config.obstacles.size(), 0);
   const auto& b = g.owned();
   for (int j = b.ys; j < b.ye(); ++j)
@@ -107,19 +115,20 @@ void lay_out_obstacles(const Grid& g, const CaseConfig& config, Field& mask, std
     if (centres[k] == 0)
       throw CaseError(fmt::format("obstacle[{}]: the shape holds no cell centre on this {} x {} mesh (cells are "
                                   "blocked whole, by their centres)", k, g.nx(), g.ny()));
-  if (mark_blocked_cells(g, config.obstacles, mask) == g.cell_count())
-    throw CaseError("obstacle: the obstacles block every cell of the domain");
+  ObstacleLayout layout;
+  layout.blocked_cells = mark_blocked_cells(g, config.obstacles, mask);
+  if (layout.blocked_cells == g.cell_count()) throw CaseError("obstacle: the obstacles block every cell of the domain");
   if (config.soil && config.soil->yield_pressure == YieldPressure::lithostatic_floor)
     throw CaseError("obstacle: soil.yield_pressure = \"lithostatic_floor\" takes the soil above each cell up to the "
                     "top, through any obstacle; use \"face\" or \"cell\" with obstacles");
-  const auto all = gather_to_root(g, mask);
+  layout.mask_on_root = gather_to_root(g, mask);
   std::string problem;
-  hash = 0;
   int rank;
   MPI_Comm_rank(g.comm(), &rank);
-  if (rank == 0) problem = check_blocked_cells(g, config, all, hash);
+  if (rank == 0) problem = check_blocked_cells(g, config, layout.mask_on_root, layout.hash);
   if (auto text = first_failure(g.comm(), problem); !text.empty()) throw CaseError(text);
-  MPI_Bcast(&hash, 1, MPI_UINT64_T, 0, g.comm());
+  MPI_Bcast(&layout.hash, 1, MPI_UINT64_T, 0, g.comm());
+  return layout;
 }
 
 // The soil volume the initial shapes place in open cells (all ranks' sum).
@@ -145,23 +154,17 @@ Simulation::Simulation(MPI_Comm comm, const CaseConfig& config, std::filesystem:
   grid_ = std::make_unique<Grid>(comm, config.mesh);
   if (!config.obstacles.empty()) {
     blocked_ = std::make_unique<Field>(*grid_);
-    std::uint64_t hash = 0;
-    lay_out_obstacles(*grid_, config, *blocked_, hash);
-    blocked_on_root_ = gather_to_root(*grid_, *blocked_);
-    // The west wall the history's wall height is read at: the first column with an open cell.
-    const BlockedView mask(*grid_, blocked_.get());
-    const auto& b = grid_->owned();
-    int first = grid_->nx();
-    for (int j = b.ys; j < b.ye(); ++j)
-      for (int i = b.xs; i < b.xe(); ++i)
-        if (!is_blocked(mask.data(), i, j)) first = std::min(first, i);
-    MPI_Allreduce(&first, &wall_column_, 1, MPI_INT, MPI_MIN, comm);
+    ObstacleLayout layout = lay_out_obstacles(*grid_, config, *blocked_);
     // What a checkpoint records of them: the fields of one set of obstacles are not another's state.
-    long count = 0;
-    for (int j = b.ys; j < b.ye(); ++j)
-      for (int i = b.xs; i < b.xe(); ++i) count += is_blocked(mask.data(), i, j);
-    MPI_Allreduce(MPI_IN_PLACE, &count, 1, MPI_LONG, MPI_SUM, comm);
-    obstacles_ = fmt::format(", obstacles blocking {} cells (hash {:016x})", count, hash);
+    obstacles_ = fmt::format(", obstacles blocking {} cells (hash {:016x})", layout.blocked_cells, layout.hash);
+    blocked_on_root_ = std::move(layout.mask_on_root);
+    // The west wall the history's wall height is read at (on rank 0): the first column with an open cell.
+    if (rank_ == 0) {
+      const int nx = grid_->nx();
+      wall_column_ = nx;
+      for (size_t k = 0; k < blocked_on_root_.size(); ++k)
+        if (blocked_on_root_[k] <= 0.5) wall_column_ = std::min(wall_column_, int(k % nx));
+    }
   }
   flow_ = std::make_unique<FlowSolver>(*grid_, config.flow);
   flow_->set_blocked(blocked_.get());
@@ -213,8 +216,7 @@ void check_initial_state(MPI_Comm comm, const CaseConfig& config) {
   std::unique_ptr<Field> blocked;
   if (!config.obstacles.empty()) {
     blocked = std::make_unique<Field>(grid);
-    std::uint64_t hash = 0;
-    lay_out_obstacles(grid, config, *blocked, hash);
+    lay_out_obstacles(grid, config, *blocked);
   }
   if (!config.soil) return;
   if (!(initial_soil_in_open_cells(grid, config, blocked.get()) > 0.0)) throw no_initial_soil(grid, blocked != nullptr);

@@ -83,7 +83,7 @@ class Simulation {
   std::filesystem::path out_;
   std::unique_ptr<Grid> grid_;
   std::unique_ptr<Field> blocked_;  // the obstacles' cells (mesh/obstacles.hpp); null without obstacles
-  int wall_column_ = 0;             // the first column with an open cell: the history's wall height
+  int wall_column_ = 0;             // the first column with an open cell: the history's wall height (rank 0)
   std::string obstacles_;           // the blocked cells as domain() records them ("" without obstacles)
   std::vector<double> blocked_on_root_;  // the mask gathered to rank 0 (empty elsewhere, and without obstacles)
   std::function<bool(int, int)> open_square() const;

@@ -76,8 +76,8 @@ void SoilPhase::restore_scalars(std::span<const double> values) {
 
 void SoilPhase::clear_blocked_cells() {
   if (!blocked_) return;
-  for (auto* f : {c_.get(), disp_[0].get(), disp_[1].get()}) zero_blocked_cells(grid_, blocked_, *f);
-  fill_fraction_ghosts(*c_);
+  for (auto* f : {disp_[0].get(), disp_[1].get()}) zero_blocked_cells(grid_, blocked_, *f);
+  fill_fraction_ghosts(*c_);  // zeroes c there, and mirrors anew
 }
 
 void SoilPhase::restore_state() {
@@ -103,14 +103,8 @@ void SoilPhase::initialise() {
 // Ghosts of c: soil carried in through an atmosphere boundary has the boundary's inflow fraction;
 // walls mirror, which gives interface normals meeting a wall at right angles.
 void SoilPhase::fill_fraction_ghosts(Field& f) const {
+  zero_blocked_cells(grid_, blocked_, f);  // no soil in a blocked cell (a sweep leaves there the mirror it read)
   const BlockedView mask(grid_, blocked_);
-  if (mask.data()) {  // no soil in a blocked cell (a sweep leaves there the mirror it read)
-    FieldArray a(grid_.field_dm(), f.global());
-    const auto& b = grid_.owned();
-    for (int j = b.ys; j < b.ye(); ++j)
-      for (int i = b.xs; i < b.xe(); ++i)
-        if (is_blocked(mask.data(), i, j)) a[j][i] = 0.0;
-  }
   f.scatter_to_local();
   FieldArray a(grid_.field_dm(), f.local());
   mirror_into_blocked(grid_, mask.data(), a.data(), 1.0);  // an obstacle's walls mirror, as the domain's
@@ -224,7 +218,6 @@ void SoilPhase::update_face_viscosity(FlowSolver& flow) const {
           const double cf = face_fraction ? interface::wetted_side_fraction(c.data(), grid_.dx_data(), grid_.dy_data(),
                                                                             i, j, axis, sign)
                                           : c[j][i];
-          static const BoundaryCondition obstacle_wall{};  // static, no-slip
           const auto& bc = obstacle ? obstacle_wall : boundary(flow_settings_.boundaries, side_of(axis, sign));
           const auto rate = quadratic_wall && bc.kind != BoundaryKind::atmosphere
                                 ? quadratic_wall_strain_rate(grid_, u.data(), v.data(), axis, i, j, sign,
@@ -529,7 +522,6 @@ double SoilPhase::compute_dissipation(const FlowSolver& flow) {
   // A face between an open and a blocked cell is a static wall of an obstacle: all its work goes to
   // the open cell, if owned. Domain sides of a blocked cell carry no flow.
   const BlockedView mask(grid_, blocked_);
-  static const BoundaryCondition obstacle_wall{};
   auto blocked = [&](int i, int j) { return is_blocked(mask.data(), i, j); };
   auto side = [&](Side s) -> const BoundaryCondition& { return boundary(flow_settings_.boundaries, s); };
   for (int j = b.ys; j < b.ye(); ++j)
