@@ -353,6 +353,8 @@ CaseConfig read_case(const toml::table& root, const std::filesystem::path& sourc
     const std::string fv = n.choice("face_viscosity", "harmonic", {"harmonic", "arithmetic"});
     num.face_viscosity = fv == "harmonic" ? FaceViscosity::harmonic : FaceViscosity::arithmetic;
     num.quadratic_wall_gradient = n.choice("wall_gradient", "two_point", {"two_point", "quadratic"}) == "quadratic";
+    num.conservative_momentum =
+        n.choice("momentum_transport", "conservative", {"conservative", "advective"}) == "conservative";
     n.finish();
   }
   {

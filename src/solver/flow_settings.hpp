@@ -39,6 +39,10 @@ struct NumericsSettings {
   // flux, second in the solution), or quadratic through the wall and the first two cells, added as a
   // deferred correction (exact for parabolic profiles: Poiseuille flow is then exact).
   bool quadratic_wall_gradient = false;
+  // Momentum moved with the mass the soil fraction's advection moves (true, "conservative"), or with
+  // the cell's density times the face velocity (false, "advective"), which hands a cell that heavy
+  // soil enters the velocity its light air had. Needs a soil phase; a single fluid is the same either way.
+  bool conservative_momentum = true;
 };
 
 struct FlowSettings {

@@ -461,6 +461,15 @@ void FlowSolver::update_properties_at_mean_pressure() {
   std::swap(p_, p_mean_);
 }
 
+void FlowSolver::enable_mass_transport() {
+  start_density_ = make_field(grid_);
+  start_density_->copy_from(*rho_);
+  for (auto& f : mass_flux_) {
+    f = make_field(grid_);
+    f->set(0.0);
+  }
+}
+
 void FlowSolver::save_state() {
   saved_.save(state_fields());
   saved_dt_ = dt_;

@@ -65,6 +65,16 @@ class FlowSolver {
   Field& body_force(int axis) { return *body_force_[axis]; }
   const Field& face_velocity(int axis) const { return *face_[axis]; }
 
+  // The mass the momentum equation carries under numerics.momentum_transport = "conservative": the
+  // mixture density at the start of the step (owned cells) and each face's mass flux over the step
+  // (kg m^-2 s^-1, laid out like face_velocity), both from the soil fraction's own advection
+  // (SoilPhase::advect), so that momentum moves with the mass the VoF moves. Until enabled the
+  // momentum equation takes the cell's density times the face velocity.
+  void enable_mass_transport();
+  bool carries_mass_transport() const { return start_density_ != nullptr; }
+  Field& start_density() { return *start_density_; }
+  Field& mass_flux(int axis) { return *mass_flux_[axis]; }
+
   // Obstacles and terrain (mesh/obstacles.hpp): the mask of blocked cells, with ghosts, kept by the
   // caller; set once, before the initial state. Their faces to open cells are no-slip walls.
   void set_blocked(const Field* mask);
@@ -174,6 +184,7 @@ class FlowSolver {
   std::unique_ptr<Field> p_last_iterate_, p_mean_;
   std::unique_ptr<Field> p_, rho_, mu_, face_mu_[2];
   std::unique_ptr<Field> body_force_[2];
+  std::unique_ptr<Field> start_density_, mass_flux_[2];  // enable_mass_transport
   FieldSnapshot saved_;  // save_state()
   std::unique_ptr<Field> hbya_[2], rau_[2], time_weight_[2];
 

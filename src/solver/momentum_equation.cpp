@@ -25,6 +25,17 @@ void FlowSolver::assemble_momentum(double dt) {
   ConstFieldArray rho = local_read(grid_, *rho_), mu = local_read(grid_, *mu_);
   ConstFieldArray fmx = local_read(grid_, *face_mu_[0]), fmy = local_read(grid_, *face_mu_[1]);
   const double* const* vel[2] = {u.data(), v.data()};
+  // Conservative momentum transport ([VoF] Eq. 17 in divergence form): d(rho v)/dt + div(m v) with m
+  // the mass flux of the soil fraction's advection, written with its mass balance as
+  //   (rho^n V/dt + sum_in m) v_P - sum_in m v_nb = rho^n V/dt v^n + ...,
+  // so soil entering a cell of air brings its own velocity. Otherwise (advective) the cell's density
+  // times the face velocity, rho_P (v_P - v^n) V/dt + rho_P sum_in q (v_P - v_nb).
+  std::unique_ptr<ConstFieldArray> rho0, mfx, mfy;
+  if (carries_mass_transport()) {
+    rho0 = std::make_unique<ConstFieldArray>(grid_.field_dm(), start_density_->local());
+    mfx = std::make_unique<ConstFieldArray>(grid_.field_dm(), mass_flux_[0]->local());
+    mfy = std::make_unique<ConstFieldArray>(grid_.field_dm(), mass_flux_[1]->local());
+  }
   std::unique_ptr<ConstFieldArray> bx, by;
   if (body_force_[0]) {
     bx = std::make_unique<ConstFieldArray>(grid_.field_dm(), body_force_[0]->global());
@@ -38,7 +49,7 @@ void FlowSolver::assemble_momentum(double dt) {
       const size_t k = size_t(j - b.ys) * b.xm + (i - b.xs);
       const double dx = grid_.dx(i), dy = grid_.dy(j), V = grid_.volume(i, j);
       const double rhoP = rho[j][i], muP = mu[j][i];
-      const double a_time = rhoP * V / dt;
+      const double a_time = (rho0 ? (*rho0)[j][i] : rhoP) * V / dt;
       double a_nb[4] = {0, 0, 0, 0};
       double diag = a_time;
       double extra[2] = {0.0, 0.0};
@@ -94,10 +105,14 @@ void FlowSolver::assemble_momentum(double dt) {
         // Outward face velocity and flux.
         const double face_vel = fg.axis == 0 ? (fg.sign > 0 ? fx[j][i] : fx[j][i - 1])
                                              : (fg.sign > 0 ? fy[j][i] : fy[j - 1][i]);
-        const double flux = fg.sign * face_vel * area;
+        const double flux =  // outward mass flux, kg/s per metre
+            rho0 ? fg.sign * area *
+                       (fg.axis == 0 ? (fg.sign > 0 ? (*mfx)[j][i] : (*mfx)[j][i - 1])
+                                     : (fg.sign > 0 ? (*mfy)[j][i] : (*mfy)[j - 1][i]))
+                 : rhoP * (fg.sign * face_vel * area);
         const double d = fg.axis == 0 ? std::abs(grid_.xc(in) - grid_.xc(i)) : std::abs(grid_.yc(jn) - grid_.yc(j));
         const double mu_f = mu_face;
-        const double conv = rhoP * std::max(-flux, 0.0);
+        const double conv = std::max(-flux, 0.0);
         a_nb[f] = stress_factor * mu_f * area / d + conv;
         diag += a_nb[f];
         // Deferred correction to the higher-order face value (lagged in the outer iterations).
@@ -114,7 +129,7 @@ void FlowSolver::assemble_momentum(double dt) {
               dn = q[j][i];
               uu = q[jn + fg.dj][in + fg.di];
             }
-            src[c] -= rhoP * flux * (face_value(num.convection, num.blending, uu, up, dn) - up);
+            src[c] -= flux * (face_value(num.convection, num.blending, uu, up, dn) - up);
           }
         }
       }
@@ -178,6 +193,8 @@ int FlowSolver::solve_momentum() {
 void FlowSolver::compute_hbya() {
   const auto& b = grid_.owned();
   ConstFieldArray rho = local_read(grid_, *rho_);
+  // The density of the time derivative (assemble_momentum).
+  ConstFieldArray rho_time = local_read(grid_, carries_mass_transport() ? *start_density_ : *rho_);
   if (settings_.numerics.pressure_coupling == PressureCoupling::projection) {
     // Incremental projection: HbyA = v* - (dt/rho) f_old, so that the new velocity is HbyA + (dt/rho) f_new.
     for (int c = 0; c < 2; ++c) {
@@ -213,7 +230,7 @@ void FlowSolver::compute_hbya() {
         const double V = grid_.volume(i, j);
         h[j][i] = H / a_centre_[c][k];
         r[j][i] = V / a_centre_[c][k];
-        w[j][i] = rho[j][i] * V / dt_ / a_centre_[c][k];
+        w[j][i] = rho_time[j][i] * V / dt_ / a_centre_[c][k];
       }
   }
   for (int c = 0; c < 2; ++c) {

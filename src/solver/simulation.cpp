@@ -173,6 +173,7 @@ Simulation::Simulation(MPI_Comm comm, const CaseConfig& config, std::filesystem:
     soil_->set_blocked(blocked_.get());
     soil_->initialise();
     soil_->refresh(*flow_);
+    if (config.flow.numerics.conservative_momentum) flow_->enable_mass_transport();
     flow_->set_property_update([soil = soil_.get()](FlowSolver& f) { soil->update_properties(f); });
     if (config_.soil->rheology && config_.soil->yield_pressure == YieldPressure::face)
       flow_->set_face_viscosity_update([soil = soil_.get()](FlowSolver& f) { soil->update_face_viscosity(f); });

@@ -9,6 +9,7 @@
 #include <array>
 #include <cmath>
 #include <numbers>
+#include <optional>
 
 #include "models/interface/vof_advection.hpp"
 #include "models/interface/wetted_fraction.hpp"
@@ -324,7 +325,7 @@ double SoilPhase::interface_courant(const FlowSolver& flow, double dt, int subst
   return mpi_max(grid_.comm(), co);
 }
 
-void SoilPhase::advect(const FlowSolver& flow, double dt) {
+void SoilPhase::advect(FlowSolver& flow, double dt) {
   // A step sized by this limit from these same face velocities lands on it up to round-off, which
   // differs between rank layouts; without the allowance ceil() would take one sweep or two by chance.
   constexpr double allowance = 1e-9;
@@ -349,6 +350,23 @@ void SoilPhase::advect(const FlowSolver& flow, double dt) {
   ConstFieldArray fx = local_read(grid_, flow.face_velocity(0)), fy = local_read(grid_, flow.face_velocity(1));
   const double* const* face[2] = {fx.data(), fy.data()};
   const interface::RadialWeights radial = radial_weights();
+  // The soil volume per unit area through each face adds up in the flow's mass fluxes, which become
+  // mass fluxes below.
+  const bool carry_mass = flow.carries_mass_transport();
+  std::optional<FieldArray> soil_through[2];
+  if (carry_mass) {
+    {
+      const auto& set = settings_;
+      ConstFieldArray c(grid_.field_dm(), c_->global());
+      FieldArray rho0 = local_array(grid_, flow.start_density());
+      for (int j = b.ys; j < b.ye(); ++j)
+        for (int i = b.xs; i < b.xe(); ++i) rho0[j][i] = set.density_mixing(c[j][i], set.air_density, set.soil_density);
+    }
+    for (int a = 0; a < 2; ++a) {
+      flow.mass_flux(a).set(0.0);
+      soil_through[a].emplace(grid_.field_dm(), flow.mass_flux(a).local());
+    }
+  }
   for (int s = 0; s < substeps; ++s) {
     const int first = sweep_parity_, second = 1 - sweep_parity_;
     sweep_parity_ = 1 - sweep_parity_;  // alternate the sweep order (Strang-like symmetry over two steps)
@@ -357,7 +375,8 @@ void SoilPhase::advect(const FlowSolver& flow, double dt) {
       FieldArray cc(grid_.field_dm(), dilatation_->local());
       interface::dilatation_indicator(c.data(), b, cc.data());
       FieldArray tmp(grid_.field_dm(), c_tmp_->global());
-      interface::vof_sweep(first, h, c.data(), face[first], cc.data(), grid_.dx_data(), grid_.dy_data(), b, tmp.data(), radial);
+      interface::vof_sweep(first, h, c.data(), face[first], cc.data(), grid_.dx_data(), grid_.dy_data(), b, tmp.data(), radial,
+                           carry_mass ? soil_through[first]->data() : nullptr);
       outflow_ += interface::boundary_outflow(first, h, c.data(), face[first], grid_.dx_data(), grid_.dy_data(), b,
                                               grid_.nx(), grid_.ny(), radial);
     }
@@ -366,11 +385,27 @@ void SoilPhase::advect(const FlowSolver& flow, double dt) {
       ConstFieldArray tmp(grid_.field_dm(), c_tmp_->local());
       ConstFieldArray cc(grid_.field_dm(), dilatation_->local());
       FieldArray c(grid_.field_dm(), c_->global());
-      interface::vof_sweep(second, h, tmp.data(), face[second], cc.data(), grid_.dx_data(), grid_.dy_data(), b, c.data(), radial);
+      interface::vof_sweep(second, h, tmp.data(), face[second], cc.data(), grid_.dx_data(), grid_.dy_data(), b, c.data(), radial,
+                           carry_mass ? soil_through[second]->data() : nullptr);
       outflow_ += interface::boundary_outflow(second, h, tmp.data(), face[second], grid_.dx_data(), grid_.dy_data(), b,
                                               grid_.nx(), grid_.ny(), radial);
     }
     fill_fraction_ghosts(*c_);
+  }
+  if (carry_mass) {
+    // Mass flux = u rho(c_swept), the mixture density of what crossed the face: c_swept = s / u with s
+    // the soil's volume flux per unit area over the step. With the linear mixture that is the phases'
+    // own masses, rho_a (u - s) + rho_s s; with the arctan one the mass the time derivative takes
+    // (start_density) is the same function of c, so a face fed by a pure cell carries exactly that.
+    const auto& set = settings_;
+    auto to_mass = [&](double** m, const double* const* u, int i, int j) {
+      const double swept = u[j][i] != 0.0 ? std::clamp(m[j][i] / (dt * u[j][i]), 0.0, 1.0) : 0.0;
+      m[j][i] = u[j][i] * set.density_mixing(swept, set.air_density, set.soil_density);
+    };
+    for (int j = b.ys; j < b.ye(); ++j)
+      for (int i = b.xs - 1; i < b.xe(); ++i) to_mass(soil_through[0]->data(), fx.data(), i, j);
+    for (int j = b.ys - 1; j < b.ye(); ++j)
+      for (int i = b.xs; i < b.xe(); ++i) to_mass(soil_through[1]->data(), fy.data(), i, j);
   }
 }
 

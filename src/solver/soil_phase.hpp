@@ -40,8 +40,10 @@ class SoilPhase {
   // Face viscosities from the face pressure (soil.yield_pressure = "face").
   void update_face_viscosity(FlowSolver& flow) const;
   // Advects c over dt with the flow's (divergence-free) face velocities, in as many sub-steps as the
-  // interface Courant limit needs.
-  void advect(const FlowSolver& flow, double dt);
+  // interface Courant limit needs. When the flow carries mass transport (FlowSolver::
+  // enable_mass_transport), also gives it the mixture density before the step and the mass each face
+  // carried: air and soil volumes as the sweeps moved them, times their densities.
+  void advect(FlowSolver& flow, double dt);
   // Refreshes what depends on c alone (the overburden pressure), after initialise() or advect().
   void refresh(const FlowSolver& flow);
   // Eulerian displacement ([VoF] Eq. 16) with the soil velocity c v, explicit upwind, in as many

@@ -65,16 +65,18 @@ inline FaceFlux face_flux_y(const double* const* c, double v, double dt, const d
 // drifting by round-off, which keeps the pure-cell fast path effective.
 void vof_sweep(int axis, double dt, const double* const* c, const double* const* u,
                const double* const* cc, const double* dx, const double* dy, CellBox o,
-               double** c_new, RadialWeights radial) {
+               double** c_new, RadialWeights radial, double** face_soil) {
   const int i_end = o.xs + o.xm;
   const int j_end = o.ys + o.ym;
   if (axis == 0) {
     const bool weighted = radial.face != nullptr;
     for (int j = o.ys; j < j_end; ++j) {
       FaceFlux low = face_flux_x(c, u[j][o.xs - 1], dt, dx, dy, o.xs - 1, j);
+      if (face_soil) face_soil[j][o.xs - 1] += low.f;
       double r_low = weighted ? radial.face[o.xs - 1] : 1.0;
       for (int i = o.xs; i < i_end; ++i) {
         const FaceFlux high = face_flux_x(c, u[j][i], dt, dx, dy, i, j);
+        if (face_soil) face_soil[j][i] += high.f;
         const double r_high = weighted ? radial.face[i] : 1.0;
         const double h = weighted ? dx[i] * radial.centre[i] : dx[i];
         c_new[j][i] = cc[j][i] > 0.5 ? c[j][i] + (r_high * high.g - r_low * low.g) / h
@@ -96,6 +98,7 @@ void vof_sweep(int axis, double dt, const double* const* c, const double* const*
       const double v = u[jf][i];
       if (v == 0.0) continue;
       const FaceFlux fl = face_flux_y(c, v, dt, dx, dy, i, jf);
+      if (face_soil) face_soil[jf][i] += fl.f;
       if (below_owned) c_new[jf][i] += cc[jf][i] > 0.5 ? fl.g / dy[jf] : -fl.f / dy[jf];
       if (above_owned)
         c_new[jf + 1][i] += cc[jf + 1][i] > 0.5 ? -fl.g / dy[jf + 1] : fl.f / dy[jf + 1];

@@ -44,9 +44,12 @@ struct RadialWeights {
 // Requires max_sweep_courant(axis, ...) < 0.5 for boundedness. With radial weights the x-sweep
 // reads c_new = c + (r_low F_low - r_high F_high)/(r_c h) + cc (r_high u_high - r_low u_low) dt/(r_c h);
 // the y-sweep is unchanged (its faces and cells share the radius r_c).
+// With `face_soil` (non-null, laid out like face_velocity), F of every face the sweep computes (those
+// bounding owned cells along `axis`, the low ghost face included) is added to it: the soil volume per
+// unit face area that crossed it, so that the momentum can move with the same mass.
 void vof_sweep(int axis, double dt, const double* const* c, const double* const* face_velocity,
                const double* const* cc, const double* dx, const double* dy,
-               CellBox owned, double** c_new, RadialWeights radial = {});
+               CellBox owned, double** c_new, RadialWeights radial = {}, double** face_soil = nullptr);
 
 // Soil volume (per unit depth, per radian with radial weights) that the sweep of `axis` carries out
 // of the domain of nx x ny cells through the boundary faces of the owned cells; negative for inflow.
