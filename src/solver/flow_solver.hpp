@@ -187,8 +187,10 @@ class FlowSolver {
   std::unique_ptr<Field> p_, rho_, mu_, face_mu_[2];
   std::unique_ptr<Field> body_force_[2];
   std::unique_ptr<Field> start_density_, mass_flux_[2];  // enable_mass_transport
-  // rho^n + dt/V sum_in m: the mass a cell's conservative momentum equation accelerates, which the
-  // projection's mobility dt/rho then takes too (assemble_momentum; rho_ without mass transport).
+  // The projection's density under conservative momentum (its mobility dt/rho): the larger of the
+  // cell's mass before the step and after it by the fluxes, rho^n + dt/V max(sum_in m - sum_out m, 0).
+  // A cell that soil leaves is still accelerated with the mass it had; a cell soil fills, with the
+  // mass it gets; a uniform stream, with its density (assemble_momentum; rho_ without mass transport).
   std::unique_ptr<Field> inertia_density_;
   FieldSnapshot saved_;  // save_state()
   std::unique_ptr<Field> hbya_[2], rau_[2], time_weight_[2];

@@ -56,7 +56,7 @@ void FlowSolver::assemble_momentum(double dt) {
       double diag = a_time;
       double extra[2] = {0.0, 0.0};
       double src[2] = {a_time * u0[j][i], a_time * v0[j][i]};
-      double inflow = 0.0;  // mass flowing in, kg/s per metre
+      double inflow = 0.0, outflow = 0.0;  // mass flowing in and out, kg/s per metre
       if (bx) {
         src[0] += V * (*bx)[j][i];
         src[1] += V * (*by)[j][i];
@@ -117,6 +117,7 @@ void FlowSolver::assemble_momentum(double dt) {
         const double mu_f = mu_face;
         const double conv = std::max(-flux, 0.0);
         inflow += conv;
+        outflow += std::max(flux, 0.0);
         a_nb[f] = stress_factor * mu_f * area / d + conv;
         diag += a_nb[f];
         // Deferred correction to the higher-order face value (lagged in the outer iterations).
@@ -139,7 +140,7 @@ void FlowSolver::assemble_momentum(double dt) {
       }
       // Hoop stress of the radial momentum, -2 mu u_r / r^2 per volume ([YS] Sec. 4), implicit.
       if (grid_.axisymmetric()) extra[0] += 2.0 * muP * V / (grid_.xc(i) * grid_.xc(i));
-      if (inertia) (*inertia)[j][i] = (*rho0)[j][i] + inflow * dt / V;
+      if (inertia) (*inertia)[j][i] = (*rho0)[j][i] + std::max(inflow - outflow, 0.0) * dt / V;
       a_east_[k] = a_nb[0];
       a_west_[k] = a_nb[1];
       a_north_[k] = a_nb[2];
