@@ -353,8 +353,16 @@ CaseConfig read_case(const toml::table& root, const std::filesystem::path& sourc
     const std::string fv = n.choice("face_viscosity", "harmonic", {"harmonic", "arithmetic"});
     num.face_viscosity = fv == "harmonic" ? FaceViscosity::harmonic : FaceViscosity::arithmetic;
     num.quadratic_wall_gradient = n.choice("wall_gradient", "two_point", {"two_point", "quadratic"}) == "quadratic";
-    num.conservative_momentum =
-        n.choice("momentum_transport", "conservative", {"conservative", "advective"}) == "conservative";
+    // Conservative transport needs the coupled solve, whose continuity rows take each cell's own
+    // momentum coefficient; the projection's mobility dt/rho cannot follow the mass a cell's momentum
+    // then accelerates (docs/method.md, "Momentum").
+    const bool coupled = num.pressure_coupling == PressureCoupling::coupled;
+    num.conservative_momentum = n.choice("momentum_transport", coupled ? "conservative" : "advective",
+                                         {"conservative", "advective"}) == "conservative";
+    if (num.conservative_momentum && !coupled)
+      throw CaseError(fmt::format("numerics.momentum_transport: \"conservative\" needs numerics.pressure_coupling = "
+                                  "\"coupled\" (it is \"{}\"); use \"advective\" with the projection and PISO",
+                                  coupling));
     n.finish();
   }
   {

@@ -41,8 +41,9 @@ struct NumericsSettings {
   bool quadratic_wall_gradient = false;
   // Momentum moved with the mass the soil fraction's advection moves (true, "conservative"), or with
   // the cell's density times the face velocity (false, "advective"), which hands a cell that heavy
-  // soil enters the velocity its light air had. Needs a soil phase; a single fluid is the same either way.
-  bool conservative_momentum = true;
+  // soil enters the velocity its light air had. Coupled solve only (the case file's default there);
+  // needs a soil phase; a single fluid is the same either way.
+  bool conservative_momentum = false;
 };
 
 struct FlowSettings {

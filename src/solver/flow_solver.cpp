@@ -464,8 +464,6 @@ void FlowSolver::update_properties_at_mean_pressure() {
 void FlowSolver::enable_mass_transport() {
   start_density_ = make_field(grid_);
   start_density_->copy_from(*rho_);
-  inertia_density_ = make_field(grid_);
-  inertia_density_->copy_from(*rho_);
   for (auto& f : mass_flux_) {
     f = make_field(grid_);
     f->set(0.0);

@@ -167,9 +167,7 @@ class FlowSolver {
   double cell_force(int axis, int i, int j, const double* const* ff, const double* const* rho) const;
   // Segregated pressure step (segregated_pressure.cpp).
   double local_min_viscosity(const double* const* mu, int i, int j) const;
-  // rho: the projection's density (projection_density()).
   double face_coefficient(const double* const* rau, const double* const* rho, int i, int j, int in, int jn) const;
-  const Field& projection_density() const { return inertia_density_ ? *inertia_density_ : *rho_; }
   void assemble_pressure_matrix(double dt);
   int solve_pressure(double dt);
   void hold_pressure_at_top();  // closed domains: the pressure level
@@ -187,11 +185,6 @@ class FlowSolver {
   std::unique_ptr<Field> p_, rho_, mu_, face_mu_[2];
   std::unique_ptr<Field> body_force_[2];
   std::unique_ptr<Field> start_density_, mass_flux_[2];  // enable_mass_transport
-  // The projection's density under conservative momentum (its mobility dt/rho): the larger of the
-  // cell's mass before the step and after it by the fluxes, rho^n + dt/V max(sum_in m - sum_out m, 0).
-  // A cell that soil leaves is still accelerated with the mass it had; a cell soil fills, with the
-  // mass it gets; a uniform stream, with its density (assemble_momentum; rho_ without mass transport).
-  std::unique_ptr<Field> inertia_density_;
   FieldSnapshot saved_;  // save_state()
   std::unique_ptr<Field> hbya_[2], rau_[2], time_weight_[2];
 

@@ -31,9 +31,7 @@ void FlowSolver::assemble_momentum(double dt) {
   // so soil entering a cell of air brings its own velocity. Otherwise (advective) the cell's density
   // times the face velocity, rho_P (v_P - v^n) V/dt + rho_P sum_in q (v_P - v_nb).
   std::unique_ptr<ConstFieldArray> rho0, mfx, mfy;
-  std::unique_ptr<FieldArray> inertia;
   if (carries_mass_transport()) {
-    inertia = std::make_unique<FieldArray>(grid_.field_dm(), inertia_density_->global());
     rho0 = std::make_unique<ConstFieldArray>(grid_.field_dm(), start_density_->local());
     mfx = std::make_unique<ConstFieldArray>(grid_.field_dm(), mass_flux_[0]->local());
     mfy = std::make_unique<ConstFieldArray>(grid_.field_dm(), mass_flux_[1]->local());
@@ -56,7 +54,6 @@ void FlowSolver::assemble_momentum(double dt) {
       double diag = a_time;
       double extra[2] = {0.0, 0.0};
       double src[2] = {a_time * u0[j][i], a_time * v0[j][i]};
-      double inflow = 0.0, outflow = 0.0;  // mass flowing in and out, kg/s per metre
       if (bx) {
         src[0] += V * (*bx)[j][i];
         src[1] += V * (*by)[j][i];
@@ -116,8 +113,6 @@ void FlowSolver::assemble_momentum(double dt) {
         const double d = fg.axis == 0 ? std::abs(grid_.xc(in) - grid_.xc(i)) : std::abs(grid_.yc(jn) - grid_.yc(j));
         const double mu_f = mu_face;
         const double conv = std::max(-flux, 0.0);
-        inflow += conv;
-        outflow += std::max(flux, 0.0);
         a_nb[f] = stress_factor * mu_f * area / d + conv;
         diag += a_nb[f];
         // Deferred correction to the higher-order face value (lagged in the outer iterations).
@@ -140,7 +135,6 @@ void FlowSolver::assemble_momentum(double dt) {
       }
       // Hoop stress of the radial momentum, -2 mu u_r / r^2 per volume ([YS] Sec. 4), implicit.
       if (grid_.axisymmetric()) extra[0] += 2.0 * muP * V / (grid_.xc(i) * grid_.xc(i));
-      if (inertia) (*inertia)[j][i] = (*rho0)[j][i] + std::max(inflow - outflow, 0.0) * dt / V;
       a_east_[k] = a_nb[0];
       a_west_[k] = a_nb[1];
       a_north_[k] = a_nb[2];
@@ -150,10 +144,6 @@ void FlowSolver::assemble_momentum(double dt) {
         source_[c][k] = src[c];
       }
     }
-  if (inertia) {
-    inertia.reset();  // restores the array before the exchange
-    inertia_density_->scatter_to_local();
-  }
 }
 
 int FlowSolver::solve_momentum() {
@@ -206,16 +196,14 @@ void FlowSolver::compute_hbya() {
   // The density of the time derivative (assemble_momentum).
   ConstFieldArray rho_time = local_read(grid_, carries_mass_transport() ? *start_density_ : *rho_);
   if (settings_.numerics.pressure_coupling == PressureCoupling::projection) {
-    // Incremental projection: HbyA = v* - (dt/rho) f_old, so that the new velocity is HbyA + (dt/rho) f_new,
-    // with the density the momentum equation accelerates.
-    ConstFieldArray rho_inertia = local_read(grid_, projection_density());
+    // Incremental projection: HbyA = v* - (dt/rho) f_old, so that the new velocity is HbyA + (dt/rho) f_new.
     for (int c = 0; c < 2; ++c) {
       ConstFieldArray q = local_read(grid_, *vel_[c]), ff = local_read(grid_, *face_force_[c]);
       FieldArray h(grid_.field_dm(), hbya_[c]->global());
       FieldArray r(grid_.field_dm(), rau_[c]->global());
       for (int j = b.ys; j < b.ye(); ++j)
         for (int i = b.xs; i < b.xe(); ++i) {
-          r[j][i] = dt_ / rho_inertia[j][i];
+          r[j][i] = dt_ / rho[j][i];
           h[j][i] = q[j][i] - r[j][i] * cell_force(c, i, j, ff.data(), rho.data());
         }
     }

@@ -34,7 +34,7 @@ void FlowSolver::assemble_pressure_matrix(double) {
   const auto& b = grid_.owned();
   const int nx = grid_.nx(), ny = grid_.ny();
   ConstFieldArray rx = local_read(grid_, *rau_[0]), ry = local_read(grid_, *rau_[1]);
-  ConstFieldArray rho = local_read(grid_, projection_density());
+  ConstFieldArray rho = local_read(grid_, *rho_);
   for (int j = b.ys; j < b.ye(); ++j)
     for (int i = b.xs; i < b.xe(); ++i) {
       MatStencil row{0, j, i, 0};
@@ -87,7 +87,6 @@ int FlowSolver::solve_pressure(double) {
     ConstFieldArray fx0 = local_read(grid_, *face_old_[0]), fy0 = local_read(grid_, *face_old_[1]);
     ConstFieldArray fxv = local_read(grid_, *face_[0]), fyv = local_read(grid_, *face_[1]);
     ConstFieldArray rho = local_read(grid_, *rho_), u = local_read(grid_, *vel_[0]), v = local_read(grid_, *vel_[1]);
-    ConstFieldArray rho_mobility = local_read(grid_, projection_density());
     FieldArray r(grid_.field_dm(), rhs_);
     for (int j = b.ys; j < b.ye(); ++j)
       for (int i = b.xs; i < b.xe(); ++i) {
@@ -117,7 +116,7 @@ int FlowSolver::solve_pressure(double) {
           const double face_old = fg.axis == 0 ? (fg.sign > 0 ? fx0[j][i] : fx0[j][i - 1])
                                                : (fg.sign > 0 ? fy0[j][i] : fy0[j - 1][i]);
           const double ustar = predicted(i, j, in, jn, h, w, q0, face_old);
-          const double rA = face_coefficient(ra, rho_mobility.data(), i, j, in, jn);
+          const double rA = face_coefficient(ra, rho.data(), i, j, in, jn);
           const double rho_f = 0.5 * (rho[j][i] + rho[jn][in]);
           rhs -= fg.sign * (ustar + rA * rho_f * g[fg.axis]) * area;
           outflow += fg.sign * 0.5 * (fg.axis == 0 ? u[j][i] + u[jn][in] : v[j][i] + v[jn][in]) * area;
@@ -140,7 +139,7 @@ int FlowSolver::solve_pressure(double) {
     ConstFieldArray wx = local_read(grid_, *time_weight_[0]), wy = local_read(grid_, *time_weight_[1]);
     ConstFieldArray u0 = local_read(grid_, *vel_old_[0]), v0 = local_read(grid_, *vel_old_[1]);
     ConstFieldArray fx0 = local_read(grid_, *face_old_[0]), fy0 = local_read(grid_, *face_old_[1]);
-    ConstFieldArray rho = local_read(grid_, *rho_), rho_mobility = local_read(grid_, projection_density());
+    ConstFieldArray rho = local_read(grid_, *rho_);
     ConstFieldArray ffx = local_read(grid_, *face_force_[0]), ffy = local_read(grid_, *face_force_[1]);
     const double* const* h[2] = {hx.data(), hy.data()};
     const double* const* ra[2] = {rx.data(), ry.data()};
@@ -153,7 +152,7 @@ int FlowSolver::solve_pressure(double) {
         [&](int axis, int i, int j) {
           const int in = axis == 0 ? i + 1 : i, jn = axis == 0 ? j : j + 1;
           const double star = predicted(i, j, in, jn, h[axis], w[axis], q0[axis], face_old[axis][j][i]);
-          return star + face_coefficient(ra[axis], rho_mobility.data(), i, j, in, jn) * ff[axis][j][i];
+          return star + face_coefficient(ra[axis], rho.data(), i, j, in, jn) * ff[axis][j][i];
         },
         [&](int axis, int i, int j, int sign) {
           // Walls are impermeable and their face force stays zero (pressure hydrostatic at the wall).

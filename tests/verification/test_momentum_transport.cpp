@@ -56,6 +56,7 @@ north = { type = "atmosphere" }
 convection = "blended"
 blending = 0.7
 outer_iterations = 2
+pressure_coupling = "coupled"
 [output]
 fields = false
 progress_seconds = 0
