@@ -239,3 +239,8 @@ add_test(NAME cli_petsc_error_one_line
 set_tests_properties(cli_petsc_error_one_line PROPERTIES LABELS cli
                      PASS_REGULAR_EXPRESSION "^error: PETSc: [^\n]*KSP type bogus [(]PETSc error [0-9]+ in KSPSetType[^\n]*\n$"
                      FAIL_REGULAR_EXPRESSION "PETSC ERROR")
+# Conservative momentum transport needs the coupled solve: with the projection it is refused by name.
+add_test(NAME cli_check_conservative_momentum_needs_coupled
+         COMMAND sh -c "out=$(\"$0\" check \"$1\" --set numerics.momentum_transport=conservative 2>&1); test $? -ne 0 && echo \"$out\" | grep -q 'numerics.momentum_transport: .conservative. needs numerics.pressure_coupling = .coupled. (it is .projection.)'"
+                 $<TARGET_FILE:granflow> ${CMAKE_SOURCE_DIR}/cases/water_dam_break.toml)
+set_tests_properties(cli_check_conservative_momentum_needs_coupled PROPERTIES LABELS cli)
