@@ -65,11 +65,12 @@ class FlowSolver {
   Field& body_force(int axis) { return *body_force_[axis]; }
   const Field& face_velocity(int axis) const { return *face_[axis]; }
 
-  // The mass the momentum equation carries under numerics.momentum_transport = "conservative": the
-  // mixture density at the start of the step (owned cells) and each face's mass flux over the step
-  // (kg m^-2 s^-1, laid out like face_velocity), both from the soil fraction's own advection
-  // (SoilPhase::advect), so that momentum moves with the mass the VoF moves. Until enabled the
-  // momentum equation takes the cell's density times the face velocity.
+  // The mass the momentum equation carries under numerics.momentum_transport = "conservative" (coupled
+  // solve only): the mixture density at the start of the step (owned cells) and each face's mass flux
+  // over the step (kg m^-2 s^-1, indexed like face_velocity), both from the soil fraction's own
+  // advection (SoilPhase::advect), so that momentum moves with the mass the VoF moves. Both are held
+  // in the local arrays only (their global vectors are not kept current). Until enabled the momentum
+  // equation takes the cell's density times the face velocity.
   void enable_mass_transport();
   bool carries_mass_transport() const { return start_density_ != nullptr; }
   Field& start_density() { return *start_density_; }

@@ -193,8 +193,6 @@ int FlowSolver::solve_momentum() {
 void FlowSolver::compute_hbya() {
   const auto& b = grid_.owned();
   ConstFieldArray rho = local_read(grid_, *rho_);
-  // The density of the time derivative (assemble_momentum).
-  ConstFieldArray rho_time = local_read(grid_, carries_mass_transport() ? *start_density_ : *rho_);
   if (settings_.numerics.pressure_coupling == PressureCoupling::projection) {
     // Incremental projection: HbyA = v* - (dt/rho) f_old, so that the new velocity is HbyA + (dt/rho) f_new.
     for (int c = 0; c < 2; ++c) {
@@ -230,7 +228,7 @@ void FlowSolver::compute_hbya() {
         const double V = grid_.volume(i, j);
         h[j][i] = H / a_centre_[c][k];
         r[j][i] = V / a_centre_[c][k];
-        w[j][i] = rho_time[j][i] * V / dt_ / a_centre_[c][k];
+        w[j][i] = rho[j][i] * V / dt_ / a_centre_[c][k];
       }
   }
   for (int c = 0; c < 2; ++c) {

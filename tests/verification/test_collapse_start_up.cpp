@@ -145,6 +145,7 @@ TEST(CollapseTimeStepping, SoilPressureSmoothAndStartUpBounded) {
               "fastest soil %.2f m/s (Ritter's front %.2f m/s)\n",
               w.steps.size(), w.summary.retried_steps, ratio, largest_speed_over_free_fall(w, 1e9), fastest, ritter);
   EXPECT_LT(ratio, 1.0);
+  EXPECT_LT(largest_speed_over_free_fall(w, 1e9), 1.25);  // the toe's 1.08, not a start-up spike
   EXPECT_LT(fastest, ritter);
   EXPECT_EQ(w.summary.retried_steps, 0);
 }

@@ -84,8 +84,8 @@ TEST(MomentumTransport, FallingDropKeepsFreeFall) {
   std::printf("drop at t = %.2f s: free fall %.4f m/s, conservative %.4f (%.2f %% short), advective %.4f (%.2f %% short)\n",
               end_time, free_fall, conservative, 100 * (1 - conservative / free_fall), advective,
               100 * (1 - advective / free_fall));
-  EXPECT_LT(std::abs(conservative / free_fall - 1.0), 0.01);  // the air's drag only
-  EXPECT_GT(conservative / free_fall, 0.99);
+  EXPECT_GT(conservative / free_fall, 0.99);  // the air's drag only (0.26 % measured) ...
+  EXPECT_LT(conservative / free_fall, 1.0);   // ... and never faster than free fall
   EXPECT_LT(advective / free_fall, 0.97);  // the braking the conservative form removes
 }
 
