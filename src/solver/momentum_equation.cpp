@@ -25,7 +25,7 @@ void FlowSolver::assemble_momentum(double dt) {
   ConstFieldArray rho = local_read(grid_, *rho_), mu = local_read(grid_, *mu_);
   ConstFieldArray fmx = local_read(grid_, *face_mu_[0]), fmy = local_read(grid_, *face_mu_[1]);
   const double* const* vel[2] = {u.data(), v.data()};
-  // Conservative momentum transport ([VoF] Eq. 17 in divergence form): d(rho v)/dt + div(m v) with m
+  // Conservative momentum transport ([VoF] Eq. 18 in divergence form): d(rho v)/dt + div(m v) with m
   // the mass flux of the soil fraction's advection, written with its mass balance as
   //   (rho^n V/dt + sum_in m) v_P - sum_in m v_nb = rho^n V/dt v^n + ...,
   // so soil entering a cell of air brings its own velocity. Otherwise (advective) the cell's density
