@@ -25,6 +25,14 @@ constexpr const FaceGeometry& face_on(Side s) {
   return faces_of_cell[0];  // unreachable: every side is listed
 }
 
+// The value on face fg of cell (i, j) of a face field held as x and y faces in FlowSolver's layout:
+// [j][i] of the x faces is the cell's east face and [j][i - 1] its west one; the y faces likewise in j.
+inline double on_face(const double* const* x_faces, const double* const* y_faces, int i, int j,
+                      const FaceGeometry& fg) {
+  if (fg.axis == 0) return x_faces[j][fg.sign > 0 ? i : i - 1];
+  return y_faces[fg.sign > 0 ? j : j - 1][i];
+}
+
 // The lagged part of the viscous stress on face fg of cell (i, j) for the component c tangential to
 // it, over mu: (d v_n / d x_c) - (d v_c / d n), the remainder of Jasak & Weller (2000) after the
 // implicit 2 mu grad(v_c) (momentum_equation.cpp). vel holds both components as local arrays;

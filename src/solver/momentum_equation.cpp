@@ -64,7 +64,7 @@ void FlowSolver::assemble_momentum(double dt) {
         const double area = grid_.face_area(fg.axis, i, j, fg.sign);
         const bool is_obstacle = is_blocked(mask.data(), in, jn);
         const bool is_boundary = in < 0 || in >= nx || jn < 0 || jn >= ny || is_obstacle;
-        const double mu_face = fg.axis == 0 ? fmx[j][fg.sign > 0 ? i : i - 1] : fmy[fg.sign > 0 ? j : j - 1][i];
+        const double mu_face = on_face(fmx.data(), fmy.data(), i, j, fg);
         // Full viscous stress div(mu (grad v + grad v^T)), split as in Jasak & Weller (2000): the
         // implicit part is 2 mu grad(v_c) on every face, and the lagged remainder on faces tangential
         // to c is mu [(d v_n / d x_c) - (d v_c / d n)]. The implicit part bounds the lagged one, so the
@@ -103,13 +103,9 @@ void FlowSolver::assemble_momentum(double dt) {
           continue;
         }
         // Outward face velocity and flux.
-        const double face_vel = fg.axis == 0 ? (fg.sign > 0 ? fx[j][i] : fx[j][i - 1])
-                                             : (fg.sign > 0 ? fy[j][i] : fy[j - 1][i]);
         const double flux =  // outward mass flux, kg/s per metre
-            rho0 ? fg.sign * area *
-                       (fg.axis == 0 ? (fg.sign > 0 ? (*mfx)[j][i] : (*mfx)[j][i - 1])
-                                     : (fg.sign > 0 ? (*mfy)[j][i] : (*mfy)[j - 1][i]))
-                 : rhoP * (fg.sign * face_vel * area);
+            rho0 ? fg.sign * area * on_face(mfx->data(), mfy->data(), i, j, fg)
+                 : rhoP * (fg.sign * on_face(fx.data(), fy.data(), i, j, fg) * area);
         const double d = fg.axis == 0 ? std::abs(grid_.xc(in) - grid_.xc(i)) : std::abs(grid_.yc(jn) - grid_.yc(j));
         const double mu_f = mu_face;
         const double conv = std::max(-flux, 0.0);

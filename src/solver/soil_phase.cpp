@@ -165,11 +165,10 @@ void SoilPhase::update_properties(FlowSolver& flow) const {
   const bool floor = settings_.yield_pressure == YieldPressure::lithostatic_floor;
   std::unique_ptr<ConstFieldArray> overburden;
   if (floor) overburden = std::make_unique<ConstFieldArray>(grid_.field_dm(), overburden_->global());
-  const auto& s = settings_;
   for (int j = b.ys; j < b.ye(); ++j)
     for (int i = b.xs; i < b.xe(); ++i) {
       const double cc = c[j][i];
-      rho[j][i] = s.density_mixing(cc, s.air_density, s.soil_density);
+      rho[j][i] = mixture_density(cc);
       const double pressure = floor ? std::max(p[j][i], ambient_pressure_ + (*overburden)[j][i]) : p[j][i];
       mu[j][i] = mixture_viscosity(cc, pressure, cell_strain_rate(grid_, u.data(), v.data(), i, j));
     }
@@ -356,11 +355,10 @@ void SoilPhase::advect(FlowSolver& flow, double dt) {
   std::optional<FieldArray> soil_through[2];
   if (carry_mass) {
     {
-      const auto& set = settings_;
       ConstFieldArray c(grid_.field_dm(), c_->global());
       FieldArray rho0 = local_array(grid_, flow.start_density());
       for (int j = b.ys; j < b.ye(); ++j)
-        for (int i = b.xs; i < b.xe(); ++i) rho0[j][i] = set.density_mixing(c[j][i], set.air_density, set.soil_density);
+        for (int i = b.xs; i < b.xe(); ++i) rho0[j][i] = mixture_density(c[j][i]);
     }
     for (int a = 0; a < 2; ++a) {
       flow.mass_flux(a).set(0.0);
@@ -397,10 +395,9 @@ void SoilPhase::advect(FlowSolver& flow, double dt) {
     // the soil's volume flux per unit area over the step. With the linear mixture that is the phases'
     // own masses, rho_a (u - s) + rho_s s; with the arctan one the mass the time derivative takes
     // (start_density) is the same function of c, so a face fed by a pure cell carries exactly that.
-    const auto& set = settings_;
     auto to_mass = [&](double** m, const double* const* u, int i, int j) {
       const double swept = u[j][i] != 0.0 ? std::clamp(m[j][i] / (dt * u[j][i]), 0.0, 1.0) : 0.0;
-      m[j][i] = u[j][i] * set.density_mixing(swept, set.air_density, set.soil_density);
+      m[j][i] = u[j][i] * mixture_density(swept);
     };
     for (int j = b.ys; j < b.ye(); ++j)
       for (int i = b.xs - 1; i < b.xe(); ++i) to_mass(soil_through[0]->data(), fx.data(), i, j);

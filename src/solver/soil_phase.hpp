@@ -94,6 +94,10 @@ class SoilPhase {
   interface::RadialWeights radial_weights() const { return {grid_.radius_face_data(), grid_.radius_centre_data()}; }
   double compute_dissipation(const FlowSolver& flow);
   double mixture_viscosity(double c, double pressure, const rheology::StrainRate& rate) const;
+  // Density of a mixture at soil fraction c ([VoF] Eq. 1 or App. A).
+  double mixture_density(double c) const {
+    return settings_.density_mixing(c, settings_.air_density, settings_.soil_density);
+  }
 
   const Grid& grid_;
   const FlowSettings& flow_settings_;

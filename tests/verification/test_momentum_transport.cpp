@@ -22,49 +22,10 @@ namespace {
 constexpr double g = 9.81;
 constexpr double end_time = 0.12;
 
-const char* drop_case = R"(
-title = "water drop falling through air"
-[mesh]
-cells = [40, 60]
-lower = [0.0, 0.0]
-upper = [0.2, 0.3]
-[time]
-end = 0.12
-dt = 1e-4
-courant = 0.25
-[physics]
-gravity = [0.0, -9.81]
-[air]
-density = 1.0
-viscosity = 1.8e-5
-[soil]
-density = 1000.0
-viscosity = 1e-3
-[mixture]
-density = "linear"
-viscosity = "linear"
-[[initial.soil]]
-shape = "circle"
-centre = [0.1, 0.25]
-radius = 0.02
-[boundary]
-west = { type = "wall" }
-south = { type = "wall" }
-east = { type = "wall" }
-north = { type = "atmosphere" }
-[numerics]
-convection = "blended"
-blending = 0.7
-outer_iterations = 2
-pressure_coupling = "coupled"
-[output]
-fields = false
-progress_seconds = 0
-)";
 
 // Vertical velocity of the drop's centre of mass (sum c v / sum c over equal cells) at the end.
 double drop_velocity(const std::string& transport) {
-  Simulation sim(PETSC_COMM_WORLD, parse_case(drop_case, {"numerics.momentum_transport=" + transport}), "");
+  Simulation sim(PETSC_COMM_WORLD, parse_case(test::falling_drop_case, {"numerics.momentum_transport=" + transport}), "");
   sim.run();
   const auto c = gather_to_root(sim.grid(), sim.soil()->soil_fraction());
   const auto v = gather_to_root(sim.grid(), sim.flow().velocity(1));
