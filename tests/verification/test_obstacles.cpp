@@ -115,44 +115,14 @@ TEST(Obstacles, CollapsesOnEitherSideOfAPlateStayMirrorImages) {
 // its surface cutting a row of cells: it stays at rest, its pressure hydrostatic, and the bed, the
 // walls and the floor carry its weight.
 TEST(Obstacles, LayerAtRestOnASteppedBed) {
-  const std::string text = R"(
-[mesh]
-cells = [40, 40]
-upper = [0.2, 0.2]
-[time]
-end = 1e9
-dt = 1e-3
-adaptive = false
-max_steps = 100
-[physics]
-gravity = [0.0, -9.81]
-[air]
-density = 1.0
-viscosity = 1e-5
-[soil]
-density = 2650.0
-viscosity = 1e3
-[mixture]
-density = "linear"
-viscosity = "linear"
-[[initial.soil]]
-shape = "box"
-lower = [-1.0, -1.0]
-upper = [1.0, 0.1025]
-[[obstacle]]
-shape = "polygon"
-points = [[-1.0, -1.0], [1.0, -1.0], [1.0, 0.06], [0.1, 0.06], [0.1, 0.03], [-1.0, 0.03]]
-[boundary]
-west = { type = "wall" }
-east = { type = "wall" }
-south = { type = "wall" }
-north = { type = "atmosphere" }
-[numerics]
-pressure_coupling = "coupled"
-[output]
-progress_seconds = 0
-)";
-  Simulation sim(PETSC_COMM_WORLD, parse_case(text), "");
+  // The resting layer of test::resting_layer_case, on 40 x 40 cells (its surface cuts a row at c =
+  // 0.5) for 100 steps, with the coupled solve and the bed as an obstacle.
+  const CaseConfig config = parse_case(
+      test::resting_layer_case,
+      {"mesh.cells=[40,40]", "time.max_steps=100", "numerics.pressure_coupling=\"coupled\"",
+       "obstacle=[{shape = \"polygon\", points = [[-1.0, -1.0], [1.0, -1.0], [1.0, 0.06], [0.1, 0.06], [0.1, 0.03], "
+       "[-1.0, 0.03]]}]"});
+  Simulation sim(PETSC_COMM_WORLD, config, "");
   const double volume0 = sim.soil()->budget(sim.flow()).soil_volume;
   const Grid& g = sim.grid();
   const auto p0 = gather_to_root(g, sim.flow().pressure());

@@ -18,42 +18,8 @@ namespace {
 // A layer at rest for 1000 steps: largest speed and the change of the pressure, relative.
 void check_resting_layer(const std::string& east_boundary, const char* label) {
   // The layer top cuts a row of cells at c = 0.4, so the interface is not aligned with faces.
-  std::string text = R"(
-[mesh]
-cells = [32, 32]
-upper = [0.2, 0.2]
-[time]
-end = 1e9
-dt = 1e-3
-adaptive = false
-max_steps = 1000
-[physics]
-gravity = [0.0, -9.81]
-[air]
-density = 1.0
-viscosity = 1e-5
-[soil]
-density = 2650.0
-viscosity = 1e3
-[mixture]
-density = "linear"
-viscosity = "linear"
-[[initial.soil]]
-shape = "box"
-lower = [-1.0, -1.0]
-upper = [1.0, 0.1025]
-[boundary]
-west = { type = "wall" }
-east = { type = "@EAST@" }
-south = { type = "wall" }
-north = { type = "atmosphere" }
-[solver.momentum]
-pc_type = "hypre"
-[output]
-progress_seconds = 0
-)";
-  text.replace(text.find("@EAST@"), 6, east_boundary);
-  const CaseConfig config = parse_case(text);
+  const CaseConfig config =
+      parse_case(test::resting_layer_case, {"boundary.east={type = \"" + east_boundary + "\"}"});
   Simulation sim(PETSC_COMM_WORLD, config, "");
   Vec p0;
   VecDuplicate(sim.flow().pressure().global(), &p0);

@@ -35,6 +35,43 @@ inline std::vector<std::string> with_bui2008_projection(std::vector<std::string>
   return overrides;
 }
 
+// A heavy, very viscous layer 0.1025 m deep at rest under air in a 0.2 m square box (walls but the
+// open top), 32 x 32 cells, 1000 fixed steps of 1 ms: its surface cuts a row of cells at c = 0.4.
+inline constexpr const char* resting_layer_case = R"(
+[mesh]
+cells = [32, 32]
+upper = [0.2, 0.2]
+[time]
+end = 1e9
+dt = 1e-3
+adaptive = false
+max_steps = 1000
+[physics]
+gravity = [0.0, -9.81]
+[air]
+density = 1.0
+viscosity = 1e-5
+[soil]
+density = 2650.0
+viscosity = 1e3
+[mixture]
+density = "linear"
+viscosity = "linear"
+[[initial.soil]]
+shape = "box"
+lower = [-1.0, -1.0]
+upper = [1.0, 0.1025]
+[boundary]
+west = { type = "wall" }
+east = { type = "wall" }
+south = { type = "wall" }
+north = { type = "atmosphere" }
+[solver.momentum]
+pc_type = "hypre"
+[output]
+progress_seconds = 0
+)";
+
 // A water drop 4 cm across falling from rest through air in a 0.2 x 0.3 m tank open at the top, under
 // the coupled solve (so the conservative momentum transport), 40 x 60 cells to t = 0.12 s.
 inline constexpr const char* falling_drop_case = R"(
