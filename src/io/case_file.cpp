@@ -124,6 +124,18 @@ rheology::RheologyParameters read_rheology(TableReader r, double soil_density) {
   p.regularisation = read_enum(r, "regularisation", p.regularisation, parse_regularisation, regularisation_names);
   p.matsuoka_nakai_fit =
       read_enum(r, "matsuoka_nakai_fit", p.matsuoka_nakai_fit, parse_matsuoka_nakai_fit, matsuoka_nakai_fit_names);
+  // Constants the chosen model, friction or regularisation does not read are refused, naming what
+  // reads them: a case that sets mu_2 under a constant friction would otherwise run without it.
+  auto only_with = [&](std::initializer_list<std::string_view> keys, bool applies, std::string_view what) {
+    if (applies) return;
+    for (auto k : keys)
+      if (r.has(k)) throw CaseError(fmt::format("{}: used only with {}; this case does not use it", r.key_path(k), what));
+  };
+  const bool exponential = p.regularisation == Regularisation::exponential;
+  only_with({"m", "mu_min"}, exponential, "regularisation = \"exponential\" (the default)");
+  only_with({"nu_min", "nu_max"}, !exponential, "regularisation = \"clip\"");
+  only_with({"grain_diameter", "mu_s", "mu_2", "I_0"}, p.friction == FrictionSource::mu_of_I, "friction = \"mu_of_I\"");
+  only_with({"matsuoka_nakai_fit"}, p.model == Model::matsuoka_nakai, "model = \"matsuoka_nakai\"");
   p.friction_angle_deg = r.number("friction_angle", p.friction_angle_deg);
   p.cohesion = r.number("cohesion", p.cohesion);
   p.regularisation_time = r.number("m", p.regularisation_time);

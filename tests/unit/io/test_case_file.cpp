@@ -152,6 +152,37 @@ TEST(CaseFile, RheologyParametersAreValidated) {
                                          "soil.yield_pressure=face", "soil.face_fraction=face"}));
 }
 
+// A rheology constant that the chosen model, friction or regularisation does not read is refused,
+// naming the key and what reads it; the same key is accepted where it is read.
+TEST(CaseFile, RheologyConstantsTheModelDoesNotReadAreRefused) {
+  const std::vector<std::string> valid{"soil.rheology.friction_angle=30"};
+  auto with = [&](std::initializer_list<std::string> extra) {
+    std::vector<std::string> o = valid;
+    o.insert(o.end(), extra);
+    return o;
+  };
+  struct Refused {
+    std::string set, key, reader;
+  };
+  for (const Refused& r : {Refused{"soil.rheology.mu_2=0.6", "soil.rheology.mu_2", "friction = \"mu_of_I\""},
+                           Refused{"soil.rheology.grain_diameter=1e-3", "soil.rheology.grain_diameter", "mu_of_I"},
+                           Refused{"soil.rheology.nu_max=1", "soil.rheology.nu_max", "regularisation = \"clip\""},
+                           Refused{"soil.rheology.matsuoka_nakai_fit=triaxial", "soil.rheology.matsuoka_nakai_fit",
+                                   "model = \"matsuoka_nakai\""}}) {
+    const std::string e = error_of(two_phase, with({r.set}));
+    EXPECT_NE(e.find(r.key + ": used only with"), std::string::npos) << r.set << ": " << e;
+    EXPECT_NE(e.find(r.reader), std::string::npos) << r.set << ": " << e;
+  }
+  const std::string clip = error_of(two_phase, with({"soil.rheology.regularisation=clip", "soil.rheology.mu_min=1e-3"}));
+  EXPECT_NE(clip.find("soil.rheology.mu_min: used only with regularisation = \"exponential\""), std::string::npos) << clip;
+  EXPECT_NO_THROW(parse_case(two_phase, with({"soil.rheology.model=drucker_prager", "soil.rheology.friction=mu_of_I",
+                                              "soil.rheology.mu_2=0.6", "soil.rheology.grain_diameter=1e-3"})));
+  EXPECT_NO_THROW(parse_case(two_phase, with({"soil.rheology.regularisation=clip", "soil.rheology.nu_max=1"})));
+  EXPECT_NO_THROW(parse_case(two_phase, with({"soil.rheology.model=matsuoka_nakai",
+                                              "soil.rheology.matsuoka_nakai_fit=triaxial"})));
+  EXPECT_NO_THROW(parse_case(two_phase, with({"soil.rheology.m=1e4", "soil.rheology.mu_min=1e-2"})));
+}
+
 // The message states the rule that was broken.
 TEST(CaseFile, MessagesStateTheRuleBroken) {
   EXPECT_NE(error_of(minimal, {"mesh.upper=[1.0, nan]"}).find("finite"), std::string::npos);
