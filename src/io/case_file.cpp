@@ -135,6 +135,8 @@ rheology::RheologyParameters read_rheology(TableReader r, double soil_density) {
   only_with({"m", "mu_min"}, exponential, "regularisation = \"exponential\" (the default)");
   only_with({"nu_min", "nu_max"}, !exponential, "regularisation = \"clip\"");
   only_with({"grain_diameter", "mu_s", "mu_2", "I_0"}, p.friction == FrictionSource::mu_of_I, "friction = \"mu_of_I\"");
+  only_with({"friction_angle"}, p.friction == FrictionSource::constant,
+            "friction = \"constant\" (the default; under mu_of_I, mu_s, mu_2 and I_0 give the friction)");
   only_with({"matsuoka_nakai_fit"}, p.model == Model::matsuoka_nakai, "model = \"matsuoka_nakai\"");
   p.friction_angle_deg = r.number("friction_angle", p.friction_angle_deg);
   p.cohesion = r.number("cohesion", p.cohesion);

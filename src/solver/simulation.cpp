@@ -527,6 +527,10 @@ std::string Simulation::physics() const {
   text += fmt::format("; air {:.9g} kg/m^3, {:.9g} Pa s; soil {:.9g} kg/m^3", s.air_density, s.air_viscosity, s.soil_density);
   if (!s.rheology) return text + fmt::format(", {:.9g} Pa s", s.soil_viscosity);
   const auto& r = *s.rheology;
+  if (r.friction == rheology::FrictionSource::mu_of_I)
+    return text + fmt::format(", {} with mu(I) friction, mu_s {:.9g}, mu_2 {:.9g}, I_0 {:.9g}, d {:.9g} m",
+                              rheology::to_string(r.model), r.static_friction, r.limiting_friction,
+                              r.reference_inertial_number, r.grain_diameter);
   return text + fmt::format(", {} with {} friction, phi {:.9g} deg, cohesion {:.9g} Pa", rheology::to_string(r.model),
                             rheology::to_string(r.friction), r.friction_angle_deg, r.cohesion);
 }

@@ -167,6 +167,8 @@ TEST(CaseFile, RheologyConstantsTheModelDoesNotReadAreRefused) {
   for (const Refused& r : {Refused{"soil.rheology.mu_2=0.6", "soil.rheology.mu_2", "friction = \"mu_of_I\""},
                            Refused{"soil.rheology.grain_diameter=1e-3", "soil.rheology.grain_diameter", "mu_of_I"},
                            Refused{"soil.rheology.nu_max=1", "soil.rheology.nu_max", "regularisation = \"clip\""},
+                           Refused{"soil.rheology.friction=mu_of_I", "soil.rheology.friction_angle",
+                                   "friction = \"constant\""},
                            Refused{"soil.rheology.matsuoka_nakai_fit=triaxial", "soil.rheology.matsuoka_nakai_fit",
                                    "model = \"matsuoka_nakai\""}}) {
     const std::string e = error_of(two_phase, with({r.set}));
@@ -175,8 +177,8 @@ TEST(CaseFile, RheologyConstantsTheModelDoesNotReadAreRefused) {
   }
   const std::string clip = error_of(two_phase, with({"soil.rheology.regularisation=clip", "soil.rheology.mu_min=1e-3"}));
   EXPECT_NE(clip.find("soil.rheology.mu_min: used only with regularisation = \"exponential\""), std::string::npos) << clip;
-  EXPECT_NO_THROW(parse_case(two_phase, with({"soil.rheology.model=drucker_prager", "soil.rheology.friction=mu_of_I",
-                                              "soil.rheology.mu_2=0.6", "soil.rheology.grain_diameter=1e-3"})));
+  EXPECT_NO_THROW(parse_case(two_phase, {"soil.rheology={model = \"drucker_prager\", friction = \"mu_of_I\", "
+                                         "mu_2 = 0.6, grain_diameter = 1e-3}"}));
   EXPECT_NO_THROW(parse_case(two_phase, with({"soil.rheology.regularisation=clip", "soil.rheology.nu_max=1"})));
   EXPECT_NO_THROW(parse_case(two_phase, with({"soil.rheology.model=matsuoka_nakai",
                                               "soil.rheology.matsuoka_nakai_fit=triaxial"})));
