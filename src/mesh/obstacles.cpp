@@ -63,19 +63,25 @@ void mirror_into_blocked(const Grid& g, const double* const* mask, double** a, d
     value = sign * (open(im, jm) ? a[jm][im] : a[jw][iw]);
     return true;
   };
-  // The nearest wall along an axis; on a tie (a wall on either side) the high side's.
+  // The nearest wall along an axis, as its depth (0: none within reach); on a tie (a wall on either
+  // side) the high side's.
   auto nearest = [&](int i, int j, int di, int dj, double& value) {
     for (int depth = 1; depth <= gw; ++depth)
-      if (mirror(i, j, di, dj, depth, value) || mirror(i, j, -di, -dj, depth, value)) return true;
-    return false;
+      if (mirror(i, j, di, dj, depth, value) || mirror(i, j, -di, -dj, depth, value)) return depth;
+    return 0;
   };
-  for (int pass = 0; pass < 2; ++pass)
-    for (int j = j_lo; j < j_hi; ++j)
-      for (int i = i_lo; i < i_hi; ++i) {
-        if (!is_blocked(mask, i, j)) continue;
-        double value;
-        if (nearest(i, j, pass == 0 ? 1 : 0, pass == 0 ? 0 : 1, value)) a[j][i] = value;
-      }
+  // Each blocked cell mirrors across its nearest wall: it is the ghost of the open cell that wall
+  // faces. A cell as near to a wall along x as along y (an obstacle's corner) takes y's, as the
+  // domain's corner ghosts do; a cell nearer to a wall along x keeps x's, as the domain's ghosts
+  // behind its west and east sides do.
+  for (int j = j_lo; j < j_hi; ++j)
+    for (int i = i_lo; i < i_hi; ++i) {
+      if (!is_blocked(mask, i, j)) continue;
+      double along_x = 0.0, along_y = 0.0;
+      const int depth_x = nearest(i, j, 1, 0, along_x), depth_y = nearest(i, j, 0, 1, along_y);
+      if (depth_y > 0 && (depth_x == 0 || depth_y <= depth_x)) a[j][i] = along_y;
+      else if (depth_x > 0) a[j][i] = along_x;
+    }
 }
 
 }  // namespace granflow

@@ -42,8 +42,9 @@ void zero_blocked_cells(const Grid& g, const Field* mask, Field& f);
 // Fills the blocked cells of the local array `a` as ghosts of the walls they form: a blocked cell k
 // cells behind its nearest wall takes sign times the open cell k - 1 cells in front of it (sign -1:
 // a no-slip velocity, +1: a scalar of zero normal gradient), as the domain's ghosts do, for k up to
-// the ghost width. Along x first, then along y, which overrides, as the domain's corner ghosts are
-// filled. Open cells are those inside the domain; cells without an open cell within reach are left
+// the ghost width. Its nearest wall along either axis; where the walls along x and y are as near (an
+// obstacle's corner), the one along y, as the domain's corner ghosts are filled. Open cells are those
+// inside the domain; cells without an open cell within reach are left
 // as they are. A blocked cell with walls on both sides along one axis (an obstacle one cell thick)
 // cannot mirror both; lay_out_obstacles refuses such cells.
 void mirror_into_blocked(const Grid& g, const double* const* mask, double** a, double sign);

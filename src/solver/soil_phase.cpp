@@ -443,7 +443,6 @@ void SoilPhase::transport_displacement(const FlowSolver& flow, double dt) {
   const double h = dt / sweeps;
   const BlockedView mask(grid_, blocked_);
   for (int sweep = 0; sweep < sweeps; ++sweep) {
-    fill_displacement_ghosts();
     for (int a = 0; a < 2; ++a) {
       ConstFieldArray d(grid_.field_dm(), disp_[a]->local());
       FieldArray dn(grid_.field_dm(), disp_new_[a]->global());
@@ -459,11 +458,13 @@ void SoilPhase::transport_displacement(const FlowSolver& flow, double dt) {
         }
     }
     for (int a = 0; a < 2; ++a) VecCopy(disp_new_[a]->global(), disp_[a]->global());
+    // Every change of the displacement ends with its ghosts filled, as c's does: the next sweep reads
+    // them, and a step's snapshot and a checkpoint copy the local vectors.
+    fill_displacement_ghosts();
   }
 }
 
 void SoilPhase::compute_diagnostics(const FlowSolver& flow) {
-  fill_displacement_ghosts();
   const auto& b = grid_.owned();
   ConstFieldArray dx(grid_.field_dm(), disp_[0]->local()), dy(grid_.field_dm(), disp_[1]->local());
   ConstFieldArray u = local_read(grid_, flow.velocity(0)), v = local_read(grid_, flow.velocity(1));

@@ -1,0 +1,53 @@
+// The ghost values an obstacle's blocked cells hold (mirror_into_blocked): each the mirror across its
+// nearest wall, as the domain's ghosts are, so that an open cell reads behind every wall face the
+// ghost of that face.
+#include <gtest/gtest.h>
+
+#include "mesh/field.hpp"
+#include "mesh/grid.hpp"
+#include "mesh/obstacles.hpp"
+
+namespace granflow {
+namespace {
+
+// A barrier of columns 4-6 and rows 0-4 on 12 x 10 cells, on the floor; every cell holds
+// 100 i + j, mirrored as a velocity (sign -1).
+TEST(ObstacleMirrors, EachBlockedCellMirrorsAcrossItsNearestWall) {
+  GridSpec spec;
+  spec.cells = {12, 10};
+  const Grid g(PETSC_COMM_SELF, spec);
+  Field mask(g), value(g);
+  {
+    FieldArray m(g.field_dm(), mask.global()), a(g.field_dm(), value.global());
+    for (int j = 0; j < 10; ++j)
+      for (int i = 0; i < 12; ++i) {
+        m[j][i] = i >= 4 && i <= 6 && j <= 4 ? 1.0 : 0.0;
+        a[j][i] = 100.0 * i + j;
+      }
+  }
+  mask.scatter_to_local();
+  value.scatter_to_local();
+  {
+    FieldArray a(g.field_dm(), value.local());
+    mirror_into_blocked(g, BlockedView(g, &mask).data(), a.data(), -1.0);
+  }
+  ConstFieldArray a(g.field_dm(), value.local());
+  auto cell = [](int i, int j) { return 100.0 * i + j; };
+  // Behind the east and west faces, one row below the top: the wall along x is one cell away, the
+  // top two. The open cells beside them read their own mirror (before, the top's: -(100 i + 7)).
+  EXPECT_EQ(a[3][6], -cell(7, 3));
+  EXPECT_EQ(a[3][4], -cell(3, 3));
+  // Under the top, between the sides: the top is nearer.
+  EXPECT_EQ(a[4][5], -cell(5, 5));
+  // The top corners, a wall as near along either axis: the top's, as at the domain's corners.
+  EXPECT_EQ(a[4][6], -cell(6, 5));
+  EXPECT_EQ(a[4][4], -cell(4, 5));
+  // Two cells behind the top and two behind either side: the top's, mirroring the second cell above.
+  EXPECT_EQ(a[3][5], -cell(5, 6));
+  // On the floor, two cells behind either side and far below the top: the high side's, the second
+  // cell beyond it.
+  EXPECT_EQ(a[0][5], -cell(8, 0));
+}
+
+}  // namespace
+}  // namespace granflow
