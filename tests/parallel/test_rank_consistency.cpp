@@ -107,6 +107,18 @@ TEST(RankConsistency, CollapseAgainstABarrierOneAndTwoRanksAgree) {
                           1e-9);
 }
 
+// The same across the other axis: the mesh is taller than wide, so the ranks split it across y (rows
+// 0-14 and 15-29, at y = 0.15 m), and the barrier's top row (15) lies on the upper rank, the rows
+// below it on the lower. The blocked cells behind its sides and under its top, mirrored on each rank
+// from its own cells and ghosts, must be the same ghosts of the same walls on both.
+TEST(RankConsistency, CollapseAgainstABarrierSplitAcrossItsTopOneAndTwoRanksAgree) {
+  expect_rank_independent("cases/barrier_collapse.toml",
+                          {"mesh.cells=[20,30]", "mesh.upper=[0.3,0.3]", "time.end=0.3",
+                           "output.progress_seconds=0",
+                           "obstacle=[{shape = \"box\", lower = [0.22, 0.0], upper = [0.25, 0.16]}]"},
+                          1e-9);
+}
+
 // A water drop falling through the ranks' boundary under the coupled solve and the conservative
 // momentum transport: the mesh is taller than wide, so the two ranks split it across y (rows 0-14 and
 // 15-29, at y = 0.15 m), and the face mass fluxes of the rows on either side of that boundary, which
