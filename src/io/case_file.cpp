@@ -27,7 +27,14 @@ void apply_override(toml::table& root, const std::string& assignment) {
   for (char ch : assignment.substr(0, eq))
     if (ch != ' ' && ch != '\t') key += ch;
   if (key.empty()) throw CaseError(fmt::format("--set '{}': expected KEY=VALUE", assignment));
+  if (key.find_first_of("[]") != std::string::npos)
+    throw CaseError(fmt::format("--set '{}': an element of an array of tables cannot be set alone; set the whole "
+                                "array, e.g. --set 'initial.soil=[{{shape = \"box\", lower = [0, 0], upper = [0.2, 0.1]}}]'",
+                                assignment));
   const std::string value = assignment.substr(eq + 1);
+  if (value.find_first_of("\n\r") != std::string::npos)
+    throw CaseError(fmt::format("--set '{}': the value runs over more than one line; give one KEY=VALUE per --set",
+                                assignment));
   toml::table parsed;
   try {
     parsed = toml::parse("v = " + value);
@@ -70,7 +77,6 @@ LinearSolverSettings read_linear_solver(TableReader r, LinearSolverSettings d) {
 
 // two_phase_keys: collects the keys given that only a case with soil uses.
 BoundaryCondition read_boundary(TableReader r, bool& is_axis, std::vector<std::string>& two_phase_keys) {
-  if (!r.present()) throw CaseError(fmt::format("{}: missing (every side needs a boundary type)", r.path()));
   BoundaryCondition bc;
   const std::string type = r.choice("type", "", {"wall", "slip", "symmetry", "atmosphere", "axis"});
   is_axis = type == "axis";
@@ -186,7 +192,7 @@ SoilSettings read_soil(TableReader& top) {
   SoilSettings s;
   {
     TableReader a = top.table("air");
-    if (!a.present()) throw CaseError("air: missing table [air] (density and viscosity of the light phase)");
+    if (!a.present()) throw CaseError("air: missing table [air] (density and viscosity of the light phase)" + top.misspelling_of("air"));
     s.air_density = a.required_number("density");
     a.require_range("density", s.air_density, 1e-300, inf, "positive");
     s.air_viscosity = a.required_number("viscosity");
@@ -228,9 +234,9 @@ SoilSettings read_soil(TableReader& top) {
   }
   {
     TableReader init = top.table("initial");
-    if (!init.present()) throw CaseError("initial: missing table [[initial.soil]] (where the soil starts)");
+    if (!init.present()) throw CaseError("initial: missing table [[initial.soil]] (where the soil starts)" + top.misspelling_of("initial"));
     for (TableReader shape : init.tables("soil")) s.initial_soil.push_back(read_shape(shape));
-    if (s.initial_soil.empty()) throw CaseError("initial.soil: at least one shape is required");
+    if (s.initial_soil.empty()) throw CaseError("initial.soil: at least one shape is required" + init.misspelling_of("soil"));
     init.finish();
   }
   return s;
@@ -246,7 +252,7 @@ CaseConfig read_case(const toml::table& root, const std::filesystem::path& sourc
 
   {
     TableReader m = top.table("mesh");
-    if (!m.present()) throw CaseError("mesh: missing table [mesh]");
+    if (!m.present()) throw CaseError("mesh: missing table [mesh]" + top.misspelling_of("mesh"));
     auto cells = m.numbers("cells", {}, 2);
     if (cells.size() != 2) throw CaseError("mesh.cells: expected two integers [nx, ny]");
     for (double n : cells) {
@@ -275,7 +281,7 @@ CaseConfig read_case(const toml::table& root, const std::filesystem::path& sourc
   }
   {
     TableReader t = top.table("time");
-    if (!t.present()) throw CaseError("time: missing table [time]");
+    if (!t.present()) throw CaseError("time: missing table [time]" + top.misspelling_of("time"));
     c.time.end = t.required_number("end");
     // A step far below a nanosecond makes the inertia rho V / dt swamp every other coefficient of the
     // momentum rows, and V / a_P of the pressure rows underflows: the solve would fail, not the case.
@@ -313,7 +319,9 @@ CaseConfig read_case(const toml::table& root, const std::filesystem::path& sourc
     if (top.has("fluid")) throw CaseError("fluid: a two-phase case ([soil] and [air]) takes no [fluid] table");
   } else {
     TableReader f = top.table("fluid");
-    if (!f.present()) throw CaseError("fluid: missing table [fluid] (density and viscosity), or [soil] and [air]");
+    if (!f.present())
+      throw CaseError("fluid: missing table [fluid] (density and viscosity), or [soil] and [air]" +
+                      top.misspelling_of("fluid") + top.misspelling_of("soil"));
     c.fluid.density = f.required_number("density");
     f.require_range("density", c.fluid.density, 1e-300, inf, "positive");
     c.fluid.viscosity = f.required_number("viscosity");
@@ -322,10 +330,16 @@ CaseConfig read_case(const toml::table& root, const std::filesystem::path& sourc
   }
   {
     TableReader b = top.table("boundary");
-    if (!b.present()) throw CaseError("boundary: missing table [boundary] (west, east, south, north)");
+    if (!b.present()) throw CaseError("boundary: missing table [boundary] (west, east, south, north)" + top.misspelling_of("boundary"));
+    std::vector<TableReader> sides;  // all four read first: a side missing is then not taken for another misspelt
+    for (Side s : all_sides) sides.push_back(b.table(side_name(s)));
     for (Side s : all_sides) {
       bool is_axis = false;
-      c.flow.boundaries[int(s)] = read_boundary(b.table(side_name(s)), is_axis, two_phase_keys);
+      TableReader& side = sides[int(s)];
+      if (!side.present())
+        throw CaseError(fmt::format("{}: missing (every side needs a boundary type){}", side.path(),
+                                    b.misspelling_of(side_name(s))));
+      c.flow.boundaries[int(s)] = read_boundary(side, is_axis, two_phase_keys);
       if (is_axis && !(s == Side::west && c.mesh.axisymmetric && c.mesh.lower[0] == 0.0))
         throw CaseError(fmt::format("boundary.{}.type: \"axis\" is the west side at r = 0 of an axisymmetric mesh "
                                     "(mesh.geometry = \"axisymmetric\", mesh.lower[0] = 0)", side_name(s)));
@@ -479,7 +493,7 @@ CaseConfig read_case(const toml::table& root, const std::filesystem::path& sourc
     if (c.flow.numerics.pressure_coupling != PressureCoupling::coupled)
       throw CaseError("obstacle: needs numerics.pressure_coupling = \"coupled\" (the projection and PISO do not "
                       "know blocked cells)");
-    if (c.mesh.axisymmetric) throw CaseError("obstacle: planar meshes only (mesh.axisymmetric = true)");
+    if (c.mesh.axisymmetric) throw CaseError("obstacle: planar meshes only (this case has mesh.geometry = \"axisymmetric\")");
   }
   if (c.flow.numerics.air_band > 0) {
     // The air beyond the band is held at rest under the pressure of the air column above it.

@@ -2,7 +2,9 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
+#include <vector>
 
 #include "io/case_error.hpp"
 
@@ -24,6 +26,34 @@ void TableReader::type_error(std::string_view key, const char* expected) const {
   throw CaseError(fmt::format("{}: expected {}", key_path(key), expected));
 }
 
+void TableReader::missing(std::string_view key, std::string_view what) const {
+  throw CaseError(fmt::format("{}: missing ({}){}", key_path(key), what, misspelling_of(key)));
+}
+
+namespace {
+// Edits (insertions, deletions, substitutions, swaps of neighbours) that turn a into b.
+size_t edit_distance(std::string_view a, std::string_view b) {
+  std::vector<std::vector<size_t>> d(a.size() + 1, std::vector<size_t>(b.size() + 1));
+  for (size_t i = 0; i <= a.size(); ++i) d[i][0] = i;
+  for (size_t j = 0; j <= b.size(); ++j) d[0][j] = j;
+  for (size_t i = 1; i <= a.size(); ++i)
+    for (size_t j = 1; j <= b.size(); ++j) {
+      d[i][j] = std::min({d[i - 1][j] + 1, d[i][j - 1] + 1, d[i - 1][j - 1] + (a[i - 1] == b[j - 1] ? 0 : 1)});
+      if (i > 1 && j > 1 && a[i - 1] == b[j - 2] && a[i - 2] == b[j - 1]) d[i][j] = std::min(d[i][j], d[i - 2][j - 2] + 1);
+    }
+  return d[a.size()][b.size()];
+}
+}  // namespace
+
+std::string TableReader::misspelling_of(std::string_view key) const {
+  if (!table_) return {};
+  const size_t most = key.size() < 4 ? 1 : 2;
+  for (const auto& [k, v] : *table_)
+    if (!used_.count(k.str()) && edit_distance(k.str(), key) <= most)
+      return fmt::format("; {} is not a key: {} misspelt?", key_path(k.str()), key);
+  return {};
+}
+
 std::optional<double> TableReader::optional_number(std::string_view key) {
   const toml::node* n = get(key);
   if (!n) return std::nullopt;
@@ -40,7 +70,7 @@ double TableReader::number(std::string_view key, double fallback) {
 
 double TableReader::required_number(std::string_view key) {
   auto v = optional_number(key);
-  if (!v) throw CaseError(fmt::format("{}: missing (a number is required)", key_path(key)));
+  if (!v) missing(key, "a number is required");
   return *v;
 }
 
@@ -73,7 +103,7 @@ std::string TableReader::string(std::string_view key, std::string fallback) {
 }
 
 std::string TableReader::required_string(std::string_view key) {
-  if (!has(key)) throw CaseError(fmt::format("{}: missing (a string is required)", key_path(key)));
+  if (!has(key)) missing(key, "a string is required");
   return string(key, {});
 }
 
@@ -84,7 +114,7 @@ std::string TableReader::choice(std::string_view key, std::string fallback,
     if (v == a) return v;
   std::string list;
   for (auto a : allowed) list += (list.empty() ? "" : ", ") + std::string(a);
-  if (!has(key)) throw CaseError(fmt::format("{}: missing (one of: {})", key_path(key), list));
+  if (!has(key)) missing(key, "one of: " + list);
   throw CaseError(fmt::format("{}: '{}' is not one of: {}", key_path(key), v, list));
 }
 
@@ -115,13 +145,13 @@ std::array<double, 2> TableReader::pair(std::string_view key, std::array<double,
 }
 
 std::array<double, 2> TableReader::required_pair(std::string_view key) {
-  if (!has(key)) throw CaseError(fmt::format("{}: missing (two numbers [x, y] are required)", key_path(key)));
+  if (!has(key)) missing(key, "two numbers [x, y] are required");
   return pair(key, {});
 }
 
 std::vector<std::array<double, 2>> TableReader::pairs(std::string_view key, size_t min_size) {
   const toml::node* n = get(key);
-  if (!n) throw CaseError(fmt::format("{}: missing (a list of [x, y] points is required)", key_path(key)));
+  if (!n) missing(key, "a list of [x, y] points is required");
   const toml::array* arr = n->as_array();
   if (!arr) type_error(key, "a list of [x, y] points");
   std::vector<std::array<double, 2>> out;

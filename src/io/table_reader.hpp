@@ -47,12 +47,18 @@ class TableReader {
   // Throws CaseError naming the first key present in the table that nobody read.
   void finish() const;
 
+  // For a message that `key` is missing: where the table holds a key nobody has read that is `key`
+  // misspelt (one or two letters off, or two swapped), "; 'KEY2' here is not a key: KEY misspelt?",
+  // else empty. A required key missing is then reported as the misspelling it is.
+  std::string misspelling_of(std::string_view key) const;
+
   // Checks that value lies in [lo, hi] (use +-inf for open ends); throws naming the key.
   void require_range(std::string_view key, double value, double lo, double hi, const char* what = nullptr) const;
 
  private:
   const toml::node* get(std::string_view key);
   [[noreturn]] void type_error(std::string_view key, const char* expected) const;
+  [[noreturn]] void missing(std::string_view key, std::string_view what) const;
 
   const toml::table* table_;
   std::string path_;

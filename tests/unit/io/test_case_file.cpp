@@ -294,6 +294,44 @@ TEST(CaseFile, PolygonsMayCloseTheirOutlineButNotCrossIt) {
   EXPECT_NE(degenerate.find("3 distinct points"), std::string::npos) << degenerate;
 }
 
+// A required key or table that is missing because it is misspelt is reported as the misspelling: the
+// key that stands in its place, a letter or two off or with two letters swapped, is named too.
+TEST(CaseFile, MissingKeyNamesItsMisspelling) {
+  auto replaced = [](std::string text, const std::string& from, const std::string& to) {
+    text.replace(text.find(from), from.size(), to);
+    return text;
+  };
+  const std::string side = error_of(replaced(minimal, "west =", "wset ="));
+  EXPECT_NE(side.find("boundary.west: missing"), std::string::npos) << side;
+  EXPECT_NE(side.find("boundary.wset is not a key: west misspelt?"), std::string::npos) << side;
+  const std::string table = error_of(replaced(minimal, "[mesh]", "[mseh]"));
+  EXPECT_NE(table.find("mesh: missing table [mesh]; mseh is not a key: mesh misspelt?"), std::string::npos) << table;
+  const std::string number = error_of(replaced(minimal, "end = 1.0", "edn = 1.0"));
+  EXPECT_NE(number.find("time.end: missing"), std::string::npos) << number;
+  EXPECT_NE(number.find("time.edn is not a key"), std::string::npos) << number;
+  const std::string shapes =
+      error_of(replaced(two_phase, "[[initial.soil]]", "[[initial.soils]]"), {"soil.rheology.friction_angle=30"});
+  EXPECT_NE(shapes.find("initial.soils is not a key: soil misspelt?"), std::string::npos) << shapes;
+  // A side missing is not taken for another side, valid but read later (east is one edit from west).
+  std::string no_west = minimal;
+  no_west.erase(no_west.find("west ="), std::string("west = { type = \"wall\" }\n").size());
+  const std::string absent = error_of(no_west);
+  EXPECT_NE(absent.find("boundary.west: missing"), std::string::npos) << absent;
+  EXPECT_EQ(absent.find("misspelt"), std::string::npos) << absent;
+  // Far from every missing key: no guess.
+  const std::string unrelated = error_of(replaced(minimal, "end = 1.0", "duration = 1.0"));
+  EXPECT_EQ(unrelated.find("misspelt"), std::string::npos) << unrelated;
+}
+
+// --set takes one key and one value: an element of an array of tables is not addressable, and a value
+// over several lines (which TOML would read as more keys, silently dropped) is refused.
+TEST(CaseFile, SetRefusesArrayElementsAndValuesOverSeveralLines) {
+  const std::string element = error_of(two_phase, {"soil.rheology.friction_angle=30", "initial.soil[0].upper=[0.3, 0.1]"});
+  EXPECT_NE(element.find("an element of an array of tables cannot be set alone"), std::string::npos) << element;
+  const std::string lines = error_of(minimal, {"time.end=0.02\nmesh.cells=[1, 1]"});
+  EXPECT_NE(lines.find("more than one line"), std::string::npos) << lines;
+}
+
 TEST(CaseFile, ShippedCasesAreValid) {
   for (const char* name : {"lid_driven_cavity_re100", "lid_driven_cavity_re1000", "bui2008_experiment"})
     EXPECT_NO_THROW(load_case(std::string(GRANFLOW_SOURCE_DIR) + "/cases/" + name + ".toml")) << name;
@@ -329,6 +367,7 @@ TEST(CaseFile, ObstaclesTakeShapesAndNeedTheCoupledPlanarSolve) {
   const std::string misspelt = error_of(two_phase, with({"obstacle=[{shape = \"box\", lower = [0.6, 0.0], uper = [1.0, 0.2]}]"}));
   EXPECT_NE(misspelt.find("obstacle"), std::string::npos) << misspelt;
   EXPECT_NE(misspelt.find("obstacle[0].upper"), std::string::npos) << misspelt;
+  EXPECT_NE(misspelt.find("obstacle[0].uper is not a key"), std::string::npos) << misspelt;
   const std::string axisymmetric = error_of(
       two_phase, with({step, "mesh.geometry=axisymmetric", "boundary.west={type = \"axis\"}"}));
   EXPECT_NE(axisymmetric.find("obstacle"), std::string::npos) << axisymmetric;
