@@ -65,19 +65,15 @@ int run_case(const std::string& case_file, const std::vector<std::string>& overr
   Simulation sim(PETSC_COMM_WORLD, config, out_dir);  // checks what the case file alone cannot
   // Only now, with the case found good, every file of the earlier run goes: its checkpoint above all
   // (a later --restart would continue that run), and its later outputs, which the new run might not
-  // write again.
-  if (overwrite && !restart) {
-    std::string problem;
-    if (rank == 0)
-      for (const auto& file : earlier) {
-        std::error_code ec;
-        std::filesystem::remove_all(file, ec);
-        if (ec) {
-          problem = fmt::format("--overwrite: cannot remove {}: {}", file.string(), ec.message());
-          break;
-        }
-      }
-    if (auto text = first_failure(PETSC_COMM_WORLD, problem); !text.empty()) throw CaseError(text);
+  // write again. They are set aside until the new run has taken its first step, and put back if it
+  // fails before (run_directory.hpp).
+  const bool replacing = overwrite && !restart && !earlier.empty();
+  if (replacing) {
+    const std::string problem = rank == 0 ? set_aside_run(out_dir, earlier) : std::string();
+    if (auto text = first_failure(PETSC_COMM_WORLD, problem); !text.empty()) {
+      if (rank == 0) restore_set_aside_run(out_dir, config.output.lines);
+      throw CaseError(text);
+    }
   }
   if (restart) sim.restart();
   if (rank == 0)
@@ -87,7 +83,19 @@ int run_case(const std::string& case_file, const std::vector<std::string>& overr
   if (rank == 0)
     for (const auto& line : case_advice(config)) fmt::print(stderr, "warning: {}\n", line);
   std::fflush(stdout);  // the banner is there even if the run is killed (stdout is buffered into a file)
-  const RunSummary s = sim.run();
+  bool under_way = !replacing;
+  RunSummary s;
+  try {
+    s = sim.run([&](Simulation&, double) {
+      if (under_way) return;
+      under_way = true;
+      if (rank == 0) discard_set_aside_run(out_dir);
+    });
+  } catch (...) {
+    if (!under_way && rank == 0) restore_set_aside_run(out_dir, config.output.lines);
+    throw;
+  }
+  if (!under_way && rank == 0) discard_set_aside_run(out_dir);  // a run of no step (already at time.end)
   if (rank == 0) {
     fmt::print("done: t = {:.6g} s in {} steps ({} taken again with a smaller step), {:.2f} s wall ({:.3g} cell-steps/s){}\n",
                s.time, s.steps, s.retried_steps, s.wall_seconds, double(sim.grid().cell_count()) * s.steps / s.wall_seconds,

@@ -66,6 +66,35 @@ std::vector<std::filesystem::path> run_files_in(const std::filesystem::path& dir
   return files;
 }
 
+std::string set_aside_run(const std::filesystem::path& dir, const std::vector<std::filesystem::path>& files) {
+  namespace fs = std::filesystem;
+  const fs::path aside = dir / set_aside_name;
+  std::error_code ec;
+  fs::remove_all(aside, ec);
+  if (!ec) fs::create_directory(aside, ec);
+  if (ec) return "--overwrite: cannot set the earlier run aside in " + aside.string() + ": " + ec.message();
+  for (const auto& file : files) {
+    fs::rename(file, aside / file.filename(), ec);
+    if (ec) return "--overwrite: cannot move " + file.string() + " aside: " + ec.message();
+  }
+  return {};
+}
+
+void discard_set_aside_run(const std::filesystem::path& dir) {
+  std::error_code ec;
+  std::filesystem::remove_all(dir / set_aside_name, ec);  // what cannot go stays, harmless, until the next set-aside
+}
+
+void restore_set_aside_run(const std::filesystem::path& dir, const std::vector<LineSample>& lines) {
+  namespace fs = std::filesystem;
+  const fs::path aside = dir / set_aside_name;
+  std::error_code ec;
+  if (!fs::is_directory(aside, ec)) return;
+  for (const auto& file : run_files_in(dir, lines)) fs::remove_all(file, ec);
+  for (const auto& entry : fs::directory_iterator(aside, ec)) fs::rename(entry.path(), dir / entry.path().filename(), ec);
+  fs::remove_all(aside, ec);
+}
+
 void record_run(const std::filesystem::path& dir, const std::vector<LineSample>& lines) {
   std::set<std::string> names = recorded_lines(dir);
   for (const auto& line : lines) names.insert(line.name);

@@ -20,6 +20,19 @@ inline constexpr const char* run_record_name = "granflow_run.txt";
 // names or `lines` (the new run's) holds. Empty if `dir` is not a directory.
 std::vector<std::filesystem::path> run_files_in(const std::filesystem::path& dir, const std::vector<LineSample>& lines);
 
+// --overwrite sets the earlier run aside until the new run has taken its first step, so that a new run
+// that fails at once (an option its solver cannot use, a value that makes the first step diverge) does
+// not cost the earlier run. The files go into dir/.replaced_run, emptied first (a set-aside left by a
+// run that was killed belongs to a run already replaced twice).
+inline constexpr const char* set_aside_name = ".replaced_run";
+// Moves `files` (the earlier run's, in `dir`) aside. Returns a message naming what failed, or "".
+std::string set_aside_run(const std::filesystem::path& dir, const std::vector<std::filesystem::path>& files);
+// The new run is under way: removes the set-aside files.
+void discard_set_aside_run(const std::filesystem::path& dir);
+// The new run failed before its first step: removes its files (those `lines` and the record name) and
+// moves the set-aside files back.
+void restore_set_aside_run(const std::filesystem::path& dir, const std::vector<LineSample>& lines);
+
 // Writes the record of `lines` into `dir`, keeping the names an earlier record there holds (a restart
 // with other line samples leaves both kinds of file). Throws std::runtime_error if it cannot write.
 void record_run(const std::filesystem::path& dir, const std::vector<LineSample>& lines);
