@@ -11,6 +11,7 @@ std::vector<std::string> case_advice(const CaseConfig& config) {
       advice.push_back(fmt::format("output.times: {} s lies past time.end = {} s and is not written", t, config.time.end));
       break;
     }
+  for (const auto& key : config.keys_without_effect) advice.push_back(key + "; this case gives it to no effect");
   if (!config.soil || !config.soil->rheology) return advice;
   // The exponential regularisation ([VoF] Eq. 12) puts the soil at rest at up to m (3 alpha_phi p + k_c),
   // some 1e8 Pa s. Only the coupled solve with the face's own soil fraction holds such a pile next to

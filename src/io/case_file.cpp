@@ -188,7 +188,8 @@ interface::Shape read_shape(TableReader r) {
   return out;
 }
 
-SoilSettings read_soil(TableReader& top) {
+// without_effect: collects the keys given that the soil's other choices make of no effect.
+SoilSettings read_soil(TableReader& top, std::vector<std::string>& without_effect) {
   SoilSettings s;
   {
     TableReader a = top.table("air");
@@ -224,6 +225,8 @@ SoilSettings read_soil(TableReader& top) {
       throw CaseError("soil.face_fraction = \"face\" needs soil.strain_rate = \"face\" (one evaluation on the face)");
     s.failure_strain = so.number("failure_strain", s.failure_strain);
     so.require_range("failure_strain", s.failure_strain, 1e-6, 10.0);
+    if (so.has("failure_strain") && !s.displacement)
+      without_effect.push_back(so.key_path("failure_strain") + ": the failure line needs soil.displacement = true");
     so.finish();
   }
   {
@@ -307,6 +310,9 @@ CaseConfig read_case(const toml::table& root, const std::filesystem::path& sourc
     t.require_range("steady_tolerance", c.time.steady_tolerance, 0.0, inf);
     c.time.max_steps = t.integer("max_steps", c.time.max_steps);
     t.require_range("max_steps", double(c.time.max_steps), 1, 1e12);
+    if (!c.time.adaptive)
+      for (const char* key : {"courant", "max_growth", "courant_region"})
+        if (t.has(key)) c.keys_without_effect.push_back(t.key_path(key) + ": time.adaptive = false takes the fixed step time.dt");
     t.finish();
   }
   {
@@ -315,7 +321,7 @@ CaseConfig read_case(const toml::table& root, const std::filesystem::path& sourc
     p.finish();
   }
   if (top.has("soil")) {
-    c.soil = read_soil(top);
+    c.soil = read_soil(top, c.keys_without_effect);
     if (top.has("fluid")) throw CaseError("fluid: a two-phase case ([soil] and [air]) takes no [fluid] table");
   } else {
     TableReader f = top.table("fluid");
@@ -391,6 +397,17 @@ CaseConfig read_case(const toml::table& root, const std::filesystem::path& sourc
       throw CaseError(fmt::format("numerics.momentum_transport: \"conservative\" needs numerics.pressure_coupling = "
                                   "\"coupled\" (it is \"{}\"); use \"advective\" with the projection and PISO",
                                   coupling));
+    auto without_effect = [&](const char* key, bool used, const char* why) {
+      if (n.has(key) && !used) c.keys_without_effect.push_back(n.key_path(key) + ": " + why);
+    };
+    without_effect("blending", conv == "blended", "used only with numerics.convection = \"blended\"");
+    without_effect("rotational_coefficient", num.pressure_coupling == PressureCoupling::projection,
+                   "used only with numerics.pressure_coupling = \"projection\"");
+    without_effect("pressure_correctors", num.pressure_coupling == PressureCoupling::piso,
+                   "used only with numerics.pressure_coupling = \"piso\"");
+    without_effect("momentum_predictor", num.pressure_coupling == PressureCoupling::piso,
+                   "used only with numerics.pressure_coupling = \"piso\" (the projection always predicts, the "
+                   "coupled solve has no predictor)");
     n.finish();
   }
   {

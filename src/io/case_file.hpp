@@ -62,6 +62,9 @@ struct CaseConfig {
   // Obstacles and terrain ([[obstacle]]): a cell whose centre lies in any of these shapes is blocked,
   // and its faces to open cells are no-slip walls (mesh/obstacles.hpp).
   std::vector<interface::Shape> obstacles;
+  // Keys the case gives that its other choices make of no effect, each "KEY: why" (a warning, not an
+  // error: a key kept for switching numerics with --set is legitimate; case_advice prints them).
+  std::vector<std::string> keys_without_effect;
 };
 
 // "key.path=value" overrides; value is parsed as TOML (number, bool, array, quoted string) and

@@ -37,6 +37,15 @@ TEST(CaseAdvice, ExponentialRegularisationUnderTheProjectionOrWithoutTheFaceFrac
   EXPECT_TRUE(case_advice(clip).empty());
 }
 
+// A key the case gives to no effect is a warning, naming the key and what would use it.
+TEST(CaseAdvice, KeysWithoutEffect) {
+  const auto bui = std::string(GRANFLOW_SOURCE_DIR) + "/cases/bui2008_experiment.toml";
+  const auto advice = case_advice(load_case(bui, {"numerics.rotational_coefficient=1.5"}));
+  ASSERT_EQ(advice.size(), 1u);
+  EXPECT_EQ(advice[0], "numerics.rotational_coefficient: used only with numerics.pressure_coupling = \"projection\"; "
+                       "this case gives it to no effect");
+}
+
 // A run shortened with --set time.end keeps its output times; those past the end are not written,
 // and the run's start says so.
 TEST(CaseAdvice, OutputTimesPastTheEnd) {

@@ -332,6 +332,24 @@ TEST(CaseFile, SetRefusesArrayElementsAndValuesOverSeveralLines) {
   EXPECT_NE(lines.find("more than one line"), std::string::npos) << lines;
 }
 
+// A key the case's other choices make of no effect is accepted (a case may keep it for switching
+// numerics with --set) and listed, for `check` and `run` to warn of.
+TEST(CaseFile, KeysWithoutEffectAreListed) {
+  EXPECT_TRUE(parse_case(minimal).keys_without_effect.empty());
+  const CaseConfig c = parse_case(minimal, {"numerics.blending=0.5", "numerics.pressure_correctors=3",
+                                            "time.adaptive=false", "time.courant=0.3"});
+  ASSERT_EQ(c.keys_without_effect.size(), 3u);
+  EXPECT_NE(c.keys_without_effect[0].find("time.courant: time.adaptive = false"), std::string::npos) << c.keys_without_effect[0];
+  EXPECT_NE(c.keys_without_effect[1].find("numerics.blending: used only with numerics.convection = \"blended\""),
+            std::string::npos) << c.keys_without_effect[1];
+  EXPECT_NE(c.keys_without_effect[2].find("numerics.pressure_correctors"), std::string::npos) << c.keys_without_effect[2];
+  EXPECT_TRUE(parse_case(minimal, {"numerics.blending=0.5", "numerics.convection=blended"}).keys_without_effect.empty());
+  const CaseConfig soil = parse_case(two_phase, {"soil.rheology.friction_angle=30", "soil.displacement=false",
+                                                 "soil.failure_strain=0.2"});
+  ASSERT_EQ(soil.keys_without_effect.size(), 1u);
+  EXPECT_NE(soil.keys_without_effect[0].find("soil.failure_strain"), std::string::npos);
+}
+
 TEST(CaseFile, ShippedCasesAreValid) {
   for (const char* name : {"lid_driven_cavity_re100", "lid_driven_cavity_re1000", "bui2008_experiment"})
     EXPECT_NO_THROW(load_case(std::string(GRANFLOW_SOURCE_DIR) + "/cases/" + name + ".toml")) << name;
