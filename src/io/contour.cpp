@@ -27,14 +27,17 @@ std::vector<Segment> iso_line(const Grid& g, const std::vector<double>& f, doubl
       }
       if (n == 2) {
         out.push_back({px[0], py[0], px[1], py[1]});
-      } else if (n == 4) {  // saddle: pair by the centre value
+      } else if (n == 4) {
+        // Saddle: corners 0 and 2 on one side, 1 and 3 on the other; crossing k lies on the edge from
+        // corner k to k + 1. The centre's side joins its diagonal: with corner 0's, the lines cut off
+        // corners 1 (edges 0 and 1) and 3 (edges 2 and 3), else corners 0 and 2.
         const double centre = 0.25 * (v[0] + v[1] + v[2] + v[3]);
         if ((centre < 0.0) == (v[0] < 0.0)) {
-          out.push_back({px[0], py[0], px[3], py[3]});
-          out.push_back({px[1], py[1], px[2], py[2]});
-        } else {
           out.push_back({px[0], py[0], px[1], py[1]});
           out.push_back({px[2], py[2], px[3], py[3]});
+        } else {
+          out.push_back({px[3], py[3], px[0], py[0]});
+          out.push_back({px[1], py[1], px[2], py[2]});
         }
       }
     }
