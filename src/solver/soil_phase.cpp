@@ -468,6 +468,7 @@ void SoilPhase::compute_diagnostics(const FlowSolver& flow) {
   const auto& b = grid_.owned();
   ConstFieldArray dx(grid_.field_dm(), disp_[0]->local()), dy(grid_.field_dm(), disp_[1]->local());
   ConstFieldArray u = local_read(grid_, flow.velocity(0)), v = local_read(grid_, flow.velocity(1));
+  ConstFieldArray p(grid_.field_dm(), flow.pressure().global());
   FieldArray en(grid_.field_dm(), strain_norm_->global()), rn(grid_.field_dm(), rate_norm_->global()),
       lo(grid_.field_dm(), lode_->global()), ratio(grid_.field_dm(), stress_ratio_->global());
   const BlockedView mask(grid_, blocked_);
@@ -488,7 +489,7 @@ void SoilPhase::compute_diagnostics(const FlowSolver& flow) {
       const auto D = cell_strain_rate(grid_, u.data(), v.data(), i, j);
       rn[j][i] = rheology::norm(rheology::deviatoric(D));
       lo[j][i] = rheology::lode_angle(D) * 180.0 / std::numbers::pi;
-      ratio[j][i] = rheology_ ? rheology_->stress_ratio_to_drucker_prager(D) : 1.0;
+      ratio[j][i] = rheology_ ? rheology_->stress_ratio_to_drucker_prager(D, p[j][i] - ambient_pressure_) : 1.0;
     }
 }
 

@@ -33,19 +33,47 @@ TEST(StressRatio, AxisymmetricDeformationsMatchTable1) {
   const auto dp = rheology_of(Model::drucker_prager);
   // Table 1 "relative" column, printed to two decimals (MN compression: the self-consistent 1.28,
   // see test_element_test.cpp for the misprint).
-  EXPECT_NEAR(mc.stress_ratio_to_drucker_prager(compression), 1.44, 0.005);
-  EXPECT_NEAR(mn.stress_ratio_to_drucker_prager(compression), 1.28, 0.005);
-  EXPECT_NEAR(mc.stress_ratio_to_drucker_prager(extension), 0.96, 0.005);
-  EXPECT_NEAR(mn.stress_ratio_to_drucker_prager(extension), 0.89, 0.005);
-  EXPECT_NEAR(mc.stress_ratio_to_drucker_prager(shear), 1.0, 1e-12);
-  EXPECT_NEAR(mn.stress_ratio_to_drucker_prager(shear), 1.0, 1e-9);
-  EXPECT_EQ(dp.stress_ratio_to_drucker_prager(compression), 1.0);
-  EXPECT_EQ(mc.stress_ratio_to_drucker_prager(StrainRate{}), 1.0);  // at rest
+  EXPECT_NEAR(mc.stress_ratio_to_drucker_prager(compression, 100.0), 1.44, 0.005);
+  EXPECT_NEAR(mn.stress_ratio_to_drucker_prager(compression, 100.0), 1.28, 0.005);
+  EXPECT_NEAR(mc.stress_ratio_to_drucker_prager(extension, 100.0), 0.96, 0.005);
+  EXPECT_NEAR(mn.stress_ratio_to_drucker_prager(extension, 100.0), 0.89, 0.005);
+  EXPECT_NEAR(mc.stress_ratio_to_drucker_prager(shear, 100.0), 1.0, 1e-12);
+  EXPECT_NEAR(mn.stress_ratio_to_drucker_prager(shear, 100.0), 1.0, 1e-9);
+  EXPECT_EQ(dp.stress_ratio_to_drucker_prager(compression, 100.0), 1.0);
+  EXPECT_EQ(mc.stress_ratio_to_drucker_prager(StrainRate{}, 100.0), 1.0);  // at rest
   // The ratio is the ratio of the viscosities at the same state, below the clip.
   const double p = 100.0;
   const StrainRate fast = 50.0 * compression;
-  EXPECT_NEAR(mc.dynamic_viscosity(fast, p) / dp.dynamic_viscosity(fast, p), mc.stress_ratio_to_drucker_prager(fast),
+  EXPECT_NEAR(mc.dynamic_viscosity(fast, p) / dp.dynamic_viscosity(fast, p), mc.stress_ratio_to_drucker_prager(fast, p),
               1e-12);
+}
+
+// With mu(I) friction the Mohr-Coulomb and Matsuoka-Nakai ratios depend on mu, which depends on the
+// pressure through I: the ratio is the viscosities' ratio at the cell's own state, not at 1 Pa.
+TEST(StressRatio, MuOfIAtTheCellsPressure) {
+  for (Model model : {Model::mohr_coulomb, Model::matsuoka_nakai}) {
+    RheologyParameters p;
+    p.model = model;
+    p.friction = FrictionSource::mu_of_I;
+    p.regularisation = Regularisation::clip;
+    p.max_kinematic_viscosity = 1e6;  // not reached: the ratio of the viscosities is that of the stresses
+    p.density = 1430.0;
+    const GranularRheology surface(p);
+    RheologyParameters q = p;
+    q.model = Model::drucker_prager;
+    const GranularRheology dp(q);
+    const StrainRate compression = 20.0 * axisymmetric_strain_rate(0.577, -1.155, 0.0, 0.577);
+    for (double pressure : {10.0, 300.0}) {
+      const double ratio = surface.stress_ratio_to_drucker_prager(compression, pressure);
+      EXPECT_NEAR(ratio, surface.dynamic_viscosity(compression, pressure) / dp.dynamic_viscosity(compression, pressure),
+                  1e-12)
+          << int(model) << " " << pressure;
+    }
+    // mu differs between the two pressures (I = 2 ||D|| d / sqrt(p / rho_s)), and so does the ratio.
+    EXPECT_GT(std::abs(surface.stress_ratio_to_drucker_prager(compression, 10.0) -
+                       surface.stress_ratio_to_drucker_prager(compression, 300.0)),
+              1e-3);
+  }
 }
 
 TEST(LodeHistogram, BinsCentredOnZeroAndTheTriaxialLimits) {
