@@ -140,7 +140,8 @@ double initial_soil_in_open_cells(const Grid& g, const CaseConfig& config, const
     for (int i = b.xs; i < b.xe(); ++i) {
       if (is_blocked(blocked.data(), i, j)) continue;
       const double x0 = g.xc(i) - 0.5 * g.dx(i), y0 = g.yc(j) - 0.5 * g.dy(j);
-      volume += interface::union_fraction(config.soil->initial_soil, x0, x0 + g.dx(i), y0, y0 + g.dy(j)) * g.volume(i, j);
+      volume += interface::union_fraction(config.soil->initial_soil, x0, x0 + g.dx(i), y0, y0 + g.dy(j), g.axisymmetric()) *
+                g.volume(i, j);
     }
   MPI_Allreduce(MPI_IN_PLACE, &volume, 1, MPI_DOUBLE, MPI_SUM, g.comm());
   return volume;

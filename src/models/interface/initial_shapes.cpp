@@ -116,7 +116,8 @@ bool self_intersecting(const Polygon& polygon) {
   return false;
 }
 
-double union_fraction(const std::vector<Shape>& shapes, double x0, double x1, double y0, double y1, int samples) {
+double union_fraction(const std::vector<Shape>& shapes, double x0, double x1, double y0, double y1, bool axisymmetric,
+                      int samples) {
   // Fast path: the four corners and the centre agree (cells are small against the shapes). Not for
   // a shape narrower or lower than the cell that reaches into it, which could lie between the probes.
   bool small_shape_here = false;
@@ -129,14 +130,17 @@ double union_fraction(const std::vector<Shape>& shapes, double x0, double x1, do
                     union_contains(shapes, x1, y1) + union_contains(shapes, 0.5 * (x0 + x1), 0.5 * (y0 + y1));
   if (probe == 0 && !small_shape_here) return 0.0;
   if (probe == 5 && !small_shape_here) return 1.0;
-  int hits = 0;
-  for (int a = 0; a < samples; ++a)
+  double inside = 0.0, all = 0.0;
+  for (int a = 0; a < samples; ++a) {
+    const double x = x0 + (a + 0.5) * (x1 - x0) / samples;
+    const double weight = axisymmetric ? x : 1.0;
     for (int b = 0; b < samples; ++b) {
-      const double x = x0 + (a + 0.5) * (x1 - x0) / samples;
       const double y = y0 + (b + 0.5) * (y1 - y0) / samples;
-      hits += union_contains(shapes, x, y);
+      inside += weight * union_contains(shapes, x, y);
+      all += weight;
     }
-  return double(hits) / (samples * samples);
+  }
+  return inside / all;
 }
 
 }  // namespace granflow::interface

@@ -30,7 +30,10 @@ bool overlaps(const Shape& shape, const Point& lower, const Point& upper);
 bool self_intersecting(const Polygon& polygon);
 
 // Fraction of the cell [x0,x1] x [y0,y1] inside the union, by samples x samples midpoint sampling
-// (error O(1/samples) only in cells the boundary crosses).
-double union_fraction(const std::vector<Shape>& shapes, double x0, double x1, double y0, double y1, int samples = 32);
+// (error O(1/samples) only in cells the boundary crosses). Axisymmetric (x = r >= 0): the fraction of
+// the cell's volume, each sample weighted by its radius, so that a cut cell near the axis is not
+// counted by its area.
+double union_fraction(const std::vector<Shape>& shapes, double x0, double x1, double y0, double y1,
+                      bool axisymmetric = false, int samples = 32);
 
 }  // namespace granflow::interface

@@ -100,7 +100,7 @@ TEST(InitialShapes, BoxCircleAndPolygonFractions) {
     for (int j = 0; j < 64; ++j) area += union_fraction(circle, i / 64.0, (i + 1) / 64.0, j / 64.0, (j + 1) / 64.0) / 4096.0;
   EXPECT_NEAR(area, M_PI / 4, 2e-4);
   const std::vector<Shape> triangle{Polygon{{{0.0, 0.0}, {1.0, 0.0}, {0.0, 1.0}}}};
-  EXPECT_NEAR(union_fraction(triangle, 0.0, 1.0, 0.0, 1.0, 200), 0.5, 1e-2);
+  EXPECT_NEAR(union_fraction(triangle, 0.0, 1.0, 0.0, 1.0, false, 200), 0.5, 1e-2);
   EXPECT_TRUE(union_contains({box[0], circle[0]}, 0.5, 0.5));
 }
 
