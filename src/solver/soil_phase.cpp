@@ -375,7 +375,7 @@ void SoilPhase::advect(FlowSolver& flow, double dt) {
       interface::dilatation_indicator(c.data(), b, cc.data());
       FieldArray tmp(grid_.field_dm(), c_tmp_->global());
       interface::vof_sweep(first, h, c.data(), face[first], cc.data(), grid_.dx_data(), grid_.dy_data(), b, tmp.data(), radial,
-                           carry_mass ? soil_through[first]->data() : nullptr);
+                           carry_mass ? soil_through[first]->data() : nullptr, {grid_.nx(), grid_.ny()});
       outflow_ += interface::boundary_outflow(first, h, c.data(), face[first], grid_.dx_data(), grid_.dy_data(), b,
                                               grid_.nx(), grid_.ny(), radial);
     }
@@ -385,7 +385,7 @@ void SoilPhase::advect(FlowSolver& flow, double dt) {
       ConstFieldArray cc(grid_.field_dm(), dilatation_->local());
       FieldArray c(grid_.field_dm(), c_->global());
       interface::vof_sweep(second, h, tmp.data(), face[second], cc.data(), grid_.dx_data(), grid_.dy_data(), b, c.data(), radial,
-                           carry_mass ? soil_through[second]->data() : nullptr);
+                           carry_mass ? soil_through[second]->data() : nullptr, {grid_.nx(), grid_.ny()});
       outflow_ += interface::boundary_outflow(second, h, tmp.data(), face[second], grid_.dx_data(), grid_.dy_data(), b,
                                               grid_.nx(), grid_.ny(), radial);
     }

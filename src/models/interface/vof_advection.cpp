@@ -12,14 +12,23 @@ namespace {
 // Soil fraction of the strip of relative width s next to the face the flow leaves through, in the
 // upwind cell (i, j). `to_high` is true when that face is the cell's east/north face.
 inline double swept_fraction(const double* const* c, const double* dx, const double* dy, int i,
-                             int j, int axis, bool to_high, double s) {
+                             int j, int axis, bool to_high, double s, DomainCells domain) {
   const double cu = c[j][i];
   // Pure cells (the vast majority) need no reconstruction, and give exact 0/1 fluxes.
   if (cu <= 0.0) return 0.0;
   if (cu >= 1.0) return 1.0;
+  Block3x3 block = gather_block(c, dx, dy, i, j);
+  if (domain.nx > 0) {
+    auto outside = [&](int ii, int jj) { return ii < 0 || ii >= domain.nx || jj < 0 || jj >= domain.ny; };
+    if (outside(i, j)) return cu;  // a boundary ghost: the mixture coming in, uniform
+    for (int r = 0; r < 3; ++r)
+      for (int q = 0; q < 3; ++q)
+        if (outside(i - 1 + q, j - 1 + r))
+          block.c[r][q] = c[std::clamp(j - 1 + r, 0, domain.ny - 1)][std::clamp(i - 1 + q, 0, domain.nx - 1)];
+  }
   // A flat neighbourhood has no orientation (a line would amplify round-off to O(1) within one
   // sweep), so take the line parallel to the flow (donor cell).
-  const CellLine line = cell_line(gather_block(c, dx, dy, i, j));
+  const CellLine line = cell_line(block);
   if (!line.found) return cu;
   s = std::min(s, 1.0);
   const double lo = to_high ? 0.5 - s : -0.5;
@@ -36,21 +45,21 @@ struct FaceFlux {
 };
 
 inline FaceFlux face_flux_x(const double* const* c, double u, double dt, const double* dx,
-                            const double* dy, int i, int j) {
+                            const double* dy, int i, int j, DomainCells domain) {
   if (u == 0.0) return {};
   const double udt = u * dt;
-  const double frac = u > 0.0 ? swept_fraction(c, dx, dy, i, j, 0, true, udt / dx[i])
-                              : swept_fraction(c, dx, dy, i + 1, j, 0, false, -udt / dx[i + 1]);
+  const double frac = u > 0.0 ? swept_fraction(c, dx, dy, i, j, 0, true, udt / dx[i], domain)
+                              : swept_fraction(c, dx, dy, i + 1, j, 0, false, -udt / dx[i + 1], domain);
   const double f = udt * frac;
   return {f, udt - f};
 }
 
 inline FaceFlux face_flux_y(const double* const* c, double v, double dt, const double* dx,
-                            const double* dy, int i, int j) {
+                            const double* dy, int i, int j, DomainCells domain) {
   if (v == 0.0) return {};
   const double vdt = v * dt;
-  const double frac = v > 0.0 ? swept_fraction(c, dx, dy, i, j, 1, true, vdt / dy[j])
-                              : swept_fraction(c, dx, dy, i, j + 1, 1, false, -vdt / dy[j + 1]);
+  const double frac = v > 0.0 ? swept_fraction(c, dx, dy, i, j, 1, true, vdt / dy[j], domain)
+                              : swept_fraction(c, dx, dy, i, j + 1, 1, false, -vdt / dy[j + 1], domain);
   const double f = vdt * frac;
   return {f, vdt - f};
 }
@@ -65,17 +74,17 @@ inline FaceFlux face_flux_y(const double* const* c, double v, double dt, const d
 // drifting by round-off, which keeps the pure-cell fast path effective.
 void vof_sweep(int axis, double dt, const double* const* c, const double* const* u,
                const double* const* cc, const double* dx, const double* dy, CellBox o,
-               double** c_new, RadialWeights radial, double** face_soil) {
+               double** c_new, RadialWeights radial, double** face_soil, DomainCells domain) {
   const int i_end = o.xs + o.xm;
   const int j_end = o.ys + o.ym;
   if (axis == 0) {
     const bool weighted = radial.face != nullptr;
     for (int j = o.ys; j < j_end; ++j) {
-      FaceFlux low = face_flux_x(c, u[j][o.xs - 1], dt, dx, dy, o.xs - 1, j);
+      FaceFlux low = face_flux_x(c, u[j][o.xs - 1], dt, dx, dy, o.xs - 1, j, domain);
       if (face_soil) face_soil[j][o.xs - 1] += low.f;
       double r_low = weighted ? radial.face[o.xs - 1] : 1.0;
       for (int i = o.xs; i < i_end; ++i) {
-        const FaceFlux high = face_flux_x(c, u[j][i], dt, dx, dy, i, j);
+        const FaceFlux high = face_flux_x(c, u[j][i], dt, dx, dy, i, j, domain);
         if (face_soil) face_soil[j][i] += high.f;
         const double r_high = weighted ? radial.face[i] : 1.0;
         const double h = weighted ? dx[i] * radial.centre[i] : dx[i];
@@ -97,7 +106,7 @@ void vof_sweep(int axis, double dt, const double* const* c, const double* const*
     for (int i = o.xs; i < i_end; ++i) {
       const double v = u[jf][i];
       if (v == 0.0) continue;
-      const FaceFlux fl = face_flux_y(c, v, dt, dx, dy, i, jf);
+      const FaceFlux fl = face_flux_y(c, v, dt, dx, dy, i, jf, domain);
       if (face_soil) face_soil[jf][i] += fl.f;
       if (below_owned) c_new[jf][i] += cc[jf][i] > 0.5 ? fl.g / dy[jf] : -fl.f / dy[jf];
       if (above_owned)
@@ -108,21 +117,22 @@ void vof_sweep(int axis, double dt, const double* const* c, const double* const*
 
 double boundary_outflow(int axis, double dt, const double* const* c, const double* const* u, const double* dx,
                         const double* dy, CellBox o, int nx, int ny, RadialWeights radial) {
+  const DomainCells domain{nx, ny};
   double out = 0.0;
   const int i_end = o.xs + o.xm, j_end = o.ys + o.ym;
   if (axis == 0) {
     const bool weighted = radial.face != nullptr;
     for (int j = o.ys; j < j_end; ++j) {
-      if (o.xs == 0) out -= (weighted ? radial.face[-1] : 1.0) * face_flux_x(c, u[j][-1], dt, dx, dy, -1, j).f * dy[j];
+      if (o.xs == 0) out -= (weighted ? radial.face[-1] : 1.0) * face_flux_x(c, u[j][-1], dt, dx, dy, -1, j, domain).f * dy[j];
       if (i_end == nx)
-        out += (weighted ? radial.face[nx - 1] : 1.0) * face_flux_x(c, u[j][nx - 1], dt, dx, dy, nx - 1, j).f * dy[j];
+        out += (weighted ? radial.face[nx - 1] : 1.0) * face_flux_x(c, u[j][nx - 1], dt, dx, dy, nx - 1, j, domain).f * dy[j];
     }
     return out;
   }
   for (int i = o.xs; i < i_end; ++i) {
     const double area = dx[i] * (radial.centre != nullptr ? radial.centre[i] : 1.0);
-    if (o.ys == 0) out -= face_flux_y(c, u[-1][i], dt, dx, dy, i, -1).f * area;
-    if (j_end == ny) out += face_flux_y(c, u[ny - 1][i], dt, dx, dy, i, ny - 1).f * area;
+    if (o.ys == 0) out -= face_flux_y(c, u[-1][i], dt, dx, dy, i, -1, domain).f * area;
+    if (j_end == ny) out += face_flux_y(c, u[ny - 1][i], dt, dx, dy, i, ny - 1, domain).f * area;
   }
   return out;
 }

@@ -35,6 +35,15 @@ struct RadialWeights {
   const double* centre = nullptr;
 };
 
+// The domain's cells, nx x ny, for a sweep to treat the cells beyond it as boundary ghosts: soil coming
+// in through a side is a plain donor at the ghost's value (an atmosphere's inflow fraction), with no
+// interface line fitted across the side, and a cell next to a side fits its line as if the soil went
+// on unchanged beyond it (so a layer leaves through an open side as it is). nx = 0: the ghosts are
+// read as cells (a periodic or reference driver's).
+struct DomainCells {
+  int nx = 0, ny = 0;
+};
+
 // One directional sweep (axis 0 = x, 1 = y) of Weymouth & Yue's scheme:
 //   c_new = c + (F_low - F_high)/h + cc * (u_high - u_low) dt/h,
 // with F the volume (per unit face area) of the upwind cell's PLIC polygon swept through a face
@@ -49,11 +58,13 @@ struct RadialWeights {
 // unit face area that crossed it, so that the momentum can move with the same mass.
 void vof_sweep(int axis, double dt, const double* const* c, const double* const* face_velocity,
                const double* const* cc, const double* dx, const double* dy,
-               CellBox owned, double** c_new, RadialWeights radial = {}, double** face_soil = nullptr);
+               CellBox owned, double** c_new, RadialWeights radial = {}, double** face_soil = nullptr,
+               DomainCells domain = {});
 
 // Soil volume (per unit depth, per radian with radial weights) that the sweep of `axis` carries out
 // of the domain of nx x ny cells through the boundary faces of the owned cells; negative for inflow.
-// The same face fluxes as vof_sweep, so that the soil in the domain plus the outflow is conserved.
+// The same face fluxes as vof_sweep (with the domain's ghosts treated as DomainCells says), so that
+// the soil in the domain plus the outflow is conserved.
 double boundary_outflow(int axis, double dt, const double* const* c, const double* const* face_velocity,
                         const double* dx, const double* dy, CellBox owned, int nx, int ny, RadialWeights radial = {});
 
