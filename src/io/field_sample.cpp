@@ -1,6 +1,8 @@
 #include "io/field_sample.hpp"
 
 #include <algorithm>
+#include <array>
+#include <cmath>
 
 namespace granflow {
 
@@ -81,6 +83,43 @@ double sample_field(const Grid& g, const std::vector<double>& values, const Side
   const int i0 = a - 1, j0 = b - 1;  // node index k is cell k - 1
   return (1 - wy) * ((1 - wx) * node(i0, j0) + wx * node(i0 + 1, j0)) +
          wy * ((1 - wx) * node(i0, j0 + 1) + wx * node(i0 + 1, j0 + 1));
+}
+
+void fill_obstacle_walls(const Grid& g, const std::vector<double>& blocked, const SideRule& wall,
+                         std::vector<double>& values) {
+  const int nx = g.nx(), ny = g.ny();
+  const auto at = [&](int i, int j) { return size_t(j) * nx + i; };
+  const auto open = [&](int i, int j) { return i >= 0 && i < nx && j >= 0 && j < ny && blocked[at(i, j)] <= 0.5; };
+  const std::vector<double> before = values;  // read open cells only, as they were
+  for (int j = 0; j < ny; ++j)
+    for (int i = 0; i < nx; ++i) {
+      if (open(i, j)) continue;
+      int di = 0, dj = 0;
+      for (const auto [a, b] : {std::array{0, 1}, std::array{0, -1}, std::array{1, 0}, std::array{-1, 0}})
+        if (open(i + a, j + b)) {
+          di = a;
+          dj = b;
+          break;
+        }
+      if (di == 0 && dj == 0) continue;  // no open neighbour: never sampled
+      const int io = i + di, jo = j + dj;  // the open cell in front of the wall
+      const double next = before[at(io, jo)];
+      // Distances along the normal: from the open cell's centre to the wall, and to the cell beyond it.
+      const double d1 = di != 0 ? 0.5 * g.dx(io) : 0.5 * g.dy(jo);
+      const double d_blocked = di != 0 ? 0.5 * g.dx(i) : 0.5 * g.dy(j);
+      const bool second = open(io + di, jo + dj);
+      const double d2 = !second ? 0.0 : di != 0 ? std::abs(g.xc(io + di) - g.xc(io)) : std::abs(g.yc(jo + dj) - g.yc(jo));
+      double on_wall = next;
+      switch (wall.kind) {
+        case SideRule::Kind::value: on_wall = wall.value; break;
+        case SideRule::Kind::zero_gradient: on_wall = next; break;
+        case SideRule::Kind::linear:
+          on_wall = second ? next + (next - before[at(io + di, jo + dj)]) * d1 / d2 : next;
+          break;
+      }
+      // The line through the open cell's value and the wall's, continued to the blocked cell's centre.
+      values[at(i, j)] = next + (on_wall - next) * (d1 + d_blocked) / d1;
+    }
 }
 
 }  // namespace granflow

@@ -32,4 +32,13 @@ SideRules pressure_side_rules();
 // included); points outside are taken at the nearest point of the domain.
 double sample_field(const Grid& grid, const std::vector<double>& values, const SideRules& sides, double x, double y);
 
+// An obstacle's walls for sampling: each blocked cell (blocked[k] > 0.5, gathered like values) beside
+// an open cell takes the value that puts the wall's rule on the face between them, so that a sample
+// within half a cell of an obstacle runs to the wall's value as one near a side of the domain does:
+// 2 v - open for a value v (a static wall's velocity, 0), the open cell's for a zero gradient, and for
+// the pressure the line of the open cell and the one beyond it continued. The open neighbour is the
+// nearest wall's, along y where the cell has open neighbours along both axes (an obstacle's corner).
+void fill_obstacle_walls(const Grid& grid, const std::vector<double>& blocked, const SideRule& wall,
+                         std::vector<double>& values);
+
 }  // namespace granflow

@@ -327,27 +327,34 @@ void Simulation::write_output() {
 
 // Each [[output.line]]: u, v, p and the viscosity, and with soil its fraction, strain norm and strain
 // rate norm, at evenly spaced points (io/field_sample.hpp: bilinear, running to the boundary's value
-// within half a cell of a side). u, v and p are already gathered on rank 0.
+// within half a cell of a side or an obstacle). u, v and p are already gathered on rank 0.
 void Simulation::write_line_samples(const std::vector<double>& u, const std::vector<double>& v,
                                     const std::vector<double>& p) const {
   if (config_.output.lines.empty()) return;
   const Grid& g = *grid_;
+  // The last member: the rule on an obstacle's walls (a static wall's velocity, the pressure's line
+  // continued, a zero gradient for the rest).
   struct Sampled {
     const char* name;
     std::vector<double> values;
     SideRules sides;
+    SideRule obstacle_wall;
   };
+  const SideRule no_slip{SideRule::Kind::value, 0.0}, linear{SideRule::Kind::linear, 0.0};
   std::vector<Sampled> q;
-  q.push_back({"u", u, velocity_side_rules(config_.flow.boundaries, 0)});
-  q.push_back({"v", v, velocity_side_rules(config_.flow.boundaries, 1)});
-  q.push_back({"p", p, pressure_side_rules()});
-  q.push_back({"viscosity", gather_to_root(g, flow_->viscosity()), SideRules{}});
+  q.push_back({"u", u, velocity_side_rules(config_.flow.boundaries, 0), no_slip});
+  q.push_back({"v", v, velocity_side_rules(config_.flow.boundaries, 1), no_slip});
+  q.push_back({"p", p, pressure_side_rules(), linear});
+  q.push_back({"viscosity", gather_to_root(g, flow_->viscosity()), SideRules{}, SideRule{}});
   if (soil_) {
-    q.push_back({"soil_fraction", gather_to_root(g, soil_->soil_fraction()), SideRules{}});
-    q.push_back({"strain_norm", gather_to_root(g, soil_->strain_norm()), SideRules{}});
-    q.push_back({"strain_rate_norm", gather_to_root(g, soil_->strain_rate_norm()), SideRules{}});
+    q.push_back({"soil_fraction", gather_to_root(g, soil_->soil_fraction()), SideRules{}, SideRule{}});
+    q.push_back({"strain_norm", gather_to_root(g, soil_->strain_norm()), SideRules{}, SideRule{}});
+    q.push_back({"strain_rate_norm", gather_to_root(g, soil_->strain_rate_norm()), SideRules{}, SideRule{}});
   }
+  const std::vector<double> blocked = blocked_ ? gather_to_root(g, *blocked_) : std::vector<double>();
   if (rank_ != 0) return;
+  if (blocked_)
+    for (auto& s : q) fill_obstacle_walls(g, blocked, s.obstacle_wall, s.values);
   for (const auto& line : config_.output.lines) {
     auto body = [&](std::ostream& out) {
       fmt::print(out, "# {} at t = {:.9g} s\nx,y", line.name, time_);

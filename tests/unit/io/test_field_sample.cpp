@@ -93,5 +93,35 @@ TEST(FieldSample, OneCellAcrossFallsBackToItsValue) {
   for (const auto& [x, y] : points(spec)) EXPECT_DOUBLE_EQ(sample_field(g, values, pressure_side_rules(), x, y), 4.25);
 }
 
+// Within half a cell of an obstacle a sample runs to the wall's value, as near a side of the domain:
+// a barrier of blocked cells (columns 4-6, rows 0-2 of 7 x 5 graded cells) with a linear pressure,
+// a velocity and a scalar in the open cells. Before, the samples blended in whatever the blocked
+// cells held (their start-up values).
+TEST(FieldSample, ObstacleWallsGiveTheirValueAsTheSidesDo) {
+  const Grid g(PETSC_COMM_SELF, graded_spec());
+  std::vector<double> blocked(size_t(g.nx()) * g.ny(), 0.0);
+  for (int j = 0; j <= 2; ++j)
+    for (int i = 4; i <= 6; ++i) blocked[size_t(j) * g.nx() + i] = 1.0;
+  const auto pressure = [](double x, double y) { return 2.0 + 3.0 * x - 5.0 * y; };
+  auto p = cell_values(g, pressure), u = cell_values(g, [](double, double) { return 0.8; }),
+       c = cell_values(g, [](double x, double) { return 0.3 + x; });
+  for (size_t k = 0; k < blocked.size(); ++k)
+    if (blocked[k] > 0.5) p[k] = u[k] = c[k] = 1e3;  // stale values the samples must not read
+  fill_obstacle_walls(g, blocked, SideRule{SideRule::Kind::linear, 0.0}, p);
+  fill_obstacle_walls(g, blocked, SideRule{SideRule::Kind::value, 0.0}, u);
+  fill_obstacle_walls(g, blocked, SideRule{}, c);
+  const double west_face = g.xc(4) - 0.5 * g.dx(4), top_face = g.yc(2) + 0.5 * g.dy(2);
+  const double y_beside = g.yc(1), x_above = g.xc(5);
+  // On the barrier's west face, beside it, and on its top, above it.
+  EXPECT_NEAR(sample_field(g, p, pressure_side_rules(), west_face, y_beside), pressure(west_face, y_beside), 1e-12);
+  EXPECT_NEAR(sample_field(g, p, pressure_side_rules(), x_above, top_face), pressure(x_above, top_face), 1e-12);
+  EXPECT_NEAR(sample_field(g, u, SideRules{}, west_face, y_beside), 0.0, 1e-12);
+  EXPECT_NEAR(sample_field(g, u, SideRules{}, x_above, top_face), 0.0, 1e-12);
+  EXPECT_NEAR(sample_field(g, c, SideRules{}, west_face, y_beside), 0.3 + g.xc(3), 1e-12);
+  // Half way from the open centre to the wall: half way between their values.
+  const double x_half = 0.5 * (g.xc(3) + west_face);
+  EXPECT_NEAR(sample_field(g, u, SideRules{}, x_half, y_beside), 0.4, 1e-12);
+}
+
 }  // namespace
 }  // namespace granflow
