@@ -102,6 +102,18 @@ add_test(NAME cli_overwrite_keeps_the_run_when_the_first_step_fails
          COMMAND sh -c "g=$0; d=$1; c=$2; rm -rf \"$d\"; \"$g\" run \"$c\" -o \"$d\" --set 'mesh.cells=[30,10]' --set time.end=0.02 --set output.interval=0.01 --set output.progress_seconds=0 > /dev/null || exit 1; cp \"$d/history.csv\" /tmp/granflow_kept_$$; ls -a \"$d\" > /tmp/granflow_list_$$; \"$g\" run \"$c\" -o \"$d\" --overwrite --set 'mesh.cells=[30,10]' --set time.end=0.01 '--petsc=-coupled_pc_type icc' > /dev/null 2>&1; status=$?; ls -a \"$d\" | cmp -s - /tmp/granflow_list_$$ && cmp -s \"$d/history.csv\" /tmp/granflow_kept_$$; same=$?; rm -f /tmp/granflow_kept_$$ /tmp/granflow_list_$$; test $status -eq 3 && test $same -eq 0 && test -f \"$d/surface_00002.csv\" && test -f \"$d/checkpoint/run.txt\""
                  $<TARGET_FILE:granflow> ${CMAKE_CURRENT_BINARY_DIR}/overwrite_first_step_fails ${CMAKE_SOURCE_DIR}/cases/bui2008_experiment.toml)
 set_tests_properties(cli_overwrite_keeps_the_run_when_the_first_step_fails PROPERTIES LABELS cli)
+# The same when the first step diverges (a lid at 1e8 m/s): the step is not an accepted one.
+add_test(NAME cli_overwrite_keeps_the_run_when_the_first_step_diverges
+         COMMAND sh -c "g=$0; d=$1; c=$2; rm -rf \"$d\"; \"$g\" run \"$c\" -o \"$d\" --set 'mesh.cells=[8,8]' --set time.end=0.01 --set output.progress_seconds=0 > /dev/null || exit 1; cp \"$d/u_vertical_centreline.csv\" \"$d.kept\"; \"$g\" run \"$c\" -o \"$d\" --overwrite --set 'mesh.cells=[8,8]' --set time.adaptive=false --set time.dt=0.01 --set 'boundary.north={type = \"wall\", velocity = [1e8, 0.0]}' > /dev/null 2>&1; status=$?; cmp -s \"$d/u_vertical_centreline.csv\" \"$d.kept\" && test $status -eq 3 && test -f \"$d/fields_00001.vtr\" && test -f \"$d/checkpoint/run.txt\" && test ! -e \"$d/.replaced_run\""
+                 $<TARGET_FILE:granflow> ${CMAKE_CURRENT_BINARY_DIR}/overwrite_first_step_diverges ${CMAKE_SOURCE_DIR}/cases/lid_driven_cavity_re100.toml)
+set_tests_properties(cli_overwrite_keeps_the_run_when_the_first_step_diverges PROPERTIES LABELS cli)
+# A run set aside by --overwrite and left there (the new run was killed before its first step) is the
+# only copy of that run: a run into the directory is refused, naming it, and it is left as it is.
+add_test(NAME cli_set_aside_run_left_by_a_killed_run_is_refused
+         COMMAND sh -c "d=$1; rm -rf \"$d\"; mkdir -p \"$d/.replaced_run\" && echo x > \"$d/.replaced_run/history.csv\"; \"$0\" run \"$2\" -o \"$d\" --overwrite --set 'mesh.cells=[8,8]' --set time.end=0.01 2>&1; test -f \"$d/.replaced_run/history.csv\" && echo kept"
+                 $<TARGET_FILE:granflow> ${CMAKE_CURRENT_BINARY_DIR}/set_aside_left ${CMAKE_SOURCE_DIR}/cases/lid_driven_cavity_re100.toml)
+set_tests_properties(cli_set_aside_run_left_by_a_killed_run_is_refused PROPERTIES LABELS cli
+  PASS_REGULAR_EXPRESSION "^error: [^\n]*set_aside_left holds [^\n]*\\.replaced_run, the files of an earlier run that a run with --overwrite set aside[^\n]*\nkept\n$")
 # --overwrite leaves none of the earlier run's files: a shorter run does not keep the longer one's
 # later outputs. A run that wrote only line samples is an earlier run too.
 add_test(NAME cli_overwrite_removes_the_earlier_run

@@ -52,6 +52,11 @@ int run_case(const std::string& case_file, const std::vector<std::string>& overr
     if (std::filesystem::exists(out_dir, ec) && !std::filesystem::is_directory(out_dir, ec))
       throw CaseError(fmt::format("-o {}: not a directory", out_dir));
   }
+  if (const auto aside = set_aside_run_in(out_dir); !aside.empty())
+    throw CaseError(fmt::format("{} holds {}, the files of an earlier run that a run with --overwrite set aside and "
+                                "was stopped before its first step: move them back into {} (or remove {}), then "
+                                "run again",
+                                out_dir, aside.string(), out_dir, aside.string()));
   const auto earlier = run_files_in(out_dir, config.output.lines);
   if (!restart && !overwrite && !earlier.empty()) {
     std::error_code ec;
@@ -67,13 +72,10 @@ int run_case(const std::string& case_file, const std::vector<std::string>& overr
   // (a later --restart would continue that run), and its later outputs, which the new run might not
   // write again. They are set aside until the new run has taken its first step, and put back if it
   // fails before (run_directory.hpp).
-  const bool replacing = overwrite && !restart && !earlier.empty();
-  if (replacing) {
-    const std::string problem = rank == 0 ? set_aside_run(out_dir, earlier) : std::string();
-    if (auto text = first_failure(PETSC_COMM_WORLD, problem); !text.empty()) {
-      if (rank == 0) restore_set_aside_run(out_dir, config.output.lines);
-      throw CaseError(text);
-    }
+  const bool replacing = overwrite && !restart;
+  if (replacing) {  // on every rank alike (a collective call); the files are rank 0's to move
+    const std::string problem = rank == 0 && !earlier.empty() ? set_aside_run(out_dir, earlier) : std::string();
+    if (auto text = first_failure(PETSC_COMM_WORLD, problem); !text.empty()) throw CaseError(text);
   }
   if (restart) sim.restart();
   if (rank == 0)

@@ -32,15 +32,15 @@ void apply_override(toml::table& root, const std::string& assignment) {
                                 "array, e.g. --set 'initial.soil=[{{shape = \"box\", lower = [0, 0], upper = [0.2, 0.1]}}]'",
                                 assignment));
   const std::string value = assignment.substr(eq + 1);
-  if (value.find_first_of("\n\r") != std::string::npos)
-    throw CaseError(fmt::format("--set '{}': the value runs over more than one line; give one KEY=VALUE per --set",
-                                assignment));
   toml::table parsed;
   try {
     parsed = toml::parse("v = " + value);
   } catch (const toml::parse_error&) {
     parsed = toml::table{{"v", value}};  // a bare word is a string
   }
+  if (parsed.size() != 1)  // "0.02\nmesh.cells = [1, 1]": more keys on further lines, which would be dropped
+    throw CaseError(fmt::format("--set '{}': the value holds more than one key; give one KEY=VALUE per --set",
+                                assignment));
   toml::table* t = &root;
   std::string_view rest = key;
   while (true) {

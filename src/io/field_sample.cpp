@@ -91,34 +91,38 @@ void fill_obstacle_walls(const Grid& g, const std::vector<double>& blocked, cons
   const auto at = [&](int i, int j) { return size_t(j) * nx + i; };
   const auto open = [&](int i, int j) { return i >= 0 && i < nx && j >= 0 && j < ny && blocked[at(i, j)] <= 0.5; };
   const std::vector<double> before = values;  // read open cells only, as they were
+  std::vector<char> filled(values.size(), 0);
+  // A blocked cell beside an open one: the line through the open cell's value and the wall's,
+  // continued to the blocked cell's centre.
   for (int j = 0; j < ny; ++j)
     for (int i = 0; i < nx; ++i) {
       if (open(i, j)) continue;
-      int di = 0, dj = 0;
-      for (const auto [a, b] : {std::array{0, 1}, std::array{0, -1}, std::array{1, 0}, std::array{-1, 0}})
-        if (open(i + a, j + b)) {
-          di = a;
-          dj = b;
-          break;
-        }
-      if (di == 0 && dj == 0) continue;  // no open neighbour: never sampled
-      const int io = i + di, jo = j + dj;  // the open cell in front of the wall
-      const double next = before[at(io, jo)];
-      // Distances along the normal: from the open cell's centre to the wall, and to the cell beyond it.
-      const double d1 = di != 0 ? 0.5 * g.dx(io) : 0.5 * g.dy(jo);
-      const double d_blocked = di != 0 ? 0.5 * g.dx(i) : 0.5 * g.dy(j);
-      const bool second = open(io + di, jo + dj);
-      const double d2 = !second ? 0.0 : di != 0 ? std::abs(g.xc(io + di) - g.xc(io)) : std::abs(g.yc(jo + dj) - g.yc(jo));
-      double on_wall = next;
-      switch (wall.kind) {
-        case SideRule::Kind::value: on_wall = wall.value; break;
-        case SideRule::Kind::zero_gradient: on_wall = next; break;
-        case SideRule::Kind::linear:
-          on_wall = second ? next + (next - before[at(io + di, jo + dj)]) * d1 / d2 : next;
-          break;
+      for (const auto [di, dj] : {std::array{0, 1}, std::array{0, -1}, std::array{1, 0}, std::array{-1, 0}}) {
+        const int io = i + di, jo = j + dj;  // the open cell in front of the wall
+        if (!open(io, jo)) continue;
+        const bool second = open(io + di, jo + dj);
+        const double d1 = di != 0 ? 0.5 * g.dx(io) : 0.5 * g.dy(jo);
+        const double d_blocked = di != 0 ? 0.5 * g.dx(i) : 0.5 * g.dy(j);
+        const double d2 = !second ? 0.0 : di != 0 ? std::abs(g.xc(io + di) - g.xc(io)) : std::abs(g.yc(jo + dj) - g.yc(jo));
+        const double next = before[at(io, jo)];
+        const double on_wall = side_value(wall, next, second ? before[at(io + di, jo + dj)] : 0.0, d1, d2);
+        values[at(i, j)] = next + (on_wall - next) * (d1 + d_blocked) / d1;
+        filled[at(i, j)] = 1;
+        break;
       }
-      // The line through the open cell's value and the wall's, continued to the blocked cell's centre.
-      values[at(i, j)] = next + (on_wall - next) * (d1 + d_blocked) / d1;
+    }
+  // A blocked cell diagonal to an open one in a corner the obstacles make (both cells beside them
+  // blocked, filled above): the open cell's value mirrored across both walls, X + Y - O, which keeps a
+  // linear field linear and, for a wall's value, is O itself mirrored twice.
+  for (int j = 0; j < ny; ++j)
+    for (int i = 0; i < nx; ++i) {
+      if (open(i, j) || filled[at(i, j)]) continue;
+      for (const auto [di, dj] : {std::array{1, 1}, std::array{-1, 1}, std::array{1, -1}, std::array{-1, -1}}) {
+        if (!open(i + di, j + dj) || !filled[at(i + di, j)] || !filled[at(i, j + dj)]) continue;
+        const double o = before[at(i + di, j + dj)], x = values[at(i, j + dj)], y = values[at(i + di, j)];
+        values[at(i, j)] = wall.kind == SideRule::Kind::value ? o : x + y - o;
+        break;
+      }
     }
 }
 

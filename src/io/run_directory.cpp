@@ -66,23 +66,49 @@ std::vector<std::filesystem::path> run_files_in(const std::filesystem::path& dir
   return files;
 }
 
+std::filesystem::path set_aside_run_in(const std::filesystem::path& dir) {
+  std::error_code ec;
+  const auto aside = dir / set_aside_name;
+  return std::filesystem::exists(aside, ec) ? aside : std::filesystem::path();
+}
+
+namespace {
+// Moves every entry of `aside` back into `dir`; removes `aside` only if all came back.
+void move_back(const std::filesystem::path& dir, const std::filesystem::path& aside) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  bool all = true;
+  std::vector<fs::path> entries;
+  for (const auto& entry : fs::directory_iterator(aside, ec)) entries.push_back(entry.path());
+  for (const auto& entry : entries) {
+    std::error_code moved;
+    fs::rename(entry, dir / entry.filename(), moved);
+    all = all && !moved;
+  }
+  if (all && !ec) fs::remove(aside, ec);
+}
+}  // namespace
+
 std::string set_aside_run(const std::filesystem::path& dir, const std::vector<std::filesystem::path>& files) {
   namespace fs = std::filesystem;
   const fs::path aside = dir / set_aside_name;
   std::error_code ec;
-  fs::remove_all(aside, ec);
-  if (!ec) fs::create_directory(aside, ec);
+  fs::create_directory(aside, ec);
   if (ec) return "--overwrite: cannot set the earlier run aside in " + aside.string() + ": " + ec.message();
   for (const auto& file : files) {
     fs::rename(file, aside / file.filename(), ec);
-    if (ec) return "--overwrite: cannot move " + file.string() + " aside: " + ec.message();
+    if (ec) {
+      const std::string problem = "--overwrite: cannot move " + file.string() + " aside: " + ec.message();
+      move_back(dir, aside);
+      return problem;
+    }
   }
   return {};
 }
 
 void discard_set_aside_run(const std::filesystem::path& dir) {
   std::error_code ec;
-  std::filesystem::remove_all(dir / set_aside_name, ec);  // what cannot go stays, harmless, until the next set-aside
+  std::filesystem::remove_all(dir / set_aside_name, ec);  // what cannot go stays, and a later run says so
 }
 
 void restore_set_aside_run(const std::filesystem::path& dir, const std::vector<LineSample>& lines) {
@@ -91,8 +117,7 @@ void restore_set_aside_run(const std::filesystem::path& dir, const std::vector<L
   std::error_code ec;
   if (!fs::is_directory(aside, ec)) return;
   for (const auto& file : run_files_in(dir, lines)) fs::remove_all(file, ec);
-  for (const auto& entry : fs::directory_iterator(aside, ec)) fs::rename(entry.path(), dir / entry.path().filename(), ec);
-  fs::remove_all(aside, ec);
+  move_back(dir, aside);
 }
 
 void record_run(const std::filesystem::path& dir, const std::vector<LineSample>& lines) {

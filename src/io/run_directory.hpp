@@ -22,15 +22,19 @@ std::vector<std::filesystem::path> run_files_in(const std::filesystem::path& dir
 
 // --overwrite sets the earlier run aside until the new run has taken its first step, so that a new run
 // that fails at once (an option its solver cannot use, a value that makes the first step diverge) does
-// not cost the earlier run. The files go into dir/.replaced_run, emptied first (a set-aside left by a
-// run that was killed belongs to a run already replaced twice).
+// not cost the earlier run. The files go into dir/.replaced_run. One left there (the new run was killed
+// before its first step) is the only copy of that run: a later run into `dir` is refused until the
+// user moves it back or removes it (set_aside_run_in).
 inline constexpr const char* set_aside_name = ".replaced_run";
-// Moves `files` (the earlier run's, in `dir`) aside. Returns a message naming what failed, or "".
+// The set-aside directory a killed run left in `dir`, or empty.
+std::filesystem::path set_aside_run_in(const std::filesystem::path& dir);
+// Moves `files` (the earlier run's, in `dir`) aside. Returns a message naming what failed, or "",
+// having moved back what it had moved.
 std::string set_aside_run(const std::filesystem::path& dir, const std::vector<std::filesystem::path>& files);
 // The new run is under way: removes the set-aside files.
 void discard_set_aside_run(const std::filesystem::path& dir);
-// The new run failed before its first step: removes its files (those `lines` and the record name) and
-// moves the set-aside files back.
+// The new run failed before its first step: removes its files (those of `lines` and the record's) and
+// moves the set-aside files back. Whatever cannot come back stays in the set-aside, which is then kept.
 void restore_set_aside_run(const std::filesystem::path& dir, const std::vector<LineSample>& lines);
 
 // Writes the record of `lines` into `dir`, keeping the names an earlier record there holds (a restart

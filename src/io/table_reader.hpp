@@ -48,7 +48,7 @@ class TableReader {
   void finish() const;
 
   // For a message that `key` is missing: where the table holds a key nobody has read that is `key`
-  // misspelt (one or two letters off, or two swapped), "; 'KEY2' here is not a key: KEY misspelt?",
+  // misspelt (one or two letters off, or two swapped), "; PATH.KEY2 is not a key: KEY misspelt?",
   // else empty. A required key missing is then reported as the misspelling it is.
   std::string misspelling_of(std::string_view key) const;
 

@@ -351,10 +351,9 @@ void Simulation::write_line_samples(const std::vector<double>& u, const std::vec
     q.push_back({"strain_norm", gather_to_root(g, soil_->strain_norm()), SideRules{}, SideRule{}});
     q.push_back({"strain_rate_norm", gather_to_root(g, soil_->strain_rate_norm()), SideRules{}, SideRule{}});
   }
-  const std::vector<double> blocked = blocked_ ? gather_to_root(g, *blocked_) : std::vector<double>();
   if (rank_ != 0) return;
   if (blocked_)
-    for (auto& s : q) fill_obstacle_walls(g, blocked, s.obstacle_wall, s.values);
+    for (auto& s : q) fill_obstacle_walls(g, blocked_on_root_, s.obstacle_wall, s.values);
   for (const auto& line : config_.output.lines) {
     auto body = [&](std::ostream& out) {
       fmt::print(out, "# {} at t = {:.9g} s\nx,y", line.name, time_);
@@ -654,7 +653,6 @@ RunSummary Simulation::run(const StepObserver& after_step) {
     summary.momentum_iterations += r.momentum_iterations;
     summary.pressure_iterations += r.pressure_iterations;
     summary.pressure_solves += r.pressure_solves;
-    if (after_step) after_step(*this, step_dt);
 
     const double speed = flow_->max_speed();
     if (!std::isfinite(speed) || speed > 1e6) {
@@ -668,6 +666,7 @@ RunSummary Simulation::run(const StepObserver& after_step) {
                                                                    "max_iterations)", at_limit)
                                                      : std::string()));
     }
+    if (after_step) after_step(*this, step_dt);  // an accepted step: one that did not diverge
     const bool at_output = time_ >= t_out - 1e-12 * std::max(1.0, t_out);
     if (at_output) {
       if (std::abs(time_ - t_out) <= 1e-12 * std::max(1.0, t_out)) time_ = t_out;

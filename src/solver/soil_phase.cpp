@@ -157,21 +157,30 @@ double SoilPhase::mixture_viscosity(double c, double pressure, const rheology::S
   return s.viscosity_mixing(c, s.air_viscosity, mu_soil);
 }
 
+// The pressure a cell's yield stress takes: its own, or under soil.yield_pressure = "lithostatic_floor"
+// at least the weight of the soil above it (overburden: that field's array, null otherwise).
+double SoilPhase::cell_yield_pressure(double cell_pressure, const ConstFieldArray* overburden, int i, int j) const {
+  return overburden ? std::max(cell_pressure, ambient_pressure_ + (*overburden)[j][i]) : cell_pressure;
+}
+
+std::unique_ptr<ConstFieldArray> SoilPhase::overburden_if_floor() const {
+  if (settings_.yield_pressure != YieldPressure::lithostatic_floor) return nullptr;
+  return std::make_unique<ConstFieldArray>(grid_.field_dm(), overburden_->global());
+}
+
 void SoilPhase::update_properties(FlowSolver& flow) const {
   const auto& b = grid_.owned();
   ConstFieldArray c(grid_.field_dm(), c_->global());
   ConstFieldArray u = local_read(grid_, flow.velocity(0)), v = local_read(grid_, flow.velocity(1));
   ConstFieldArray p(grid_.field_dm(), flow.pressure().global());
   FieldArray rho(grid_.field_dm(), flow.density().global()), mu(grid_.field_dm(), flow.viscosity().global());
-  const bool floor = settings_.yield_pressure == YieldPressure::lithostatic_floor;
-  std::unique_ptr<ConstFieldArray> overburden;
-  if (floor) overburden = std::make_unique<ConstFieldArray>(grid_.field_dm(), overburden_->global());
+  const auto overburden = overburden_if_floor();
   for (int j = b.ys; j < b.ye(); ++j)
     for (int i = b.xs; i < b.xe(); ++i) {
       const double cc = c[j][i];
       rho[j][i] = mixture_density(cc);
-      const double pressure = floor ? std::max(p[j][i], ambient_pressure_ + (*overburden)[j][i]) : p[j][i];
-      mu[j][i] = mixture_viscosity(cc, pressure, cell_strain_rate(grid_, u.data(), v.data(), i, j));
+      mu[j][i] = mixture_viscosity(cc, cell_yield_pressure(p[j][i], overburden.get(), i, j),
+                                   cell_strain_rate(grid_, u.data(), v.data(), i, j));
     }
 }
 
@@ -470,6 +479,7 @@ void SoilPhase::compute_diagnostics(const FlowSolver& flow) {
   ConstFieldArray dx(grid_.field_dm(), disp_[0]->local()), dy(grid_.field_dm(), disp_[1]->local());
   ConstFieldArray u = local_read(grid_, flow.velocity(0)), v = local_read(grid_, flow.velocity(1));
   ConstFieldArray p(grid_.field_dm(), flow.pressure().global());
+  const auto overburden = overburden_if_floor();
   FieldArray en(grid_.field_dm(), strain_norm_->global()), rn(grid_.field_dm(), rate_norm_->global()),
       lo(grid_.field_dm(), lode_->global()), ratio(grid_.field_dm(), stress_ratio_->global());
   const BlockedView mask(grid_, blocked_);
@@ -490,7 +500,9 @@ void SoilPhase::compute_diagnostics(const FlowSolver& flow) {
       const auto D = cell_strain_rate(grid_, u.data(), v.data(), i, j);
       rn[j][i] = rheology::norm(rheology::deviatoric(D));
       lo[j][i] = rheology::lode_angle(D) * 180.0 / std::numbers::pi;
-      ratio[j][i] = rheology_ ? rheology_->stress_ratio_to_drucker_prager(D, p[j][i] - ambient_pressure_) : 1.0;
+      ratio[j][i] = rheology_ ? rheology_->stress_ratio_to_drucker_prager(
+                                    D, cell_yield_pressure(p[j][i], overburden.get(), i, j) - ambient_pressure_)
+                              : 1.0;
     }
 }
 

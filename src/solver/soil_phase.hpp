@@ -94,6 +94,8 @@ class SoilPhase {
   interface::RadialWeights radial_weights() const { return {grid_.radius_face_data(), grid_.radius_centre_data()}; }
   double compute_dissipation(const FlowSolver& flow);
   double mixture_viscosity(double c, double pressure, const rheology::StrainRate& rate) const;
+  double cell_yield_pressure(double cell_pressure, const ConstFieldArray* overburden, int i, int j) const;
+  std::unique_ptr<ConstFieldArray> overburden_if_floor() const;
   // Density of a mixture at soil fraction c ([VoF] Eq. 1 or App. A).
   double mixture_density(double c) const {
     return settings_.density_mixing(c, settings_.air_density, settings_.soil_density);

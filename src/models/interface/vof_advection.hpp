@@ -63,8 +63,8 @@ void vof_sweep(int axis, double dt, const double* const* c, const double* const*
 
 // Soil volume (per unit depth, per radian with radial weights) that the sweep of `axis` carries out
 // of the domain of nx x ny cells through the boundary faces of the owned cells; negative for inflow.
-// The same face fluxes as vof_sweep (with the domain's ghosts treated as DomainCells says), so that
-// the soil in the domain plus the outflow is conserved.
+// The same face fluxes as vof_sweep given DomainCells{nx, ny} (the sides' ghosts as boundary ghosts),
+// so that the soil in the domain plus the outflow of such sweeps is conserved.
 double boundary_outflow(int axis, double dt, const double* const* c, const double* const* face_velocity,
                         const double* dx, const double* dy, CellBox owned, int nx, int ny, RadialWeights radial = {});
 

@@ -164,7 +164,7 @@ TEST(VofSweep, BoundaryOutflowIsWhatTheDomainLoses) {
       GhostedArray2 cc(8, 6, 2), out(8, 6, 2);
       dilatation_indicator(f.c().rows(), f.owned(), cc.rows());
       vof_sweep(axis, 1.0, f.c().rows(), axis == 0 ? f.ux().rows() : f.uy().rows(), cc.rows(), f.dx(), f.dy(),
-                f.owned(), out.rows());
+                f.owned(), out.rows(), {}, nullptr, DomainCells{8, 6});
       const double outflow = boundary_outflow(axis, 1.0, f.c().rows(), axis == 0 ? f.ux().rows() : f.uy().rows(),
                                               f.dx(), f.dy(), f.owned(), 8, 6);
       double before = 0.0, after = 0.0;

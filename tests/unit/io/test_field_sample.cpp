@@ -123,5 +123,31 @@ TEST(FieldSample, ObstacleWallsGiveTheirValueAsTheSidesDo) {
   EXPECT_NEAR(sample_field(g, u, SideRules{}, x_half, y_beside), 0.4, 1e-12);
 }
 
+// In a corner the obstacles make (a wall and a floor slab meeting, the open cell (4, 2) between them),
+// the blocked cell diagonal to the open one has no open neighbour of its own, yet a sample near the
+// corner reads it: it takes the open cell's value mirrored across both walls.
+TEST(FieldSample, ObstacleCornersGiveTheWallsValue) {
+  GridSpec spec;
+  spec.cells = {8, 6};
+  spec.upper = {0.8, 0.6};
+  const Grid g(PETSC_COMM_SELF, spec);
+  std::vector<double> blocked(48, 0.0);
+  for (int j = 0; j < 6; ++j)
+    for (int i = 0; i < 8; ++i) blocked[size_t(j) * 8 + i] = i >= 5 || j <= 1 ? 1.0 : 0.0;
+  const auto pressure = [](double x, double y) { return 2.0 + 3.0 * x - 5.0 * y; };
+  auto p = cell_values(g, pressure), u = cell_values(g, [](double, double) { return 0.8; });
+  for (size_t k = 0; k < blocked.size(); ++k)
+    if (blocked[k] > 0.5) p[k] = u[k] = 1e3;
+  fill_obstacle_walls(g, blocked, SideRule{SideRule::Kind::linear, 0.0}, p);
+  fill_obstacle_walls(g, blocked, SideRule{SideRule::Kind::value, 0.0}, u);
+  const double corner_x = 0.5, corner_y = 0.2;  // where the wall x = 0.5 meets the slab's top y = 0.2
+  for (const auto& [x, y] : {std::array{corner_x, corner_y}, std::array{corner_x - 0.02, corner_y + 0.01},
+                             std::array{corner_x - 0.01, corner_y + 0.03}}) {
+    EXPECT_NEAR(sample_field(g, p, pressure_side_rules(), x, y), pressure(x, y), 1e-12) << x << ", " << y;
+    if (x == corner_x) EXPECT_NEAR(sample_field(g, u, SideRules{}, x, y), 0.0, 1e-12);
+    EXPECT_LT(std::abs(sample_field(g, u, SideRules{}, x, y)), 0.8) << x << ", " << y;
+  }
+}
+
 }  // namespace
 }  // namespace granflow

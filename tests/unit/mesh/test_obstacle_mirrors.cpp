@@ -34,7 +34,7 @@ TEST(ObstacleMirrors, EachBlockedCellMirrorsAcrossItsNearestWall) {
   ConstFieldArray a(g.field_dm(), value.local());
   auto cell = [](int i, int j) { return 100.0 * i + j; };
   // Behind the east and west faces, one row below the top: the wall along x is one cell away, the
-  // top two. The open cells beside them read their own mirror (before, the top's: -(100 i + 7)).
+  // top two. The open cells beside them read their own mirror (before, the top's: -(100 i + 6)).
   EXPECT_EQ(a[3][6], -cell(7, 3));
   EXPECT_EQ(a[3][4], -cell(3, 3));
   // Under the top, between the sides: the top is nearer.
