@@ -38,6 +38,8 @@ double sample_field(const Grid& grid, const std::vector<double>& values, const S
 // 2 v - open for a value v (a static wall's velocity, 0), the open cell's for a zero gradient, and for
 // the pressure the line of the open cell and the one beyond it continued. The open neighbour is the
 // nearest wall's, along y where the cell has open neighbours along both axes (an obstacle's corner).
+// A blocked cell with no open neighbour but one diagonal to it (in a corner two walls make) takes that
+// cell's value mirrored across both walls.
 void fill_obstacle_walls(const Grid& grid, const std::vector<double>& blocked, const SideRule& wall,
                          std::vector<double>& values);
 
