@@ -440,6 +440,8 @@ CaseConfig read_case(const toml::table& root, const std::filesystem::path& sourc
     // Times past time.end are not written (a run shortened with --set time.end keeps its list; the
     // run's start warns of them, case_advice).
     for (double t : c.output.times) o.require_range("times", t, 0.0, inf, "zero or positive");
+    if (double(c.output.times.size()) > max_outputs)
+      throw CaseError(fmt::format("output.times: {} times, more than {:.0e} outputs", c.output.times.size(), max_outputs));
     c.output.fields = o.boolean("fields", true);
     c.output.checkpoints = o.boolean("checkpoints", true);
     c.output.progress_seconds = o.number("progress_seconds", 2.0);

@@ -196,6 +196,10 @@ TEST(CaseFile, MessagesStateTheRuleBroken) {
     EXPECT_NE(e.find("at least 1e-9 s"), std::string::npos) << key << ": " << e;
   }
   EXPECT_NO_THROW(parse_case(minimal, {"time.end=1e-9"}));
+  // As many outputs as output.interval may ask for, and no more, in a list of times.
+  std::string times = "output.times=[0.0";
+  for (int k = 1; k <= 100000; ++k) times += ", 0.5";
+  EXPECT_NE(error_of(minimal, {times + "]"}).find("output.times: 100001 times, more than 1e+05 outputs"), std::string::npos);
   EXPECT_NE(error_of(two_phase, {"soil.rheology.friction_angle=30", "mixture.density=\"arctan\"", "mixture.arctan_N=2e6"}).find("[1e-06, 1000000]"),
             std::string::npos)
       << error_of(two_phase, {"soil.rheology.friction_angle=30", "mixture.density=\"arctan\"", "mixture.arctan_N=2e6"});
