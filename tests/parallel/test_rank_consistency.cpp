@@ -54,7 +54,7 @@ void expect_rank_independent(const std::string& case_file, const CaseConfig& con
   // Pa, against pressures of up to 3 kPa; measured 1e-12 to 1.3e-8, and once 2.6e-6 in the barrier's
   // collapse with |du| 3e-12 m/s: two ranks' factorisation sums in an order that depends on timing, and
   // in soil held rigid at up to 1e8 Pa s a velocity apart by du is a pressure apart by mu du / h, some
-  // 1e-5 Pa for the velocities' round-off. The bound follows the velocities': 1e-4 Pa.
+  // 1e-5 Pa for the velocities' round-off. The bound is ten times that.
   EXPECT_LT(diff[2], 1e-4);
 }
 
