@@ -17,10 +17,10 @@ inline double swept_fraction(const double* const* c, const double* dx, const dou
   // Pure cells (the vast majority) need no reconstruction, and give exact 0/1 fluxes.
   if (cu <= 0.0) return 0.0;
   if (cu >= 1.0) return 1.0;
+  auto outside = [&](int ii, int jj) { return ii < 0 || ii >= domain.nx || jj < 0 || jj >= domain.ny; };
+  if (domain.nx > 0 && outside(i, j)) return cu;  // a boundary ghost: the mixture coming in, uniform
   Block3x3 block = gather_block(c, dx, dy, i, j);
   if (domain.nx > 0) {
-    auto outside = [&](int ii, int jj) { return ii < 0 || ii >= domain.nx || jj < 0 || jj >= domain.ny; };
-    if (outside(i, j)) return cu;  // a boundary ghost: the mixture coming in, uniform
     for (int r = 0; r < 3; ++r)
       for (int q = 0; q < 3; ++q)
         if (outside(i - 1 + q, j - 1 + r))
