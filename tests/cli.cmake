@@ -5,6 +5,14 @@ set_tests_properties(cli_check_misspelt_key PROPERTIES LABELS cli WILL_FAIL TRUE
 add_test(NAME cli_check_misspelt_key_message COMMAND granflow check ${CMAKE_CURRENT_BINARY_DIR}/misspelt.toml)
 set_tests_properties(cli_check_misspelt_key_message PROPERTIES LABELS cli
                      PASS_REGULAR_EXPRESSION "error: [^ ]*misspelt.toml: mesh.upeer: unknown key")
+# A key nested 100 000 levels deep (a dotted key of 100 000 parts) is read like any other, not a
+# stack overflow in the TOML parser.
+string(REPEAT "a." 100000 GRANFLOW_DEEP_KEY)
+file(WRITE ${CMAKE_CURRENT_BINARY_DIR}/deep_key.toml "${GRANFLOW_DEEP_KEY}b = 1\n")
+add_test(NAME cli_check_deeply_nested_key
+         COMMAND sh -c "out=$(\"$0\" check \"$1\" 2>&1); test $? -eq 2 && echo \"$out\" | grep -q 'deep_key.toml: mesh: missing table'"
+                 $<TARGET_FILE:granflow> ${CMAKE_CURRENT_BINARY_DIR}/deep_key.toml)
+set_tests_properties(cli_check_deeply_nested_key PROPERTIES LABELS cli)
 add_test(NAME cli_run_missing_file
          COMMAND sh -c "out=$(\"$0\" run \"$1\" 2>&1); test $? -eq 2 && echo \"$out\" | grep -q 'no_such_case.toml: cannot open the case file'"
                  $<TARGET_FILE:granflow> ${CMAKE_CURRENT_BINARY_DIR}/no_such_case.toml)

@@ -1,9 +1,12 @@
 #include "io/case_file.hpp"
 
 #include <fmt/format.h>
+#include <pthread.h>
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
+#include <exception>
 #include <fstream>
 #include <limits>
 #include <sstream>
@@ -525,10 +528,43 @@ CaseConfig read_case(const toml::table& root, const std::filesystem::path& sourc
   return c;
 }
 
-}  // namespace
+// toml++ recurses once per level of nesting, each part of a dotted key a level, at some 300 bytes of
+// stack a level: a key of 32 000 parts overflows the main thread's 8 MiB and kills the process. So the
+// case is parsed and read on a thread whose stack is sized by the characters that can open a level.
+template <class Read>
+CaseConfig read_on_a_deep_stack(std::string_view text, const std::vector<std::string>& overrides, Read read) {
+  size_t openers = std::count_if(text.begin(), text.end(), [](char ch) { return ch == '.' || ch == '[' || ch == '{'; });
+  for (const auto& o : overrides) openers += std::count_if(o.begin(), o.end(), [](char ch) { return ch == '.'; });
+  struct Job {
+    Read& read;
+    std::optional<CaseConfig> result;
+    std::exception_ptr error;
+  } job{read, std::nullopt, nullptr};
+  auto body = [](void* arg) -> void* {
+    auto* j = static_cast<Job*>(arg);
+    try {
+      j->result.emplace(j->read());
+    } catch (...) {
+      j->error = std::current_exception();
+    }
+    return nullptr;
+  };
+  pthread_attr_t attr;
+  pthread_attr_init(&attr);
+  pthread_attr_setstacksize(&attr, (size_t(16) << 20) + 1024 * openers);
+  pthread_t thread;
+  const int rc = pthread_create(&thread, &attr, body, &job);
+  pthread_attr_destroy(&attr);
+  if (rc != 0)
+    throw CaseError(fmt::format("the case holds {} dots and brackets, too many to read ({})", openers,
+                                std::strerror(rc)));
+  pthread_join(thread, nullptr);
+  if (job.error) std::rethrow_exception(job.error);
+  return std::move(*job.result);
+}
 
-CaseConfig parse_case(std::string_view text, const std::vector<std::string>& overrides,
-                      const std::filesystem::path& source) {
+CaseConfig parse_case_here(std::string_view text, const std::vector<std::string>& overrides,
+                           const std::filesystem::path& source) {
   toml::table root;
   try {
     root = toml::parse(text, source.string());
@@ -538,6 +574,14 @@ CaseConfig parse_case(std::string_view text, const std::vector<std::string>& ove
   }
   for (const auto& o : overrides) apply_override(root, o);
   return read_case(root, source);
+}
+
+}  // namespace
+
+CaseConfig parse_case(std::string_view text, const std::vector<std::string>& overrides,
+                      const std::filesystem::path& source) {
+  auto read = [&] { return parse_case_here(text, overrides, source); };
+  return read_on_a_deep_stack(text, overrides, read);
 }
 
 CaseConfig load_case(const std::filesystem::path& file, const std::vector<std::string>& overrides) {

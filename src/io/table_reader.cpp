@@ -31,6 +31,23 @@ void TableReader::missing(std::string_view key, std::string_view what) const {
 }
 
 namespace {
+// Inputs beyond these magnitudes overflow or underflow in the products the solver forms (a pressure
+// rho g L, a viscous coefficient mu dt / h^2), and the first solve would fail without naming the key.
+constexpr double largest_magnitude = 1e30;
+constexpr double smallest_magnitude = 1e-30;
+
+// Tolerances may be as small as the user likes: PETSc's own absolute tolerance is 1e-50.
+bool is_tolerance(std::string_view key) { return key == "atol" || key == "rtol" || key.ends_with("_tolerance"); }
+}  // namespace
+
+void TableReader::require_magnitude(std::string_view key, double value) const {
+  const double a = std::abs(value);
+  if (a > largest_magnitude || (a > 0 && a < smallest_magnitude && !is_tolerance(key)))
+    throw CaseError(fmt::format("{}: {} is beyond the magnitudes granflow computes with ({} to {}, or 0)",
+                                key_path(key), value, smallest_magnitude, largest_magnitude));
+}
+
+namespace {
 // Edits (insertions, deletions, substitutions, swaps of neighbours) that turn a into b.
 size_t edit_distance(std::string_view a, std::string_view b) {
   std::vector<std::vector<size_t>> d(a.size() + 1, std::vector<size_t>(b.size() + 1));
@@ -59,6 +76,7 @@ std::optional<double> TableReader::optional_number(std::string_view key) {
   if (!n) return std::nullopt;
   if (auto v = n->value<double>()) {
     if (!std::isfinite(*v)) type_error(key, "a finite number");
+    require_magnitude(key, *v);
     return *v;
   }
   type_error(key, "a number");
@@ -128,6 +146,7 @@ std::vector<double> TableReader::numbers(std::string_view key, std::vector<doubl
     auto v = e.value<double>();
     if (!v) type_error(key, "an array of numbers");
     if (!std::isfinite(*v)) type_error(key, "an array of finite numbers");
+    require_magnitude(key, *v);
     out.push_back(*v);
   }
   if (out.size() < min_size) type_error(key, fmt::format("at least {} numbers", min_size).c_str());
@@ -161,6 +180,8 @@ std::vector<std::array<double, 2>> TableReader::pairs(std::string_view key, size
     auto x = (*pt)[0].value<double>(), y = (*pt)[1].value<double>();
     if (!x || !y) type_error(key, "a list of [x, y] points");
     if (!std::isfinite(*x) || !std::isfinite(*y)) type_error(key, "a list of [x, y] points of finite numbers");
+    require_magnitude(key, *x);
+    require_magnitude(key, *y);
     out.push_back({*x, *y});
   }
   if (out.size() < min_size) type_error(key, fmt::format("at least {} points", min_size).c_str());

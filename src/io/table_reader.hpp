@@ -57,6 +57,9 @@ class TableReader {
 
  private:
   const toml::node* get(std::string_view key);
+  // Throws naming the key when a nonzero number lies outside [1e-30, 1e30] in magnitude (tolerances
+  // may be smaller).
+  void require_magnitude(std::string_view key, double value) const;
   [[noreturn]] void type_error(std::string_view key, const char* expected) const;
   [[noreturn]] void missing(std::string_view key, std::string_view what) const;
 
