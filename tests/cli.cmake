@@ -193,6 +193,12 @@ add_test(NAME cli_petsc_missing_options_file
          COMMAND sh -c "out=$(\"$0\" run \"$1\" -o \"$2\" --overwrite \"--petsc=-options_file $2/no_such_file\" 2>&1); test $? -eq 2 && echo \"$out\" | grep -q 'error: --petsc -options_file: cannot read .*no_such_file' && ! echo \"$out\" | grep -q 'PETSC ERROR'"
                  $<TARGET_FILE:granflow> ${CMAKE_SOURCE_DIR}/cases/lid_driven_cavity_re100.toml ${CMAKE_CURRENT_BINARY_DIR}/options_file)
 set_tests_properties(cli_petsc_missing_options_file PROPERTIES LABELS cli)
+# A -log_view file that cannot be written is refused before the run, not found at its end; the
+# output directory is not made.
+add_test(NAME cli_petsc_unwritable_log_view
+         COMMAND sh -c "rm -rf \"$2\"; out=$(\"$0\" run \"$1\" -o \"$2\" \"--petsc=-log_view :$2/no/such/dir/log.txt\" 2>&1); test $? -eq 2 && echo \"$out\" | grep -q 'error: --petsc -log_view .*: cannot write .*no/such/dir/log.txt' && test ! -e \"$2\""
+                 $<TARGET_FILE:granflow> ${CMAKE_SOURCE_DIR}/cases/lid_driven_cavity_re100.toml ${CMAKE_CURRENT_BINARY_DIR}/log_view_run)
+set_tests_properties(cli_petsc_unwritable_log_view PROPERTIES LABELS cli)
 # The comparison scripts name a missing or malformed file in one line, not a traceback.
 file(WRITE ${CMAKE_CURRENT_BINARY_DIR}/bad_refdata/ghia1982_cavity_re100.csv "y,u\n0.5,abc\n")
 add_test(NAME scripts_compare_missing_run

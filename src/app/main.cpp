@@ -1,6 +1,7 @@
 // granflow: the command line.
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
+#include <unistd.h>
 #include <petscsys.h>
 
 #include <algorithm>
@@ -157,10 +158,28 @@ PetscErrorCode one_line_petsc_error(MPI_Comm, int line, const char* function, co
   return code;
 }
 
-// PETSc stops inside PetscInitialize, with its error trace, on an options file it cannot read: say
-// which, in one line. Empty when every options file among the --petsc words can be read.
-std::string unreadable_options_file(const std::vector<std::string>& words) {
+// PETSc stops inside PetscInitialize, with its error trace, on an options file it cannot read, and
+// finds a -log_view file it cannot write only at the end of the run: say which, in one line, before
+// anything runs. Empty when every such file among the --petsc words can be used.
+std::string unusable_petsc_file(const std::vector<std::string>& words) {
   for (size_t k = 0; k < words.size(); ++k) {
+    if (words[k] == "-log_view" && k + 1 < words.size() && words[k + 1][0] != '-') {
+      // [type]:file[:format]: a file named where the viewer's type ends
+      const std::string& viewer = words[k + 1];
+      const size_t colon = viewer.find(':');
+      if (colon == std::string::npos) continue;
+      const std::string file = viewer.substr(colon + 1, viewer.find(':', colon + 1) - colon - 1);
+      if (file.empty()) continue;
+      const std::filesystem::path path(file);
+      const std::filesystem::path dir = path.has_parent_path() ? path.parent_path() : std::filesystem::path(".");
+      std::error_code ec;
+      const bool writable = std::filesystem::exists(path, ec) ? !std::filesystem::is_directory(path, ec) &&
+                                                                     access(file.c_str(), W_OK) == 0
+                                                               : std::filesystem::is_directory(dir, ec) &&
+                                                                     access(dir.c_str(), W_OK) == 0;
+      if (!writable) return fmt::format("--petsc -log_view {}: cannot write {}", viewer, file);
+      continue;
+    }
     if (words[k] != "-options_file" && words[k] != "-options_file_yaml") continue;
     if (k + 1 == words.size()) return fmt::format("--petsc {}: names no file", words[k]);
     const std::string& file = words[k + 1];
@@ -257,7 +276,7 @@ int main(int argc, char** argv) {
   {
     int world_rank = 0;
     MPI_Comm_rank(MPI_COMM_WORLD, &world_rank);
-    std::string problem = world_rank == 0 ? unreadable_options_file(petsc_words) : std::string();
+    std::string problem = world_rank == 0 ? unusable_petsc_file(petsc_words) : std::string();
     int failed = problem.empty() ? 0 : 1;
     MPI_Bcast(&failed, 1, MPI_INT, 0, MPI_COMM_WORLD);
     if (failed) {
