@@ -4,6 +4,8 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <random>
 #include <vector>
 
 namespace granflow::interface {
@@ -44,6 +46,46 @@ TEST(InitialShapes, SelfIntersectingPolygonsAreFound) {
   EXPECT_FALSE(self_intersecting(Polygon{{{0.0, 0.0}, {0.2, 0.0}, {0.1, 0.05}, {0.2, 0.1}, {0.0, 0.1}}}));  // concave
   EXPECT_TRUE(self_intersecting(Polygon{{{0.0, 0.0}, {0.2, 0.1}, {0.2, 0.0}, {0.0, 0.1}}}));  // a bow tie
   EXPECT_TRUE(self_intersecting(Polygon{{{0.0, 0.0}, {0.2, 0.0}, {0.1, 0.0}, {0.1, 0.1}}}));  // an edge doubling back
+}
+
+// The sweep in x compares only edges whose x ranges overlap; on random polygons (small integer
+// coordinates, so that vertices, collinear and touching edges are common) it finds what comparing
+// every pair finds.
+TEST(InitialShapes, SelfIntersectionSweepAgreesWithComparingEveryPair) {
+  auto every_pair = [](const Polygon& p) {
+    const auto& v = p.vertices;
+    const std::size_t n = v.size();
+    auto orient = [](const Point& a, const Point& b, const Point& c) {
+      return (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]);
+    };
+    auto on = [](const Point& a, const Point& b, const Point& c) {
+      return std::min(a[0], b[0]) <= c[0] && c[0] <= std::max(a[0], b[0]) && std::min(a[1], b[1]) <= c[1] &&
+             c[1] <= std::max(a[1], b[1]);
+    };
+    for (std::size_t a = 0; a < n; ++a)
+      for (std::size_t b = a + 1; b < n; ++b) {
+        if (b == a + 1 || (a == 0 && b == n - 1)) continue;
+        const Point &p1 = v[a], &p2 = v[(a + 1) % n], &q1 = v[b], &q2 = v[(b + 1) % n];
+        const double o1 = orient(p1, p2, q1), o2 = orient(p1, p2, q2), o3 = orient(q1, q2, p1), o4 = orient(q1, q2, p2);
+        if (o1 * o2 < 0 && o3 * o4 < 0) return true;
+        if ((o1 == 0 && on(p1, p2, q1)) || (o2 == 0 && on(p1, p2, q2)) || (o3 == 0 && on(q1, q2, p1)) ||
+            (o4 == 0 && on(q1, q2, p2)))
+          return true;
+      }
+    return false;
+  };
+  std::mt19937 random(7);
+  std::uniform_int_distribution<int> coordinate(0, 6), size(3, 9);
+  int crossing = 0, simple = 0;
+  for (int trial = 0; trial < 20000; ++trial) {
+    Polygon p;
+    for (int k = size(random); k > 0; --k) p.vertices.push_back({double(coordinate(random)), double(coordinate(random))});
+    const bool expected = every_pair(p);
+    ASSERT_EQ(self_intersecting(p), expected) << "trial " << trial;
+    (expected ? crossing : simple) += 1;
+  }
+  EXPECT_GT(simple, 500);  // both outcomes are exercised
+  EXPECT_GT(crossing, 500);
 }
 
 // A shape smaller than the cell, between the cell's corners and centre, is not lost by the fast path
