@@ -564,6 +564,14 @@ double FlowSolver::max_courant(double dt, const Field* region) const {
   return mpi_max(grid_.comm(), co);
 }
 
+void FlowSolver::rebuild_preconditioners() {
+  for (auto& s : momentum_solver_)
+    if (s) s->rebuild_at_next_solve();
+  if (pressure_solver_) pressure_solver_->rebuild_at_next_solve();
+  if (coupled_solver_) coupled_solver_->rebuild_at_next_solve();
+  if (solve_region_) solve_region_->rebuild_at_next_solve();
+}
+
 long FlowSolver::solves_at_iteration_limit() const {
   long n = 0;
   for (const auto* s : {momentum_solver_[0].get(), momentum_solver_[1].get(), pressure_solver_.get(), coupled_solver_.get()})

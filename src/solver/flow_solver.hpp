@@ -108,6 +108,8 @@ class FlowSolver {
   std::vector<Field*> checkpoint_fields() { return state_fields(); }
   double last_dt() const { return dt_; }
   void set_last_dt(double dt) { dt_ = dt; }
+  // Every linear solver builds its preconditioner anew at its next solve, as after a restart.
+  void rebuild_preconditioners();
 
   // numerics.air_band > 0: the coupled solve covers only the cells of its region (SolveRegion); the
   // air beyond is held at rest at its hydrostatic pressure. Without an air band both are no-ops.

@@ -38,6 +38,9 @@ class LinearSolver {
   void set_operator(Mat a);
   // Solves a x = b from the initial guess in x; returns the iteration count. Throws on divergence.
   int solve(Vec b, Vec x);
+  // The next solve builds its preconditioner anew, as a solver made afresh would: a run restarted
+  // from a checkpoint makes its solvers afresh, so the run that wrote it rebuilds there too.
+  void rebuild_at_next_solve() { built_ = false; }
   KSP ksp() const { return ksp_; }
   const std::string& name() const { return prefix_; }
   // Solves that stopped at max_iterations before rtol (accepted: the outer iterations may converge

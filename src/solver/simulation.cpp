@@ -551,6 +551,8 @@ void Simulation::write_checkpoint(double next_dt) {
     for (double s : soil_->checkpoint_scalars()) scalars.push_back(s);
   const auto fields = checkpoint_fields();
   granflow::write_checkpoint(grid_->comm(), out_, grid_->nx(), grid_->ny(), run, fields, scalars);
+  // A run restarted from here builds its preconditioners afresh; so does this one, to go on alike.
+  flow_->rebuild_preconditioners();
 }
 
 void Simulation::restart() {

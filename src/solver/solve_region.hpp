@@ -45,6 +45,10 @@ class SolveRegion {
   long prepare();
   // Cells in the region over all ranks, after the last prepare().
   long cell_count() const { return cell_count_; }
+  // See LinearSolver::rebuild_at_next_solve.
+  void rebuild_at_next_solve() {
+    if (solver_) solver_->rebuild_at_next_solve();
+  }
   // Solves that stopped at their max_iterations (LinearSolver), over every pattern so far.
   long solves_at_iteration_limit() const { return solver_ ? solver_->solves_at_iteration_limit() : 0; }
 

@@ -36,6 +36,18 @@ TEST(Restart, CavityContinuesExactlyFromItsLastCheckpoint) {
   std::printf("cavity restarted from its checkpoint at t = %.3g s\n", t);
 }
 
+// Preconditioners kept over several solves (solver.*.reuse_preconditioner) are rebuilt where a
+// checkpoint is written, as a restarted run builds its own there.
+TEST(Restart, DamBreakWithReusedPreconditionersContinuesExactly) {
+  const double t = expect_restart_reproduces(
+      "cases/water_dam_break.toml",
+      {"mesh.cells=[49,21]", "time.end=0.15", "output.interval=0.05", "output.fields=false",
+       "solver.pressure.reuse_preconditioner=10", "solver.momentum.reuse_preconditioner=10",
+       "output.progress_seconds=0"},
+      40, true);
+  std::printf("dam break restarted from its checkpoint at t = %.3g s\n", t);
+}
+
 // time.max_steps counts the steps of the whole run, over restarts; a run stopped by it writes its
 // output and a checkpoint where it stopped, once, also when that is an output time.
 TEST(Restart, MaxStepsCountsTheWholeRunAndItsLastOutputOnce) {
