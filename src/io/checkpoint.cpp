@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 #include <fmt/ostream.h>
 
+#include <cerrno>
 #include <cmath>
 #include <cstdint>
 #include <cstdlib>
@@ -94,7 +95,7 @@ void write_run(const std::filesystem::path& path, const RunCheckpoint& r) {
     for (const auto& [t, f] : r.series) fmt::print(out, "{:a} {}\n", t, f);
     fmt::print(out, "history {}\n", r.history.size());
     for (const auto& row : r.history) fmt::print(out, "{}\n", row);
-    fmt::print(out, "domain {}\nsteps {}\nphysics {}\n", r.domain, r.steps, r.physics);
+    fmt::print(out, "domain {}\nsteps {}\nphysics {}\nfields {}\n", r.domain, r.steps, r.physics, r.fields);
   });
 }
 
@@ -115,10 +116,11 @@ RunCheckpoint read_run(const std::filesystem::path& path) {
     if (!(in >> key >> value) || key != name) throw CheckpointError(fmt::format("{}: expected '{}'", path.string(), name));
     return value;
   };
-  auto count_in = [&](const char* name, const std::string& text) {
+  auto count_in = [&](const char* name, const std::string& text, long long most = std::numeric_limits<int>::max()) {
     char* end = nullptr;
+    errno = 0;
     const long long n = std::strtoll(text.c_str(), &end, 10);
-    if (end == text.c_str() || *end != '\0' || n < 0 || n > std::numeric_limits<int>::max())
+    if (end == text.c_str() || *end != '\0' || errno == ERANGE || n < 0 || n > most)
       throw CheckpointError(fmt::format("{}: '{}' is not a count for '{}'", path.string(), text, name));
     return size_t(n);
   };
@@ -152,8 +154,9 @@ RunCheckpoint read_run(const std::filesystem::path& path) {
     const size_t space = line.find(' ');
     const std::string name = line.substr(0, space), text = space == std::string::npos ? "" : line.substr(space + 1);
     if (name == "domain") r.domain = text;
-    else if (name == "steps") r.steps = long(count_in("steps", text));
+    else if (name == "steps") r.steps = long(count_in("steps", text, std::numeric_limits<long>::max()));
     else if (name == "physics") r.physics = text;
+    else if (name == "fields") r.fields = text;
   }
   return r;
 }
@@ -190,7 +193,8 @@ void write_checkpoint(MPI_Comm comm, const std::filesystem::path& dir, int nx, i
 }
 
 RunCheckpoint read_checkpoint(MPI_Comm comm, const std::filesystem::path& dir, int nx, int ny,
-                              const std::string& domain, std::span<Field* const> fields, std::vector<double>& scalars) {
+                              const std::string& domain, const std::string& field_names,
+                              std::span<Field* const> fields, std::vector<double>& scalars) {
   int rank, size;
   MPI_Comm_rank(comm, &rank);
   MPI_Comm_size(comm, &size);
@@ -202,8 +206,6 @@ RunCheckpoint read_checkpoint(MPI_Comm comm, const std::filesystem::path& dir, i
   if (!std::filesystem::exists(from / "run.txt"))
     problem = fmt::format("no checkpoint to restart from in {} (one is written at each output time after the start)", dir.string());
   agree(comm, problem);
-  const RankHeader expected{magic, size, rank, nx, ny, std::int64_t(fields.size()), 0};
-  agree(comm, read_rank(rank_file(from, rank), expected, fields, scalars));
   RunCheckpoint run;
   if (rank == 0) {
     try {
@@ -215,8 +217,15 @@ RunCheckpoint read_checkpoint(MPI_Comm comm, const std::filesystem::path& dir, i
     }
     if (problem.empty() && !run.domain.empty() && run.domain != domain)
       problem = fmt::format("the checkpoint is of the domain {}; the case's is {}", run.domain, domain);
+    // Other numerics may keep as many fields, of other meanings (cell forces where the look-ahead
+    // keeps the last step's velocity): the names tell.
+    if (problem.empty() && !run.fields.empty() && run.fields != field_names)
+      problem = fmt::format("the checkpoint holds the fields of other numerics ({}); this case's are {}", run.fields,
+                            field_names);
   }
   agree(comm, problem);
+  const RankHeader expected{magic, size, rank, nx, ny, std::int64_t(fields.size()), 0};
+  agree(comm, read_rank(rank_file(from, rank), expected, fields, scalars));
   double clock[6] = {run.time, run.next_dt, double(run.output_index), run.dissipated_energy, run.initial_soil_volume,
                      double(run.steps)};
   MPI_Bcast(clock, 6, MPI_DOUBLE, 0, comm);

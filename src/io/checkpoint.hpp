@@ -32,6 +32,7 @@ struct RunCheckpoint {
   std::string domain;  // the domain the fields are of, as Simulation describes it ("" in older checkpoints)
   long steps = 0;      // steps taken so far (0 in older checkpoints)
   std::string physics; // the materials and gravity, as Simulation describes them ("" in older checkpoints)
+  std::string fields;  // the fields' names in the order written ("" in older checkpoints)
 };
 
 // Writes the checkpoint into dir/checkpoint/ (collective). It is assembled in checkpoint.partial/ and
@@ -42,8 +43,11 @@ void write_checkpoint(MPI_Comm comm, const std::filesystem::path& dir, int nx, i
 // Reads the checkpoint of dir back (collective): the fields in the same order as written, this rank's
 // scalars into `scalars` and rank 0's run part into the return value (on every rank; the history,
 // series and domain on rank 0 only). Throws CheckpointError naming what does not match, on every rank:
-// the number of ranks, the mesh, the fields, or a domain other than `domain`.
+// the number of ranks, the mesh, the fields (their number, and their names where the checkpoint
+// records them, against `field_names`), or a domain other than `domain`. Nothing is read into the
+// fields unless the run's record matches.
 RunCheckpoint read_checkpoint(MPI_Comm comm, const std::filesystem::path& dir, int nx, int ny,
-                              const std::string& domain, std::span<Field* const> fields, std::vector<double>& scalars);
+                              const std::string& domain, const std::string& field_names,
+                              std::span<Field* const> fields, std::vector<double>& scalars);
 
 }  // namespace granflow

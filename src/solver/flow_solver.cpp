@@ -414,14 +414,32 @@ double FlowSolver::cell_force(int axis, int i, int j, const double* const* ff, c
 
 // ---------------------------------------------------------------------------------------------
 
-std::vector<Field*> FlowSolver::state_fields() {
-  std::vector<Field*> f{vel_[0].get(), vel_[1].get(), face_[0].get(), face_[1].get(),
-                        face_force_[0].get(), face_force_[1].get(), p_.get()};
-  if (cell_force_[0]) f.insert(f.end(), {cell_force_[0].get(), cell_force_[1].get()});
+std::vector<std::pair<const char*, Field*>> FlowSolver::named_state_fields() {
+  std::vector<std::pair<const char*, Field*>> f{{"u", vel_[0].get()},
+                                                {"v", vel_[1].get()},
+                                                {"face_u", face_[0].get()},
+                                                {"face_v", face_[1].get()},
+                                                {"face_force_x", face_force_[0].get()},
+                                                {"face_force_y", face_force_[1].get()},
+                                                {"p", p_.get()}};
+  if (cell_force_[0]) f.insert(f.end(), {{"cell_force_x", cell_force_[0].get()}, {"cell_force_y", cell_force_[1].get()}});
   // u^{n-1}, so that a step taken again extrapolates from the same two states.
-  if (settings_.numerics.look_ahead_viscosity) f.insert(f.end(), {vel_old_[0].get(), vel_old_[1].get()});
-  if (solve_region_) f.push_back(&solve_region_->cells());
+  if (settings_.numerics.look_ahead_viscosity)
+    f.insert(f.end(), {{"u_previous", vel_old_[0].get()}, {"v_previous", vel_old_[1].get()}});
+  if (solve_region_) f.emplace_back("solve_region", &solve_region_->cells());
   return f;
+}
+
+std::vector<Field*> FlowSolver::state_fields() {
+  std::vector<Field*> fields;
+  for (const auto& [name, f] : named_state_fields()) fields.push_back(f);
+  return fields;
+}
+
+std::string FlowSolver::checkpoint_field_names() {
+  std::string names;
+  for (const auto& [name, f] : named_state_fields()) names += (names.empty() ? "" : " ") + std::string(name);
+  return names;
 }
 
 // The velocity extrapolated to the end of the step, u^n + ratio (u^n - u^{n-1}) with ratio =

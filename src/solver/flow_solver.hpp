@@ -106,6 +106,8 @@ class FlowSolver {
   // What a checkpoint holds to continue a run exactly: the fields a step starts from, and the last
   // step's size (the look-ahead extrapolates with it).
   std::vector<Field*> checkpoint_fields() { return state_fields(); }
+  // The names of checkpoint_fields(), in their order, blank-separated.
+  std::string checkpoint_field_names();
   double last_dt() const { return dt_; }
   void set_last_dt(double dt) { dt_ = dt; }
   // Every linear solver builds its preconditioner anew at its next solve, as after a restart.
@@ -142,6 +144,7 @@ class FlowSolver {
   void fill_velocity_ghosts();
   std::array<double, 10> wall_forces() const;  // side_forces, then obstacle_force (side_force.cpp)
   std::vector<Field*> state_fields();  // what a step starts from: velocities, face velocities and forces, p
+  std::vector<std::pair<const char*, Field*>> named_state_fields();
   void update_boundary_heads();
   // Hydrostatic head below the top at an atmosphere face of side s in row j (y_face: the face's height).
   double boundary_head(Side s, int j, double rho, double y_face) const;

@@ -514,6 +514,12 @@ std::vector<Field*> Simulation::checkpoint_fields() {
   return fields;
 }
 
+std::string Simulation::checkpoint_field_names() {
+  std::string names = flow_->checkpoint_field_names();
+  if (soil_) names += std::string(" ") + SoilPhase::checkpoint_field_names;
+  return names;
+}
+
 // The domain as a checkpoint records it, so that a restart cannot take the fields of another one.
 std::string Simulation::domain() const {
   const auto& m = config_.mesh;
@@ -544,7 +550,8 @@ std::string Simulation::physics() const {
 
 void Simulation::write_checkpoint(double next_dt) {
   if (out_.empty() || !config_.output.checkpoints) return;
-  RunCheckpoint run{time_, next_dt, output_index_, dissipated_energy_, initial_soil_volume_, history_, {}, domain(), steps_, physics()};
+  RunCheckpoint run{time_, next_dt, output_index_, dissipated_energy_, initial_soil_volume_, history_, {}, domain(), steps_, physics(),
+                    checkpoint_field_names()};
   if (series_) run.series = series_->entries();
   std::vector<double> scalars{flow_->last_dt()};
   if (soil_)
@@ -559,7 +566,8 @@ void Simulation::restart() {
   if (out_.empty()) throw CheckpointError("a restart needs the output directory of the earlier run");
   const auto fields = checkpoint_fields();
   std::vector<double> scalars;
-  RunCheckpoint run = read_checkpoint(grid_->comm(), out_, grid_->nx(), grid_->ny(), domain(), fields, scalars);
+  RunCheckpoint run = read_checkpoint(grid_->comm(), out_, grid_->nx(), grid_->ny(), domain(), checkpoint_field_names(),
+                                      fields, scalars);
   flow_->clear_blocked_cells();  // the fields were read with their ghosts, the blocked cells' mirrors among them
   if (soil_) soil_->clear_blocked_cells();
   if (!(config_.time.end > run.time * (1 + 1e-12)))

@@ -72,6 +72,7 @@ class Simulation {
   double choose_dt(double dt_previous) const;
   double courant_after(double dt) const;  // flow Courant number of the current velocities over dt
   std::vector<Field*> checkpoint_fields();
+  std::string checkpoint_field_names();
   void write_checkpoint(double next_dt);
   std::string domain() const;
   std::string physics() const;

@@ -86,6 +86,7 @@ class SoilPhase {
   // What a checkpoint holds: c and the displacement; the sweep parity, this rank's outflow and
   // dissipated energy by Lode angle as numbers.
   std::vector<Field*> checkpoint_fields() { return state_fields(); }
+  static constexpr const char* checkpoint_field_names = "c displacement_x displacement_y";  // of checkpoint_fields()
   std::vector<double> checkpoint_scalars() const;
   void restore_scalars(std::span<const double> values);
  private:

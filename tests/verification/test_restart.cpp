@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <fstream>
 #include <string>
 #include <vector>
 
@@ -113,6 +114,39 @@ TEST(Restart, RefusesAMissingOrForeignCheckpoint) {
     ADD_FAILURE() << "a checkpoint of another mesh was taken";
   } catch (const CheckpointError& e) {
     EXPECT_NE(std::string(e.what()).find("30 x 10"), std::string::npos) << e.what();
+  }
+  // Other numerics keep other fields; where the count alone would agree (the projection with the
+  // look-ahead keeps the last step's velocity where the coupled solve keeps cell forces), the
+  // names tell them apart.
+  auto numerics = small;
+  numerics.push_back("numerics.first_viscosity=previous_step");
+  Simulation other_numerics(PETSC_COMM_WORLD, load_case(test::repo_path("cases/bui2008_experiment.toml"), numerics), dir);
+  try {
+    other_numerics.restart();
+    ADD_FAILURE() << "a checkpoint of other numerics was taken";
+  } catch (const CheckpointError& e) {
+    EXPECT_NE(std::string(e.what()).find("the checkpoint holds the fields of other numerics (u v face_u"),
+              std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("u_previous v_previous solve_region c displacement_x displacement_y); "
+                                         "this case's are u v"),
+              std::string::npos) << e.what();
+  }
+  // A run of more steps than an int holds restarts (time.max_steps goes to 1e12).
+  {
+    const auto run_txt = dir / "checkpoint" / "run.txt";
+    std::string text = test::file_text(run_txt);
+    const size_t at = text.find("\nsteps ");
+    ASSERT_NE(at, std::string::npos);
+    text.replace(at, text.find('\n', at + 1) - at, "\nsteps 3000000000");
+    std::ofstream(run_txt) << text;
+    auto longer = small;
+    longer.insert(longer.end(), {"time.end=0.1", "time.max_steps=1000000000000"});
+    Simulation sim(PETSC_COMM_WORLD, load_case(test::repo_path("cases/bui2008_experiment.toml"), longer), dir);
+    EXPECT_NO_THROW(sim.restart());
+    text.replace(text.find("\nsteps "), std::string("\nsteps 3000000000").size(), "\nsteps 99999999999999999999");
+    std::ofstream(run_txt) << text;
+    Simulation damaged(PETSC_COMM_WORLD, load_case(test::repo_path("cases/bui2008_experiment.toml"), longer), dir);
+    EXPECT_THROW(damaged.restart(), CheckpointError);
   }
   std::filesystem::remove_all(dir);
 }
