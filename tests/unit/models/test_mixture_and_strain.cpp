@@ -63,6 +63,19 @@ TEST(EulerAlmansi, SimpleShearMatchesClosedForm) {
   EXPECT_NEAR(strain::deviatoric_norm(e), expected, 1e-15);
 }
 
+// The printed form is (I - b)/2; the Euler-Almansi strain (I - b^-1)/2 = (H + H^T - H^T H)/2 with
+// H = grad u is [[0, g/2], [g/2, -g^2/2]] in this shear. Their deviatoric norms agree at any g,
+// sqrt(g^2/2 + g^4/6) (docs/method.md, "Strain").
+TEST(EulerAlmansi, SimpleShearNormIsTheAlmansiStrainsAtAnyShear) {
+  for (double g : {0.3, 1.0, 3.0}) {
+    strain::AlmansiStrain e;
+    ASSERT_TRUE(strain::almansi_strain({0.0, g, 0.0, 0.0}, e));
+    const strain::AlmansiStrain almansi{0.0, 0.5 * g, -0.5 * g * g, 0.0};  // xx, xy, yy, hoop
+    EXPECT_NEAR(strain::deviatoric_norm(e), strain::deviatoric_norm(almansi), 1e-13 * g * g) << g;
+    EXPECT_NEAR(strain::deviatoric_norm(e), std::sqrt(g * g / 2 + g * g * g * g / 6), 1e-13 * g * g) << g;
+  }
+}
+
 TEST(EulerAlmansi, RigidTranslationAndSingularGradient) {
   strain::AlmansiStrain e;
   EXPECT_TRUE(strain::almansi_strain({0.0, 0.0, 0.0, 0.0}, e));
