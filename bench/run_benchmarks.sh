@@ -7,6 +7,10 @@ cd "$(dirname "$0")/.."
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
 which="${1:-all}"
 reps="${2:-1}"
+case $which in
+  cavity | bui2008 | dam_break | lube2004 | all) ;;
+  *) echo "error: run_benchmarks.sh takes cavity, bui2008, dam_break, lube2004 or all, not '$which'" >&2; exit 2 ;;
+esac
 run() {  # name ranks case overrides...
   local name=$1 ranks=$2 case=$3
   shift 3
@@ -16,13 +20,18 @@ run() {  # name ranks case overrides...
     log="$out/log"
     local start end
     start=$(date +%s.%N)
-    mpirun -np "$ranks" --oversubscribe build/granflow run "$case" -o "$out" --set output.progress_seconds=0 \
-      --set output.fields=false "$@" > "$log" 2>&1
+    if ! mpirun -np "$ranks" --oversubscribe build/granflow run "$case" -o "$out" --set output.progress_seconds=0 \
+      --set output.fields=false "$@" > "$log" 2>&1; then
+      echo "error: $name on $ranks ranks failed; its last lines:" >&2
+      tail -n 5 "$log" >&2
+      rm -rf "$out"
+      exit 1
+    fi
     end=$(date +%s.%N)
     local steps its
     steps=$(grep -oP 'in \K[0-9]+(?= steps)' "$log")
     its=$(grep -oP 'outer iterations \K.*(?= iterations each)' "$log" | sed -E 's/ \([0-9]+ of [0-9]+ steps[^)]*\)//; s/momentum iterations //; s/pressure solves //; s/ \(/, /')
-    printf "| %s | %d | %.1f | %s | %s |\n" "$name" "$ranks" "$(echo "$end - $start" | bc)" "$steps" "$its"
+    printf "| %s | %d | %.1f | %s | %s |\n" "$name" "$ranks" "$(awk -v a="$start" -v b="$end" 'BEGIN { print b - a }')" "$steps" "$its"
     rm -rf "$out"
   done
 }

@@ -24,7 +24,7 @@ import sys
 
 import numpy as np
 
-from granflow_files import main_with_errors, read_csv
+from granflow_files import InputError, main_with_errors, one_cell_toe, read_csv
 
 MODELS = {"drucker_prager": ("Drucker-Prager", "C0", "-"), "mohr_coulomb": ("Mohr-Coulomb", "C3", "--"),
           "matsuoka_nakai": ("Matsuoka-Nakai", "C2", ":")}  # label, colour, line style (lode_dissipation.png)
@@ -43,7 +43,7 @@ def output_times(run):
         if pairs:
             return {s: float(t) for t, s in pairs}
     times = {}
-    for f in sorted(glob.glob(os.path.join(run, "surface_[0-9]*.csv"))):
+    for f in sorted(glob.glob(os.path.join(glob.escape(run), "surface_[0-9]*.csv"))):
         m = re.search(r"t = ([-+0-9.eE]+)", open(f).readline())
         if m:
             times[os.path.basename(f)[8:13]] = float(m.group(1))
@@ -112,20 +112,21 @@ def lube_runout(h0, r0):
 def measure(run, case, times):
     """The numbers of one run at its last output."""
     last = max(times, key=times.get)
-    cols = read_csv(os.path.join(run, f"column_height_{last}.csv"))
+    cols_path = os.path.join(run, f"column_height_{last}.csv")
+    cols = read_csv(cols_path)
     surf = read_csv(os.path.join(run, f"surface_{last}.csv"))
     x, h = cols["x"], cols["height"]
-    dx = x[1] - x[0]
     gx, gy, cells = read_vtr(os.path.join(run, f"fields_{last}.vtr"))
-    dy = gy[1] - gy[0]
-    thick = h >= dy * (1 - 1e-9)
+    toe = one_cell_toe(cols, cols_path)
+    thick = h >= cols["floor_cell_height"] * (1 - 1e-9)
+    west = 2 * x - cols["x_east"]  # each column's west face
     m = {"time_s": times[last],
-         "runout_one_cell_m": float(x[thick].max() + 0.5 * dx) if thick.any() else 0.0,
+         "runout_one_cell_m": toe,
          "runout_contour_m": float(max(surf["x0"].max(), surf["x1"].max())) if len(surf["x0"]) else 0.0}
     if CASES[case]["r0"] is None:  # ring: the highest column, and the inner front
         k = int(np.argmax(h))
         m.update(max_height_m=float(h[k]), max_height_radius_m=float(x[k]),
-                 inner_front_one_cell_m=float(x[thick].min() - 0.5 * dx) if thick.any() else None)
+                 inner_front_one_cell_m=float(west[thick].min()) if thick.any() else None)
     else:
         m["central_height_m"] = float(h[0])
     hist = read_csv(os.path.join(run, "history.csv"))
@@ -164,6 +165,9 @@ def compare(results, columns):
         for model in ("mohr_coulomb", "matsuoka_nakai"):
             if model not in runs:
                 continue
+            if abs(runs[model]["time_s"] - dp["time_s"]) > 1e-6:
+                raise InputError(f"{case}: the {model} run ends at t = {runs[model]['time_s']:g} s and the "
+                                 f"drucker_prager run at {dp['time_s']:g} s; runs of one end time are compared")
             m, (x, h) = runs[model], columns[case][model]
             h = np.interp(xd, x, h, right=0.0)
             m["runout_one_cell_diff_from_dp"] = m["runout_one_cell_m"] / dp["runout_one_cell_m"] - 1

@@ -4,8 +4,10 @@
 Usage: compare_bui2008.py RUN_DIR [--png FILE] [--json FILE]
 Reads the last output of RUN_DIR (column_height_*.csv, surface_*.csv, failure_line_*.csv) and prints:
 run-out (toe of the c = 0.5 contour and of a one-cell-thick layer) against 0.442 m, the RMS height
-difference at the experiment's surface points, and the mean distance of the experiment's failure
-points from the computed failure line.
+difference at the experiment's surface points, the mean distance of the experiment's failure
+points from the computed failure line, and the change of the soil volume (with what left the
+domain) from history.csv. A run with no output after its start, or of another block than the
+case's (by its initial soil volume), is refused.
 """
 import argparse
 import glob
@@ -15,18 +17,25 @@ import sys
 
 import numpy as np
 
-from granflow_files import main_with_errors, read_csv
+from granflow_files import InputError, main_with_errors, one_cell_toe, read_csv, require_initial_volume
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 REFDATA = os.path.join(HERE, "..", "validation", "refdata")
 EXPERIMENT_RUNOUT = 0.442
+BLOCK_AREA = 0.2 * 0.1  # m^2 per metre of depth: the block of cases/bui2008_experiment.toml
 
 
-def last(run_dir, name):
-    files = sorted(glob.glob(os.path.join(run_dir, f"{name}_*.csv")))
-    if not files:
-        sys.exit(f"error: no {name}_*.csv in {run_dir}")
-    return files[-1]
+def last_output(run_dir):
+    """The files of the last output, all of one output index: a run killed while writing one leaves
+    its column heights without its surface, and the output before is taken whole."""
+    stamps = sorted(os.path.basename(f)[len("column_height_"):-len(".csv")]
+                    for f in glob.glob(os.path.join(glob.escape(run_dir), "column_height_[0-9]*.csv")))
+    for stamp in reversed(stamps):
+        files = {name: os.path.join(run_dir, f"{name}_{stamp}.csv") for name in ("column_height", "surface", "failure_line")}
+        if all(os.path.exists(f) for f in files.values()):
+            return files
+    raise InputError(f"{run_dir}: no output with its column_height_, surface_ and failure_line_ files "
+                     "(not the output directory of a run of bui2008_experiment?)")
 
 
 def time_of(path):
@@ -35,16 +44,21 @@ def time_of(path):
 
 
 def metrics(run_dir):
-    cols = read_csv(last(run_dir, "column_height"))
-    surf = read_csv(last(run_dir, "surface"))
-    fail = read_csv(last(run_dir, "failure_line"))
+    files = last_output(run_dir)
+    cols_path = files["column_height"]
+    time = time_of(cols_path)
+    if not time > 0:
+        raise InputError(f"{cols_path}: the run has no output after its start (t = {time:g} s)")
+    history_path = os.path.join(run_dir, "history.csv")
+    history = read_csv(history_path)
+    require_initial_volume(history, history_path, BLOCK_AREA, "the bui2008_experiment block")
+    cols = read_csv(cols_path)
+    surf = read_csv(files["surface"])
+    fail = read_csv(files["failure_line"])
     exp_s = read_csv(os.path.join(REFDATA, "bui2008_al_bar_collapse_final_surface.csv"))
     exp_f = read_csv(os.path.join(REFDATA, "bui2008_al_bar_collapse_failure_line.csv"))
     x, h = cols["x"], cols["height"]
-    dx = x[1] - x[0]
-    # One cell high: the column file has the x spacing only; the shipped meshes' cells are square.
-    one_cell = h >= dx * (1 - 1e-9)
-    toe_cell = x[one_cell].max() + 0.5 * dx if np.any(one_cell) else 0.0
+    toe_cell = one_cell_toe(cols, cols_path)
     toe_contour = max(surf["x0"].max(), surf["x1"].max()) if len(surf["x0"]) else 0.0
     ex, ey = exp_s["x_m"], exp_s["y_m"]
     heights = np.interp(ex, x, h)
@@ -62,7 +76,7 @@ def metrics(run_dir):
             d.append(np.sqrt(((closest - q) ** 2).sum(1)).min())
         mean_dist = float(np.mean(d))
     return {
-        "time": time_of(last(run_dir, "column_height")),
+        "time": time,
         "runout_contour_m": float(toe_contour),
         "runout_one_cell_m": float(toe_cell),
         "runout_experiment_m": EXPERIMENT_RUNOUT,
@@ -70,6 +84,8 @@ def metrics(run_dir):
         "runout_error_one_cell": float(toe_cell / EXPERIMENT_RUNOUT - 1),
         "surface_rms_m": rms,
         "failure_line_mean_distance_m": mean_dist,
+        # what the domain holds and what left it, against the first step's
+        "soil_volume_change": float((history["soil_volume"][-1] + history["soil_outflow"][-1]) / history["soil_volume"][0] - 1),
     }, (x, h, surf, fail, exp_s, exp_f)
 
 
@@ -81,9 +97,9 @@ def main():
     a = ap.parse_args()
     m, (x, h, surf, fail, exp_s, exp_f) = metrics(a.run_dir)
     for k, v in m.items():
-        print(f"{k} = {v:.4f}" if isinstance(v, float) else f"{k} = {v}")
-    if a.json:
-        json.dump(m, open(a.json, "w"), indent=1)
+        print(f"{k} = {v:.3g}" if k == "soil_volume_change" else f"{k} = {v:.4f}" if isinstance(v, float) else f"{k} = {v}")
+    if a.json:  # a measure that cannot be taken (no failure line) is null, not NaN, which JSON lacks
+        json.dump({k: None if isinstance(v, float) and np.isnan(v) else v for k, v in m.items()}, open(a.json, "w"), indent=1)
     if a.png:
         import matplotlib
         matplotlib.use("Agg")

@@ -22,7 +22,7 @@ import re
 
 import numpy as np
 
-from granflow_files import InputError, main_with_errors, read_csv
+from granflow_files import InputError, main_with_errors, one_cell_toe, read_csv
 
 # Which figure of [VoF] a case is drawn for, from the run directory's name.
 FIGURES = {"bui2008_sph_phi25_c5": "Fig. 7", "bui2008_sph_phi25": "Fig. 4", "bui2008_sph_phi45": "Fig. 5",
@@ -39,23 +39,10 @@ def time_of(path):
 
 def outputs(run_dir):
     """Output index -> time, from the surface files' headers."""
-    files = sorted(glob.glob(os.path.join(run_dir, "surface_[0-9][0-9][0-9][0-9][0-9].csv")))
+    files = sorted(glob.glob(os.path.join(glob.escape(run_dir), "surface_[0-9][0-9][0-9][0-9][0-9].csv")))
     if not files:
         raise InputError(f"{run_dir}: no surface_NNNNN.csv (not a granflow output directory of a soil case?)")
     return {os.path.basename(f)[8:13]: time_of(f) for f in files}
-
-
-def cell_height(run_dir, dx):
-    """Height of the first cell row, from the first VTK file's y coordinates; dx if there is none."""
-    vtr = sorted(glob.glob(os.path.join(run_dir, "fields_*.vtr")))
-    if vtr:
-        text = open(vtr[0]).read(2_000_000)
-        m = re.search(r'<DataArray[^>]*Name="y"[^>]*format="ascii">\s*([^<]*)<', text)
-        if m:
-            y = [float(v) for v in m.group(1).split()[:2]]
-            if len(y) == 2:
-                return y[1] - y[0]
-    return dx
 
 
 def chains(x0, y0, x1, y1, tol):
@@ -132,10 +119,8 @@ def measure(run_dir, stamp, t):
     if len(x) < 2:
         raise InputError(f"{run_dir}/column_height_{stamp}.csv: fewer than two columns")
     dx = x[1] - x[0]
-    dy = cell_height(run_dir, dx)
-    thick = h >= dy * (1 - 1e-9)
     toe_contour = float(max(surf["x0"].max(), surf["x1"].max())) if len(surf["x0"]) else 0.0
-    toe_cell = float(x[thick].max() + 0.5 * dx) if np.any(thick) else 0.0
+    toe_cell = one_cell_toe(cols, os.path.join(run_dir, f"column_height_{stamp}.csv"))
     # Mean slope of the surface between the columns 3/4 and 1/4 as high as the wall: a cohesionless
     # pile at rest can stand no steeper than its yield surface allows (asin(3 alpha_phi) in plane strain).
     slope = None

@@ -11,7 +11,7 @@ import os
 
 import numpy as np
 
-from granflow_files import main_with_errors, read_csv
+from granflow_files import InputError, main_with_errors, read_csv
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 REFDATA = os.path.join(HERE, "..", "validation", "refdata")
@@ -25,7 +25,12 @@ def main():
     ap.add_argument("--refdata", default=os.environ.get("GRANFLOW_REFDATA", REFDATA))
     a = ap.parse_args()
     ref = read_csv(os.path.join(a.refdata, f"ghia1982_cavity_re{a.re}.csv"))
-    ucl = read_csv(os.path.join(a.run_dir, "u_vertical_centreline.csv"))
+    ucl_path = os.path.join(a.run_dir, "u_vertical_centreline.csv")
+    ucl = read_csv(ucl_path)
+    # The shipped cavities have a unit lid speed, side and density, so their viscosity is 1 / Re.
+    if "viscosity" in ucl and len(ucl["viscosity"]) and not np.allclose(ucl["viscosity"], 1.0 / a.re, rtol=1e-6):
+        raise InputError(f"{ucl_path}: the viscosity is {ucl['viscosity'][0]:g} Pa s, not the 1/{a.re} of a cavity "
+                         f"at Re {a.re} (unit lid speed, side and density): a run at another Re?")
     vcl = read_csv(os.path.join(a.run_dir, "v_horizontal_centreline.csv"))
     du = np.abs(np.interp(ref["y"], ucl["y"], ucl["u"]) - ref["u"]).max()
     dv = np.abs(np.interp(ref["x"], vcl["x"], vcl["v"]) - ref["v"]).max()

@@ -37,7 +37,7 @@ import sys
 
 import numpy as np
 
-from granflow_files import main_with_errors, read_csv
+from granflow_files import main_with_errors, read_csv, require_initial_volume
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 REFDATA = os.path.join(HERE, "..", "validation", "refdata")
@@ -62,7 +62,10 @@ def simulated_front(hist, a, g=G):
 
 def compare_koshizuka(run_dir, tmax):
     """Front of a Koshizuka & Oka scale run against their data and against Martin & Moyce's at the same T."""
-    T_sim, z_sim = simulated_front(read_csv(os.path.join(run_dir, "history.csv")), KOSHIZUKA_L)
+    history_path = os.path.join(run_dir, "history.csv")
+    history = read_csv(history_path)
+    require_initial_volume(history, history_path, 2 * KOSHIZUKA_L ** 2, f"a water column {KOSHIZUKA_L} m wide and twice as high")
+    T_sim, z_sim = simulated_front(history, KOSHIZUKA_L)
     ko = read_csv(os.path.join(REFDATA, "koshizuka_oka1996_surge_front_pysph.csv"))
     mm = read_csv(os.path.join(REFDATA, "martin_moyce1952_n2_2_surge_front.csv"))
     if T_sim[-1] < tmax * (1 - 1e-6):
@@ -85,7 +88,9 @@ def compare_koshizuka(run_dir, tmax):
 
 
 def compare(run_dir, a=A, g=G, tmax=3.0, shift=RELEASE_SHIFT):
-    hist = read_csv(os.path.join(run_dir, "history.csv"))
+    history_path = os.path.join(run_dir, "history.csv")
+    hist = read_csv(history_path)
+    require_initial_volume(hist, history_path, 2 * a * a, f"a water column a = {a} m wide and 2a high (--a)")
     t = np.concatenate([[0.0], hist["time"]])
     # The initial state (t = 0) is not a history row; the column starts at Z = 1, H = 1.
     T_sim, z_sim = simulated_front(hist, a, g)

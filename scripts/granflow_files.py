@@ -36,6 +36,27 @@ def require_columns(table, path, names):
         raise InputError(f"{path}: no column {', '.join(missing)} (has {', '.join(table)})")
 
 
+def one_cell_toe(columns, path):
+    """Toe of a layer at least one cell thick, read from a column_height_NNNNN.csv as the history's
+    toe_one_cell: the east face of the farthest column whose soil height (sum of c dy) reaches the
+    floor cell's height."""
+    require_columns(columns, path, ["height", "x_east", "floor_cell_height"])
+    thick = columns["height"] >= columns["floor_cell_height"] * (1 - 1e-9)
+    return float(columns["x_east"][thick].max()) if thick.any() else 0.0
+
+
+def require_initial_volume(history, path, expected, what):
+    """The run's soil (or water) volume, from its history's first row, is that of the case the script
+    compares with (to 2 %): a run of another case is not scored against the wrong data."""
+    require_columns(history, path, ["soil_volume"])
+    if len(history["soil_volume"]) == 0:
+        raise InputError(f"{path}: no rows (the run took no step)")
+    volume = float(history["soil_volume"][0])
+    if abs(volume / expected - 1) > 0.02:
+        raise InputError(f"{path}: the run's initial volume is {volume:.6g}, not the {expected:.6g} of {what}; "
+                         "a run of another case?")
+
+
 def main_with_errors(main):
     try:
         sys.exit(main())

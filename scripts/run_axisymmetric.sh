@@ -4,8 +4,9 @@
 #   scripts/run_axisymmetric.sh [--coarse] [OUT]
 # --coarse halves the cells per axis (3.33 mm instead of the paper's 1.67 mm), for a quick look.
 # Output: OUT/<case>_<model>/ per run (default OUT = out/axisymmetric), OUT/<case>_*.png and
-# OUT/axisymmetric.json with the numbers docs/validation.md quotes. Runs already finished (their
-# lode_dissipation.csv stamped at the end time) are not run again.
+# OUT/axisymmetric.json with the numbers docs/validation.md quotes. Runs already finished on the
+# same mesh (their lode_dissipation.csv stamped at the end time, their columns as many as asked) are
+# not run again.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 coarse=0
@@ -15,10 +16,15 @@ mkdir -p "$out"
 declare -A cells=([lube2004_a05]="150,60" [lube2004_a2]="120,90" [ring_collapse]="180,45")
 for case in lube2004_a05 lube2004_a2 ring_collapse; do
   extra=()
-  if [ $coarse = 1 ]; then extra=(--set "mesh.cells=[${cells[$case]}]"); fi
+  columns=$(( 2 * ${cells[$case]%%,*} ))
+  if [ $coarse = 1 ]; then extra=(--set "mesh.cells=[${cells[$case]}]"); columns=${cells[$case]%%,*}; fi
   for model in drucker_prager mohr_coulomb matsuoka_nakai; do
     dir="$out/${case}_${model}"
-    if grep -qs "up to t = 0.5 s" "$dir/lode_dissipation.csv"; then continue; fi
+    last_columns=$(ls "$dir"/column_height_*.csv 2>/dev/null | tail -n 1)
+    if grep -qs "up to t = 0.5 s" "$dir/lode_dissipation.csv" && [ -n "$last_columns" ] &&
+       [ "$(grep -vc -e '^#' -e '^x,' "$last_columns")" = "$columns" ]; then
+      continue
+    fi
     build/granflow run "cases/$case.toml" -o "$dir" --overwrite --set soil.rheology.model="$model" "${extra[@]}"
   done
 done

@@ -3,7 +3,8 @@
 # t = 2 s, with its comparison against the experiment of Bui et al. (2008) as a PNG.
 # Output in out/bui2008_experiment/ (fields.pvd for ParaView, surfaces, failure lines, history).
 # If the run stops early (divergence keeps the last good output), the comparison is drawn for the
-# last output written and the job says so; see docs/validation.md for where the case stands.
+# last output it wrote, the job says so and exits with the run's status; a run that wrote nothing
+# (an earlier run's files put back) is not compared. See docs/validation.md for where the case stands.
 # Usage: scripts/run_main.sh [CASE]; CASE = bui2008_experiment (default, the paper's rheology) or
 # bui2008_experiment_mu_of_i (the same collapse with mu(I) friction).
 set -uo pipefail
@@ -17,6 +18,8 @@ out=out/$case_name
 # Two ranks where there are two cores: the run is 1.25 times faster on two (docs/benchmarks.md), and
 # the result is the one-rank result to round-off (docs/validation.md).
 ranks=$(( $(nproc) >= 2 ? 2 : 1 ))
+started=$(mktemp)
+trap 'rm -f "$started"' EXIT
 if [ "$ranks" -gt 1 ]; then
   export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
   mpirun -np "$ranks" build/granflow run "cases/$case_name.toml" -o "$out" --overwrite
@@ -24,8 +27,13 @@ else
   build/granflow run "cases/$case_name.toml" -o "$out" --overwrite
 fi
 status=$?
+if [ $status -ne 0 ] && ! [ "$out/history.csv" -nt "$started" ]; then
+  echo "main job: the run failed (status $status) before it wrote any output; nothing to compare" >&2
+  exit $status
+fi
 /usr/bin/python3 scripts/compare_bui2008.py "$out" --png "$out/comparison_bui2008.png" --json "$out/comparison.json" || exit 1
 if [ $status -ne 0 ]; then
-  echo "main job: the run stopped early (status $status); the comparison shows its last output (docs/validation.md)"
+  echo "main job: the run stopped early (status $status); the comparison shows its last output (docs/validation.md)" >&2
+  exit $status
 fi
 echo "main job: results in $out (fields.pvd for ParaView, comparison_bui2008.png)"

@@ -498,11 +498,13 @@ void Simulation::write_soil_lines() const {
   if (soil_->settings().displacement)
     write_segments("failure_line", iso_line(g, e, soil_->settings().failure_strain, inside));
   write_file_atomically(out_ / fmt::format("column_height_{}.csv", stamp), [&](std::ostream& out) {
-    fmt::print(out, "# soil height per column (sum of c dy) at t = {:.9g} s\nx,height\n", time_);
+    // With each column's east face and the floor cell's height, so that a script reads the toe of a
+    // layer one cell thick as the history does, on any cells (graded, not square).
+    fmt::print(out, "# soil height per column (sum of c dy) at t = {:.9g} s\nx,height,x_east,floor_cell_height\n", time_);
     for (int i = 0; i < nx; ++i) {
       double h = 0.0;
       for (int j = 0; j < g.ny(); ++j) h += c[size_t(j) * nx + i] * g.dy(j);
-      fmt::print(out, "{:.9g},{:.9g}\n", g.xc(i), h);
+      fmt::print(out, "{:.9g},{:.9g},{:.9g},{:.9g}\n", g.xc(i), h, g.xf(i), g.dy(0));
     }
   });
 }
