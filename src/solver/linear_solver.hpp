@@ -47,8 +47,8 @@ class LinearSolver {
   // the rest, and a reused factorisation may be asked for a few iterations only; but the face
   // fluxes then carry the residual, and the soil volume with them).
   long solves_at_iteration_limit() const { return solves_at_limit_; }
-  // A solver that takes over from another (a new pattern) goes on with its count, and its warning.
-  void continue_count(const LinearSolver& before) { solves_at_limit_ = before.solves_at_limit_; }
+  // A solver that takes over from others (a new pattern) goes on with their count, and their warning.
+  void continue_count(long solves_at_limit_before) { solves_at_limit_ = solves_at_limit_before; }
 
  private:
   KSP ksp_ = nullptr;

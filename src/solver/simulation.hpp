@@ -98,6 +98,7 @@ class Simulation {
   double time_ = 0.0;
   double restart_dt_ = 0.0;  // the step to continue with after restart()
   bool restarted_ = false;
+  bool solve_region_laid_ = false;  // numerics.air_band: a region has been laid (or restored)
   long steps_ = 0;  // steps of the whole run, over restarts (time.max_steps counts these)
   int output_index_ = 0;
   bool run_recorded_ = false;  // the record of the run's line samples is written (io/run_directory.hpp)

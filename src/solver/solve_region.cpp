@@ -69,6 +69,7 @@ long SolveRegion::prepare() {
   MPI_Allreduce(&changed, &any_changed, 1, MPI_INT, MPI_MAX, comm);
   if (!any_changed) return cell_count_;
 
+  if (solver_) solves_at_limit_before_ = solver_->solves_at_iteration_limit();
   solver_.reset();
   MatDestroy(&matrix_);
   VecDestroy(&rhs_);
@@ -104,7 +105,7 @@ long SolveRegion::prepare() {
   PetscCallAbort(comm, MatCreateVecs(matrix_, &solution_, &rhs_));
   // A new pattern needs a new factorisation analysis; a fresh solver also takes the new sizes.
   auto solver = std::make_unique<LinearSolver>(comm, "coupled", solver_settings_);
-  if (solver_) solver->continue_count(*solver_);
+  solver->continue_count(solves_at_limit_before_);
   solver_ = std::move(solver);
   return cell_count_;
 }

@@ -50,7 +50,7 @@ class SolveRegion {
     if (solver_) solver_->rebuild_at_next_solve();
   }
   // Solves that stopped at their max_iterations (LinearSolver), over every pattern so far.
-  long solves_at_iteration_limit() const { return solver_ ? solver_->solves_at_iteration_limit() : 0; }
+  long solves_at_iteration_limit() const { return solver_ ? solver_->solves_at_iteration_limit() : solves_at_limit_before_; }
 
   // Fills the region's rows, one (cell, unknown) at a time, while it lives; the matrix is
   // assembled when it goes. Columns are given as grid stencils; those outside the region are
@@ -110,6 +110,7 @@ class SolveRegion {
   Mat matrix_ = nullptr;
   Vec rhs_ = nullptr, solution_ = nullptr;
   std::unique_ptr<LinearSolver> solver_;
+  long solves_at_limit_before_ = 0;  // of the solvers of earlier patterns
 };
 
 }  // namespace granflow

@@ -139,6 +139,42 @@ namespace {
 // the whole-domain solve holds its pressure at; with the region short of the whole box, that air
 // holds the region's level too. The soil moves as in the whole box's solve, which keeps the level
 // in one of its continuity rows instead (coupled_step.cpp).
+// A fixed step that moves the soil out of the band's region (here the water column of the dam break,
+// 7 mm cells, steps of 10 ms, a band of 3 cells) stops the run with a message naming the band,
+// before any soil is lost: soil beyond the region crosses faces no continuity row balances.
+TEST(AirBand, SoilLeavingTheRegionInOneStepStopsTheRun) {
+  const CaseConfig config = load_case(
+      test::repo_path("cases/water_dam_break.toml"),
+      {"mesh.cells=[49,21]", "numerics.pressure_coupling=coupled", "numerics.air_band=3", "time.adaptive=false",
+       "time.dt=0.01", "time.end=0.4", "output.progress_seconds=0"});
+  Simulation sim(PETSC_COMM_WORLD, config, "");
+  try {
+    sim.run();
+    ADD_FAILURE() << "the soil was moved out of the region and the run went on";
+  } catch (const DivergenceError& e) {
+    EXPECT_NE(std::string(e.what()).find("the soil moved out of the region of the coupled solve in one step "
+                                         "(numerics.air_band = 3)"),
+              std::string::npos) << e.what();
+  }
+  const SoilBudget b = sim.soil()->budget(sim.flow());
+  std::printf("stopped at t = %.3g s, soil volume %.12g m^2 (a x 2a = %.12g)\n", sim.time(), b.soil_volume,
+              2 * 0.05715 * 0.05715);
+}
+
+// Solves that stop at max_iterations are counted over every region the band lays, not from the
+// last one: here every solve stops there (one GMRES iteration to a relative tolerance of 1e-30).
+TEST(AirBand, SolvesAtTheIterationLimitAreCountedOverEveryRegion) {
+  const CaseConfig config = load_case(
+      test::repo_path("cases/bui2008_experiment.toml"),
+      {"mesh.cells=[60,20]", "time.end=0.3", "output.progress_seconds=0", "numerics.air_band=4",
+       "solver.coupled={ksp_type = \"gmres\", pc_type = \"lu\", rtol = 1e-30, atol = 0, max_iterations = 1}"});
+  Simulation sim(PETSC_COMM_WORLD, config, "");
+  const RunSummary s = sim.run();
+  std::printf("%ld outer iterations, %ld solves at the limit\n", s.outer_iterations, s.solves_at_iteration_limit);
+  EXPECT_GT(s.outer_iterations, 50);
+  EXPECT_EQ(s.solves_at_iteration_limit, s.outer_iterations);
+}
+
 TEST(AirBand, ClosedBoxCollapseMovesAsInTheWholeBox) {
   constexpr int width = 8;
   const std::vector<std::string> closed = {"boundary.north={type = \"wall\"}", "boundary.east={type = \"wall\"}"};
