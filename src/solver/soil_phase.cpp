@@ -201,6 +201,10 @@ void SoilPhase::update_face_viscosity(FlowSolver& flow) const {
   // Face (axis, i, j) lies between cell (i, j) and its neighbour at +1 along axis.
   auto face = [&](int axis, int i, int j, double pressure) {
     const int in = i + (axis == 0), jn = j + (axis == 1);
+    if (c[j][i] == 0.0 && c[jn][in] == 0.0) {  // air on both sides: its viscosity, which reads no strain rate
+      const double air = mixture_viscosity(0.0, pressure, rheology::StrainRate{});
+      return at_face ? air : face_mean(kind, air, air);
+    }
     if (at_face) {
       const auto rate = face_strain_rate(grid_, u.data(), v.data(), axis, i, j);
       // One evaluation at the face's soil fraction; also where both sides hold the same mixture (the bulk).
