@@ -103,16 +103,15 @@ BoundaryCondition read_boundary(TableReader r, bool& is_axis, std::vector<std::s
 }
 
 mixture::MixtureInterpolation read_mixing(TableReader& m, const std::string& property) {
-  mixture::MixtureInterpolation mix;
-  const std::string kind = m.choice(property, "linear", {"linear", "arctan"});
-  mixture::parse_interpolation_kind(kind, mix.kind);
-  if (mix.kind == mixture::InterpolationKind::arctan) {
-    mix.M = m.number("arctan_M", 0.0);
-    m.require_range("arctan_M", mix.M, -0.5, 0.5);
-    mix.N = m.number("arctan_N", 1.0);
-    m.require_range("arctan_N", mix.N, 1e-6, 1e6);
-  }
-  return mix;
+  const std::string name = m.choice(property, "linear", {"linear", "arctan"});
+  mixture::InterpolationKind kind = mixture::InterpolationKind::linear;
+  mixture::parse_interpolation_kind(name, kind);
+  if (kind != mixture::InterpolationKind::arctan) return {};
+  const double M = m.number("arctan_M", 0.0);
+  m.require_range("arctan_M", M, -0.5, 0.5);
+  const double N = m.number("arctan_N", 1.0);
+  m.require_range("arctan_N", N, 1e-6, 1e6);
+  return {kind, M, N};
 }
 
 template <class Enum, class Parse>
