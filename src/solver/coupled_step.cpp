@@ -66,7 +66,7 @@ double FlowSolver::pressure_at_rest(double rho, int j) const {
   return ambient_pressure(settings_.boundaries) - rho * settings_.gravity[1] * (y_top - grid_.yc(j));
 }
 
-// Rhie-Chow mobility of the face between (i,j) and (in,jn) along `axis`: harmonic mean of V/a_P.
+// Rhie-Chow mobility of the face between (i,j) and its neighbour (in,jn): harmonic mean of V/a_P.
 double FlowSolver::coupled_mobility(const double* const* rau, int i, int j, int in, int jn) const {
   return face_mean(FaceViscosity::harmonic, rau[j][i], rau[jn][in]);
 }

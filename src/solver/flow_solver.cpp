@@ -1,6 +1,7 @@
 #include "solver/flow_solver.hpp"
 
 #include "mesh/face_loop.hpp"
+#include "mesh/gather.hpp"
 #include "mesh/obstacles.hpp"
 
 #include <algorithm>
@@ -22,12 +23,6 @@ void hydrostatic_column(const Grid& g, double gy, double p_top, Density rho, std
   const int ny = g.ny();
   p[ny - 1] = p_top - rho(ny - 1) * gy * 0.5 * g.dy(ny - 1);
   for (int j = ny - 2; j >= 0; --j) p[j] = p[j + 1] - 0.5 * (rho(j) + rho(j + 1)) * gy * (g.yc(j + 1) - g.yc(j));
-}
-
-double mpi_max(MPI_Comm comm, double v) {
-  double r = v;
-  MPI_Allreduce(&v, &r, 1, MPI_DOUBLE, MPI_MAX, comm);
-  return r;
 }
 
 }  // namespace
@@ -253,16 +248,7 @@ void FlowSolver::sync_velocity_from_cells() {
 void FlowSolver::set_hydrostatic_pressure() {
   const double gy = settings_.gravity[1];
   // Every rank needs whole columns of density: gather them (once, at start-up).
-  Vec natural, all;
-  VecScatter to_all;
-  PetscCallAbort(grid_.comm(), DMDACreateNaturalVector(grid_.field_dm(), &natural));
-  PetscCallAbort(grid_.comm(), DMDAGlobalToNaturalBegin(grid_.field_dm(), rho_->global(), INSERT_VALUES, natural));
-  PetscCallAbort(grid_.comm(), DMDAGlobalToNaturalEnd(grid_.field_dm(), rho_->global(), INSERT_VALUES, natural));
-  PetscCallAbort(grid_.comm(), VecScatterCreateToAll(natural, &to_all, &all));
-  PetscCallAbort(grid_.comm(), VecScatterBegin(to_all, natural, all, INSERT_VALUES, SCATTER_FORWARD));
-  PetscCallAbort(grid_.comm(), VecScatterEnd(to_all, natural, all, INSERT_VALUES, SCATTER_FORWARD));
-  const double* rho_all;
-  VecGetArrayRead(all, &rho_all);
+  const std::vector<double> rho_all = gather_to_all(grid_, *rho_);
   const int nx = grid_.nx(), ny = grid_.ny();
   auto rho_at = [&](int i, int j) { return rho_all[size_t(j) * nx + i]; };
   // The top at the surroundings' pressure, the level the yield stress is measured from too (and with
@@ -277,10 +263,6 @@ void FlowSolver::set_hydrostatic_pressure() {
       for (int j = b.ys; j < b.ye(); ++j) p[j][i] = column[j];
     }
   }
-  VecRestoreArrayRead(all, &rho_all);
-  VecScatterDestroy(&to_all);
-  VecDestroy(&all);
-  VecDestroy(&natural);
   fill_scalar_ghosts(*p_);
   update_boundary_heads();
   // Face forces of the resting state: zero at walls (no flux), from the pressure elsewhere.
@@ -534,12 +516,12 @@ StepReport FlowSolver::step(double dt) {
     compute_hbya();
     // The projection's pressure operator has coefficients dt / rho_f, which the outer iterations do
     // not change: one assembly and one preconditioner set-up per step. PISO's hold 1 / a_P.
-    if (!projection || outer == 0) assemble_pressure_matrix(dt);
+    if (!projection || outer == 0) assemble_pressure_matrix();
     // The projection is exact in one solve; PISO repeats the correction with updated neighbours.
     const int correctors = projection ? 1 : num.pressure_correctors;
     for (int corr = 0; corr < correctors; ++corr) {
       if (corr > 0) compute_hbya();
-      report.pressure_iterations += solve_pressure(dt);
+      report.pressure_iterations += solve_pressure();
       ++report.pressure_solves;
     }
     }

@@ -174,8 +174,8 @@ class FlowSolver {
   // Segregated pressure step (segregated_pressure.cpp).
   double local_min_viscosity(const double* const* mu, int i, int j) const;
   double face_coefficient(const double* const* rau, const double* const* rho, int i, int j, int in, int jn) const;
-  void assemble_pressure_matrix(double dt);
-  int solve_pressure(double dt);
+  void assemble_pressure_matrix();
+  int solve_pressure();
   void hold_pressure_at_top();  // closed domains: the pressure level
 
   const Grid& grid_;
@@ -217,10 +217,10 @@ class FlowSolver {
   std::array<std::vector<double>, 4> solved_boundary_pressure_;
   std::vector<double> side_head_[2];  // west, east: hydrostatic head of the boundary column per row
   bool has_pressure_boundary_ = false;
-  bool pins_pressure_level_ = false;
+  bool pins_pressure_level_ = false;  // the last coupled system held the level in a row (closed domain)
   const Field* blocked_ = nullptr;  // set_blocked
   int pin_i_ = 0, pin_j_ = 0;      // the cell whose continuity row holds a closed domain's level
-  long open_cells_ = 0;            // cells not blocked, over all ranks  // the last coupled system held the level in a row (closed domain)
+  long open_cells_ = 0;            // cells not blocked, over all ranks
   bool shared_momentum_matrix_ = true;  // no slip walls: u and v share their matrix
   double dt_ = 0.0;        // the last step's size
   double saved_dt_ = 0.0;  // save_state()

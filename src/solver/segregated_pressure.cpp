@@ -30,7 +30,7 @@ double FlowSolver::local_min_viscosity(const double* const* mu, int i, int j) co
 }
 
 // Pressure equation ([VoF] Eqs. 28-30): sum_f K_f (p_P - p_N) = -sum_f (predicted outward flux).
-void FlowSolver::assemble_pressure_matrix(double) {
+void FlowSolver::assemble_pressure_matrix() {
   const auto& b = grid_.owned();
   const int nx = grid_.nx(), ny = grid_.ny();
   ConstFieldArray rx = local_read(grid_, *rau_[0]), ry = local_read(grid_, *rau_[1]);
@@ -68,7 +68,7 @@ void FlowSolver::assemble_pressure_matrix(double) {
   pressure_solver_->set_operator(pressure_matrix_);
 }
 
-int FlowSolver::solve_pressure(double) {
+int FlowSolver::solve_pressure() {
   const auto& b = grid_.owned();
   const int nx = grid_.nx(), ny = grid_.ny();
   const auto& g = settings_.gravity;

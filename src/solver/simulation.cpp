@@ -17,7 +17,7 @@
 #include "io/collective_failure.hpp"
 #include "io/contour.hpp"
 #include "io/field_sample.hpp"
-#include "io/gather.hpp"
+#include "mesh/gather.hpp"
 #include "io/run_directory.hpp"
 #include "mesh/obstacles.hpp"
 #include "models/interface/initial_shapes.hpp"

@@ -1,6 +1,7 @@
 #include "solver/soil_phase.hpp"
 
 #include "mesh/face_loop.hpp"
+#include "mesh/gather.hpp"
 #include "mesh/obstacles.hpp"
 
 #include <fmt/format.h>
@@ -22,13 +23,6 @@
 
 namespace granflow {
 
-namespace {
-double mpi_max(MPI_Comm comm, double v) {
-  double r = v;
-  MPI_Allreduce(&v, &r, 1, MPI_DOUBLE, MPI_MAX, comm);
-  return r;
-}
-}  // namespace
 
 SoilPhase::SoilPhase(const Grid& grid, const FlowSettings& flow, const SoilSettings& settings)
     : grid_(grid), flow_settings_(flow), settings_(settings), ambient_pressure_(ambient_pressure(flow.boundaries)) {
@@ -251,17 +245,8 @@ void SoilPhase::refresh(const FlowSolver& flow) {
 // Depth of soil above each cell centre, sum of c dy over the cells above plus half the cell's own,
 // times rho_s |g|. Columns cross ranks, so the soil fraction is gathered whole (once per step).
 void SoilPhase::compute_overburden(const std::array<double, 2>& gravity) {
-  Vec natural, all;
-  VecScatter to_all;
+  const std::vector<double> c = gather_to_all(grid_, *c_);
   DM dm = grid_.field_dm();
-  PetscCallAbort(grid_.comm(), DMDACreateNaturalVector(dm, &natural));
-  PetscCallAbort(grid_.comm(), DMDAGlobalToNaturalBegin(dm, c_->global(), INSERT_VALUES, natural));
-  PetscCallAbort(grid_.comm(), DMDAGlobalToNaturalEnd(dm, c_->global(), INSERT_VALUES, natural));
-  PetscCallAbort(grid_.comm(), VecScatterCreateToAll(natural, &to_all, &all));
-  PetscCallAbort(grid_.comm(), VecScatterBegin(to_all, natural, all, INSERT_VALUES, SCATTER_FORWARD));
-  PetscCallAbort(grid_.comm(), VecScatterEnd(to_all, natural, all, INSERT_VALUES, SCATTER_FORWARD));
-  const double* c;
-  VecGetArrayRead(all, &c);
   const int nx = grid_.nx(), ny = grid_.ny();
   const double weight = settings_.soil_density * std::abs(gravity[1]);
   const auto& b = grid_.owned();
@@ -276,10 +261,6 @@ void SoilPhase::compute_overburden(const std::array<double, 2>& gravity) {
       }
     }
   }
-  VecRestoreArrayRead(all, &c);
-  VecScatterDestroy(&to_all);
-  VecDestroy(&all);
-  VecDestroy(&natural);
 }
 
 const Field& SoilPhase::soil_region(int reach, double floor) const {

@@ -7,7 +7,7 @@
 #include <string>
 
 #include "io/case_file.hpp"
-#include "io/gather.hpp"
+#include "mesh/gather.hpp"
 #include "solver/simulation.hpp"
 #include "../verification/test_support.hpp"
 

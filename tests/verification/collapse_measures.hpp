@@ -10,7 +10,7 @@
 
 #include <gtest/gtest.h>
 
-#include "io/gather.hpp"
+#include "mesh/gather.hpp"
 #include "solver/simulation.hpp"
 #include "test_support.hpp"
 

@@ -12,7 +12,7 @@
 #include <vector>
 
 #include "io/checkpoint.hpp"
-#include "io/gather.hpp"
+#include "mesh/gather.hpp"
 #include "solver/simulation.hpp"
 #include "test_support.hpp"
 

@@ -7,7 +7,7 @@
 #include <cmath>
 
 #include "io/field_sample.hpp"
-#include "io/gather.hpp"
+#include "mesh/gather.hpp"
 #include "solver/simulation.hpp"
 #include "test_support.hpp"
 

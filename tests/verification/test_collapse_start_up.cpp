@@ -14,7 +14,7 @@
 #include <string>
 #include <vector>
 
-#include "io/gather.hpp"
+#include "mesh/gather.hpp"
 #include "solver/simulation.hpp"
 #include "collapse_measures.hpp"
 #include "test_support.hpp"

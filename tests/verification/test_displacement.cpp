@@ -7,7 +7,7 @@
 #include <cstdio>
 #include <string>
 
-#include "io/gather.hpp"
+#include "mesh/gather.hpp"
 #include "solver/simulation.hpp"
 #include "test_support.hpp"
 

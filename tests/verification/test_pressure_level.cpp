@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "io/gather.hpp"
+#include "mesh/gather.hpp"
 #include "solver/simulation.hpp"
 #include "test_support.hpp"
 

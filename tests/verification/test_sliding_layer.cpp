@@ -15,7 +15,7 @@
 #include <string>
 #include <vector>
 
-#include "io/gather.hpp"
+#include "mesh/gather.hpp"
 #include "models/rheology/drucker_prager_bingham.hpp"
 #include "solver/simulation.hpp"
 #include "collapse_measures.hpp"

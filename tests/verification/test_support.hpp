@@ -12,7 +12,7 @@
 #include <vector>
 
 #include "io/case_file.hpp"
-#include "io/gather.hpp"
+#include "mesh/gather.hpp"
 #include "mesh/field.hpp"
 
 namespace granflow::test {

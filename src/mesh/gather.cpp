@@ -1,0 +1,39 @@
+#include "mesh/gather.hpp"
+
+namespace granflow {
+
+namespace {
+std::vector<double> gather(const Grid& grid, Vec global, bool to_all) {
+  MPI_Comm comm = grid.comm();
+  Vec natural, gathered;
+  VecScatter scatter;
+  PetscCallAbort(comm, DMDACreateNaturalVector(grid.field_dm(), &natural));
+  PetscCallAbort(comm, DMDAGlobalToNaturalBegin(grid.field_dm(), global, INSERT_VALUES, natural));
+  PetscCallAbort(comm, DMDAGlobalToNaturalEnd(grid.field_dm(), global, INSERT_VALUES, natural));
+  if (to_all) PetscCallAbort(comm, VecScatterCreateToAll(natural, &scatter, &gathered));
+  else PetscCallAbort(comm, VecScatterCreateToZero(natural, &scatter, &gathered));
+  PetscCallAbort(comm, VecScatterBegin(scatter, natural, gathered, INSERT_VALUES, SCATTER_FORWARD));
+  PetscCallAbort(comm, VecScatterEnd(scatter, natural, gathered, INSERT_VALUES, SCATTER_FORWARD));
+  std::vector<double> out;
+  PetscInt n;
+  VecGetLocalSize(gathered, &n);
+  if (n > 0) {
+    const double* a;
+    VecGetArrayRead(gathered, &a);
+    out.assign(a, a + n);
+    VecRestoreArrayRead(gathered, &a);
+  }
+  VecScatterDestroy(&scatter);
+  VecDestroy(&gathered);
+  VecDestroy(&natural);
+  return out;
+}
+}  // namespace
+
+std::vector<double> gather_to_root(const Grid& grid, Vec global) { return gather(grid, global, false); }
+
+std::vector<double> gather_to_root(const Grid& grid, const Field& field) { return gather(grid, field.global(), false); }
+
+std::vector<double> gather_to_all(const Grid& grid, const Field& field) { return gather(grid, field.global(), true); }
+
+}  // namespace granflow
