@@ -1,0 +1,101 @@
+// Checkpoints: what a run writes to be continued exactly, and the restart that reads it back.
+#include <fmt/format.h>
+
+#include <span>
+
+#include "io/checkpoint.hpp"
+#include "solver/simulation.hpp"
+
+namespace granflow {
+
+std::vector<Field*> Simulation::checkpoint_fields() {
+  auto fields = flow_->checkpoint_fields();
+  if (soil_)
+    for (Field* f : soil_->checkpoint_fields()) fields.push_back(f);
+  return fields;
+}
+
+std::string Simulation::checkpoint_field_names() {
+  std::string names = flow_->checkpoint_field_names();
+  if (soil_) names += std::string(" ") + SoilPhase::checkpoint_field_names;
+  return names;
+}
+
+// The domain as a checkpoint records it, so that a restart cannot take the fields of another one.
+std::string Simulation::domain() const {
+  const auto& m = config_.mesh;
+  std::string text = fmt::format("[{:.9g}, {:.9g}] x [{:.9g}, {:.9g}] ({})", m.lower[0], m.upper[0], m.lower[1],
+                                 m.upper[1], m.axisymmetric ? "axisymmetric" : "planar");
+  // Graded cells lie elsewhere: a restart on other grading would read the fields into wrong cells.
+  if (m.grading != std::array<double, 2>{1.0, 1.0})
+    text += fmt::format(", grading [{:.9g}, {:.9g}]", m.grading[0], m.grading[1]);
+  return text + obstacles_;
+}
+
+// The materials and gravity, as a checkpoint records them: a restart with others is most likely
+// the wrong case file, though a deliberate change is allowed.
+std::string Simulation::physics() const {
+  std::string text = fmt::format("gravity [{:.9g}, {:.9g}]", config_.flow.gravity[0], config_.flow.gravity[1]);
+  if (!config_.soil) return text + fmt::format("; fluid {:.9g} kg/m^3, {:.9g} Pa s", config_.fluid.density, config_.fluid.viscosity);
+  const SoilSettings& s = *config_.soil;
+  text += fmt::format("; air {:.9g} kg/m^3, {:.9g} Pa s; soil {:.9g} kg/m^3", s.air_density, s.air_viscosity, s.soil_density);
+  if (!s.rheology) return text + fmt::format(", {:.9g} Pa s", s.soil_viscosity);
+  const auto& r = *s.rheology;
+  if (r.friction == rheology::FrictionSource::mu_of_I)
+    return text + fmt::format(", {} with mu(I) friction, mu_s {:.9g}, mu_2 {:.9g}, I_0 {:.9g}, d {:.9g} m",
+                              rheology::to_string(r.model), r.static_friction, r.limiting_friction,
+                              r.reference_inertial_number, r.grain_diameter);
+  return text + fmt::format(", {} with {} friction, phi {:.9g} deg, cohesion {:.9g} Pa", rheology::to_string(r.model),
+                            rheology::to_string(r.friction), r.friction_angle_deg, r.cohesion);
+}
+
+void Simulation::write_checkpoint(double next_dt) {
+  if (out_.empty() || !config_.output.checkpoints) return;
+  RunCheckpoint run{time_, next_dt, output_index_, dissipated_energy_, initial_soil_volume_, history_, {}, domain(), steps_, physics(),
+                    checkpoint_field_names()};
+  if (series_) run.series = series_->entries();
+  std::vector<double> scalars{flow_->last_dt()};
+  if (soil_)
+    for (double s : soil_->checkpoint_scalars()) scalars.push_back(s);
+  const auto fields = checkpoint_fields();
+  granflow::write_checkpoint(grid_->comm(), out_, grid_->nx(), grid_->ny(), run, fields, scalars);
+  // A run restarted from here builds its preconditioners afresh; so does this one, to go on alike.
+  flow_->rebuild_preconditioners();
+}
+
+void Simulation::restart() {
+  if (out_.empty()) throw CheckpointError("a restart needs the output directory of the earlier run");
+  const auto fields = checkpoint_fields();
+  std::vector<double> scalars;
+  RunCheckpoint run = read_checkpoint(grid_->comm(), out_, grid_->nx(), grid_->ny(), domain(), checkpoint_field_names(),
+                                      fields, scalars);
+  flow_->clear_blocked_cells();  // the fields were read with their ghosts, the blocked cells' mirrors among them
+  if (soil_) soil_->clear_blocked_cells();
+  if (!(config_.time.end > run.time * (1 + 1e-12)))
+    throw CheckpointError(fmt::format("time.end = {} s is not past the checkpoint's t = {:.9g} s: raise it to run on",
+                                      config_.time.end, run.time));
+  if (run.steps >= config_.time.max_steps)
+    throw CheckpointError(fmt::format("time.max_steps = {} is not past the checkpoint's {} steps (it counts the "
+                                      "whole run's): raise it to run on",
+                                      config_.time.max_steps, run.steps));
+  const size_t expected = 1 + (soil_ ? soil_->checkpoint_scalars().size() : 0);
+  if (scalars.size() != expected) throw CheckpointError("the checkpoint's state does not match this case's model");
+  flow_->set_last_dt(scalars[0]);
+  if (soil_) soil_->restore_scalars(std::span<const double>(scalars).subspan(1));
+  time_ = run.time;
+  restart_dt_ = run.next_dt;
+  steps_ = run.steps;
+  if (const std::string ours = physics(); rank_ == 0 && !run.physics.empty() && run.physics != ours)
+    fmt::print(stderr, "warning: the case's physics ({}) differs from the checkpoint's run ({}); continuing with the case's\n",
+               ours, run.physics);
+  output_index_ = run.output_index;
+  dissipated_energy_ = run.dissipated_energy;
+  initial_soil_volume_ = run.initial_soil_volume;
+  history_ = std::move(run.history);
+  if (series_) series_->restore_entries(std::move(run.series));
+  if (soil_) soil_->refresh(*flow_);
+  flow_->update_properties();  // density and viscosity of the restored state, for observers and output
+  restarted_ = true;
+}
+
+}  // namespace granflow

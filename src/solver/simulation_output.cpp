@@ -1,0 +1,257 @@
+// What a run writes at its output times and after each step: the fields, the soil's surface,
+// failure line and column heights, the line samples, and the history.
+#include <fmt/format.h>
+#include <fmt/ostream.h>
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+
+#include "io/atomic_file.hpp"
+#include "io/contour.hpp"
+#include "io/field_sample.hpp"
+#include "io/run_directory.hpp"
+#include "mesh/gather.hpp"
+#include "solver/simulation.hpp"
+
+namespace granflow {
+
+void Simulation::write_output() {
+  if (out_.empty()) return;
+  const Grid& g = *grid_;
+  // The record of the line samples goes with the first output, after a --overwrite has cleared the
+  // directory of the earlier run (io/run_directory.hpp).
+  if (!run_recorded_ && rank_ == 0) record_run(out_, config_.output.lines);
+  run_recorded_ = true;
+  // The strain norm behind the failure line is a diagnostic: bring it up to date for the soil lines
+  // as well as for the fields, which may be switched off.
+  if (soil_) soil_->compute_diagnostics(*flow_);
+  auto u = gather_to_root(g, flow_->velocity(0));
+  auto v = gather_to_root(g, flow_->velocity(1));
+  auto p = gather_to_root(g, flow_->pressure());
+  if (config_.output.fields) {
+    auto rho = gather_to_root(g, flow_->density());
+    auto mu = gather_to_root(g, flow_->viscosity());
+    std::vector<double> vel(u.size() * 3, 0.0);
+    for (size_t k = 0; k < u.size(); ++k) {
+      vel[3 * k] = u[k];
+      vel[3 * k + 1] = v[k];
+    }
+    std::vector<CellData> data{{"velocity", 3, vel}, {"pressure", 1, p}, {"density", 1, rho}, {"viscosity", 1, mu}};
+    if (blocked_) data.push_back({"obstacle", 1, gather_to_root(g, *blocked_)});  // 1 in a blocked cell
+    if (soil_) {
+      auto dx = gather_to_root(g, soil_->displacement(0)), dy = gather_to_root(g, soil_->displacement(1));
+      std::vector<double> disp(dx.size() * 3, 0.0);
+      for (size_t k = 0; k < dx.size(); ++k) {
+        disp[3 * k] = dx[k];
+        disp[3 * k + 1] = dy[k];
+      }
+      data.push_back({"soil_fraction", 1, gather_to_root(g, soil_->soil_fraction())});
+      data.push_back({"displacement", 3, disp});
+      data.push_back({"strain_norm", 1, gather_to_root(g, soil_->strain_norm())});
+      data.push_back({"strain_rate_norm", 1, gather_to_root(g, soil_->strain_rate_norm())});
+      data.push_back({"lode_angle", 1, gather_to_root(g, soil_->lode_angle())});
+      if (config_.soil->rheology)
+        data.push_back({"stress_ratio_to_drucker_prager", 1, gather_to_root(g, soil_->stress_ratio_to_drucker_prager())});
+      auto w = gather_to_root(g, soil_->dissipation());  // empty on ranks other than the root
+      if (!w.empty())
+        for (int j = 0; j < g.ny(); ++j)
+          for (int i = 0; i < g.nx(); ++i) w[size_t(j) * g.nx() + i] /= g.volume(i, j);
+      data.push_back({"dissipation_rate", 1, w});
+    }
+    series_->write(g, time_, data);
+  }
+  if (soil_) {
+    write_soil_lines();
+    write_history();
+    write_lode_energy();
+  }
+  write_line_samples(u, v, p);
+  ++output_index_;
+}
+
+// Each [[output.line]]: u, v, p and the viscosity, and with soil its fraction, strain norm and strain
+// rate norm, at evenly spaced points (io/field_sample.hpp: bilinear, running to the boundary's value
+// within half a cell of a side or an obstacle). u, v and p are already gathered on rank 0.
+void Simulation::write_line_samples(const std::vector<double>& u, const std::vector<double>& v,
+                                    const std::vector<double>& p) const {
+  if (config_.output.lines.empty()) return;
+  const Grid& g = *grid_;
+  // The last member: the rule on an obstacle's walls (a static wall's velocity, the pressure's line
+  // continued, a zero gradient for the rest).
+  struct Sampled {
+    const char* name;
+    std::vector<double> values;
+    SideRules sides;
+    SideRule obstacle_wall;
+  };
+  const SideRule no_slip{SideRule::Kind::value, 0.0}, linear{SideRule::Kind::linear, 0.0};
+  std::vector<Sampled> q;
+  q.push_back({"u", u, velocity_side_rules(config_.flow.boundaries, 0), no_slip});
+  q.push_back({"v", v, velocity_side_rules(config_.flow.boundaries, 1), no_slip});
+  q.push_back({"p", p, pressure_side_rules(), linear});
+  q.push_back({"viscosity", gather_to_root(g, flow_->viscosity()), SideRules{}, SideRule{}});
+  if (soil_) {
+    q.push_back({"soil_fraction", gather_to_root(g, soil_->soil_fraction()), SideRules{}, SideRule{}});
+    q.push_back({"strain_norm", gather_to_root(g, soil_->strain_norm()), SideRules{}, SideRule{}});
+    q.push_back({"strain_rate_norm", gather_to_root(g, soil_->strain_rate_norm()), SideRules{}, SideRule{}});
+  }
+  if (rank_ != 0) return;
+  if (blocked_)
+    for (auto& s : q) fill_obstacle_walls(g, blocked_on_root_, s.obstacle_wall, s.values);
+  for (const auto& line : config_.output.lines) {
+    auto body = [&](std::ostream& out) {
+      fmt::print(out, "# {} at t = {:.9g} s\nx,y", line.name, time_);
+      for (const auto& s : q) fmt::print(out, ",{}", s.name);
+      fmt::print(out, "\n");
+      for (int k = 0; k < line.points; ++k) {
+        const double f = double(k) / (line.points - 1);
+        const double x = line.start[0] + f * (line.end[0] - line.start[0]);
+        const double y = line.start[1] + f * (line.end[1] - line.start[1]);
+        fmt::print(out, "{:.9g},{:.9g}", x, y);
+        const bool solid = in_blocked_cell(x, y);  // inside an obstacle: no flow to sample
+        for (const auto& s : q) fmt::print(out, ",{:.12g}", solid ? std::nan("") : sample_field(g, s.values, s.sides, x, y));
+        fmt::print(out, "\n");
+      }
+    };
+    write_file_atomically(out_ / fmt::format("{}_{:05d}.csv", line.name, output_index_), body);
+    write_file_atomically(out_ / fmt::format("{}.csv", line.name), body);
+  }
+}
+
+namespace {
+// Toe and wall height of the pile from the column heights h(x) = sum_j c dy (gathered on rank 0).
+struct PileShape {
+  double toe_thickness = 0.0;  // largest x whose column holds at least one cell of soil
+  double wall_height = 0.0;    // soil height in the first column
+};
+// wall_column: the first column with an open cell (0 but where obstacles block whole columns at the west).
+PileShape pile_shape(const Grid& g, const std::vector<double>& c, int wall_column) {
+  PileShape s;
+  for (int i = 0; i < g.nx(); ++i) {
+    double h = 0.0;
+    for (int j = 0; j < g.ny(); ++j) h += c[size_t(j) * g.nx() + i] * g.dy(j);
+    if (i == wall_column) s.wall_height = h;
+    if (h >= g.dy(0)) s.toe_thickness = g.xf(i);
+  }
+  return s;
+}
+double toe_of(const std::vector<Segment>& surface) {
+  double toe = 0.0;
+  for (const auto& seg : surface) toe = std::max({toe, seg.x0, seg.x1});
+  return toe;
+}
+}  // namespace
+
+// Whether the point lies in a blocked cell (on rank 0; a point on a face between two cells counts
+// as in the higher one, and one on the domain's high side as in the last cell).
+bool Simulation::in_blocked_cell(double x, double y) const {
+  if (!blocked_) return false;
+  const Grid& g = *grid_;
+  auto index = [](int n, double v, auto&& high_face) {
+    int lo = 0, hi = n - 1;
+    while (lo < hi) {  // the first cell whose high face lies beyond v
+      const int mid = (lo + hi) / 2;
+      if (high_face(mid) > v) hi = mid;
+      else lo = mid + 1;
+    }
+    return lo;
+  };
+  const int i = index(g.nx(), x, [&](int k) { return g.xf(k); }), j = index(g.ny(), y, [&](int k) { return g.yf(k); });
+  return blocked_on_root_[size_t(j) * g.nx() + i] > 0.5;
+}
+
+// The squares of four open cells, for the contours of the soil's surface (on rank 0): a blocked
+// cell holds c = 0, and a contour through it would draw where soil rests on an obstacle. Near an
+// obstacle the surface ends at the last open cells' centres, as it does at the domain's sides.
+std::function<bool(int, int)> Simulation::open_square() const {
+  if (!blocked_) return {};
+  return [this](int i, int j) {
+    const int nx = grid_->nx();
+    for (int dj = 0; dj < 2; ++dj)
+      for (int di = 0; di < 2; ++di)
+        if (blocked_on_root_[size_t(j + dj) * nx + i + di] > 0.5) return false;
+    return true;
+  };
+}
+
+void Simulation::record_history(double dt) {
+  const SoilBudget b = soil_->budget(*flow_);
+  dissipated_energy_ += b.dissipation_rate * dt;
+  soil_->accumulate_lode_energy(dt);
+  const auto c = gather_to_root(*grid_, soil_->soil_fraction());
+  const auto force = flow_->side_forces();
+  const auto obstacle = blocked_ ? flow_->obstacle_force() : std::array<double, 2>{};
+  if (rank_ != 0) return;
+  const PileShape shape = pile_shape(*grid_, c, wall_column_);
+  const double toe_contour = toe_of(iso_line(*grid_, c, 0.5, open_square()));
+  std::string row = fmt::format("{:.9g},{:.6g},{:.15g},{:.15g},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g},{:.12g},{:.15g}", time_, dt,
+                                b.soil_volume, b.air_volume, b.kinetic_energy, b.potential_energy, dissipated_energy_,
+                                toe_contour, shape.toe_thickness, shape.wall_height, b.mixture_mass, b.soil_outflow);
+  for (const auto& f : force) row += fmt::format(",{:.12g},{:.12g}", f[0], f[1]);
+  if (blocked_) row += fmt::format(",{:.12g},{:.12g}", obstacle[0], obstacle[1]);
+  history_.push_back(std::move(row));
+}
+
+void Simulation::write_history() const {
+  if (rank_ != 0) return;
+  write_file_atomically(out_ / "history.csv", [&](std::ostream& out) {
+    fmt::print(out, "time,dt,soil_volume,air_volume,kinetic_energy,potential_energy,dissipated_energy,"
+                    "toe_contour,toe_one_cell,wall_height,mixture_mass,soil_outflow");
+    for (Side side : all_sides) fmt::print(out, ",force_{0}_x,force_{0}_y", side_name(side));
+    if (blocked_) fmt::print(out, ",force_obstacle_x,force_obstacle_y");
+    fmt::print(out, "\n");
+    for (const auto& row : history_) fmt::print(out, "{}\n", row);
+  });
+}
+
+// Dissipated energy so far binned by the Lode angle of the cell that dissipated it ([YS] Fig. 17).
+void Simulation::write_lode_energy() const {
+  const auto h = soil_->lode_energy();
+  if (rank_ != 0) return;
+  write_file_atomically(out_ / "lode_dissipation.csv", [&](std::ostream& out) {
+    fmt::print(out, "# energy dissipated up to t = {:.9g} s by Lode angle (J per {})\n", time_,
+               grid_->axisymmetric() ? "radian" : "metre depth");
+    fmt::print(out, "theta_deg,theta_low_deg,theta_high_deg,energy\n");
+    for (int k = 0; k < h.bins(); ++k)
+      fmt::print(out, "{:.6g},{:.6g},{:.6g},{:.9g}\n", h.centre_deg(k), h.lower_edge_deg(k), h.lower_edge_deg(k + 1),
+                 h.energy(k));
+  });
+}
+
+// Soil surface (c = 0.5), column heights and failure line (strain norm at its failure value, inside
+// the soil) at the current time, as CSV.
+void Simulation::write_soil_lines() const {
+  const Grid& g = *grid_;
+  const auto c = gather_to_root(g, soil_->soil_fraction());
+  const auto e = gather_to_root(g, soil_->strain_norm());
+  if (rank_ != 0) return;
+  const std::string stamp = fmt::format("{:05d}", output_index_);
+  auto write_segments = [&](const std::string& name, const std::vector<Segment>& segs) {
+    write_file_atomically(out_ / fmt::format("{}_{}.csv", name, stamp), [&](std::ostream& out) {
+      fmt::print(out, "# {} at t = {:.9g} s\nx0,y0,x1,y1\n", name, time_);
+      for (const auto& s : segs) fmt::print(out, "{:.9g},{:.9g},{:.9g},{:.9g}\n", s.x0, s.y0, s.x1, s.y1);
+    });
+  };
+  write_segments("surface", iso_line(g, c, 0.5, open_square()));
+  const int nx = g.nx();
+  auto inside = [&](int i, int j) {
+    return c[size_t(j) * nx + i] > 0.5 && c[size_t(j) * nx + i + 1] > 0.5 && c[size_t(j + 1) * nx + i] > 0.5 &&
+           c[size_t(j + 1) * nx + i + 1] > 0.5;
+  };
+  // Without the displacement (soil.displacement = false) there is no strain, so no failure line.
+  if (soil_->settings().displacement)
+    write_segments("failure_line", iso_line(g, e, soil_->settings().failure_strain, inside));
+  write_file_atomically(out_ / fmt::format("column_height_{}.csv", stamp), [&](std::ostream& out) {
+    // With each column's east face and the floor cell's height, so that a script reads the toe of a
+    // layer one cell thick as the history does, on any cells (graded, not square).
+    fmt::print(out, "# soil height per column (sum of c dy) at t = {:.9g} s\nx,height,x_east,floor_cell_height\n", time_);
+    for (int i = 0; i < nx; ++i) {
+      double h = 0.0;
+      for (int j = 0; j < g.ny(); ++j) h += c[size_t(j) * nx + i] * g.dy(j);
+      fmt::print(out, "{:.9g},{:.9g},{:.9g},{:.9g}\n", g.xc(i), h, g.xf(i), g.dy(0));
+    }
+  });
+}
+
+}  // namespace granflow
