@@ -86,11 +86,9 @@ void FlowSolver::store_cell_forces() {
   for (int c = 0; c < 2; ++c) cell_force_[c]->scatter_to_local();
 }
 
-int FlowSolver::solve_coupled() {
+// The Rhie-Chow mobilities V / a_P per component, with ghosts.
+void FlowSolver::compute_mobilities() {
   const auto& b = grid_.owned();
-  const int nx = grid_.nx(), ny = grid_.ny();
-  const auto& g = settings_.gravity;
-  // V / a_P per component, with ghosts, for the face mobilities.
   {
     for (int c = 0; c < 2; ++c) {
       FieldArray r(grid_.field_dm(), rau_[c]->global());
@@ -100,7 +98,13 @@ int FlowSolver::solve_coupled() {
     }
     for (int c = 0; c < 2; ++c) rau_[c]->scatter_to_local();
   }
-  store_cell_forces();
+}
+
+// The coupled rows of velocity and pressure, over the air band's region or the whole domain.
+void FlowSolver::fill_coupled_rows() {
+  const auto& b = grid_.owned();
+  const int nx = grid_.nx(), ny = grid_.ny();
+  const auto& g = settings_.gravity;
   for (Side side : all_sides)  // NaN: a face the system below does not hold (outside the air band's region)
     solved_boundary_pressure_[static_cast<int>(side)].assign(normal_axis(side) == 0 ? ny : nx, std::nan(""));
   {
@@ -269,6 +273,12 @@ int FlowSolver::solve_coupled() {
       PetscCallAbort(grid_.comm(), MatAssemblyEnd(coupled_matrix_, MAT_FINAL_ASSEMBLY));
     }
   }
+}
+
+// Solves the coupled rows from the current state and takes their solution as the state; the air
+// outside a band's region at rest and hydrostatic. Returns the iterations.
+int FlowSolver::solve_coupled_rows() {
+  const auto& b = grid_.owned();
   // Initial guess: the current state.
   {
     PetscScalar*** x;
@@ -314,9 +324,13 @@ int FlowSolver::solve_coupled() {
       }
     DMDAVecRestoreArrayDOF(coupled_dm_, coupled_solution_, &x);
   }
-  fill_velocity_ghosts();
-  fill_scalar_ghosts(*p_);
-  if (pins_pressure_level_) hold_pressure_at_top();  // the pinned level, moved to zero on the top
+  return iterations;
+}
+
+void FlowSolver::update_coupled_face_velocities() {
+  const auto& b = grid_.owned();
+  const int nx = grid_.nx(), ny = grid_.ny();
+  const auto& g = settings_.gravity;
   // Face velocities with exactly the flux of the continuity rows (divergence-free to the tolerance).
   // An atmosphere face keeps the pressure the rows were built with: with total pressure, inflow
   // enters at p0 - rho |v_P|^2 / 2, and v_P has just changed. Taken anew, it gave an open top under
@@ -388,6 +402,17 @@ int FlowSolver::solve_coupled() {
                     coupled_mobility(ry.data(), i, j, i, j + 1) * (ffy[j][i] - 0.5 * (fcy[j][i] + fcy[j + 1][i]));
       }
   }
+}
+
+int FlowSolver::solve_coupled() {
+  compute_mobilities();
+  store_cell_forces();
+  fill_coupled_rows();
+  const int iterations = solve_coupled_rows();
+  fill_velocity_ghosts();
+  fill_scalar_ghosts(*p_);
+  if (pins_pressure_level_) hold_pressure_at_top();  // the pinned level, moved to zero on the top
+  update_coupled_face_velocities();
   return iterations;
 }
 
