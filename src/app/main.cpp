@@ -190,6 +190,21 @@ std::string unusable_petsc_file(const std::vector<std::string>& words) {
   return {};
 }
 
+// Errors every rank meets alike (the case, the mesh on these ranks, the checkpoint's agreed verdict,
+// the global speed): rank 0 reports them, and the exit status is returned (README, "Exit status");
+// 0 for any other error, which may be one rank's alone.
+int report_shared_error(const std::exception& e, const std::string& case_file, int rank) {
+  auto report = [&](const std::string& text, int status) {
+    if (rank == 0) fmt::print(stderr, "error: {}\n", text);
+    return status;
+  };
+  if (dynamic_cast<const granflow::CaseError*>(&e)) return report(e.what(), 2);
+  if (dynamic_cast<const granflow::GridError*>(&e)) return report(fmt::format("{}: {}", case_file, e.what()), 2);
+  if (dynamic_cast<const granflow::CheckpointError*>(&e)) return report(e.what(), 1);
+  if (dynamic_cast<const granflow::DivergenceError*>(&e)) return report(e.what(), 3);
+  return 0;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -317,12 +332,9 @@ int main(int argc, char** argv) {
         fmt::print("{}: valid ({} x {} cells, t_end = {} s)\n", case_file, c.mesh.cells[0], c.mesh.cells[1], c.time.end);
         for (const auto& line : granflow::case_advice(c)) fmt::print(stderr, "warning: {}\n", line);
       }
-    } catch (const granflow::CaseError& e) {
-      if (rank == 0) fmt::print(stderr, "error: {}\n", e.what());
-      status = 2;
-    } catch (const granflow::GridError& e) {  // the case's mesh on these ranks
-      if (rank == 0) fmt::print(stderr, "error: {}: {}\n", case_file, e.what());
-      status = 2;
+    } catch (const std::exception& e) {
+      status = report_shared_error(e, case_file, rank);
+      if (status == 0) throw;
     }
     PetscFinalize();
     MPI_Finalize();
@@ -336,22 +348,13 @@ int main(int argc, char** argv) {
   try {
     status = run_case(case_file, overrides, out_dir, restart, overwrite);
     warn_unused_petsc_options(rank);
-  } catch (const granflow::CaseError& e) {
-    if (rank == 0) fmt::print(stderr, "error: {}\n", e.what());
-    status = 2;
-  } catch (const granflow::GridError& e) {  // the case's mesh on these ranks
-    if (rank == 0) fmt::print(stderr, "error: {}: {}\n", case_file, e.what());
-    status = 2;
-  } catch (const granflow::CheckpointError& e) {
-    if (rank == 0) fmt::print(stderr, "error: {}\n", e.what());
-    status = 1;
-  } catch (const granflow::DivergenceError& e) {
-    if (rank == 0) fmt::print(stderr, "error: {}\n", e.what());
-    status = 3;
   } catch (const std::exception& e) {
-    fmt::print(stderr, "error: {}{}\n", e.what(), size > 1 ? fmt::format(" (rank {})", rank) : "");
-    if (size > 1) MPI_Abort(PETSC_COMM_WORLD, 1);
-    status = 1;
+    status = report_shared_error(e, case_file, rank);
+    if (status == 0) {
+      fmt::print(stderr, "error: {}{}\n", e.what(), size > 1 ? fmt::format(" (rank {})", rank) : "");
+      if (size > 1) MPI_Abort(PETSC_COMM_WORLD, 1);
+      status = 1;
+    }
   }
   PetscFinalize();
   MPI_Finalize();
