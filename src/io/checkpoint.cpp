@@ -60,8 +60,8 @@ std::string read_rank(const std::filesystem::path& path, const RankHeader& expec
                        path.string());
   if (!in || h.magic != magic) return fmt::format("{} is not a granflow checkpoint", path.string());
   if (h.ranks != expected.ranks)
-    return fmt::format("the checkpoint was written on {} ranks; restart it on {} ranks, not {}", h.ranks, h.ranks,
-                       expected.ranks);
+    return fmt::format("the checkpoint was written on {0} rank{1}; restart it on {0} rank{1}, not {2}", h.ranks,
+                       h.ranks == 1 ? "" : "s", expected.ranks);
   if (h.nx != expected.nx || h.ny != expected.ny)
     return fmt::format("the checkpoint is of a {} x {} mesh, the case has {} x {} cells", h.nx, h.ny, expected.nx,
                        expected.ny);
