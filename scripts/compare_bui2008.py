@@ -17,7 +17,7 @@ import sys
 
 import numpy as np
 
-from granflow_files import InputError, main_with_errors, one_cell_toe, read_csv, require_initial_volume
+from granflow_files import InputError, main_with_errors, one_cell_toe, read_csv, require_columns, require_initial_volume
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 REFDATA = os.path.join(HERE, "..", "validation", "refdata")
@@ -51,6 +51,7 @@ def metrics(run_dir):
         raise InputError(f"{cols_path}: the run has no output after its start (t = {time:g} s)")
     history_path = os.path.join(run_dir, "history.csv")
     history = read_csv(history_path)
+    require_columns(history, history_path, ["soil_volume", "soil_outflow"])
     require_initial_volume(history, history_path, BLOCK_AREA, "the bui2008_experiment block")
     cols = read_csv(cols_path)
     surf = read_csv(files["surface"])

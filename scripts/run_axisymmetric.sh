@@ -20,8 +20,9 @@ for case in lube2004_a05 lube2004_a2 ring_collapse; do
   if [ $coarse = 1 ]; then extra=(--set "mesh.cells=[${cells[$case]}]"); columns=${cells[$case]%%,*}; fi
   for model in drucker_prager mohr_coulomb matsuoka_nakai; do
     dir="$out/${case}_${model}"
-    last_columns=$(ls "$dir"/column_height_*.csv 2>/dev/null | tail -n 1)
+    last_columns=$(ls "$dir"/column_height_*.csv 2>/dev/null | tail -n 1 || true)
     if grep -qs "up to t = 0.5 s" "$dir/lode_dissipation.csv" && [ -n "$last_columns" ] &&
+       grep -q '^x,height,x_east,floor_cell_height' "$last_columns" &&
        [ "$(grep -vc -e '^#' -e '^x,' "$last_columns")" = "$columns" ]; then
       continue
     fi

@@ -31,7 +31,8 @@ if [ $status -ne 0 ] && ! [ "$out/history.csv" -nt "$started" ]; then
   echo "main job: the run failed (status $status) before it wrote any output; nothing to compare" >&2
   exit $status
 fi
-/usr/bin/python3 scripts/compare_bui2008.py "$out" --png "$out/comparison_bui2008.png" --json "$out/comparison.json" || exit 1
+/usr/bin/python3 scripts/compare_bui2008.py "$out" --png "$out/comparison_bui2008.png" --json "$out/comparison.json" ||
+  exit $(( status ? status : 1 ))
 if [ $status -ne 0 ]; then
   echo "main job: the run stopped early (status $status); the comparison shows its last output (docs/validation.md)" >&2
   exit $status

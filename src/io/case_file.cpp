@@ -523,16 +523,17 @@ CaseConfig read_case(const toml::table& root, const std::filesystem::path& sourc
     if (!c.soil) throw CaseError("numerics.air_band: needs a [soil] phase to solve around");
     if (c.flow.gravity[0] != 0.0)
       throw CaseError("numerics.air_band: needs gravity along y (the air beyond the band is hydrostatic)");
-    // The band is laid again once the soil comes within half of it of its edge; in between, a step's
-    // sweeps move the soil up to interface_substeps x interface_courant cells, and soil that crossed
-    // the region's edge would cross faces no continuity row balances, and its volume be lost.
+    // The band is laid again once the soil comes within half of it of its edge; in between, each of a
+    // step's sweeps may carry a sliver of soil one cell further (as SoilPhase::advect reckons), and
+    // soil that crossed the region's edge would cross faces no continuity row balances, and its
+    // volume be lost.
     const int band = c.flow.numerics.air_band;
-    const int reach = int(std::ceil(c.time.interface_substeps * c.soil->interface_courant - 1e-9));
+    const int reach = c.time.interface_substeps;
     if (band - band / 2 < reach + 1)
-      throw CaseError(fmt::format("numerics.air_band = {}: too narrow for steps that move the soil up to {} cell(s) "
-                                  "(time.interface_substeps = {} times time.interface_courant = {}); it must be at "
-                                  "least {}",
-                                  band, reach, c.time.interface_substeps, c.soil->interface_courant, 2 * reach + 1));
+      throw CaseError(fmt::format("numerics.air_band = {}: too narrow for steps of {} sweep(s) "
+                                  "(time.interface_substeps), each of which may carry soil a cell further; it must "
+                                  "be at least {}",
+                                  band, reach, 2 * reach + 1));
   }
   return c;
 }
@@ -560,7 +561,7 @@ CaseConfig read_on_a_deep_stack(std::string_view text, const std::vector<std::st
   };
   pthread_attr_t attr;
   pthread_attr_init(&attr);
-  pthread_attr_setstacksize(&attr, (size_t(16) << 20) + 1024 * openers);
+  pthread_attr_setstacksize(&attr, (size_t(16) << 20) + 512 * openers);
   pthread_t thread;
   const int rc = pthread_create(&thread, &attr, body, &job);
   pthread_attr_destroy(&attr);

@@ -4,7 +4,8 @@
 // - the soil moves as in the whole-domain solve (its velocities, its front, its energy). The air next
 //   to the surface enters the surface's face fluxes, so the air's flow, which the band bounds, moves
 //   the soil's velocities by 1-2 % (root mean square) on these 10 mm cells: bands of 4, 8, 12 and 20
-//   cells give 2.4, 1.4, 2.1 and 0.5 %; 1 % more air density gives 0.1 %;
+//   cells give 2.4, 1.4, 2.1 and 0.5 % (4 measured before the case file asked for at least 5 with
+//   two sweeps per step); 1 % more air density gives 0.1 %;
 // - the soil volume is conserved to round-off (the region's fluxes are those of its own continuity
 //   rows, and no soil reaches a face the solve did not cover);
 // - the air far from the soil is at rest and hydrostatic, exactly;
@@ -135,13 +136,9 @@ TEST(AirBand, CollapseMovesAsInTheWholeDomainWithTheAirBeyondAtRest) {
 namespace granflow {
 namespace {
 
-// In a closed box (walls all round) the air beyond the band is at rest below a zero top, the level
-// the whole-domain solve holds its pressure at; with the region short of the whole box, that air
-// holds the region's level too. The soil moves as in the whole box's solve, which keeps the level
-// in one of its continuity rows instead (coupled_step.cpp).
-// A fixed step that moves the soil out of the band's region (here the water column of the dam break,
-// 7 mm cells, steps of 10 ms, a band of 3 cells) stops the run with a message naming the band,
-// before any soil is lost: soil beyond the region crosses faces no continuity row balances.
+// A fixed step that moves the soil to the edge of the band's region (here the water column of the dam
+// break, 7 mm cells, steps of 10 ms, a band of 3 cells) stops the run with a message naming the band,
+// before any soil is lost: soil beyond the region would cross faces no continuity row balances.
 TEST(AirBand, SoilLeavingTheRegionInOneStepStopsTheRun) {
   const CaseConfig config = load_case(
       test::repo_path("cases/water_dam_break.toml"),
@@ -152,13 +149,14 @@ TEST(AirBand, SoilLeavingTheRegionInOneStepStopsTheRun) {
     sim.run();
     ADD_FAILURE() << "the soil was moved out of the region and the run went on";
   } catch (const DivergenceError& e) {
-    EXPECT_NE(std::string(e.what()).find("the soil moved out of the region of the coupled solve in one step "
-                                         "(numerics.air_band = 3)"),
+    EXPECT_NE(std::string(e.what()).find("the soil reached the edge of the region of the coupled solve in one "
+                                         "step (numerics.air_band = 3)"),
               std::string::npos) << e.what();
   }
   const SoilBudget b = sim.soil()->budget(sim.flow());
-  std::printf("stopped at t = %.3g s, soil volume %.12g m^2 (a x 2a = %.12g)\n", sim.time(), b.soil_volume,
-              2 * 0.05715 * 0.05715);
+  const double column = 2 * 0.05715 * 0.05715;  // a x 2a
+  std::printf("stopped at t = %.3g s, soil volume %.12g m^2 (a x 2a = %.12g)\n", sim.time(), b.soil_volume, column);
+  EXPECT_NEAR(b.soil_volume, column, 1e-12 * column);
 }
 
 // Solves that stop at max_iterations are counted over every region the band lays, not from the
@@ -166,7 +164,7 @@ TEST(AirBand, SoilLeavingTheRegionInOneStepStopsTheRun) {
 TEST(AirBand, SolvesAtTheIterationLimitAreCountedOverEveryRegion) {
   const CaseConfig config = load_case(
       test::repo_path("cases/bui2008_experiment.toml"),
-      {"mesh.cells=[60,20]", "time.end=0.3", "output.progress_seconds=0", "numerics.air_band=4",
+      {"mesh.cells=[60,20]", "time.end=0.3", "output.progress_seconds=0", "numerics.air_band=5",
        "solver.coupled={ksp_type = \"gmres\", pc_type = \"lu\", rtol = 1e-30, atol = 0, max_iterations = 1}"});
   Simulation sim(PETSC_COMM_WORLD, config, "");
   const RunSummary s = sim.run();
@@ -175,6 +173,10 @@ TEST(AirBand, SolvesAtTheIterationLimitAreCountedOverEveryRegion) {
   EXPECT_EQ(s.solves_at_iteration_limit, s.outer_iterations);
 }
 
+// In a closed box (walls all round) the air beyond the band is at rest below a zero top, the level
+// the whole-domain solve holds its pressure at; with the region short of the whole box, that air
+// holds the region's level too. The soil moves as in the whole box's solve, which keeps the level
+// in one of its continuity rows instead (coupled_step.cpp).
 TEST(AirBand, ClosedBoxCollapseMovesAsInTheWholeBox) {
   constexpr int width = 8;
   const std::vector<std::string> closed = {"boundary.north={type = \"wall\"}", "boundary.east={type = \"wall\"}"};
