@@ -420,7 +420,10 @@ std::vector<Field*> FlowSolver::state_fields() {
 
 std::string FlowSolver::checkpoint_field_names() {
   std::string names;
-  for (const auto& [name, f] : named_state_fields()) names += (names.empty() ? "" : " ") + std::string(name);
+  for (const auto& [name, f] : named_state_fields()) {
+    if (!names.empty()) names += ' ';
+    names += name;
+  }
   return names;
 }
 
