@@ -538,22 +538,39 @@ CaseConfig read_case(const toml::table& root, const std::filesystem::path& sourc
   return c;
 }
 
+CaseConfig parse_case_here(std::string_view text, const std::vector<std::string>& overrides,
+                           const std::filesystem::path& source) {
+  toml::table root;
+  try {
+    root = toml::parse(text, source.string());
+  } catch (const toml::parse_error& e) {
+    const auto& where = e.source().begin;
+    throw CaseError(fmt::format("{}:{}:{}: {}", source.string(), where.line, where.column, e.description()));
+  }
+  for (const auto& o : overrides) apply_override(root, o);
+  return read_case(root, source);
+}
+
+}  // namespace
+
 // toml++ recurses once per level of nesting, each part of a dotted key a level, at some 300 bytes of
 // stack a level: a key of 32 000 parts overflows the main thread's 8 MiB and kills the process. So the
 // case is parsed and read on a thread whose stack is sized by the characters that can open a level.
-template <class Read>
-CaseConfig read_on_a_deep_stack(std::string_view text, const std::vector<std::string>& overrides, Read read) {
+CaseConfig parse_case(std::string_view text, const std::vector<std::string>& overrides,
+                      const std::filesystem::path& source) {
   size_t openers = std::count_if(text.begin(), text.end(), [](char ch) { return ch == '.' || ch == '[' || ch == '{'; });
   for (const auto& o : overrides) openers += std::count_if(o.begin(), o.end(), [](char ch) { return ch == '.'; });
   struct Job {
-    Read& read;
+    std::string_view text;
+    const std::vector<std::string>& overrides;
+    const std::filesystem::path& source;
     std::optional<CaseConfig> result;
     std::exception_ptr error;
-  } job{read, std::nullopt, nullptr};
+  } job{text, overrides, source, std::nullopt, nullptr};
   auto body = [](void* arg) -> void* {
     auto* j = static_cast<Job*>(arg);
     try {
-      j->result.emplace(j->read());
+      j->result.emplace(parse_case_here(j->text, j->overrides, j->source));
     } catch (...) {
       j->error = std::current_exception();
     }
@@ -571,27 +588,6 @@ CaseConfig read_on_a_deep_stack(std::string_view text, const std::vector<std::st
   pthread_join(thread, nullptr);
   if (job.error) std::rethrow_exception(job.error);
   return std::move(*job.result);
-}
-
-CaseConfig parse_case_here(std::string_view text, const std::vector<std::string>& overrides,
-                           const std::filesystem::path& source) {
-  toml::table root;
-  try {
-    root = toml::parse(text, source.string());
-  } catch (const toml::parse_error& e) {
-    const auto& where = e.source().begin;
-    throw CaseError(fmt::format("{}:{}:{}: {}", source.string(), where.line, where.column, e.description()));
-  }
-  for (const auto& o : overrides) apply_override(root, o);
-  return read_case(root, source);
-}
-
-}  // namespace
-
-CaseConfig parse_case(std::string_view text, const std::vector<std::string>& overrides,
-                      const std::filesystem::path& source) {
-  auto read = [&] { return parse_case_here(text, overrides, source); };
-  return read_on_a_deep_stack(text, overrides, read);
 }
 
 CaseConfig load_case(const std::filesystem::path& file, const std::vector<std::string>& overrides) {
