@@ -24,7 +24,7 @@ import sys
 
 import numpy as np
 
-from granflow_files import InputError, main_with_errors, one_cell_toe, read_csv
+from granflow_files import InputError, main_with_errors, one_cell_columns, one_cell_toe, read_csv
 
 MODELS = {"drucker_prager": ("Drucker-Prager", "C0", "-"), "mohr_coulomb": ("Mohr-Coulomb", "C3", "--"),
           "matsuoka_nakai": ("Matsuoka-Nakai", "C2", ":")}  # label, colour, line style (lode_dissipation.png)
@@ -118,7 +118,7 @@ def measure(run, case, times):
     x, h = cols["x"], cols["height"]
     gx, gy, cells = read_vtr(os.path.join(run, f"fields_{last}.vtr"))
     toe = one_cell_toe(cols, cols_path)
-    thick = h >= cols["floor_cell_height"] * (1 - 1e-9)
+    thick = one_cell_columns(cols, cols_path)
     west = 2 * x - cols["x_east"]  # each column's west face
     m = {"time_s": times[last],
          "runout_one_cell_m": toe,

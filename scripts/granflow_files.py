@@ -36,15 +36,19 @@ def require_columns(table, path, names):
         raise InputError(f"{path}: no column {', '.join(missing)} (has {', '.join(table)})")
 
 
-def one_cell_toe(columns, path):
-    """Toe of a layer at least one cell thick, read from a column_height_NNNNN.csv as the history's
-    toe_one_cell: the east face of the farthest column whose soil height (sum of c dy) reaches the
-    floor cell's height."""
+def one_cell_columns(columns, path):
+    """Which columns of a column_height_NNNNN.csv hold a layer at least one cell thick: whose soil
+    height (sum of c dy) reaches the floor cell's height, as the history's toe_one_cell reads it."""
     if "x_east" not in columns or "floor_cell_height" not in columns:
         raise InputError(f"{path}: no columns x_east, floor_cell_height (written by an earlier granflow; run the "
                          "case again)")
     require_columns(columns, path, ["height"])
-    thick = columns["height"] >= columns["floor_cell_height"] * (1 - 1e-9)
+    return columns["height"] >= columns["floor_cell_height"] * (1 - 1e-9)
+
+
+def one_cell_toe(columns, path):
+    """Toe of a layer at least one cell thick: the east face of the farthest such column."""
+    thick = one_cell_columns(columns, path)
     return float(columns["x_east"][thick].max()) if thick.any() else 0.0
 
 
