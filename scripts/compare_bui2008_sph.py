@@ -22,11 +22,12 @@ import re
 
 import numpy as np
 
-from granflow_files import InputError, main_with_errors, one_cell_toe, read_csv
+from granflow_files import InputError, main_with_errors, one_cell_toe, read_csv, require_initial_volume
 
 # Which figure of [VoF] a case is drawn for, from the run directory's name.
 FIGURES = {"bui2008_sph_phi25_c5": "Fig. 7", "bui2008_sph_phi25": "Fig. 4", "bui2008_sph_phi45": "Fig. 5",
            "bui2008_sph_phi65": "Fig. 6"}
+BLOCK_AREA = 4.0 * 2.0  # m^2, the initial block of every bui2008_sph case
 
 
 def time_of(path):
@@ -163,6 +164,8 @@ def main():
     run_dir = a.run_dir.rstrip("/") or "/"
     if not os.path.isdir(run_dir):
         raise InputError(f"{run_dir}: no such directory")
+    history_path = os.path.join(run_dir, "history.csv")
+    require_initial_volume(read_csv(history_path), history_path, BLOCK_AREA, "the 4 x 2 m block of the bui2008_sph cases")
     index = outputs(run_dir)
     rows, drawn = [], []
     for t in times:

@@ -233,6 +233,11 @@ add_test(NAME scripts_compare_bui2008_other_case
          COMMAND /usr/bin/python3 ${CMAKE_SOURCE_DIR}/scripts/compare_bui2008.py ${GRANFLOW_BUI_FIXTURE}_other)
 set_tests_properties(scripts_compare_bui2008_other_case PROPERTIES LABELS cli
                      PASS_REGULAR_EXPRESSION "^error: [^\n]*history.csv: the run's initial volume is 0.0065, not the 0.02 of the bui2008_experiment block")
+# The SPH-case drawing refuses a run of another block too, rather than label it as the paper's figure.
+add_test(NAME scripts_compare_bui2008_sph_other_case
+         COMMAND /usr/bin/python3 ${CMAKE_SOURCE_DIR}/scripts/compare_bui2008_sph.py ${GRANFLOW_BUI_FIXTURE}_other --times 2)
+set_tests_properties(scripts_compare_bui2008_sph_other_case PROPERTIES LABELS cli
+                     PASS_REGULAR_EXPRESSION "^error: [^\n]*history.csv: the run's initial volume is 0.0065, not the 8 of the 4 x 2 m block")
 # The front's history interpolates between steps and marks times past the run's end.
 file(WRITE ${CMAKE_CURRENT_BINARY_DIR}/front_run/history.csv "time,dt,toe_contour\n0.0,0.1,0.2\n0.2,0.1,0.4\n")
 add_test(NAME scripts_front_history
