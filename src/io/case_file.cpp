@@ -259,6 +259,9 @@ CaseConfig read_case(const toml::table& root, const std::filesystem::path& sourc
     TableReader m = top.table("mesh");
     if (!m.present()) throw CaseError("mesh: missing table [mesh]" + top.misspelling_of("mesh"));
     auto cells = m.numbers("cells", {}, 2);
+    if (cells.size() == 3)
+      throw CaseError("mesh.cells: three counts given, but meshes are two-dimensional, planar or axisymmetric "
+                      "(mesh.geometry); 3D is not implemented");
     if (cells.size() != 2) throw CaseError("mesh.cells: expected two integers [nx, ny]");
     for (double n : cells) {
       if (n < 1 || n != std::floor(n))

@@ -189,6 +189,7 @@ TEST(CaseFile, RheologyConstantsTheModelDoesNotReadAreRefused) {
 TEST(CaseFile, MessagesStateTheRuleBroken) {
   EXPECT_NE(error_of(minimal, {"mesh.upper=[1.0, nan]"}).find("finite"), std::string::npos);
   EXPECT_NE(error_of(minimal, {"mesh.cells=[100000001, 1]"}).find("more than 1e8"), std::string::npos);
+  EXPECT_NE(error_of(minimal, {"mesh.cells=[8, 8, 8]"}).find("3D is not implemented"), std::string::npos);
   // A step below a nanosecond fails in the solve (V / a_P underflows), so it is refused here.
   for (const char* key : {"time.end=1e-20", "time.dt=1e-12", "time.max_dt=0", "time.end=-1"}) {
     const std::string e = error_of(minimal, {key});
