@@ -5,6 +5,7 @@
 #include <petscsys.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -12,6 +13,7 @@
 #include <sstream>
 #include <string>
 #include <string_view>
+#include <thread>
 #include <vector>
 
 #include "io/case_advice.hpp"
@@ -138,7 +140,8 @@ void warn_unused_petsc_options(int rank) {
 // PETSc's errors as one line, where PETSc would print its whole trace: the first report of an error
 // (PETSC_ERROR_INITIAL) is printed, the frames it passes through on its way up are not. Every such
 // error ends the run (the calls that may fail and are handled push PETSc's quiet handler over this
-// one), so a single process exits here, before an abort adds Open MPI's banner; several ranks abort.
+// one), so a single process exits here, before an abort adds Open MPI's banner; several ranks abort
+// here, with status 1 whatever PETSc's error code.
 // Running out of memory while the grid is made is the common case. GRANFLOW_PETSC_TRACE=1 keeps
 // PETSc's own trace.
 PetscErrorCode one_line_petsc_error(MPI_Comm, int line, const char* function, const char* file, PetscErrorCode code,
@@ -150,11 +153,18 @@ PetscErrorCode one_line_petsc_error(MPI_Comm, int line, const char* function, co
   std::string what = memory ? "out of memory (a coarser mesh may do)"
                             : text ? text : "error";
   if (!memory && message && *message && std::string_view(message) != what) what += fmt::format(": {}", message);
-  fmt::print(stderr, "error: PETSc: {} (PETSc error {} in {}, {}:{})\n", what, int(code), function, file, line);
-  std::fflush(stderr);
-  int world_size = 1;
+  int world_size = 1, world_rank = 0;
   MPI_Comm_size(MPI_COMM_WORLD, &world_size);
+  MPI_Comm_rank(MPI_COMM_WORLD, &world_rank);
+  // Most such errors (an option value PETSc does not know) are met by every rank at once: the other
+  // ranks wait, so that rank 0's abort stops them before they say it again. An error of one rank
+  // alone is still reported, by that rank, half a second later.
+  if (world_rank > 0) std::this_thread::sleep_for(std::chrono::milliseconds(500));
+  fmt::print(stderr, "error: PETSc: {} (PETSc error {} in {}, {}:{}){}\n", what, int(code), function, file, line,
+             world_rank > 0 ? fmt::format(" (rank {})", world_rank) : "");
+  std::fflush(stderr);
   if (world_size == 1) std::_Exit(1);
+  MPI_Abort(MPI_COMM_WORLD, 1);  // the status of README's "Exit status", not PETSc's error code
   return code;
 }
 
