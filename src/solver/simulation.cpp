@@ -98,10 +98,11 @@ struct ObstacleLayout {
 // and one that blocks every cell leaves no flow. Collective; every rank throws alike.
 ObstacleLayout lay_out_obstacles(const Grid& g, const CaseConfig& config, Field& mask) {
   std::vector<long> centres(config.obstacles.size(), 0);
+  const interface::ShapeUnion obstacles(config.obstacles);
   const auto& b = g.owned();
   for (int j = b.ys; j < b.ye(); ++j)
     for (int i = b.xs; i < b.xe(); ++i)
-      for (size_t k = 0; k < centres.size(); ++k) centres[k] += interface::contains(config.obstacles[k], g.xc(i), g.yc(j));
+      for (size_t k = 0; k < centres.size(); ++k) centres[k] += obstacles.shape_contains(k, g.xc(i), g.yc(j));
   MPI_Allreduce(MPI_IN_PLACE, centres.data(), int(centres.size()), MPI_LONG, MPI_SUM, g.comm());
   for (size_t k = 0; k < centres.size(); ++k)
     if (centres[k] == 0)
@@ -126,14 +127,14 @@ ObstacleLayout lay_out_obstacles(const Grid& g, const CaseConfig& config, Field&
 // The soil volume the initial shapes place in open cells (all ranks' sum).
 double initial_soil_in_open_cells(const Grid& g, const CaseConfig& config, const Field* mask) {
   const BlockedView blocked(g, mask);
+  const interface::ShapeUnion initial_soil(config.soil->initial_soil);
   const auto& b = g.owned();
   double volume = 0.0;
   for (int j = b.ys; j < b.ye(); ++j)
     for (int i = b.xs; i < b.xe(); ++i) {
       if (is_blocked(blocked.data(), i, j)) continue;
       const double x0 = g.xc(i) - 0.5 * g.dx(i), y0 = g.yc(j) - 0.5 * g.dy(j);
-      volume += interface::union_fraction(config.soil->initial_soil, x0, x0 + g.dx(i), y0, y0 + g.dy(j), g.axisymmetric()) *
-                g.volume(i, j);
+      volume += initial_soil.fraction(x0, x0 + g.dx(i), y0, y0 + g.dy(j), g.axisymmetric()) * g.volume(i, j);
     }
   MPI_Allreduce(MPI_IN_PLACE, &volume, 1, MPI_DOUBLE, MPI_SUM, g.comm());
   return volume;

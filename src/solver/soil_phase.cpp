@@ -85,12 +85,12 @@ void SoilPhase::restore_state() {
 void SoilPhase::initialise() {
   {
     FieldArray c(grid_.field_dm(), c_->global());
+    const interface::ShapeUnion initial_soil(settings_.initial_soil);
     const auto& b = grid_.owned();
     for (int j = b.ys; j < b.ye(); ++j)
       for (int i = b.xs; i < b.xe(); ++i) {
         const double x0 = grid_.xc(i) - 0.5 * grid_.dx(i), y0 = grid_.yc(j) - 0.5 * grid_.dy(j);
-        c[j][i] = interface::union_fraction(settings_.initial_soil, x0, x0 + grid_.dx(i), y0, y0 + grid_.dy(j),
-                                            grid_.axisymmetric());
+        c[j][i] = initial_soil.fraction(x0, x0 + grid_.dx(i), y0, y0 + grid_.dy(j), grid_.axisymmetric());
       }
   }
   fill_fraction_ghosts(*c_);

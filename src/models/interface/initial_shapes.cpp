@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
+#include <utility>
 #include <vector>
 
 namespace granflow::interface {
@@ -130,18 +131,89 @@ bool self_intersecting(const Polygon& polygon) {
   return false;
 }
 
-double union_fraction(const std::vector<Shape>& shapes, double x0, double x1, double y0, double y1, bool axisymmetric,
-                      int samples) {
+ShapeUnion::ShapeUnion(std::vector<Shape> shapes) : shapes_(std::move(shapes)) {
+  for (const auto& s : shapes_) {
+    boxes_.push_back(bounding_box(s));
+    EdgeBins bins;
+    if (const auto* p = std::get_if<Polygon>(&s)) {
+      const auto& v = p->vertices;
+      const std::size_t n = v.size();
+      const auto [lo, hi] = boxes_.back();
+      bins.y_lower = lo[1];
+      // As many bins as edges, fewer where tall edges would be listed in too many of them (a comb
+      // of spikes): at most about 8 entries per edge.
+      for (std::size_t count = std::min<std::size_t>(n, 1 << 16);; count = std::max<std::size_t>(count / 2, 1)) {
+        bins.count = int(count);
+        bins.bins_per_metre = hi[1] > lo[1] ? double(count) / (hi[1] - lo[1]) : 0.0;
+        std::size_t entries = 0;
+        for (std::size_t e = 0; e < n; ++e) {
+          const auto [a, b] = std::minmax(v[e][1], v[(e + 1) % n][1]);
+          entries += std::size_t(bins.bin(b) - bins.bin(a) + 1);
+        }
+        if (entries <= 8 * n + count || count == 1) break;
+      }
+      // Counting sort of the edges into their bins.
+      bins.first.assign(std::size_t(bins.count) + 1, 0);
+      for (std::size_t e = 0; e < n; ++e) {
+        const auto [a, b] = std::minmax(v[e][1], v[(e + 1) % n][1]);
+        for (int k = bins.bin(a); k <= bins.bin(b); ++k) ++bins.first[std::size_t(k) + 1];
+      }
+      for (std::size_t k = 0; k < std::size_t(bins.count); ++k) bins.first[k + 1] += bins.first[k];
+      bins.edges.resize(bins.first.back());
+      std::vector<unsigned> next(bins.first.begin(), bins.first.end() - 1);
+      for (std::size_t e = 0; e < n; ++e) {
+        const auto [a, b] = std::minmax(v[e][1], v[(e + 1) % n][1]);
+        for (int k = bins.bin(a); k <= bins.bin(b); ++k) bins.edges[next[std::size_t(k)]++] = unsigned(e);
+      }
+    }
+    bins_.push_back(std::move(bins));
+  }
+}
+
+// Monotone in y, so an edge listed in the bins of its lowest and highest points and those between
+// is in the bin of every height it spans.
+int ShapeUnion::EdgeBins::bin(double y) const {
+  const double b = std::floor((y - y_lower) * bins_per_metre);
+  return b < 0.0 ? 0 : b >= count - 1 ? count - 1 : int(b);
+}
+
+// The even-odd rule of contains(), over the edges of the query's height bin only. An edge that
+// changes the parity has one end above y and one at or below it, so it spans y and is in that bin;
+// the parity does not depend on the order the edges are taken in.
+bool ShapeUnion::polygon_contains(const Polygon& p, const EdgeBins& bins, double x, double y) const {
+  const auto& v = p.vertices;
+  const std::size_t n = v.size();
+  const int k = bins.bin(y);
+  bool inside = false;
+  for (unsigned q = bins.first[std::size_t(k)]; q < bins.first[std::size_t(k) + 1]; ++q) {
+    const std::size_t a = (bins.edges[q] + 1) % n, b = bins.edges[q];  // as contains(): a follows b
+    const Point& pa = v[a];
+    const Point& pb = v[b];
+    if ((pa[1] > y) != (pb[1] > y) && x < (pb[0] - pa[0]) * (y - pa[1]) / (pb[1] - pa[1]) + pa[0]) inside = !inside;
+  }
+  return inside;
+}
+
+bool ShapeUnion::shape_contains(std::size_t k, double x, double y) const {
+  if (const auto* p = std::get_if<Polygon>(&shapes_[k])) return polygon_contains(*p, bins_[k], x, y);
+  return interface::contains(shapes_[k], x, y);
+}
+
+bool ShapeUnion::contains(double x, double y) const {
+  for (std::size_t k = 0; k < shapes_.size(); ++k)
+    if (shape_contains(k, x, y)) return true;
+  return false;
+}
+
+double ShapeUnion::fraction(double x0, double x1, double y0, double y1, bool axisymmetric, int samples) const {
   // Fast path: the four corners and the centre agree (cells are small against the shapes). Not for
   // a shape narrower or lower than the cell that reaches into it, which could lie between the probes.
   bool small_shape_here = false;
-  for (const auto& s : shapes) {
-    const auto [lo, hi] = bounding_box(s);
+  for (const auto& [lo, hi] : boxes_)
     if (lo[0] < x1 && hi[0] > x0 && lo[1] < y1 && hi[1] > y0 && (hi[0] - lo[0] < x1 - x0 || hi[1] - lo[1] < y1 - y0))
       small_shape_here = true;
-  }
-  const int probe = union_contains(shapes, x0, y0) + union_contains(shapes, x1, y0) + union_contains(shapes, x0, y1) +
-                    union_contains(shapes, x1, y1) + union_contains(shapes, 0.5 * (x0 + x1), 0.5 * (y0 + y1));
+  const int probe = contains(x0, y0) + contains(x1, y0) + contains(x0, y1) + contains(x1, y1) +
+                    contains(0.5 * (x0 + x1), 0.5 * (y0 + y1));
   if (probe == 0 && !small_shape_here) return 0.0;
   if (probe == 5 && !small_shape_here) return 1.0;
   double inside = 0.0, all = 0.0;
@@ -150,11 +222,16 @@ double union_fraction(const std::vector<Shape>& shapes, double x0, double x1, do
     const double weight = axisymmetric ? x : 1.0;
     for (int b = 0; b < samples; ++b) {
       const double y = y0 + (b + 0.5) * (y1 - y0) / samples;
-      inside += weight * union_contains(shapes, x, y);
+      inside += weight * contains(x, y);
       all += weight;
     }
   }
   return inside / all;
+}
+
+double union_fraction(const std::vector<Shape>& shapes, double x0, double x1, double y0, double y1, bool axisymmetric,
+                      int samples) {
+  return ShapeUnion(shapes).fraction(x0, x1, y0, y1, axisymmetric, samples);
 }
 
 }  // namespace granflow::interface

@@ -88,6 +88,67 @@ TEST(InitialShapes, SelfIntersectionSweepAgreesWithComparingEveryPair) {
   EXPECT_GT(crossing, 500);
 }
 
+// The prepared union tests only the edges at a query's height; its answers are those of testing
+// every edge: on random polygons with vertices on a coarse lattice (so queries fall exactly on vertex
+// heights and edges), a terrain profile of many vertices and a comb of tall spikes, at points inside,
+// outside, on the lattice and beyond the shapes' bounding boxes.
+TEST(InitialShapes, PreparedUnionAnswersAsTestingEveryEdge) {
+  std::mt19937 random(11);
+  std::uniform_int_distribution<int> coordinate(0, 8), size(3, 12);
+  std::uniform_real_distribution<double> anywhere(-1.0, 9.0);
+  std::vector<std::vector<Shape>> unions;
+  for (int trial = 0; trial < 300; ++trial) {
+    std::vector<Shape> shapes;
+    for (int s = 1 + trial % 3; s > 0; --s) {
+      Polygon p;
+      for (int k = size(random); k > 0; --k) p.vertices.push_back({double(coordinate(random)), double(coordinate(random))});
+      shapes.push_back(p);
+    }
+    if (trial % 5 == 0) shapes.push_back(Box{{1.0, 1.0}, {3.0, 2.0}});
+    unions.push_back(shapes);
+  }
+  Polygon terrain{{{8.0, 0.0}, {0.0, 0.0}}};  // the floor, then a rough surface from x = 0 to 8
+  std::uniform_real_distribution<double> height(1.0, 3.0);
+  for (int k = 0; k <= 4000; ++k) terrain.vertices.push_back({8.0 * k / 4000, k % 400 == 0 ? 2.0 : height(random)});
+  Polygon comb{{{8.0, 0.0}, {0.0, 0.0}}};  // spikes the whole height: every edge spans every height
+  for (int k = 0; k < 400; ++k) {
+    comb.vertices.push_back({8.0 * k / 400, 8.0});
+    comb.vertices.push_back({8.0 * (k + 0.5) / 400, 0.5});
+  }
+  unions.push_back({terrain});
+  unions.push_back({comb});
+  long inside = 0, queries = 0, cut_cells = 0;
+  for (const auto& shapes : unions) {
+    const ShapeUnion prepared(shapes);
+    for (int q = 0; q < 400; ++q) {
+      const double x = q % 2 ? anywhere(random) : double(coordinate(random)) - 0.5 + 0.5 * (q % 4 / 2);
+      const double y = q % 3 ? anywhere(random) : double(coordinate(random));
+      const bool expected = union_contains(shapes, x, y);
+      ASSERT_EQ(prepared.contains(x, y), expected) << "query (" << x << ", " << y << ")";
+      inside += expected;
+      ++queries;
+    }
+    // Cells: where the five probes (corners and centre) disagree, the same samples give the same
+    // fraction to the last bit.
+    for (int c = 0; c < 20; ++c) {
+      const double x0 = coordinate(random) + 0.25 * (c % 4), y0 = coordinate(random) + 0.25 * (c / 4 % 4);
+      const double x1 = x0 + 0.5, y1 = y0 + 0.5;
+      const int probes = union_contains(shapes, x0, y0) + union_contains(shapes, x1, y0) +
+                         union_contains(shapes, x0, y1) + union_contains(shapes, x1, y1) +
+                         union_contains(shapes, 0.5 * (x0 + x1), 0.5 * (y0 + y1));
+      if (probes == 0 || probes == 5) continue;
+      double expected = 0.0;
+      for (int a = 0; a < 32; ++a)
+        for (int b = 0; b < 32; ++b) expected += union_contains(shapes, x0 + (a + 0.5) * 0.5 / 32, y0 + (b + 0.5) * 0.5 / 32);
+      ASSERT_EQ(prepared.fraction(x0, x1, y0, y1), expected / 1024.0);
+      ++cut_cells;
+    }
+  }
+  EXPECT_GT(cut_cells, 500);
+  EXPECT_GT(inside, queries / 10);  // both answers are exercised
+  EXPECT_LT(inside, queries * 9 / 10);
+}
+
 // A shape smaller than the cell, between the cell's corners and centre, is not lost by the fast path
 // that reads those five points.
 TEST(InitialShapes, AShapeSmallerThanTheCellIsSampled) {
