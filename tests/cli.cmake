@@ -199,6 +199,12 @@ add_test(NAME cli_petsc_unwritable_log_view
          COMMAND sh -c "rm -rf \"$2\"; out=$(\"$0\" run \"$1\" -o \"$2\" \"--petsc=-log_view :$2/no/such/dir/log.txt\" 2>&1); test $? -eq 2 && echo \"$out\" | grep -q 'error: --petsc -log_view .*: cannot write .*no/such/dir/log.txt' && test ! -e \"$2\""
                  $<TARGET_FILE:granflow> ${CMAKE_SOURCE_DIR}/cases/lid_driven_cavity_re100.toml ${CMAKE_CURRENT_BINARY_DIR}/log_view_run)
 set_tests_properties(cli_petsc_unwritable_log_view PROPERTIES LABELS cli)
+# Each field file carries its time where VTK's readers look for it: in the data set's field data,
+# before its piece (ParaView reading the files as a series, or one file in Python, gets the time).
+add_test(NAME cli_field_file_carries_its_time
+         COMMAND sh -c "\"$0\" run \"$1\" -o \"$2\" --overwrite --set 'mesh.cells=[8,8]' --set time.end=0.02 --set output.interval=0.01 --set output.progress_seconds=0 > /dev/null || exit 1; tr -d '\\n' < \"$2/fields_00001.vtr\" | grep -q '<RectilinearGrid [^>]*><FieldData><DataArray type=.Float64. Name=.TimeValue. NumberOfTuples=.1. format=.ascii.>0[.]01</DataArray></FieldData><Piece '"
+                 $<TARGET_FILE:granflow> ${CMAKE_SOURCE_DIR}/cases/lid_driven_cavity_re100.toml ${CMAKE_CURRENT_BINARY_DIR}/field_time)
+set_tests_properties(cli_field_file_carries_its_time PROPERTIES LABELS cli)
 # The comparison scripts name a missing or malformed file in one line, not a traceback.
 file(WRITE ${CMAKE_CURRENT_BINARY_DIR}/bad_refdata/ghia1982_cavity_re100.csv "y,u\n0.5,abc\n")
 add_test(NAME scripts_compare_missing_run

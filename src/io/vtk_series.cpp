@@ -18,8 +18,10 @@ void VtkSeries::write(const Grid& grid, double time, const std::vector<CellData>
   const int nx = grid.nx(), ny = grid.ny();
   write_file_atomically(dir_ / name, [&](std::ostream& out) {
     fmt::print(out, "<?xml version=\"1.0\"?>\n<VTKFile type=\"RectilinearGrid\" version=\"0.1\" byte_order=\"LittleEndian\">\n");
-    fmt::print(out, "<RectilinearGrid WholeExtent=\"0 {} 0 {} 0 0\">\n<Piece Extent=\"0 {} 0 {} 0 0\">\n", nx, ny, nx, ny);
+    fmt::print(out, "<RectilinearGrid WholeExtent=\"0 {} 0 {} 0 0\">\n", nx, ny);
+    // The time belongs to the data set, before its pieces: VTK's readers look for it there only.
     fmt::print(out, "<FieldData><DataArray type=\"Float64\" Name=\"TimeValue\" NumberOfTuples=\"1\" format=\"ascii\">{:.17g}</DataArray></FieldData>\n", time);
+    fmt::print(out, "<Piece Extent=\"0 {} 0 {} 0 0\">\n", nx, ny);
     fmt::print(out, "<Coordinates>\n<DataArray type=\"Float64\" Name=\"x\" format=\"ascii\">\n");
     for (int i = 0; i < nx; ++i) fmt::print(out, "{:.12g} ", grid.xc(i) - 0.5 * grid.dx(i));
     fmt::print(out, "{:.12g}\n</DataArray>\n<DataArray type=\"Float64\" Name=\"y\" format=\"ascii\">\n", grid.xf(nx - 1));
