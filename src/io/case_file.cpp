@@ -208,8 +208,14 @@ SoilSettings read_soil(TableReader& top, std::vector<std::string>& without_effec
     so.require_range("density", s.soil_density, 1e-300, inf, "positive");
     TableReader rh = so.table("rheology");
     if (rh.present()) {
+      if (so.has("viscosity"))
+        throw CaseError(so.key_path("viscosity") + ": used only without [soil.rheology] (a Newtonian soil); a granular "
+                        "soil's viscosity comes from its rheology");
       s.rheology = read_rheology(rh, s.soil_density);
     } else {
+      if (!so.has("viscosity"))
+        throw CaseError("soil: neither a [soil.rheology] table (a granular soil) nor soil.viscosity (a Newtonian one)" +
+                        so.misspelling_of("rheology") + so.misspelling_of("viscosity"));
       s.soil_viscosity = so.required_number("viscosity");
       so.require_range("viscosity", s.soil_viscosity, 0.0, inf, "zero or positive");
     }
@@ -235,6 +241,13 @@ SoilSettings read_soil(TableReader& top, std::vector<std::string>& without_effec
     TableReader m = top.table("mixture");
     s.density_mixing = read_mixing(m, "density");
     s.viscosity_mixing = read_mixing(m, "viscosity");
+    const bool arctan = s.density_mixing.kind() == mixture::InterpolationKind::arctan ||
+                        s.viscosity_mixing.kind() == mixture::InterpolationKind::arctan;
+    for (const char* key : {"arctan_M", "arctan_N"})
+      if (m.has(key) && !arctan) {
+        without_effect.push_back(m.key_path(key) + ": used only with mixture.density or mixture.viscosity = \"arctan\"");
+        m.number(key, 0.0);  // read, so that it is not an unknown key
+      }
     m.finish();
   }
   {

@@ -368,6 +368,24 @@ TEST(CaseFile, KeysWithoutEffectAreListed) {
   EXPECT_NE(soil.keys_without_effect[0].find("soil.failure_strain"), std::string::npos);
 }
 
+// A key that another choice of the case leaves unused says which choice, not "unknown key"; a
+// misspelt [soil.rheology] is named as such, not as a missing soil.viscosity.
+TEST(CaseFile, KeysOfAnotherChoiceAndAMisspeltRheologyAreNamed) {
+  std::string misspelt = two_phase;
+  misspelt.replace(misspelt.find("[soil.rheology]"), 15, "[soil.rheolgy]");
+  const std::string table = error_of(misspelt);
+  EXPECT_NE(table.find("soil: neither a [soil.rheology] table"), std::string::npos) << table;
+  EXPECT_NE(table.find("soil.rheolgy is not a key: rheology misspelt?"), std::string::npos) << table;
+  const std::string both = error_of(two_phase, {"soil.rheology.friction_angle=30", "soil.viscosity=1.0"});
+  EXPECT_NE(both.find("soil.viscosity: used only without [soil.rheology]"), std::string::npos) << both;
+  const CaseConfig linear = parse_case(two_phase, {"soil.rheology.friction_angle=30", "mixture.arctan_M=-0.45"});
+  ASSERT_EQ(linear.keys_without_effect.size(), 1u);
+  EXPECT_NE(linear.keys_without_effect[0].find("mixture.arctan_M: used only with mixture.density or mixture.viscosity = "
+                                               "\"arctan\""), std::string::npos) << linear.keys_without_effect[0];
+  EXPECT_TRUE(parse_case(two_phase, {"soil.rheology.friction_angle=30", "mixture.arctan_M=-0.45", "mixture.density=arctan"})
+                  .keys_without_effect.empty());
+}
+
 TEST(CaseFile, ShippedCasesAreValid) {
   for (const char* name : {"lid_driven_cavity_re100", "lid_driven_cavity_re1000", "bui2008_experiment"})
     EXPECT_NO_THROW(load_case(std::string(GRANFLOW_SOURCE_DIR) + "/cases/" + name + ".toml")) << name;
