@@ -9,6 +9,7 @@
 #include <cstdlib>
 #include <fstream>
 #include <limits>
+#include <optional>
 
 #include "io/atomic_file.hpp"
 #include "io/collective_failure.hpp"
@@ -47,6 +48,18 @@ void write_rank(const std::filesystem::path& path, const RankHeader& h, std::spa
   });
 }
 
+std::string other_mesh(std::int64_t nx, std::int64_t ny, std::int64_t case_nx, std::int64_t case_ny) {
+  return fmt::format("the checkpoint is of a {} x {} mesh, the case has {} x {} cells", nx, ny, case_nx, case_ny);
+}
+
+// The header alone, where the file has one.
+std::optional<RankHeader> read_header(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  RankHeader h{};
+  if (!in.read(reinterpret_cast<char*>(&h), sizeof h) || h.magic != magic) return std::nullopt;
+  return h;
+}
+
 // Reads this rank's file; returns an empty string or what is wrong with it.
 std::string read_rank(const std::filesystem::path& path, const RankHeader& expected, std::span<Field* const> fields,
                       std::vector<double>& scalars) {
@@ -62,9 +75,7 @@ std::string read_rank(const std::filesystem::path& path, const RankHeader& expec
   if (h.ranks != expected.ranks)
     return fmt::format("the checkpoint was written on {0} rank{1}; restart it on {0} rank{1}, not {2}", h.ranks,
                        h.ranks == 1 ? "" : "s", expected.ranks);
-  if (h.nx != expected.nx || h.ny != expected.ny)
-    return fmt::format("the checkpoint is of a {} x {} mesh, the case has {} x {} cells", h.nx, h.ny, expected.nx,
-                       expected.ny);
+  if (h.nx != expected.nx || h.ny != expected.ny) return other_mesh(h.nx, h.ny, expected.nx, expected.ny);
   if (h.fields != expected.fields)
     return fmt::format("the checkpoint holds {} fields, this case needs {} (a different model or numerics)", h.fields,
                        expected.fields);
@@ -215,8 +226,13 @@ RunCheckpoint read_checkpoint(MPI_Comm comm, const std::filesystem::path& dir, i
     } catch (const std::exception& e) {  // whatever else reading it throws must reach every rank too
       problem = fmt::format("the checkpoint is damaged: {}: {}", (from / "run.txt").string(), e.what());
     }
-    if (problem.empty() && !run.domain.empty() && run.domain != domain)
-      problem = fmt::format("the checkpoint is of the domain {}; the case's is {}", run.domain, domain);
+    if (problem.empty() && !run.domain.empty() && run.domain != domain) {
+      // Another mesh blocks other cells of the same obstacles: name the mesh, the cause.
+      const auto h = read_header(rank_file(from, 0));
+      problem = h && (h->nx != nx || h->ny != ny)
+                    ? other_mesh(h->nx, h->ny, nx, ny)
+                    : fmt::format("the checkpoint is of the domain {}; the case's is {}", run.domain, domain);
+    }
     // Other numerics may keep as many fields, of other meanings (cell forces where the look-ahead
     // keeps the last step's velocity): the names tell.
     if (problem.empty() && !run.fields.empty() && run.fields != field_names)

@@ -115,6 +115,27 @@ TEST(Restart, RefusesAMissingOrForeignCheckpoint) {
   } catch (const CheckpointError& e) {
     EXPECT_NE(std::string(e.what()).find("30 x 10"), std::string::npos) << e.what();
   }
+  // With obstacles another mesh blocks other cells too, so the domains differ: the mesh is named,
+  // the cause, not the count of blocked cells.
+  {
+    const auto barrier = scratch("restart_foreign_barrier");
+    std::filesystem::remove_all(barrier);
+    auto on = [&](const char* cells) {
+      auto keys = small;
+      keys[0] = cells;
+      return load_case(test::repo_path("cases/barrier_collapse.toml"), keys);
+    };
+    Simulation(PETSC_COMM_WORLD, on("mesh.cells=[150,50]"), barrier).run();
+    Simulation finer(PETSC_COMM_WORLD, on("mesh.cells=[160,50]"), barrier);
+    try {
+      finer.restart();
+      ADD_FAILURE() << "a checkpoint of another mesh was taken";
+    } catch (const CheckpointError& e) {
+      EXPECT_NE(std::string(e.what()).find("the checkpoint is of a 150 x 50 mesh, the case has 160 x 50 cells"),
+                std::string::npos) << e.what();
+    }
+    std::filesystem::remove_all(barrier);
+  }
   // Other numerics keep other fields; where the count alone would agree (the projection with the
   // look-ahead keeps the last step's velocity where the coupled solve keeps cell forces), the
   // names tell them apart.
