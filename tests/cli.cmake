@@ -160,7 +160,7 @@ add_test(NAME cli_check_lays_out_the_obstacles
 set_tests_properties(cli_check_lays_out_the_obstacles PROPERTIES LABELS cli)
 # check lays out the initial state as a run does, and finds what only that shows: exit 2 and the message.
 add_test(NAME cli_check_lays_out_the_initial_state
-         COMMAND sh -c "out=$(\"$0\" check \"$1\" --set 'mesh.cells=[30,10]' --set \"$2\" 2>&1); test $? -eq 2 && echo \"$out\" | grep -q \"error: initial.soil: the shapes cover no part of any cell's samples on this 30 x 10 mesh\""
+         COMMAND sh -c "out=$(\"$0\" check \"$1\" --set 'mesh.cells=[30,10]' --set \"$2\" 2>&1); test $? -eq 2 && echo \"$out\" | grep -q \"^error: $1: initial.soil: the shapes cover no part of any cell's samples on this 30 x 10 mesh\""
                  $<TARGET_FILE:granflow> ${CMAKE_SOURCE_DIR}/cases/bui2008_experiment.toml
                  "initial.soil=[{shape = \"box\", lower = [0.3, 0.1], upper = [0.3001, 0.1001]}]")
 set_tests_properties(cli_check_lays_out_the_initial_state PROPERTIES LABELS cli)

@@ -208,12 +208,7 @@ int report_shared_error(const std::exception& e, const std::string& case_file, i
     if (rank == 0) fmt::print(stderr, "error: {}\n", text);
     return status;
   };
-  if (dynamic_cast<const granflow::CaseError*>(&e)) {
-    // What laying the case on the mesh finds (obstacles, shapes) is of the case too: name the file,
-    // as reading it does.
-    const std::string text = e.what();
-    return report(text.starts_with(case_file + ":") ? text : fmt::format("{}: {}", case_file, text), 2);
-  }
+  if (dynamic_cast<const granflow::CaseError*>(&e)) return report(e.what(), 2);
   if (dynamic_cast<const granflow::GridError*>(&e)) return report(fmt::format("{}: {}", case_file, e.what()), 2);
   if (dynamic_cast<const granflow::CheckpointError*>(&e)) return report(e.what(), 1);
   if (dynamic_cast<const granflow::DivergenceError*>(&e)) return report(e.what(), 3);

@@ -17,13 +17,18 @@
 namespace granflow {
 
 namespace {
-CaseError no_initial_soil(const Grid& g, bool obstacles) {
+// What laying the case on the mesh finds is of the case: named with its file, as reading it is.
+CaseError case_error(const CaseConfig& config, const std::string& text) {
+  return CaseError(config.source.empty() ? text : fmt::format("{}: {}", config.source.string(), text));
+}
+
+CaseError no_initial_soil(const CaseConfig& config, const Grid& g, bool obstacles) {
   if (obstacles)
-    return CaseError(fmt::format("initial.soil: the shapes place no soil in any open cell on this {} x {} mesh (what "
-                                 "they cover lies in the obstacles' blocked cells, or a shape is far smaller than a "
-                                 "cell)", g.nx(), g.ny()));
-  return CaseError(fmt::format("initial.soil: the shapes cover no part of any cell's samples on this {} x {} mesh "
-                               "(a shape far smaller than a cell)", g.nx(), g.ny()));
+    return case_error(config, fmt::format("initial.soil: the shapes place no soil in any open cell on this {} x {} mesh "
+                                          "(what they cover lies in the obstacles' blocked cells, or a shape is far "
+                                          "smaller than a cell)", g.nx(), g.ny()));
+  return case_error(config, fmt::format("initial.soil: the shapes cover no part of any cell's samples on this {} x {} "
+                                        "mesh (a shape far smaller than a cell)", g.nx(), g.ny()));
 }
 
 // The checks the whole mask needs, on rank 0: no obstacle one cell thick (the values mirrored behind
@@ -106,20 +111,20 @@ ObstacleLayout lay_out_obstacles(const Grid& g, const CaseConfig& config, Field&
   MPI_Allreduce(MPI_IN_PLACE, centres.data(), int(centres.size()), MPI_LONG, MPI_SUM, g.comm());
   for (size_t k = 0; k < centres.size(); ++k)
     if (centres[k] == 0)
-      throw CaseError(fmt::format("obstacle[{}]: the shape holds no cell centre on this {} x {} mesh (cells are "
+      throw case_error(config, fmt::format("obstacle[{}]: the shape holds no cell centre on this {} x {} mesh (cells are "
                                   "blocked whole, by their centres)", k, g.nx(), g.ny()));
   ObstacleLayout layout;
   layout.blocked_cells = mark_blocked_cells(g, config.obstacles, mask);
-  if (layout.blocked_cells == g.cell_count()) throw CaseError("obstacle: the obstacles block every cell of the domain");
+  if (layout.blocked_cells == g.cell_count()) throw case_error(config, "obstacle: the obstacles block every cell of the domain");
   if (config.soil && config.soil->yield_pressure == YieldPressure::lithostatic_floor)
-    throw CaseError("obstacle: soil.yield_pressure = \"lithostatic_floor\" takes the soil above each cell up to the "
+    throw case_error(config, "obstacle: soil.yield_pressure = \"lithostatic_floor\" takes the soil above each cell up to the "
                     "top, through any obstacle; use \"face\" or \"cell\" with obstacles");
   layout.mask_on_root = gather_to_root(g, mask);
   std::string problem;
   int rank;
   MPI_Comm_rank(g.comm(), &rank);
   if (rank == 0) problem = check_blocked_cells(g, config, layout.mask_on_root, layout.hash);
-  if (auto text = first_failure(g.comm(), problem); !text.empty()) throw CaseError(text);
+  if (auto text = first_failure(g.comm(), problem); !text.empty()) throw case_error(config, text);
   MPI_Bcast(&layout.hash, 1, MPI_UINT64_T, 0, g.comm());
   return layout;
 }
@@ -184,7 +189,7 @@ Simulation::Simulation(MPI_Comm comm, const CaseConfig& config, std::filesystem:
   flow_->update_properties();  // the granular viscosity needs the pressure
   if (soil_) initial_soil_volume_ = soil_->budget(*flow_).soil_volume;
   if (soil_ && !(initial_soil_volume_ > 0.0))  // the budget is summed over all ranks: all stop alike
-    throw no_initial_soil(*grid_, blocked_ != nullptr);
+    throw no_initial_soil(config_, *grid_, blocked_ != nullptr);
   if (!out_.empty()) {
     std::string problem;
     if (rank_ == 0) {
@@ -214,7 +219,7 @@ void check_initial_state(MPI_Comm comm, const CaseConfig& config) {
     lay_out_obstacles(grid, config, *blocked);
   }
   if (!config.soil) return;
-  if (!(initial_soil_in_open_cells(grid, config, blocked.get()) > 0.0)) throw no_initial_soil(grid, blocked != nullptr);
+  if (!(initial_soil_in_open_cells(grid, config, blocked.get()) > 0.0)) throw no_initial_soil(config, grid, blocked != nullptr);
 }
 
 double Simulation::next_output_time() const {
