@@ -205,6 +205,12 @@ add_test(NAME cli_field_file_carries_its_time
          COMMAND sh -c "\"$0\" run \"$1\" -o \"$2\" --overwrite --set 'mesh.cells=[8,8]' --set time.end=0.02 --set output.interval=0.01 --set output.progress_seconds=0 > /dev/null || exit 1; tr -d '\\n' < \"$2/fields_00001.vtr\" | grep -q '<RectilinearGrid [^>]*><FieldData><DataArray type=.Float64. Name=.TimeValue. NumberOfTuples=.1. format=.ascii.>0[.]01</DataArray></FieldData><Piece '"
                  $<TARGET_FILE:granflow> ${CMAKE_SOURCE_DIR}/cases/lid_driven_cavity_re100.toml ${CMAKE_CURRENT_BINARY_DIR}/field_time)
 set_tests_properties(cli_field_file_carries_its_time PROPERTIES LABELS cli)
+# A line sample on an obstacle's faces (x = 0.4 and 0.412 m, both computed to round-off) takes the
+# wall's values; only the points inside it are nan.
+add_test(NAME cli_line_sample_on_obstacle_faces
+         COMMAND sh -c "{ cat \"$1\"; printf '[[output.line]]\\nname = \"floor\"\\nstart = [0.0, 0.002]\\nend = [0.6, 0.002]\\npoints = 151\\n'; } > \"$2.toml\" && \"$0\" run \"$2.toml\" -o \"$2\" --overwrite --set time.end=0.01 --set output.fields=false --set output.progress_seconds=0 > /dev/null && grep -E '^0[.](4|412),0[.]002,[-0-9]' \"$2/floor.csv\" | wc -l | grep -qx 2 && grep -E '^0[.](404|408),0[.]002,nan,' \"$2/floor.csv\" | wc -l | grep -qx 2"
+                 $<TARGET_FILE:granflow> ${CMAKE_SOURCE_DIR}/cases/barrier_collapse.toml ${CMAKE_CURRENT_BINARY_DIR}/line_sample_obstacle)
+set_tests_properties(cli_line_sample_on_obstacle_faces PROPERTIES LABELS cli)
 # The comparison scripts name a missing or malformed file in one line, not a traceback.
 file(WRITE ${CMAKE_CURRENT_BINARY_DIR}/bad_refdata/ghia1982_cavity_re100.csv "y,u\n0.5,abc\n")
 add_test(NAME scripts_compare_missing_run

@@ -157,8 +157,16 @@ bool Simulation::in_blocked_cell(double x, double y) const {
     }
     return lo;
   };
-  const int i = index(g.nx(), x, [&](int k) { return g.xf(k); }), j = index(g.ny(), y, [&](int k) { return g.yf(k); });
-  return blocked_on_root_[size_t(j) * g.nx() + i] > 0.5;
+  auto blocked_at = [&](double px, double py) {
+    const int i = index(g.nx(), px, [&](int k) { return g.xf(k); }), j = index(g.ny(), py, [&](int k) { return g.yf(k); });
+    return blocked_on_root_[size_t(j) * g.nx() + i] > 0.5;
+  };
+  // A point on an obstacle's face, to round-off (a line's points are computed, as are the faces),
+  // is on its wall and is sampled: only a point blocked a little way off in every direction is inside.
+  const double ex = 1e-10 * (config_.mesh.upper[0] - config_.mesh.lower[0]);
+  const double ey = 1e-10 * (config_.mesh.upper[1] - config_.mesh.lower[1]);
+  return blocked_at(x - ex, y - ey) && blocked_at(x + ex, y - ey) && blocked_at(x - ex, y + ey) &&
+         blocked_at(x + ex, y + ey);
 }
 
 // The squares of four open cells, for the contours of the soil's surface (on rank 0): a blocked
