@@ -37,6 +37,27 @@ TEST(CaseAdvice, ExponentialRegularisationUnderTheProjectionOrWithoutTheFaceFrac
   EXPECT_TRUE(case_advice(clip).empty());
 }
 
+// Valid values that are most often a slip are warned of, each naming the key: no gravity, gravity
+// upwards, a density in g/cm^3, a friction angle in radians.
+TEST(CaseAdvice, LikelySlipsOfUnitsAndSignsAreNamed) {
+  const auto bui = std::string(GRANFLOW_SOURCE_DIR) + "/cases/bui2008_experiment.toml";
+  const struct {
+    const char* set;
+    const char* says;
+  } slips[] = {
+      {"physics.gravity=[0.0, 0.0]", "physics.gravity is [0, 0]"},
+      {"physics.gravity=[0.0, 9.81]", "points up (+y)"},
+      {"soil.density=2.65", "soil.density = 2.65 kg/m^3 is lighter than any soil"},
+      {"soil.rheology.friction_angle=0.35", "friction_angle = 0.35 is in degrees: 0.35 rad would be 20.1 deg"},
+  };
+  for (const auto& slip : slips) {
+    const auto advice = case_advice(load_case(bui, {slip.set, "numerics.air_band=0"}));
+    ASSERT_EQ(advice.size(), 1u) << slip.set;
+    EXPECT_NE(advice[0].find(slip.says), std::string::npos) << advice[0];
+  }
+  EXPECT_TRUE(case_advice(load_case(bui, {"physics.gravity=[4.1, -8.9]", "numerics.air_band=0"})).empty());  // a tilted bed
+}
+
 // A key the case gives to no effect is a warning, naming the key and what would use it.
 TEST(CaseAdvice, KeysWithoutEffect) {
   const auto bui = std::string(GRANFLOW_SOURCE_DIR) + "/cases/bui2008_experiment.toml";
