@@ -211,6 +211,11 @@ add_test(NAME cli_line_sample_on_obstacle_faces
          COMMAND sh -c "{ cat \"$1\"; printf '[[output.line]]\\nname = \"floor\"\\nstart = [0.0, 0.002]\\nend = [0.6, 0.002]\\npoints = 151\\n'; } > \"$2.toml\" && \"$0\" run \"$2.toml\" -o \"$2\" --overwrite --set time.end=0.01 --set output.fields=false --set output.progress_seconds=0 > /dev/null && grep -E '^0[.](4|412),0[.]002,[-0-9]' \"$2/floor.csv\" | wc -l | grep -qx 2 && grep -E '^0[.](404|408),0[.]002,nan,' \"$2/floor.csv\" | wc -l | grep -qx 2"
                  $<TARGET_FILE:granflow> ${CMAKE_SOURCE_DIR}/cases/barrier_collapse.toml ${CMAKE_CURRENT_BINARY_DIR}/line_sample_obstacle)
 set_tests_properties(cli_line_sample_on_obstacle_faces PROPERTIES LABELS cli)
+# check says what it laid out: the soil the shapes place, and the cells the obstacles block.
+add_test(NAME cli_check_says_what_it_laid_out
+         COMMAND granflow check ${CMAKE_SOURCE_DIR}/cases/barrier_collapse.toml)
+set_tests_properties(cli_check_says_what_it_laid_out PROPERTIES LABELS cli
+                     PASS_REGULAR_EXPRESSION "valid [(]150 x 50 cells, t_end = 2 s; initial soil 0[.]02 m\\^2 per metre of depth; 21 cells blocked by obstacles[)]")
 # The comparison scripts name a missing or malformed file in one line, not a traceback.
 file(WRITE ${CMAKE_CURRENT_BINARY_DIR}/bad_refdata/ghia1982_cavity_re100.csv "y,u\n0.5,abc\n")
 add_test(NAME scripts_compare_missing_run

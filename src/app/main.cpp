@@ -337,9 +337,15 @@ int main(int argc, char** argv) {
       check_solver_methods(c);
       // What the case file alone cannot tell (the mesh's layout on these ranks, initial shapes that
       // miss every cell's samples) is found where a run finds it: in laying out the initial state.
-      granflow::check_initial_state(PETSC_COMM_WORLD, c);
+      const auto laid_out = granflow::check_initial_state(PETSC_COMM_WORLD, c);
       if (rank == 0) {  // every rank checks the same file alike; one says so
-        fmt::print("{}: valid ({} x {} cells, t_end = {} s)\n", case_file, c.mesh.cells[0], c.mesh.cells[1], c.time.end);
+        std::string placed;
+        if (c.soil)
+          placed += fmt::format("; initial soil {:.6g} {}", laid_out.soil_volume,
+                                c.mesh.axisymmetric ? "m^3 per radian" : "m^2 per metre of depth");
+        if (!c.obstacles.empty()) placed += fmt::format("; {} cells blocked by obstacles", laid_out.blocked_cells);
+        fmt::print("{}: valid ({} x {} cells, t_end = {} s{})\n", case_file, c.mesh.cells[0], c.mesh.cells[1], c.time.end,
+                   placed);
         for (const auto& line : granflow::case_advice(c)) fmt::print(stderr, "warning: {}\n", line);
       }
     } catch (const std::exception& e) {

@@ -211,15 +211,18 @@ Simulation::Simulation(MPI_Comm comm, const CaseConfig& config, std::filesystem:
 
 Simulation::~Simulation() = default;
 
-void check_initial_state(MPI_Comm comm, const CaseConfig& config) {
+InitialState check_initial_state(MPI_Comm comm, const CaseConfig& config) {
   const Grid grid(comm, config.mesh);
+  InitialState state;
   std::unique_ptr<Field> blocked;
   if (!config.obstacles.empty()) {
     blocked = std::make_unique<Field>(grid);
-    lay_out_obstacles(grid, config, *blocked);
+    state.blocked_cells = lay_out_obstacles(grid, config, *blocked).blocked_cells;
   }
-  if (!config.soil) return;
-  if (!(initial_soil_in_open_cells(grid, config, blocked.get()) > 0.0)) throw no_initial_soil(config, grid, blocked != nullptr);
+  if (!config.soil) return state;
+  state.soil_volume = initial_soil_in_open_cells(grid, config, blocked.get());
+  if (!(state.soil_volume > 0.0)) throw no_initial_soil(config, grid, blocked != nullptr);
+  return state;
 }
 
 double Simulation::next_output_time() const {

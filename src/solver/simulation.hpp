@@ -34,8 +34,13 @@ struct RunSummary {
 
 // What a run's start finds that the case file alone cannot: a mesh that cannot be laid out on the
 // ranks of comm (GridError), initial shapes that miss every cell's samples (CaseError). Collective;
-// it lays out the grid only, not the solver (granflow check).
-void check_initial_state(MPI_Comm comm, const CaseConfig& config);
+// it lays out the grid only, not the solver (granflow check). Returns what it laid out, for the user
+// to compare with what was meant.
+struct InitialState {
+  long blocked_cells = 0;    // by the obstacles
+  double soil_volume = 0.0;  // in open cells: m^2 per metre of depth, or m^3 per radian if axisymmetric
+};
+InitialState check_initial_state(MPI_Comm comm, const CaseConfig& config);
 
 class Simulation {
  public:
