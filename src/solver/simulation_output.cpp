@@ -193,7 +193,7 @@ void Simulation::record_history(double dt) {
   if (rank_ != 0) return;
   const PileShape shape = pile_shape(*grid_, c, wall_column_);
   const double toe_contour = toe_of(iso_line(*grid_, c, 0.5, open_square()));
-  std::string row = fmt::format("{:.9g},{:.6g},{:.15g},{:.15g},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g},{:.12g},{:.15g}", time_, dt,
+  std::string row = fmt::format("{:.12g},{:.12g},{:.15g},{:.15g},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g},{:.12g},{:.15g}", time_, dt,
                                 b.soil_volume, b.air_volume, b.kinetic_energy, b.potential_energy, dissipated_energy_,
                                 toe_contour, shape.toe_thickness, shape.wall_height, b.mixture_mass, b.soil_outflow);
   for (const auto& f : force) row += fmt::format(",{:.12g},{:.12g}", f[0], f[1]);
