@@ -15,8 +15,8 @@ case $case_name in
   *) echo "error: run_main.sh takes bui2008_experiment or bui2008_experiment_mu_of_i, not '$case_name'" >&2; exit 2 ;;
 esac
 out=out/$case_name
-# Two ranks where there are two cores: the run is 1.25 times faster on two (docs/benchmarks.md), and
-# the result is the one-rank result to round-off (docs/validation.md).
+# Two ranks where there are two cores: the run is a little faster on two (1.08 times to t = 1 s,
+# docs/benchmarks.md), and the result is the one-rank result to round-off (docs/validation.md).
 ranks=$(( $(nproc) >= 2 ? 2 : 1 ))
 started=$(mktemp)
 trap 'rm -f "$started"' EXIT
