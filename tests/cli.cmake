@@ -216,6 +216,13 @@ add_test(NAME cli_check_says_what_it_laid_out
          COMMAND granflow check ${CMAKE_SOURCE_DIR}/cases/barrier_collapse.toml)
 set_tests_properties(cli_check_says_what_it_laid_out PROPERTIES LABELS cli
                      PASS_REGULAR_EXPRESSION "valid [(]150 x 50 cells, t_end = 2 s; initial soil 0[.]02 m\\^2 per metre of depth; 21 cells blocked by obstacles[)]")
+# A second run into a directory a run is writing into is refused (status 2), with --overwrite or
+# --restart too, and the first run goes on to its end; the second starts once the first has said it
+# is under way.
+add_test(NAME cli_second_run_into_a_busy_directory_refused
+         COMMAND sh -c "g=$0; c=$1; d=$2; rm -rf \"$d\" \"$d.log\"; mkdir -p \"$d\"; \"$g\" run \"$c\" -o \"$d\" --overwrite --set 'mesh.cells=[150,50]' --set time.end=0.3 --set output.progress_seconds=0 > \"$d.log\" 2>&1 & first=$!; k=0; until grep -q 'output in' \"$d.log\"; do k=$((k+1)); test $k -lt 600 || exit 1; sleep 0.1; done; for extra in --overwrite --restart; do out=$(\"$g\" run \"$c\" -o \"$d\" $extra --set 'mesh.cells=[150,50]' --set time.end=0.3 2>&1); status=$?; echo \"$out\"; test $status -eq 2 && echo \"$out\" | grep -q 'another granflow run is writing into this directory' || exit 1; done; wait $first"
+                 $<TARGET_FILE:granflow> ${CMAKE_SOURCE_DIR}/cases/bui2008_experiment.toml ${CMAKE_CURRENT_BINARY_DIR}/busy_directory)
+set_tests_properties(cli_second_run_into_a_busy_directory_refused PROPERTIES LABELS cli TIMEOUT 300)
 # The comparison scripts name a missing or malformed file in one line, not a traceback.
 file(WRITE ${CMAKE_CURRENT_BINARY_DIR}/bad_refdata/ghia1982_cavity_re100.csv "y,u\n0.5,abc\n")
 add_test(NAME scripts_compare_missing_run

@@ -22,6 +22,7 @@
 #include "io/checkpoint.hpp"
 #include "io/collective_failure.hpp"
 #include "io/run_directory.hpp"
+#include "io/run_lock.hpp"
 #include "models/rheology/element_test.hpp"
 #include "solver/linear_solver.hpp"
 #include "solver/simulation.hpp"
@@ -55,6 +56,15 @@ int run_case(const std::string& case_file, const std::vector<std::string>& overr
     if (std::filesystem::exists(out_dir, ec) && !std::filesystem::is_directory(out_dir, ec))
       throw CaseError(fmt::format("-o {}: not a directory", out_dir));
   }
+  // One run at a time in a directory (io/run_lock.hpp): taken here where the directory exists, so that
+  // a second run is told so rather than that the directory holds an earlier run, and below where the
+  // simulation has just made it. Rank 0 holds it for the whole run.
+  RunLock lock;
+  auto take_lock = [&] {
+    const std::string problem = rank == 0 ? lock.take(out_dir) : std::string();
+    if (auto text = first_failure(PETSC_COMM_WORLD, problem); !text.empty()) throw CaseError(text);
+  };
+  if (std::filesystem::is_directory(out_dir)) take_lock();
   if (const auto aside = set_aside_run_in(out_dir); !aside.empty())
     throw CaseError(fmt::format("{} holds {}, the files of an earlier run that a run with --overwrite set aside and "
                                 "was stopped before its first step: move them back into {} (or remove {}), then "
@@ -71,6 +81,7 @@ int run_case(const std::string& case_file, const std::vector<std::string>& overr
                                 out_dir, earlier.front().string(), resumable ? "continue it with --restart, " : ""));
   }
   Simulation sim(PETSC_COMM_WORLD, config, out_dir);  // checks what the case file alone cannot
+  take_lock();
   // Only now, with the case found good, every file of the earlier run goes: its checkpoint above all
   // (a later --restart would continue that run), and its later outputs, which the new run might not
   // write again. They are set aside until the new run has taken its first step, and put back if it

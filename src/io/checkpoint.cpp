@@ -195,8 +195,13 @@ void write_checkpoint(MPI_Comm comm, const std::filesystem::path& dir, int nx, i
   if (rank == 0) write_run(partial / "run.txt", run);
   MPI_Barrier(comm);
   if (rank == 0) {
-    std::filesystem::remove_all(old);
-    if (std::filesystem::exists(final_dir)) std::filesystem::rename(final_dir, old);
+    // The last complete checkpoint is kept until the new one has its name: it is checkpoint/, or,
+    // after a run killed between these renames, checkpoint.old/ alone, which must then not be
+    // removed before the new one is in place.
+    if (std::filesystem::exists(final_dir)) {
+      std::filesystem::remove_all(old);
+      std::filesystem::rename(final_dir, old);
+    }
     std::filesystem::rename(partial, final_dir);
     std::filesystem::remove_all(old);
   }

@@ -1,0 +1,34 @@
+#include "io/run_lock.hpp"
+
+#include <fcntl.h>
+#include <fmt/format.h>
+#include <sys/file.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstring>
+
+namespace granflow {
+
+RunLock::~RunLock() {
+  if (fd_ >= 0) close(fd_);
+}
+
+std::string RunLock::take(const std::filesystem::path& dir) {
+  if (held()) return {};
+  const int fd = open(dir.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+  if (fd < 0) return fmt::format("-o {}: cannot open the output directory: {}", dir.string(), std::strerror(errno));
+  if (flock(fd, LOCK_EX | LOCK_NB) != 0) {
+    const int error = errno;
+    close(fd);
+    if (error == EWOULDBLOCK)
+      return fmt::format("-o {}: another granflow run is writing into this directory; wait for it to end, or choose "
+                         "another directory with -o",
+                         dir.string());
+    return fmt::format("-o {}: cannot lock the output directory: {}", dir.string(), std::strerror(error));
+  }
+  fd_ = fd;
+  return {};
+}
+
+}  // namespace granflow
