@@ -223,6 +223,12 @@ add_test(NAME cli_second_run_into_a_busy_directory_refused
          COMMAND sh -c "g=$0; c=$1; d=$2; rm -rf \"$d\" \"$d.log\"; mkdir -p \"$d\"; \"$g\" run \"$c\" -o \"$d\" --overwrite --set 'mesh.cells=[150,50]' --set time.end=0.3 --set output.progress_seconds=0 > \"$d.log\" 2>&1 & first=$!; k=0; until grep -q 'output in' \"$d.log\"; do k=$((k+1)); test $k -lt 600 || exit 1; sleep 0.1; done; for extra in --overwrite --restart; do out=$(\"$g\" run \"$c\" -o \"$d\" $extra --set 'mesh.cells=[150,50]' --set time.end=0.3 2>&1); status=$?; echo \"$out\"; test $status -eq 2 && echo \"$out\" | grep -q 'another granflow run is writing into this directory' || exit 1; done; wait $first"
                  $<TARGET_FILE:granflow> ${CMAKE_SOURCE_DIR}/cases/bui2008_experiment.toml ${CMAKE_CURRENT_BINARY_DIR}/busy_directory)
 set_tests_properties(cli_second_run_into_a_busy_directory_refused PROPERTIES LABELS cli TIMEOUT 300)
+# An output path too long for the run's files under it is refused at once (status 2), not at the
+# first checkpoint.
+add_test(NAME cli_output_path_too_long
+         COMMAND sh -c "out=$(\"$0\" run \"$1\" -o \"/tmp/$(printf '%03900d' 0)\" 2>&1); test $? -eq 2 && echo \"$out\" | grep -q '^error: -o: the output directory.s path is 3905 characters long, more than 3800'"
+                 $<TARGET_FILE:granflow> ${CMAKE_SOURCE_DIR}/cases/lid_driven_cavity_re100.toml)
+set_tests_properties(cli_output_path_too_long PROPERTIES LABELS cli)
 # The comparison scripts name a missing or malformed file in one line, not a traceback.
 file(WRITE ${CMAKE_CURRENT_BINARY_DIR}/bad_refdata/ghia1982_cavity_re100.csv "y,u\n0.5,abc\n")
 add_test(NAME scripts_compare_missing_run

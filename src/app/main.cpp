@@ -49,6 +49,11 @@ int run_case(const std::string& case_file, const std::vector<std::string>& overr
   // Checked before the simulation makes the output directory, so a mistyped one is not left behind.
   // Every rank sees the same files here (the output directory is shared), so all stop alike. An
   // output directory that cannot be made or written into is the simulation's to report, as it makes it.
+  // The run's files under it are up to some 250 characters long (a line sample's, while written):
+  // the whole path must stay within the system's PATH_MAX of 4096, or the first checkpoint would fail.
+  if (out_dir.size() > 3800)
+    throw CaseError(fmt::format("-o: the output directory's path is {} characters long, more than 3800 (the run's "
+                                "files under it would pass the system's limit of 4096)", out_dir.size()));
   if (restart && !std::filesystem::exists(out_dir))
     throw CheckpointError(fmt::format("no checkpoint to restart from in {}: no such directory", out_dir));
   {

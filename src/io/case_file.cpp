@@ -468,6 +468,11 @@ CaseConfig read_case(const toml::table& root, const std::filesystem::path& sourc
       LineSample s;
       s.name = l.required_string("name");
       if (s.name.empty()) throw CaseError(fmt::format("{}.name: must not be empty", l.path()));
+      // Its files' names, .NAME_NNNNN.csv.tmpPID while written, must stay within 255 bytes.
+      constexpr size_t longest_name = 200;
+      if (s.name.size() > longest_name)
+        throw CaseError(fmt::format("{}.name: {} characters, more than {} (the files named after it would pass the "
+                                    "file system's limit)", l.path(), s.name.size(), longest_name));
       for (char ch : s.name)
         if (!(std::isalnum(static_cast<unsigned char>(ch)) || ch == '_' || ch == '-'))
           throw CaseError(fmt::format("{}.name: '{}' may hold only letters, digits, '_' and '-'", l.path(), s.name));

@@ -288,6 +288,10 @@ TEST(CaseFile, LineNamesCannotBeThoseOfOtherOutputFiles) {
     const std::string e = error_of(line(bad));
     EXPECT_NE(e.find("output.line"), std::string::npos) << "'" << bad << "': " << e;
   }
+  // Its files' names must fit the file system's 255 bytes while they are written (.NAME_NNNNN.csv.tmpPID).
+  EXPECT_EQ(error_of(line(std::string(200, 'a'))), "");
+  EXPECT_NE(error_of(line(std::string(201, 'a'))).find("output.line[0].name: 201 characters, more than 200"),
+            std::string::npos);
 }
 
 // A line that ends where it starts samples one point a hundred times.
