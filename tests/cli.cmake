@@ -229,6 +229,11 @@ add_test(NAME cli_output_path_too_long
          COMMAND sh -c "out=$(\"$0\" run \"$1\" -o \"/tmp/$(printf '%03900d' 0)\" 2>&1); test $? -eq 2 && echo \"$out\" | grep -q '^error: -o: the output directory.s path is 3905 characters long, more than 3800'"
                  $<TARGET_FILE:granflow> ${CMAKE_SOURCE_DIR}/cases/lid_driven_cavity_re100.toml)
 set_tests_properties(cli_output_path_too_long PROPERTIES LABELS cli)
+# A run started with stdout closed ends as asked (status 0), with its files written.
+add_test(NAME cli_run_with_stdout_closed
+         COMMAND sh -c "\"$0\" run \"$1\" -o \"$2\" --overwrite --set 'mesh.cells=[8,8]' --set time.end=0.02 >&- && test -s \"$2/fields_00001.vtr\""
+                 $<TARGET_FILE:granflow> ${CMAKE_SOURCE_DIR}/cases/lid_driven_cavity_re100.toml ${CMAKE_CURRENT_BINARY_DIR}/stdout_closed)
+set_tests_properties(cli_run_with_stdout_closed PROPERTIES LABELS cli)
 # The comparison scripts name a missing or malformed file in one line, not a traceback.
 file(WRITE ${CMAKE_CURRENT_BINARY_DIR}/bad_refdata/ghia1982_cavity_re100.csv "y,u\n0.5,abc\n")
 add_test(NAME scripts_compare_missing_run

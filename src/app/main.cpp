@@ -1,10 +1,12 @@
 // granflow: the command line.
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
+#include <fcntl.h>
 #include <unistd.h>
 #include <petscsys.h>
 
 #include <algorithm>
+#include <cerrno>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
@@ -234,6 +236,15 @@ int report_shared_error(const std::exception& e, const std::string& case_file, i
 }  // namespace
 
 int main(int argc, char** argv) {
+  // Started with stdout closed (`>&-`), the first file MPI opens would take descriptor 1, and the
+  // progress lines would be written into it, or fail at the end: give stdout to /dev/null instead.
+  if (fcntl(STDOUT_FILENO, F_GETFD) == -1 && errno == EBADF) {
+    const int null = open("/dev/null", O_WRONLY);
+    if (null >= 0 && null != STDOUT_FILENO) {
+      dup2(null, STDOUT_FILENO);
+      close(null);
+    }
+  }
   CLI::App app{"granflow: dense granular flows as a two-phase visco-plastic continuum"};
   app.require_subcommand(1);
   std::string case_file, out_dir;
