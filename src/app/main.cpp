@@ -98,7 +98,10 @@ int run_case(const std::string& case_file, const std::vector<std::string>& overr
     const std::string problem = rank == 0 && !earlier.empty() ? set_aside_run(out_dir, earlier) : std::string();
     if (auto text = first_failure(PETSC_COMM_WORLD, problem); !text.empty()) throw CaseError(text);
   }
-  if (restart) sim.restart();
+  if (restart) {
+    sim.restart();
+    if (rank == 0) remove_left_over_files(out_dir, config.output.lines);
+  }
   if (rank == 0)
     fmt::print("granflow: {} on {} x {} cells {}to t = {} s, output in {}\n", config.title, config.mesh.cells[0],
                config.mesh.cells[1], restart ? fmt::format("from the checkpoint at t = {:.6g} s ", sim.time()) : "",

@@ -66,6 +66,14 @@ std::vector<std::filesystem::path> run_files_in(const std::filesystem::path& dir
   return files;
 }
 
+void remove_left_over_files(const std::filesystem::path& dir, const std::vector<LineSample>& lines) {
+  for (const auto& f : run_files_in(dir, lines))
+    if (f.filename().string().starts_with(".")) {  // the run's own files do not start with a dot
+      std::error_code ignored;
+      std::filesystem::remove(f, ignored);
+    }
+}
+
 std::filesystem::path set_aside_run_in(const std::filesystem::path& dir) {
   std::error_code ec;
   const auto aside = dir / set_aside_name;

@@ -20,6 +20,10 @@ inline constexpr const char* run_record_name = "granflow_run.txt";
 // names or `lines` (the new run's) holds. Empty if `dir` is not a directory.
 std::vector<std::filesystem::path> run_files_in(const std::filesystem::path& dir, const std::vector<LineSample>& lines);
 
+// Removes the half-written files (.NAME.tmpPID, io/atomic_file.cpp) a killed run left in `dir`: a
+// restart, which holds the directory alone (io/run_lock.hpp), writes those files anew.
+void remove_left_over_files(const std::filesystem::path& dir, const std::vector<LineSample>& lines);
+
 // --overwrite sets the earlier run aside until the new run has taken its first step, so that a new run
 // that fails at once (an option its solver cannot use, a value that makes the first step diverge) does
 // not cost the earlier run. The files go into dir/.replaced_run. One left there (the new run was killed

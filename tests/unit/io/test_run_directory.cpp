@@ -69,6 +69,11 @@ TEST(RunDirectory, FilesLeftHalfWrittenAreTheRuns) {
                            ".history.csv.tmpx1", ".tmp12"})
     std::ofstream(dir / name) << "x\n";
   EXPECT_EQ(names_of(run_files_in(dir, {})), (std::vector<std::string>{".fields_00001.vtr.tmp4242", ".history.csv.tmp17"}));
+  // A restart removes them, and only them; the run's finished files stay.
+  std::ofstream(dir / "history.csv") << "x\n";
+  remove_left_over_files(dir, {});
+  EXPECT_EQ(names_of(run_files_in(dir, {})), (std::vector<std::string>{"history.csv"}));
+  EXPECT_TRUE(fs::exists(dir / ".survey.csv.tmp17"));
   fs::remove_all(dir);
 }
 
