@@ -234,6 +234,12 @@ add_test(NAME cli_run_with_stdout_closed
          COMMAND sh -c "\"$0\" run \"$1\" -o \"$2\" --overwrite --set 'mesh.cells=[8,8]' --set time.end=0.02 >&- && test -s \"$2/fields_00001.vtr\""
                  $<TARGET_FILE:granflow> ${CMAKE_SOURCE_DIR}/cases/lid_driven_cavity_re100.toml ${CMAKE_CURRENT_BINARY_DIR}/stdout_closed)
 set_tests_properties(cli_run_with_stdout_closed PROPERTIES LABELS cli)
+# An output directory that is a dangling symbolic link is named as such, and a case file that cannot
+# be opened says why.
+add_test(NAME cli_output_dangling_link_and_case_file_reason
+         COMMAND sh -c "ln -sfn \"$2.nowhere\" \"$2\"; out=$(\"$0\" run \"$1\" -o \"$2\" 2>&1); test $? -eq 2 && echo \"$out\" | grep -q 'cannot make the output directory: .*(it is a symbolic link to .*nowhere, which is not a directory)' && out=$(\"$0\" check \"$2.toml\" 2>&1); test $? -eq 2 && echo \"$out\" | grep -q 'cannot open the case file: No such file or directory'"
+                 $<TARGET_FILE:granflow> ${CMAKE_SOURCE_DIR}/cases/lid_driven_cavity_re100.toml ${CMAKE_CURRENT_BINARY_DIR}/dangling_link)
+set_tests_properties(cli_output_dangling_link_and_case_file_reason PROPERTIES LABELS cli)
 # The comparison scripts name a missing or malformed file in one line, not a traceback.
 file(WRITE ${CMAKE_CURRENT_BINARY_DIR}/bad_refdata/ghia1982_cavity_re100.csv "y,u\n0.5,abc\n")
 add_test(NAME scripts_compare_missing_run
@@ -288,6 +294,13 @@ add_test(NAME cli_restart_other_physics_warned
                  ${GRANFLOW_SHORT_RUN})
 set_tests_properties(cli_restart_other_physics_warned PROPERTIES LABELS cli
                      PASS_REGULAR_EXPRESSION "warning: the case's physics [(][^)]*phi 30 deg[^)]*[)] differs from the checkpoint's run [(][^)]*phi 19.8 deg")
+# ... and so is a restart with other boundaries.
+add_test(NAME cli_restart_other_boundaries_warned
+         COMMAND sh -c "g=$0; d=$1; c=$2; shift 2; rm -rf \"$d\"; \"$g\" run \"$c\" -o \"$d\" \"$@\" > /dev/null || exit 1; \"$g\" run \"$c\" -o \"$d\" --restart \"$@\" --set time.end=0.03 --set 'boundary.east={type = \"wall\"}' 2>&1"
+                 $<TARGET_FILE:granflow> ${CMAKE_CURRENT_BINARY_DIR}/restart_boundaries ${CMAKE_SOURCE_DIR}/cases/bui2008_experiment.toml
+                 ${GRANFLOW_SHORT_RUN})
+set_tests_properties(cli_restart_other_boundaries_warned PROPERTIES LABELS cli
+                     PASS_REGULAR_EXPRESSION "warning: the case's physics [(][^)]*east wall [^)]*[)] differs from the checkpoint's run [(][^)]*east atmosphere 0 Pa total")
 # The example of docs/case_file.md is a valid case, and runs.
 add_test(NAME cli_docs_case_example
          COMMAND sh -c "sed -n '/^## Example/,$p' \"$1\" | sed -n '/^```toml/,/^```$/p' | sed '1d;$d' > \"$2.toml\" && \"$0\" check \"$2.toml\" && \"$0\" run \"$2.toml\" -o \"$2\" --overwrite --set \"mesh.cells=[30,10]\" --set time.end=0.05 --set output.progress_seconds=0"

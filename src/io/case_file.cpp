@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cerrno>
 #include <cstring>
 #include <exception>
 #include <fstream>
@@ -616,7 +617,7 @@ CaseConfig load_case(const std::filesystem::path& file, const std::vector<std::s
   if (std::filesystem::is_directory(file, ec))
     throw CaseError(fmt::format("{}: is a directory, not a case file", file.string()));
   std::ifstream in(file);
-  if (!in) throw CaseError(fmt::format("{}: cannot open the case file", file.string()));
+  if (!in) throw CaseError(fmt::format("{}: cannot open the case file: {}", file.string(), std::strerror(errno)));
   std::stringstream ss;
   ss << in.rdbuf();
   const std::string text = ss.str();

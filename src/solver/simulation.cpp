@@ -5,7 +5,9 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cerrno>
 #include <cmath>
+#include <cstring>
 
 #include "io/case_error.hpp"
 #include "io/collective_failure.hpp"
@@ -195,12 +197,18 @@ Simulation::Simulation(MPI_Comm comm, const CaseConfig& config, std::filesystem:
     if (rank_ == 0) {
       std::error_code ec;
       std::filesystem::create_directories(out_, ec);
-      if (ec) problem = fmt::format("-o {}: cannot make the output directory: {}", out_.string(), ec.message());
+      if (ec) {
+        problem = fmt::format("-o {}: cannot make the output directory: {}", out_.string(), ec.message());
+        std::error_code ignored;
+        if (std::filesystem::is_symlink(out_, ignored))
+          problem += fmt::format(" (it is a symbolic link to {}, which is not a directory)",
+                                 std::filesystem::read_symlink(out_, ignored).string());
+      }
       // Found now rather than at the first output, which may come after much of the run.
       if (problem.empty()) {
         const auto probe = out_ / fmt::format(".granflow_probe_{}", ::getpid());
         if (!std::ofstream(probe))
-          problem = fmt::format("-o {}: cannot write into the output directory", out_.string());
+          problem = fmt::format("-o {}: cannot write into the output directory: {}", out_.string(), std::strerror(errno));
         std::filesystem::remove(probe, ec);
       }
     }

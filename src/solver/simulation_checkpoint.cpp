@@ -32,10 +32,24 @@ std::string Simulation::domain() const {
   return text + obstacles_;
 }
 
-// The materials and gravity, as a checkpoint records them: a restart with others is most likely
-// the wrong case file, though a deliberate change is allowed.
+// The materials, gravity and boundaries, as a checkpoint records them: a restart with others is most
+// likely the wrong case file, though a deliberate change is allowed.
 std::string Simulation::physics() const {
   std::string text = fmt::format("gravity [{:.9g}, {:.9g}]", config_.flow.gravity[0], config_.flow.gravity[1]);
+  for (Side side : all_sides) {
+    const BoundaryCondition& bc = boundary(config_.flow.boundaries, side);
+    text += fmt::format("; {} ", side_name(side));
+    switch (bc.kind) {
+      case BoundaryKind::wall:
+        text += fmt::format("wall [{:.9g}, {:.9g}] m/s", bc.wall_velocity[0], bc.wall_velocity[1]);
+        break;
+      case BoundaryKind::slip: text += "slip"; break;
+      case BoundaryKind::atmosphere:
+        text += fmt::format("atmosphere {:.9g} Pa {}, inflow c {:.9g}", bc.pressure,
+                            bc.total_pressure ? "total" : "static", bc.inflow_soil_fraction);
+        break;
+    }
+  }
   if (!config_.soil) return text + fmt::format("; fluid {:.9g} kg/m^3, {:.9g} Pa s", config_.fluid.density, config_.fluid.viscosity);
   const SoilSettings& s = *config_.soil;
   text += fmt::format("; air {:.9g} kg/m^3, {:.9g} Pa s; soil {:.9g} kg/m^3", s.air_density, s.air_viscosity, s.soil_density);
