@@ -397,7 +397,10 @@ int main(int argc, char** argv) {
   } catch (const std::exception& e) {
     status = report_shared_error(e, case_file, rank);
     if (status == 0) {
-      fmt::print(stderr, "error: {}{}\n", e.what(), size > 1 ? fmt::format(" (rank {})", rank) : "");
+      // As for PETSc's errors: one that every rank meets (a full disk under every rank's checkpoint
+      // file) is said by rank 0, whose abort stops the others while they wait.
+      if (rank > 0) std::this_thread::sleep_for(std::chrono::milliseconds(500));
+      fmt::print(stderr, "error: {}{}\n", e.what(), rank > 0 ? fmt::format(" (rank {})", rank) : "");
       if (size > 1) MPI_Abort(PETSC_COMM_WORLD, 1);
       status = 1;
     }
