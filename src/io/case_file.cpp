@@ -261,260 +261,261 @@ SoilSettings read_soil(TableReader& top, std::vector<std::string>& without_effec
   return s;
 }
 
-CaseConfig read_case(const toml::table& root, const std::filesystem::path& source) {
-  CaseConfig c;
-  c.source = source;
-  double interface_courant = 0.45;
-  std::vector<std::string> two_phase_keys;  // given, but used only with soil
-  TableReader top(&root, "");
-  c.title = top.string("title", source.stem().string());
+GridSpec read_mesh(TableReader& top) {
+  GridSpec mesh;
+  TableReader m = top.table("mesh");
+  if (!m.present()) throw CaseError("mesh: missing table [mesh]" + top.misspelling_of("mesh"));
+  auto cells = m.numbers("cells", {}, 2);
+  if (cells.size() == 3)
+    throw CaseError("mesh.cells: three counts given, but meshes are two-dimensional, planar or axisymmetric "
+                    "(mesh.geometry); 3D is not implemented");
+  if (cells.size() != 2) throw CaseError("mesh.cells: expected two integers [nx, ny]");
+  for (double n : cells) {
+    if (n < 1 || n != std::floor(n))
+      throw CaseError(fmt::format("mesh.cells: {} is not a positive whole number of cells", n));
+    if (n > 1e8) throw CaseError(fmt::format("mesh.cells: {:.0f} cells along an axis, more than 1e8", n));
+  }
+  mesh.cells = {int(cells[0]), int(cells[1])};
+  // PETSc's indices here are 32-bit; the coupled solve's matrix holds about 3 x 35 entries a cell.
+  constexpr double max_cells = 2e7;
+  if (cells[0] * cells[1] > max_cells)
+    throw CaseError(fmt::format("mesh.cells: {} x {} = {:.3g} cells, more than the {:.0e} this build can index",
+                                cells[0], cells[1], cells[0] * cells[1], max_cells));
+  mesh.lower = m.pair("lower", {0.0, 0.0});
+  mesh.upper = m.required_pair("upper");
+  for (int a = 0; a < 2; ++a)
+    if (!(mesh.upper[a] > mesh.lower[a]))
+      throw CaseError(fmt::format("mesh.upper: the domain is empty along {} (upper {} <= lower {})",
+                                  a == 0 ? "x" : "y", mesh.upper[a], mesh.lower[a]));
+  mesh.axisymmetric = m.choice("geometry", "planar", {"planar", "axisymmetric"}) == "axisymmetric";
+  if (mesh.axisymmetric && mesh.lower[0] < 0.0)
+    throw CaseError(fmt::format("mesh.lower: an axisymmetric mesh needs r >= 0 (x = r), got {}", mesh.lower[0]));
+  mesh.grading = m.pair("grading", {1.0, 1.0});
+  for (double g : mesh.grading) m.require_range("grading", g, 1e-3, 1e3);
+  m.finish();
+  return mesh;
+}
 
-  {
-    TableReader m = top.table("mesh");
-    if (!m.present()) throw CaseError("mesh: missing table [mesh]" + top.misspelling_of("mesh"));
-    auto cells = m.numbers("cells", {}, 2);
-    if (cells.size() == 3)
-      throw CaseError("mesh.cells: three counts given, but meshes are two-dimensional, planar or axisymmetric "
-                      "(mesh.geometry); 3D is not implemented");
-    if (cells.size() != 2) throw CaseError("mesh.cells: expected two integers [nx, ny]");
-    for (double n : cells) {
-      if (n < 1 || n != std::floor(n))
-        throw CaseError(fmt::format("mesh.cells: {} is not a positive whole number of cells", n));
-      if (n > 1e8) throw CaseError(fmt::format("mesh.cells: {:.0f} cells along an axis, more than 1e8", n));
-    }
-    c.mesh.cells = {int(cells[0]), int(cells[1])};
-    // PETSc's indices here are 32-bit; the coupled solve's matrix holds about 3 x 35 entries a cell.
-    constexpr double max_cells = 2e7;
-    if (cells[0] * cells[1] > max_cells)
-      throw CaseError(fmt::format("mesh.cells: {} x {} = {:.3g} cells, more than the {:.0e} this build can index",
-                                  cells[0], cells[1], cells[0] * cells[1], max_cells));
-    c.mesh.lower = m.pair("lower", {0.0, 0.0});
-    c.mesh.upper = m.required_pair("upper");
+// time_interface_courant: the sweeps' Courant number, which belongs to the soil's settings.
+TimeSettings read_time(TableReader& top, double& time_interface_courant, std::vector<std::string>& two_phase_keys,
+                       std::vector<std::string>& without_effect) {
+  TimeSettings time;
+  TableReader t = top.table("time");
+  if (!t.present()) throw CaseError("time: missing table [time]" + top.misspelling_of("time"));
+  time.end = t.required_number("end");
+  // A step far below a nanosecond makes the inertia rho V / dt swamp every other coefficient of the
+  // momentum rows, and V / a_P of the pressure rows underflows: the solve would fail, not the case.
+  constexpr double shortest = 1e-9;
+  const char* at_least = "at least 1e-9 s";
+  t.require_range("end", time.end, shortest, inf, at_least);
+  time.dt = t.number("dt", std::min(1e-3, time.end));
+  t.require_range("dt", time.dt, shortest, inf, at_least);
+  time.adaptive = t.boolean("adaptive", true);
+  time.courant = t.number("courant", 0.5);
+  t.require_range("courant", time.courant, 1e-6, 1e3);
+  for (const char* key : {"courant_region", "interface_courant", "interface_substeps"})
+    if (t.has(key)) two_phase_keys.push_back(t.key_path(key));
+  time.courant_region = t.choice("courant_region", "all", {"all", "soil"}) == "soil" ? CourantRegion::soil : CourantRegion::all;
+  time.max_dt = t.number("max_dt", inf);
+  t.require_range("max_dt", time.max_dt, shortest, inf, at_least);
+  time.max_growth = t.number("max_growth", 1.2);
+  t.require_range("max_growth", time.max_growth, 1.0, 10.0);
+  time_interface_courant = t.number("interface_courant", 0.45);
+  t.require_range("interface_courant", time_interface_courant, 1e-3, 0.49);
+  time.interface_substeps = t.integer_in("interface_substeps", 1, 1, 100);
+  time.steady_tolerance = t.number("steady_tolerance", 0.0);
+  t.require_range("steady_tolerance", time.steady_tolerance, 0.0, inf);
+  time.max_steps = t.integer("max_steps", time.max_steps);
+  t.require_range("max_steps", double(time.max_steps), 1, 1e12);
+  if (!time.adaptive)
+    for (const char* key : {"courant", "max_growth", "courant_region"})
+      if (t.has(key)) without_effect.push_back(t.key_path(key) + ": time.adaptive = false takes the fixed step time.dt");
+  t.finish();
+  return time;
+}
+
+BoundarySet read_boundaries(TableReader& top, const GridSpec& mesh, std::vector<std::string>& two_phase_keys) {
+  BoundarySet boundaries;
+  TableReader b = top.table("boundary");
+  if (!b.present()) throw CaseError("boundary: missing table [boundary] (west, east, south, north)" + top.misspelling_of("boundary"));
+  std::vector<TableReader> sides;  // all four read first: a side missing is then not taken for another misspelt
+  for (Side s : all_sides) sides.push_back(b.table(side_name(s)));
+  for (Side s : all_sides) {
+    bool is_axis = false;
+    TableReader& side = sides[int(s)];
+    if (!side.present())
+      throw CaseError(fmt::format("{}: missing (every side needs a boundary type){}", side.path(),
+                                  b.misspelling_of(side_name(s))));
+    boundaries[int(s)] = read_boundary(side, is_axis, two_phase_keys);
+    if (is_axis && !(s == Side::west && mesh.axisymmetric && mesh.lower[0] == 0.0))
+      throw CaseError(fmt::format("boundary.{}.type: \"axis\" is the west side at r = 0 of an axisymmetric mesh "
+                                  "(mesh.geometry = \"axisymmetric\", mesh.lower[0] = 0)", side_name(s)));
+    if (!is_axis && s == Side::west && mesh.axisymmetric && mesh.lower[0] == 0.0)
+      throw CaseError("boundary.west.type: an axisymmetric mesh starting at r = 0 needs type = \"axis\" there");
+  }
+  b.finish();
+  for (Side s : all_sides) {
+    const auto& bc = boundaries[int(s)];
+    if (bc.kind == BoundaryKind::wall && bc.wall_velocity[normal_axis(s)] != 0.0)
+      throw CaseError(fmt::format("boundary.{}.velocity: a wall cannot move through itself (normal component must be 0)",
+                                  side_name(s)));
+  }
+  return boundaries;
+}
+
+NumericsSettings read_numerics(TableReader& top, std::vector<std::string>& keys_without_effect) {
+  NumericsSettings num;
+  TableReader n = top.table("numerics");
+  const std::string conv = n.choice("convection", "quick", {"upwind", "central", "blended", "quick"});
+  parse_convection_scheme(conv, num.convection);
+  const std::string coupling = n.choice("pressure_coupling", "projection", {"projection", "piso", "coupled"});
+  num.pressure_coupling = coupling == "projection" ? PressureCoupling::projection
+                          : coupling == "piso"     ? PressureCoupling::piso
+                                                   : PressureCoupling::coupled;
+  num.rotational_coefficient = n.number("rotational_coefficient", num.rotational_coefficient);
+  n.require_range("rotational_coefficient", num.rotational_coefficient, 0.0, 2.0);
+  num.blending = n.number("blending", num.blending);
+  n.require_range("blending", num.blending, 0.0, 1.0);
+  num.outer_iterations = n.integer_in("outer_iterations", num.outer_iterations, 1, 1000);
+  num.outer_tolerance = n.number("outer_tolerance", num.outer_tolerance);
+  n.require_range("outer_tolerance", num.outer_tolerance, 0.0, 1.0);
+  num.look_ahead_viscosity =
+      n.choice("first_viscosity", "previous_step", {"previous_step", "look_ahead"}) == "look_ahead";
+  num.mean_viscosity_pressure =
+      n.choice("viscosity_pressure", "last_iterate", {"last_iterate", "mean_of_last_two"}) == "mean_of_last_two";
+  num.air_band = n.integer_in("air_band", num.air_band, 0, 1000000);
+  num.pressure_correctors = n.integer_in("pressure_correctors", num.pressure_correctors, 1, 100);
+  num.momentum_predictor = n.boolean("momentum_predictor", num.momentum_predictor);
+  num.transpose_stress = n.boolean("transpose_stress", num.transpose_stress);
+  const std::string fv = n.choice("face_viscosity", "harmonic", {"harmonic", "arithmetic"});
+  num.face_viscosity = fv == "harmonic" ? FaceViscosity::harmonic : FaceViscosity::arithmetic;
+  num.quadratic_wall_gradient = n.choice("wall_gradient", "two_point", {"two_point", "quadratic"}) == "quadratic";
+  // Conservative transport needs the coupled solve, whose continuity rows take each cell's own
+  // momentum coefficient; the projection's mobility dt/rho cannot follow the mass a cell's momentum
+  // then accelerates (docs/method.md, "Momentum").
+  const bool coupled = num.pressure_coupling == PressureCoupling::coupled;
+  num.conservative_momentum = n.choice("momentum_transport", coupled ? "conservative" : "advective",
+                                       {"conservative", "advective"}) == "conservative";
+  if (num.conservative_momentum && !coupled)
+    throw CaseError(fmt::format("numerics.momentum_transport: \"conservative\" needs numerics.pressure_coupling = "
+                                "\"coupled\" (it is \"{}\"); use \"advective\" with the projection and PISO",
+                                coupling));
+  auto without_effect = [&](const char* key, bool used, const char* why) {
+    if (n.has(key) && !used) keys_without_effect.push_back(n.key_path(key) + ": " + why);
+  };
+  without_effect("blending", conv == "blended", "used only with numerics.convection = \"blended\"");
+  without_effect("rotational_coefficient", num.pressure_coupling == PressureCoupling::projection,
+                 "used only with numerics.pressure_coupling = \"projection\"");
+  without_effect("pressure_correctors", num.pressure_coupling == PressureCoupling::piso,
+                 "used only with numerics.pressure_coupling = \"piso\"");
+  without_effect("momentum_predictor", num.pressure_coupling == PressureCoupling::piso,
+                 "used only with numerics.pressure_coupling = \"piso\" (the projection always predicts, the "
+                 "coupled solve has no predictor)");
+  n.finish();
+  return num;
+}
+
+void read_solvers(TableReader& top, FlowSettings& flow) {
+  TableReader s = top.table("solver");
+  flow.momentum_solver = read_linear_solver(s.table("momentum"), flow.momentum_solver);
+  flow.pressure_solver = read_linear_solver(s.table("pressure"), flow.pressure_solver);
+  flow.coupled_solver = read_linear_solver(s.table("coupled"), flow.coupled_solver);
+  // Cholesky factors need a symmetric positive definite matrix. On the saddle point they do not
+  // stop; on the momentum matrix (not symmetric: convection) they solve another system, silently.
+  for (const char* spd_only : {"icc", "cholesky"}) {
+    if (flow.coupled_solver.pc_type == spd_only)
+      throw CaseError(fmt::format("solver.coupled.pc_type: '{}' needs a symmetric positive definite matrix, and the "
+                                  "coupled velocity-pressure system is a saddle point (use \"lu\")", spd_only));
+    if (flow.momentum_solver.pc_type == spd_only)
+      throw CaseError(fmt::format("solver.momentum.pc_type: '{}' needs a symmetric positive definite matrix, and the "
+                                  "momentum matrix is not symmetric (convection); use \"hypre\", \"ilu\" or \"lu\"",
+                                  spd_only));
+  }
+  s.finish();
+}
+
+// One [[output.line]]; `earlier` are the lines before it, whose names it may not take again.
+LineSample read_line_sample(TableReader& l, const GridSpec& mesh, const std::vector<LineSample>& earlier) {
+  LineSample s;
+  s.name = l.required_string("name");
+  if (s.name.empty()) throw CaseError(fmt::format("{}.name: must not be empty", l.path()));
+  // Its files' names, .NAME_NNNNN.csv.tmpPID while written, must stay within 255 bytes.
+  constexpr size_t longest_name = 200;
+  if (s.name.size() > longest_name)
+    throw CaseError(fmt::format("{}.name: {} characters, more than {} (the files named after it would pass the "
+                                "file system's limit)", l.path(), s.name.size(), longest_name));
+  for (char ch : s.name)
+    if (!(std::isalnum(static_cast<unsigned char>(ch)) || ch == '_' || ch == '-'))
+      throw CaseError(fmt::format("{}.name: '{}' may hold only letters, digits, '_' and '-'", l.path(), s.name));
+  // The solver's own files must not be overwritten by a line's samples.
+  for (const char* own : {"history", "surface", "failure_line", "column_height", "lode_dissipation", "fields"})
+    if (s.name == own)
+      throw CaseError(fmt::format("{}.name: '{}' is the name of one of the run's own output files", l.path(), s.name));
+  // Numbered files are NAME_NNNNN.csv: a name ending in '_' and five digits could be one of them.
+  if (const size_t u = s.name.find_last_of('_');
+      u != std::string::npos && s.name.size() - u > 5 &&
+      std::all_of(s.name.begin() + long(u) + 1, s.name.end(),
+                  [](char ch) { return std::isdigit(static_cast<unsigned char>(ch)); }))
+    throw CaseError(fmt::format("{}.name: '{}' ends in '_' and five digits, like the numbered output "
+                                "files (NAME_NNNNN.csv) it could overwrite", l.path(), s.name));
+  for (const auto& other : earlier)
+    if (other.name == s.name) throw CaseError(fmt::format("{}.name: a second line named '{}'", l.path(), s.name));
+  s.start = l.required_pair("start");
+  s.end = l.required_pair("end");
+  for (const auto& [key, point] : {std::pair{"start", s.start}, std::pair{"end", s.end}})
     for (int a = 0; a < 2; ++a)
-      if (!(c.mesh.upper[a] > c.mesh.lower[a]))
-        throw CaseError(fmt::format("mesh.upper: the domain is empty along {} (upper {} <= lower {})",
-                                    a == 0 ? "x" : "y", c.mesh.upper[a], c.mesh.lower[a]));
-    c.mesh.axisymmetric = m.choice("geometry", "planar", {"planar", "axisymmetric"}) == "axisymmetric";
-    if (c.mesh.axisymmetric && c.mesh.lower[0] < 0.0)
-      throw CaseError(fmt::format("mesh.lower: an axisymmetric mesh needs r >= 0 (x = r), got {}", c.mesh.lower[0]));
-    c.mesh.grading = m.pair("grading", {1.0, 1.0});
-    for (double g : c.mesh.grading) m.require_range("grading", g, 1e-3, 1e3);
-    m.finish();
-  }
-  {
-    TableReader t = top.table("time");
-    if (!t.present()) throw CaseError("time: missing table [time]" + top.misspelling_of("time"));
-    c.time.end = t.required_number("end");
-    // A step far below a nanosecond makes the inertia rho V / dt swamp every other coefficient of the
-    // momentum rows, and V / a_P of the pressure rows underflows: the solve would fail, not the case.
-    constexpr double shortest = 1e-9;
-    const char* at_least = "at least 1e-9 s";
-    t.require_range("end", c.time.end, shortest, inf, at_least);
-    c.time.dt = t.number("dt", std::min(1e-3, c.time.end));
-    t.require_range("dt", c.time.dt, shortest, inf, at_least);
-    c.time.adaptive = t.boolean("adaptive", true);
-    c.time.courant = t.number("courant", 0.5);
-    t.require_range("courant", c.time.courant, 1e-6, 1e3);
-    for (const char* key : {"courant_region", "interface_courant", "interface_substeps"})
-      if (t.has(key)) two_phase_keys.push_back(t.key_path(key));
-    c.time.courant_region = t.choice("courant_region", "all", {"all", "soil"}) == "soil" ? CourantRegion::soil : CourantRegion::all;
-    c.time.max_dt = t.number("max_dt", inf);
-    t.require_range("max_dt", c.time.max_dt, shortest, inf, at_least);
-    c.time.max_growth = t.number("max_growth", 1.2);
-    t.require_range("max_growth", c.time.max_growth, 1.0, 10.0);
-    interface_courant = t.number("interface_courant", 0.45);
-    t.require_range("interface_courant", interface_courant, 1e-3, 0.49);
-    c.time.interface_substeps = t.integer_in("interface_substeps", 1, 1, 100);
-    c.time.steady_tolerance = t.number("steady_tolerance", 0.0);
-    t.require_range("steady_tolerance", c.time.steady_tolerance, 0.0, inf);
-    c.time.max_steps = t.integer("max_steps", c.time.max_steps);
-    t.require_range("max_steps", double(c.time.max_steps), 1, 1e12);
-    if (!c.time.adaptive)
-      for (const char* key : {"courant", "max_growth", "courant_region"})
-        if (t.has(key)) c.keys_without_effect.push_back(t.key_path(key) + ": time.adaptive = false takes the fixed step time.dt");
-    t.finish();
-  }
-  {
-    TableReader p = top.table("physics");
-    c.flow.gravity = p.pair("gravity", {0.0, 0.0});
-    p.finish();
-  }
-  if (top.has("soil")) {
-    c.soil = read_soil(top, c.keys_without_effect);
-    if (top.has("fluid")) throw CaseError("fluid: a two-phase case ([soil] and [air]) takes no [fluid] table");
-  } else {
-    TableReader f = top.table("fluid");
-    if (!f.present())
-      throw CaseError("fluid: missing table [fluid] (density and viscosity), or [soil] and [air]" +
-                      top.misspelling_of("fluid") + top.misspelling_of("soil"));
-    c.fluid.density = f.required_number("density");
-    f.require_range("density", c.fluid.density, 1e-300, inf, "positive");
-    c.fluid.viscosity = f.required_number("viscosity");
-    f.require_range("viscosity", c.fluid.viscosity, 0.0, inf, "zero or positive");
-    f.finish();
-  }
-  {
-    TableReader b = top.table("boundary");
-    if (!b.present()) throw CaseError("boundary: missing table [boundary] (west, east, south, north)" + top.misspelling_of("boundary"));
-    std::vector<TableReader> sides;  // all four read first: a side missing is then not taken for another misspelt
-    for (Side s : all_sides) sides.push_back(b.table(side_name(s)));
-    for (Side s : all_sides) {
-      bool is_axis = false;
-      TableReader& side = sides[int(s)];
-      if (!side.present())
-        throw CaseError(fmt::format("{}: missing (every side needs a boundary type){}", side.path(),
-                                    b.misspelling_of(side_name(s))));
-      c.flow.boundaries[int(s)] = read_boundary(side, is_axis, two_phase_keys);
-      if (is_axis && !(s == Side::west && c.mesh.axisymmetric && c.mesh.lower[0] == 0.0))
-        throw CaseError(fmt::format("boundary.{}.type: \"axis\" is the west side at r = 0 of an axisymmetric mesh "
-                                    "(mesh.geometry = \"axisymmetric\", mesh.lower[0] = 0)", side_name(s)));
-      if (!is_axis && s == Side::west && c.mesh.axisymmetric && c.mesh.lower[0] == 0.0)
-        throw CaseError("boundary.west.type: an axisymmetric mesh starting at r = 0 needs type = \"axis\" there");
-    }
-    b.finish();
-    for (Side s : all_sides) {
-      const auto& bc = c.flow.boundaries[int(s)];
-      if (bc.kind == BoundaryKind::wall && bc.wall_velocity[normal_axis(s)] != 0.0)
-        throw CaseError(fmt::format("boundary.{}.velocity: a wall cannot move through itself (normal component must be 0)",
-                                    side_name(s)));
-    }
-  }
-  {
-    TableReader n = top.table("numerics");
-    auto& num = c.flow.numerics;
-    const std::string conv = n.choice("convection", "quick", {"upwind", "central", "blended", "quick"});
-    parse_convection_scheme(conv, num.convection);
-    const std::string coupling = n.choice("pressure_coupling", "projection", {"projection", "piso", "coupled"});
-    num.pressure_coupling = coupling == "projection" ? PressureCoupling::projection
-                            : coupling == "piso"     ? PressureCoupling::piso
-                                                     : PressureCoupling::coupled;
-    num.rotational_coefficient = n.number("rotational_coefficient", num.rotational_coefficient);
-    n.require_range("rotational_coefficient", num.rotational_coefficient, 0.0, 2.0);
-    num.blending = n.number("blending", num.blending);
-    n.require_range("blending", num.blending, 0.0, 1.0);
-    num.outer_iterations = n.integer_in("outer_iterations", num.outer_iterations, 1, 1000);
-    num.outer_tolerance = n.number("outer_tolerance", num.outer_tolerance);
-    n.require_range("outer_tolerance", num.outer_tolerance, 0.0, 1.0);
-    num.look_ahead_viscosity =
-        n.choice("first_viscosity", "previous_step", {"previous_step", "look_ahead"}) == "look_ahead";
-    num.mean_viscosity_pressure =
-        n.choice("viscosity_pressure", "last_iterate", {"last_iterate", "mean_of_last_two"}) == "mean_of_last_two";
-    num.air_band = n.integer_in("air_band", num.air_band, 0, 1000000);
-    num.pressure_correctors = n.integer_in("pressure_correctors", num.pressure_correctors, 1, 100);
-    num.momentum_predictor = n.boolean("momentum_predictor", num.momentum_predictor);
-    num.transpose_stress = n.boolean("transpose_stress", num.transpose_stress);
-    const std::string fv = n.choice("face_viscosity", "harmonic", {"harmonic", "arithmetic"});
-    num.face_viscosity = fv == "harmonic" ? FaceViscosity::harmonic : FaceViscosity::arithmetic;
-    num.quadratic_wall_gradient = n.choice("wall_gradient", "two_point", {"two_point", "quadratic"}) == "quadratic";
-    // Conservative transport needs the coupled solve, whose continuity rows take each cell's own
-    // momentum coefficient; the projection's mobility dt/rho cannot follow the mass a cell's momentum
-    // then accelerates (docs/method.md, "Momentum").
-    const bool coupled = num.pressure_coupling == PressureCoupling::coupled;
-    num.conservative_momentum = n.choice("momentum_transport", coupled ? "conservative" : "advective",
-                                         {"conservative", "advective"}) == "conservative";
-    if (num.conservative_momentum && !coupled)
-      throw CaseError(fmt::format("numerics.momentum_transport: \"conservative\" needs numerics.pressure_coupling = "
-                                  "\"coupled\" (it is \"{}\"); use \"advective\" with the projection and PISO",
-                                  coupling));
-    auto without_effect = [&](const char* key, bool used, const char* why) {
-      if (n.has(key) && !used) c.keys_without_effect.push_back(n.key_path(key) + ": " + why);
-    };
-    without_effect("blending", conv == "blended", "used only with numerics.convection = \"blended\"");
-    without_effect("rotational_coefficient", num.pressure_coupling == PressureCoupling::projection,
-                   "used only with numerics.pressure_coupling = \"projection\"");
-    without_effect("pressure_correctors", num.pressure_coupling == PressureCoupling::piso,
-                   "used only with numerics.pressure_coupling = \"piso\"");
-    without_effect("momentum_predictor", num.pressure_coupling == PressureCoupling::piso,
-                   "used only with numerics.pressure_coupling = \"piso\" (the projection always predicts, the "
-                   "coupled solve has no predictor)");
-    n.finish();
-  }
-  {
-    TableReader s = top.table("solver");
-    c.flow.momentum_solver = read_linear_solver(s.table("momentum"), c.flow.momentum_solver);
-    c.flow.pressure_solver = read_linear_solver(s.table("pressure"), c.flow.pressure_solver);
-    c.flow.coupled_solver = read_linear_solver(s.table("coupled"), c.flow.coupled_solver);
-    // Cholesky factors need a symmetric positive definite matrix. On the saddle point they do not
-    // stop; on the momentum matrix (not symmetric: convection) they solve another system, silently.
-    for (const char* spd_only : {"icc", "cholesky"}) {
-      if (c.flow.coupled_solver.pc_type == spd_only)
-        throw CaseError(fmt::format("solver.coupled.pc_type: '{}' needs a symmetric positive definite matrix, and the "
-                                    "coupled velocity-pressure system is a saddle point (use \"lu\")", spd_only));
-      if (c.flow.momentum_solver.pc_type == spd_only)
-        throw CaseError(fmt::format("solver.momentum.pc_type: '{}' needs a symmetric positive definite matrix, and the "
-                                    "momentum matrix is not symmetric (convection); use \"hypre\", \"ilu\" or \"lu\"",
-                                    spd_only));
-    }
-    s.finish();
-  }
-  {
-    TableReader o = top.table("output");
-    c.output.interval = o.number("interval", 0.0);
-    o.require_range("interval", c.output.interval, 0.0, inf);
-    constexpr double max_outputs = 1e5;
-    if (c.output.interval > 0.0 && c.time.end / c.output.interval > max_outputs)
-      throw CaseError(fmt::format("output.interval: {} s gives {:.3g} outputs to time.end = {} s, more than {:.0e}",
-                                  c.output.interval, c.time.end / c.output.interval, c.time.end, max_outputs));
-    c.output.times = o.numbers("times", {});
-    // Times past time.end are not written (a run shortened with --set time.end keeps its list; the
-    // run's start warns of them, case_advice).
-    for (double t : c.output.times) o.require_range("times", t, 0.0, inf, "zero or positive");
-    if (double(c.output.times.size()) > max_outputs)
-      throw CaseError(fmt::format("output.times: {} times, more than {:.0e} outputs", c.output.times.size(), max_outputs));
-    c.output.fields = o.boolean("fields", true);
-    c.output.checkpoints = o.boolean("checkpoints", true);
-    c.output.progress_seconds = o.number("progress_seconds", 2.0);
-    o.require_range("progress_seconds", c.output.progress_seconds, 0.0, inf, "zero (no progress line) or positive");
-    for (TableReader l : o.tables("line")) {
-      LineSample s;
-      s.name = l.required_string("name");
-      if (s.name.empty()) throw CaseError(fmt::format("{}.name: must not be empty", l.path()));
-      // Its files' names, .NAME_NNNNN.csv.tmpPID while written, must stay within 255 bytes.
-      constexpr size_t longest_name = 200;
-      if (s.name.size() > longest_name)
-        throw CaseError(fmt::format("{}.name: {} characters, more than {} (the files named after it would pass the "
-                                    "file system's limit)", l.path(), s.name.size(), longest_name));
-      for (char ch : s.name)
-        if (!(std::isalnum(static_cast<unsigned char>(ch)) || ch == '_' || ch == '-'))
-          throw CaseError(fmt::format("{}.name: '{}' may hold only letters, digits, '_' and '-'", l.path(), s.name));
-      // The solver's own files must not be overwritten by a line's samples.
-      for (const char* own : {"history", "surface", "failure_line", "column_height", "lode_dissipation", "fields"})
-        if (s.name == own)
-          throw CaseError(fmt::format("{}.name: '{}' is the name of one of the run's own output files", l.path(), s.name));
-      // Numbered files are NAME_NNNNN.csv: a name ending in '_' and five digits could be one of them.
-      if (const size_t u = s.name.find_last_of('_');
-          u != std::string::npos && s.name.size() - u > 5 &&
-          std::all_of(s.name.begin() + long(u) + 1, s.name.end(),
-                      [](char ch) { return std::isdigit(static_cast<unsigned char>(ch)); }))
-        throw CaseError(fmt::format("{}.name: '{}' ends in '_' and five digits, like the numbered output "
-                                    "files (NAME_NNNNN.csv) it could overwrite", l.path(), s.name));
-      for (const auto& other : c.output.lines)
-        if (other.name == s.name) throw CaseError(fmt::format("{}.name: a second line named '{}'", l.path(), s.name));
-      s.start = l.required_pair("start");
-      s.end = l.required_pair("end");
-      for (const auto& [key, point] : {std::pair{"start", s.start}, std::pair{"end", s.end}})
-        for (int a = 0; a < 2; ++a)
-          if (!(point[a] >= c.mesh.lower[a] && point[a] <= c.mesh.upper[a]))
-            throw CaseError(fmt::format("{}.{}: [{}, {}] lies outside the domain [{}, {}] x [{}, {}]", l.path(), key,
-                                        point[0], point[1], c.mesh.lower[0], c.mesh.upper[0], c.mesh.lower[1],
-                                        c.mesh.upper[1]));
-      if (s.start == s.end) throw CaseError(fmt::format("{}.end: the line ends where it starts", l.path()));
-      s.points = l.integer_in("points", 101, 2, 10000000);
-      l.finish();
-      c.output.lines.push_back(s);
-    }
-    o.finish();
-  }
-  for (TableReader obstacle : top.tables("obstacle")) c.obstacles.push_back(read_shape(obstacle));
-  top.finish();
-  for (auto& bc : c.flow.boundaries)
-    if (bc.kind == BoundaryKind::atmosphere)
-      bc.outside_density = c.soil ? c.soil->density_mixing(bc.inflow_soil_fraction, c.soil->air_density, c.soil->soil_density)
-                                  : c.fluid.density;
-  if (!c.soil && !two_phase_keys.empty())
-    throw CaseError(fmt::format("{}: applies to cases with soil only (this case has [fluid], no [soil])", two_phase_keys.front()));
+      if (!(point[a] >= mesh.lower[a] && point[a] <= mesh.upper[a]))
+        throw CaseError(fmt::format("{}.{}: [{}, {}] lies outside the domain [{}, {}] x [{}, {}]", l.path(), key,
+                                    point[0], point[1], mesh.lower[0], mesh.upper[0], mesh.lower[1],
+                                    mesh.upper[1]));
+  if (s.start == s.end) throw CaseError(fmt::format("{}.end: the line ends where it starts", l.path()));
+  s.points = l.integer_in("points", 101, 2, 10000000);
+  l.finish();
+  return s;
+}
+
+OutputSettings read_output(TableReader& top, const GridSpec& mesh, double end_time) {
+  OutputSettings output;
+  TableReader o = top.table("output");
+  output.interval = o.number("interval", 0.0);
+  o.require_range("interval", output.interval, 0.0, inf);
+  constexpr double max_outputs = 1e5;
+  if (output.interval > 0.0 && end_time / output.interval > max_outputs)
+    throw CaseError(fmt::format("output.interval: {} s gives {:.3g} outputs to time.end = {} s, more than {:.0e}",
+                                output.interval, end_time / output.interval, end_time, max_outputs));
+  output.times = o.numbers("times", {});
+  // Times past time.end are not written (a run shortened with --set time.end keeps its list; the
+  // run's start warns of them, case_advice).
+  for (double t : output.times) o.require_range("times", t, 0.0, inf, "zero or positive");
+  if (double(output.times.size()) > max_outputs)
+    throw CaseError(fmt::format("output.times: {} times, more than {:.0e} outputs", output.times.size(), max_outputs));
+  output.fields = o.boolean("fields", true);
+  output.checkpoints = o.boolean("checkpoints", true);
+  output.progress_seconds = o.number("progress_seconds", 2.0);
+  o.require_range("progress_seconds", output.progress_seconds, 0.0, inf, "zero (no progress line) or positive");
+  for (TableReader l : o.tables("line")) output.lines.push_back(read_line_sample(l, mesh, output.lines));
+  o.finish();
+  return output;
+}
+
+PhaseSettings read_fluid(TableReader& top) {
+  PhaseSettings fluid;
+  TableReader f = top.table("fluid");
+  if (!f.present())
+    throw CaseError("fluid: missing table [fluid] (density and viscosity), or [soil] and [air]" +
+                    top.misspelling_of("fluid") + top.misspelling_of("soil"));
+  fluid.density = f.required_number("density");
+  f.require_range("density", fluid.density, 1e-300, inf, "positive");
+  fluid.viscosity = f.required_number("viscosity");
+  f.require_range("viscosity", fluid.viscosity, 0.0, inf, "zero or positive");
+  f.finish();
+  return fluid;
+}
+
+// Rules between tables, once every table is read: shapes within the domain, and what obstacles and
+// the air band need of the rest of the case.
+void require_consistent(const CaseConfig& c) {
   if (c.soil) {
-    c.soil->interface_courant = interface_courant;
     // A shape may reach past the domain (it is clipped), but one wholly outside it holds no soil.
     for (size_t k = 0; k < c.soil->initial_soil.size(); ++k) {
       const auto [lo, hi] = interface::bounding_box(c.soil->initial_soil[k]);
@@ -557,6 +558,42 @@ CaseConfig read_case(const toml::table& root, const std::filesystem::path& sourc
                                   "be at least {}",
                                   band, reach, 2 * reach + 1));
   }
+}
+
+CaseConfig read_case(const toml::table& root, const std::filesystem::path& source) {
+  CaseConfig c;
+  c.source = source;
+  double interface_courant = 0.45;
+  std::vector<std::string> two_phase_keys;  // given, but used only with soil
+  TableReader top(&root, "");
+  c.title = top.string("title", source.stem().string());
+  c.mesh = read_mesh(top);
+  c.time = read_time(top, interface_courant, two_phase_keys, c.keys_without_effect);
+  {
+    TableReader p = top.table("physics");
+    c.flow.gravity = p.pair("gravity", {0.0, 0.0});
+    p.finish();
+  }
+  if (top.has("soil")) {
+    c.soil = read_soil(top, c.keys_without_effect);
+    if (top.has("fluid")) throw CaseError("fluid: a two-phase case ([soil] and [air]) takes no [fluid] table");
+  } else {
+    c.fluid = read_fluid(top);
+  }
+  c.flow.boundaries = read_boundaries(top, c.mesh, two_phase_keys);
+  c.flow.numerics = read_numerics(top, c.keys_without_effect);
+  read_solvers(top, c.flow);
+  c.output = read_output(top, c.mesh, c.time.end);
+  for (TableReader obstacle : top.tables("obstacle")) c.obstacles.push_back(read_shape(obstacle));
+  top.finish();
+  for (auto& bc : c.flow.boundaries)
+    if (bc.kind == BoundaryKind::atmosphere)
+      bc.outside_density = c.soil ? c.soil->density_mixing(bc.inflow_soil_fraction, c.soil->air_density, c.soil->soil_density)
+                                  : c.fluid.density;
+  if (!c.soil && !two_phase_keys.empty())
+    throw CaseError(fmt::format("{}: applies to cases with soil only (this case has [fluid], no [soil])", two_phase_keys.front()));
+  if (c.soil) c.soil->interface_courant = interface_courant;
+  require_consistent(c);
   return c;
 }
 
