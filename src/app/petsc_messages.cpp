@@ -1,0 +1,99 @@
+#include "app/petsc_messages.hpp"
+
+#include <fmt/format.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <string_view>
+#include <thread>
+#include <vector>
+
+#include "solver/linear_solver.hpp"
+
+namespace granflow {
+
+void warn_unused_petsc_options(int rank) {
+  PetscInt n = 0;
+  char **names = nullptr, **values = nullptr;
+  PetscOptionsLeftGet(nullptr, &n, &names, &values);
+  // Read only by PetscFinalize, after this check.
+  constexpr std::string_view at_finalize[] = {"options_view", "options_left", "memory_view",
+                                              "malloc_dump",  "malloc_view",  "objects_dump"};
+  if (rank == 0)
+    for (PetscInt k = 0; k < n; ++k)
+      if (std::find(std::begin(at_finalize), std::end(at_finalize), std::string_view(names[k])) == std::end(at_finalize) &&
+          !is_default_petsc_option(names[k]))
+        fmt::print(stderr, "warning: PETSc option -{} was given but not used (misspelt, or no such solver)\n", names[k]);
+  PetscOptionsLeftRestore(nullptr, &n, &names, &values);
+}
+
+// PETSc's errors as one line, where PETSc would print its whole trace: the first report of an error
+// (PETSC_ERROR_INITIAL) is printed, the frames it passes through on its way up are not. Every such
+// error ends the run (the calls that may fail and are handled push PETSc's quiet handler over this
+// one), so a single process exits here, before an abort adds Open MPI's banner; several ranks abort
+// here, with status 1 whatever PETSc's error code.
+// Running out of memory while the grid is made is the common case. GRANFLOW_PETSC_TRACE=1 keeps
+// PETSc's own trace.
+PetscErrorCode one_line_petsc_error(MPI_Comm, int line, const char* function, const char* file, PetscErrorCode code,
+                                    PetscErrorType type, const char* message, void*) {
+  if (type != PETSC_ERROR_INITIAL) return code;
+  const bool memory = code == PETSC_ERR_MEM || std::string_view(function) == "PetscMallocAlign";
+  const char* text = nullptr;
+  PetscErrorMessage(code, &text, nullptr);
+  std::string what = memory ? "out of memory (a coarser mesh may do)"
+                            : text ? text : "error";
+  if (!memory && message && *message && std::string_view(message) != what) what += fmt::format(": {}", message);
+  int world_size = 1, world_rank = 0;
+  MPI_Comm_size(MPI_COMM_WORLD, &world_size);
+  MPI_Comm_rank(MPI_COMM_WORLD, &world_rank);
+  // Most such errors (an option value PETSc does not know) are met by every rank at once: the other
+  // ranks wait, so that rank 0's abort stops them before they say it again. An error of one rank
+  // alone is still reported, by that rank, half a second later.
+  if (world_rank > 0) std::this_thread::sleep_for(std::chrono::milliseconds(500));
+  fmt::print(stderr, "error: PETSc: {} (PETSc error {} in {}, {}:{}){}\n", what, int(code), function, file, line,
+             world_rank > 0 ? fmt::format(" (rank {})", world_rank) : "");
+  std::fflush(stderr);
+  if (world_size == 1) std::_Exit(1);
+  MPI_Abort(MPI_COMM_WORLD, 1);  // the status of README's "Exit status", not PETSc's error code
+  return code;
+}
+
+// PETSc stops inside PetscInitialize, with its error trace, on an options file it cannot read, and
+// finds a -log_view file it cannot write only at the end of the run: say which, in one line, before
+// anything runs. Empty when every such file among the --petsc words can be used.
+std::string unusable_petsc_file(const std::vector<std::string>& words) {
+  for (size_t k = 0; k < words.size(); ++k) {
+    if (words[k] == "-log_view" && k + 1 < words.size() && words[k + 1][0] != '-') {
+      // [type]:file[:format]: a file named where the viewer's type ends
+      const std::string& viewer = words[k + 1];
+      const size_t colon = viewer.find(':');
+      if (colon == std::string::npos) continue;
+      const std::string file = viewer.substr(colon + 1, viewer.find(':', colon + 1) - colon - 1);
+      if (file.empty()) continue;
+      const std::filesystem::path path(file);
+      const std::filesystem::path dir = path.has_parent_path() ? path.parent_path() : std::filesystem::path(".");
+      std::error_code ec;
+      const bool writable = std::filesystem::exists(path, ec) ? !std::filesystem::is_directory(path, ec) &&
+                                                                     access(file.c_str(), W_OK) == 0
+                                                               : std::filesystem::is_directory(dir, ec) &&
+                                                                     access(dir.c_str(), W_OK) == 0;
+      if (!writable) return fmt::format("--petsc -log_view {}: cannot write {}", viewer, file);
+      continue;
+    }
+    if (words[k] != "-options_file" && words[k] != "-options_file_yaml") continue;
+    if (k + 1 == words.size()) return fmt::format("--petsc {}: names no file", words[k]);
+    const std::string& file = words[k + 1];
+    std::error_code ec;
+    if (std::filesystem::is_directory(file, ec) || !std::ifstream(file).good())
+      return fmt::format("--petsc {}: cannot read {}", words[k], file);
+  }
+  return {};
+}
+
+}  // namespace granflow

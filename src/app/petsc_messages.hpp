@@ -1,0 +1,24 @@
+#pragma once
+// What granflow says of PETSc: its errors as one line, options nothing read, and the files its
+// options name that it could not use, each found before PETSc would stop with its own trace.
+#include <petscsys.h>
+
+#include <string>
+#include <vector>
+
+namespace granflow {
+
+// Options given to PETSc that nothing read (a misspelt name, a solver prefix that does not exist),
+// one warning each on rank 0: PETSc itself ignores them silently.
+void warn_unused_petsc_options(int rank);
+
+// PETSc's error handler: the error as one line (PETSc would print its whole trace), then the end of
+// the run with status 1. Pushed with PetscPushErrorHandler.
+PetscErrorCode one_line_petsc_error(MPI_Comm, int line, const char* function, const char* file, PetscErrorCode code,
+                                    PetscErrorType type, const char* message, void*);
+
+// The first options file PETSc could not read, or -log_view file it could not write, among the
+// --petsc words, as a message; empty when every such file can be used.
+std::string unusable_petsc_file(const std::vector<std::string>& words);
+
+}  // namespace granflow

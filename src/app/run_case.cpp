@@ -1,0 +1,131 @@
+#include "app/run_case.hpp"
+
+#include <fmt/format.h>
+#include <petscsys.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "io/case_advice.hpp"
+#include "io/case_error.hpp"
+#include "io/checkpoint.hpp"
+#include "io/collective_failure.hpp"
+#include "io/run_directory.hpp"
+#include "io/run_lock.hpp"
+#include "solver/linear_solver.hpp"
+#include "solver/simulation.hpp"
+
+namespace granflow {
+
+void check_solver_methods(const CaseConfig& c) {
+  const std::pair<const char*, const LinearSolverSettings*> solvers[] = {
+      {"momentum", &c.flow.momentum_solver}, {"pressure", &c.flow.pressure_solver}, {"coupled", &c.flow.coupled_solver}};
+  for (const auto& [name, settings] : solvers)
+    if (auto problem = unknown_method(*settings); !problem.empty())
+      throw CaseError(fmt::format("{}: solver.{}.{}", c.source.string(), name, problem));
+}
+
+int run_case(const std::string& case_file, const std::vector<std::string>& overrides, std::string out_dir,
+             bool restart, bool overwrite) {
+  CaseConfig config = load_case(case_file, overrides);
+  check_solver_methods(config);
+  if (out_dir.empty()) out_dir = (std::filesystem::path("out") / std::filesystem::path(case_file).stem()).string();
+  int rank;
+  MPI_Comm_rank(PETSC_COMM_WORLD, &rank);
+  // Checked before the simulation makes the output directory, so a mistyped one is not left behind.
+  // Every rank sees the same files here (the output directory is shared), so all stop alike. An
+  // output directory that cannot be made or written into is the simulation's to report, as it makes it.
+  // The run's files under it are up to some 250 characters long (a line sample's, while written):
+  // the whole path must stay within the system's PATH_MAX of 4096, or the first checkpoint would fail.
+  if (out_dir.size() > 3800)
+    throw CaseError(fmt::format("-o: the output directory's path is {} characters long, more than 3800 (the run's "
+                                "files under it would pass the system's limit of 4096)", out_dir.size()));
+  if (restart && !std::filesystem::exists(out_dir))
+    throw CheckpointError(fmt::format("no checkpoint to restart from in {}: no such directory", out_dir));
+  {
+    std::error_code ec;
+    if (std::filesystem::exists(out_dir, ec) && !std::filesystem::is_directory(out_dir, ec))
+      throw CaseError(fmt::format("-o {}: not a directory", out_dir));
+  }
+  // One run at a time in a directory (io/run_lock.hpp): taken here where the directory exists, so that
+  // a second run is told so rather than that the directory holds an earlier run, and below where the
+  // simulation has just made it. Rank 0 holds it for the whole run.
+  RunLock lock;
+  auto take_lock = [&] {
+    const std::string problem = rank == 0 ? lock.take(out_dir) : std::string();
+    if (auto text = first_failure(PETSC_COMM_WORLD, problem); !text.empty()) throw CaseError(text);
+  };
+  if (std::filesystem::is_directory(out_dir)) take_lock();
+  if (const auto aside = set_aside_run_in(out_dir); !aside.empty())
+    throw CaseError(fmt::format("{} holds {}, the files of an earlier run that a run with --overwrite set aside and "
+                                "was stopped before its first step: move them back into {} (or remove {}), then "
+                                "run again",
+                                out_dir, aside.string(), out_dir, aside.string()));
+  const auto earlier = run_files_in(out_dir, config.output.lines);
+  if (!restart && !overwrite && !earlier.empty()) {
+    std::error_code ec;
+    // As read_checkpoint finds one: checkpoint/, or checkpoint.old/ left by a run killed while it wrote.
+    const bool resumable = std::filesystem::exists(std::filesystem::path(out_dir) / "checkpoint" / "run.txt", ec) ||
+                           std::filesystem::exists(std::filesystem::path(out_dir) / "checkpoint.old" / "run.txt", ec);
+    throw CaseError(fmt::format("{} holds an earlier run ({}): {}replace it with --overwrite, or choose another "
+                                "directory with -o",
+                                out_dir, earlier.front().string(), resumable ? "continue it with --restart, " : ""));
+  }
+  Simulation sim(PETSC_COMM_WORLD, config, out_dir);  // checks what the case file alone cannot
+  take_lock();
+  // Only now, with the case found good, every file of the earlier run goes: its checkpoint above all
+  // (a later --restart would continue that run), and its later outputs, which the new run might not
+  // write again. They are set aside until the new run has taken its first step, and put back if it
+  // fails before (run_directory.hpp).
+  const bool replacing = overwrite && !restart;
+  if (replacing) {  // on every rank alike (a collective call); the files are rank 0's to move
+    const std::string problem = rank == 0 && !earlier.empty() ? set_aside_run(out_dir, earlier) : std::string();
+    if (auto text = first_failure(PETSC_COMM_WORLD, problem); !text.empty()) throw CaseError(text);
+  }
+  if (restart) {
+    sim.restart();
+    if (rank == 0) remove_left_over_files(out_dir, config.output.lines);
+  }
+  if (rank == 0)
+    fmt::print("granflow: {} on {} x {} cells {}to t = {} s, output in {}\n", config.title, config.mesh.cells[0],
+               config.mesh.cells[1], restart ? fmt::format("from the checkpoint at t = {:.6g} s ", sim.time()) : "",
+               config.time.end, out_dir);
+  if (rank == 0)
+    for (const auto& line : case_advice(config)) fmt::print(stderr, "warning: {}\n", line);
+  std::fflush(stdout);  // the banner is there even if the run is killed (stdout is buffered into a file)
+  bool under_way = !replacing;
+  RunSummary s;
+  try {
+    s = sim.run([&](Simulation&, double) {
+      if (under_way) return;
+      under_way = true;
+      if (rank == 0) discard_set_aside_run(out_dir);
+    });
+  } catch (...) {
+    if (!under_way && rank == 0) restore_set_aside_run(out_dir, config.output.lines);
+    throw;
+  }
+  if (!under_way && rank == 0) discard_set_aside_run(out_dir);  // a run of no step (already at time.end)
+  if (rank == 0) {
+    fmt::print("done: t = {:.6g} s in {} steps ({} taken again with a smaller step), {:.2f} s wall ({:.3g} cell-steps/s){}\n",
+               s.time, s.steps, s.retried_steps, s.wall_seconds, double(sim.grid().cell_count()) * s.steps / s.wall_seconds,
+               s.reached_steady_state   ? ", steady state reached"
+               : s.stopped_at_max_steps ? fmt::format(", stopped at time.max_steps = {} before time.end = {} s",
+                                                      sim.config().time.max_steps, sim.config().time.end)
+                                        : std::string());
+    fmt::print("outer iterations {} ({} of {} steps stopped at numerics.outer_iterations, not at outer_tolerance), "
+               "momentum iterations {}, pressure solves {} ({:.1f} iterations each)\n",
+               s.outer_iterations, s.steps_outer_unconverged, s.steps, s.momentum_iterations, s.pressure_solves,
+               s.pressure_solves ? double(s.pressure_iterations) / s.pressure_solves : 0.0);
+    if (s.solves_at_iteration_limit > 0)
+      fmt::print("warning: {} linear solves stopped at their solver's max_iterations before its rtol; the face fluxes "
+                 "carry their residual (check the soil volume in history.csv)\n",
+                 s.solves_at_iteration_limit);
+  }
+  return 0;
+}
+
+}  // namespace granflow
