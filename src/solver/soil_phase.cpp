@@ -9,20 +9,17 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <numbers>
 #include <optional>
 
 #include "models/interface/vof_advection.hpp"
 #include "models/interface/wetted_fraction.hpp"
 #include "models/rheology/invariants.hpp"
-#include "models/strain/euler_almansi.hpp"
 #include "solver/cell_faces.hpp"
 #include "solver/divergence_error.hpp"
 #include "operators/face_interpolation.hpp"
 #include "operators/strain_rate.hpp"
 
 namespace granflow {
-
 
 SoilPhase::SoilPhase(const Grid& grid, const FlowSettings& flow, const SoilSettings& settings)
     : grid_(grid), flow_settings_(flow), settings_(settings), ambient_pressure_(ambient_pressure(flow.boundaries)) {
@@ -457,201 +454,6 @@ void SoilPhase::transport_displacement(const FlowSolver& flow, double dt) {
     // them, and a step's snapshot and a checkpoint copy the local vectors.
     fill_displacement_ghosts();
   }
-}
-
-void SoilPhase::compute_diagnostics(const FlowSolver& flow) {
-  const auto& b = grid_.owned();
-  ConstFieldArray dx(grid_.field_dm(), disp_[0]->local()), dy(grid_.field_dm(), disp_[1]->local());
-  ConstFieldArray u = local_read(grid_, flow.velocity(0)), v = local_read(grid_, flow.velocity(1));
-  ConstFieldArray p(grid_.field_dm(), flow.pressure().global());
-  const auto overburden = overburden_if_floor();
-  FieldArray en(grid_.field_dm(), strain_norm_->global()), rn(grid_.field_dm(), rate_norm_->global()),
-      lo(grid_.field_dm(), lode_->global()), ratio(grid_.field_dm(), stress_ratio_->global());
-  const BlockedView mask(grid_, blocked_);
-  for (int j = b.ys; j < b.ye(); ++j)
-    for (int i = b.xs; i < b.xe(); ++i) {
-      if (is_blocked(mask.data(), i, j)) {  // no soil, no flow
-        en[j][i] = rn[j][i] = lo[j][i] = 0.0;
-        ratio[j][i] = 1.0;
-        continue;
-      }
-      const double hx = grid_.xc(i + 1) - grid_.xc(i - 1), hy = grid_.yc(j + 1) - grid_.yc(j - 1);
-      strain::DisplacementGradient g{(dx[j][i + 1] - dx[j][i - 1]) / hx, (dx[j + 1][i] - dx[j - 1][i]) / hy,
-                                     (dy[j][i + 1] - dy[j][i - 1]) / hx, (dy[j + 1][i] - dy[j - 1][i]) / hy};
-      if (grid_.axisymmetric()) g.hoop = dx[j][i] / grid_.xc(i);  // u_r / r
-      strain::AlmansiStrain e;
-      strain::almansi_strain(g, e);
-      en[j][i] = strain::deviatoric_norm(e);
-      const auto D = cell_strain_rate(grid_, u.data(), v.data(), i, j);
-      rn[j][i] = rheology::norm(rheology::deviatoric(D));
-      lo[j][i] = rheology::lode_angle(D) * 180.0 / std::numbers::pi;
-      ratio[j][i] = rheology_ ? rheology_->stress_ratio_to_drucker_prager(
-                                    D, cell_yield_pressure(p[j][i], overburden.get(), i, j) - ambient_pressure_)
-                              : 1.0;
-    }
-}
-
-// Rate of viscous dissipation, integral of 2 mu D:D, per cell, from the work the discrete viscous
-// operator does face by face: the face viscosity is the operator's face mean (harmonic by default),
-// the normal derivatives are compact differences across the face and the tangential one is the
-// operator's average of the two cells' central differences; each interior face gives half its work to
-// either cell, a wall face all of it to its cell. Axisymmetric: face areas carry the radius, and the
-// hoop stress adds 2 mu (u_r/r)^2 per unit volume. A cell-centred mu 2 D:D instead weights a soft
-// layer's shear with its stiff neighbour's viscosity and overstates the dissipation by the viscosity
-// contrast wherever the soil yields next to rigid soil.
-// Fills dissipation_ (W per metre depth, or per radian) and the local Lode-binned rates; returns the
-// rank's sum.
-double SoilPhase::compute_dissipation(const FlowSolver& flow) {
-  const auto& b = grid_.owned();
-  const int nx = grid_.nx(), ny = grid_.ny();
-  ConstFieldArray u = local_read(grid_, flow.velocity(0)), v = local_read(grid_, flow.velocity(1));
-  ConstFieldArray mu = local_read(grid_, flow.viscosity());
-  ConstFieldArray fmx = local_read(grid_, flow.face_viscosity(0)), fmy = local_read(grid_, flow.face_viscosity(1));
-  FieldArray out(grid_.field_dm(), dissipation_->global());
-  const double* const* q[2] = {u.data(), v.data()};
-  // As the momentum operator has it (momentum_equation.cpp): the normal part 2 mu (mu without the
-  // transpose stress), the tangential mu plus, with the transpose stress, its lagged cross term.
-  const auto& num = flow_settings_.numerics;
-  const double normal_factor = num.transpose_stress ? 2.0 : 1.0, cross = num.transpose_stress ? 1.0 : 0.0;
-  // Work rate of a wall face of cell (i, j) on side s, with half-cell distance d and area A: the
-  // wall's traction, factor mu A times the wall gradient (two-point or quadratic), times the
-  // velocity relative to the wall.
-  auto wall_face = [&](const BoundaryCondition& bc, Side s, int i, int j, double A) {
-    const int n = normal_axis(s);
-    if (bc.kind == BoundaryKind::atmosphere) return 0.0;
-    const double mu_f = s == Side::west ? fmx[j][i - 1] : s == Side::east ? fmx[j][i]
-                      : s == Side::south ? fmy[j - 1][i] : fmy[j][i];
-    const FaceGeometry& fg = face_on(s);
-    double work = 0.0;
-    for (int c = 0; c < 2; ++c) {
-      if (bc.kind == BoundaryKind::slip && c != n) continue;  // no shear on a slip side
-      const double wall = c == n ? 0.0 : bc.wall_velocity[c];
-      const double gradient = wall_gradient(grid_, q[c], i, j, fg, wall, num.quadratic_wall_gradient);
-      work += (c == n ? normal_factor : 1.0) * mu_f * A * gradient * (q[c][j][i] - wall);
-    }
-    return work;
-  };
-  // Work rate of the interior face between (i, j) and (i+1, j).
-  auto east_face = [&](int i, int j) {
-    const double d = grid_.xc(i + 1) - grid_.xc(i), A = grid_.face_area(0, i, j, 1.0);
-    const double hy = grid_.yc(j + 1) - grid_.yc(j - 1);
-    const double g_nn = (u[j][i + 1] - u[j][i]) / d, g_tn = (v[j][i + 1] - v[j][i]) / d;
-    const double g_nt = 0.5 * ((u[j + 1][i] - u[j - 1][i]) + (u[j + 1][i + 1] - u[j - 1][i + 1])) / hy;
-    return fmx[j][i] * A * d * (normal_factor * g_nn * g_nn + g_tn * (g_tn + cross * g_nt));
-  };
-  // ... and between (i, j) and (i, j+1).
-  auto north_face = [&](int i, int j) {
-    const double d = grid_.yc(j + 1) - grid_.yc(j), A = grid_.face_area(1, i, j, 1.0);
-    const double hx = grid_.xc(i + 1) - grid_.xc(i - 1);
-    const double g_nn = (v[j + 1][i] - v[j][i]) / d, g_tn = (u[j + 1][i] - u[j][i]) / d;
-    const double g_nt = 0.5 * ((v[j][i + 1] - v[j][i - 1]) + (v[j + 1][i + 1] - v[j + 1][i - 1])) / hx;
-    return fmy[j][i] * A * d * (normal_factor * g_nn * g_nn + g_tn * (g_tn + cross * g_nt));
-  };
-  // Each face once: an owned cell takes its east and north faces and gives the neighbour its half;
-  // faces on the rank's low edges are the other rank's too, which takes its own half of them.
-  for (int j = b.ys; j < b.ye(); ++j)
-    for (int i = b.xs; i < b.xe(); ++i) out[j][i] = 0.0;
-  // A face between an open and a blocked cell is a static wall of an obstacle: all its work goes to
-  // the open cell, if owned. Domain sides of a blocked cell carry no flow.
-  const BlockedView mask(grid_, blocked_);
-  auto blocked = [&](int i, int j) { return is_blocked(mask.data(), i, j); };
-  auto side = [&](Side s) -> const BoundaryCondition& { return boundary(flow_settings_.boundaries, s); };
-  for (int j = b.ys; j < b.ye(); ++j)
-    for (int i = b.xs; i < b.xe(); ++i) {
-      const bool here = blocked(i, j);
-      if (i + 1 < nx) {
-        if (!here && !blocked(i + 1, j)) {
-          const double w = 0.5 * east_face(i, j);
-          out[j][i] += w;
-          if (i + 1 < b.xe()) out[j][i + 1] += w;
-        } else if (!here) {
-          out[j][i] += wall_face(obstacle_wall, Side::east, i, j, grid_.face_area(0, i, j, 1.0));
-        } else if (!blocked(i + 1, j) && i + 1 < b.xe()) {
-          out[j][i + 1] += wall_face(obstacle_wall, Side::west, i + 1, j, grid_.face_area(0, i + 1, j, -1.0));
-        }
-      } else if (!here) {
-        out[j][i] += wall_face(side(Side::east), Side::east, i, j, grid_.face_area(0, i, j, 1.0));
-      }
-      if (i == 0) {
-        if (!here) out[j][i] += wall_face(side(Side::west), Side::west, i, j, grid_.face_area(0, i, j, -1.0));
-      } else if (i == b.xs && !here) {  // the face shared with the rank to the west
-        if (!blocked(i - 1, j)) out[j][i] += 0.5 * east_face(i - 1, j);
-        else out[j][i] += wall_face(obstacle_wall, Side::west, i, j, grid_.face_area(0, i, j, -1.0));
-      }
-      if (j + 1 < ny) {
-        if (!here && !blocked(i, j + 1)) {
-          const double w = 0.5 * north_face(i, j);
-          out[j][i] += w;
-          if (j + 1 < b.ye()) out[j + 1][i] += w;
-        } else if (!here) {
-          out[j][i] += wall_face(obstacle_wall, Side::north, i, j, grid_.face_area(1, i, j, 1.0));
-        } else if (!blocked(i, j + 1) && j + 1 < b.ye()) {
-          out[j + 1][i] += wall_face(obstacle_wall, Side::south, i, j + 1, grid_.face_area(1, i, j + 1, -1.0));
-        }
-      } else if (!here) {
-        out[j][i] += wall_face(side(Side::north), Side::north, i, j, grid_.face_area(1, i, j, 1.0));
-      }
-      if (j == 0) {
-        if (!here) out[j][i] += wall_face(side(Side::south), Side::south, i, j, grid_.face_area(1, i, j, -1.0));
-      } else if (j == b.ys && !here) {  // the face shared with the rank to the south
-        if (!blocked(i, j - 1)) out[j][i] += 0.5 * north_face(i, j - 1);
-        else out[j][i] += wall_face(obstacle_wall, Side::south, i, j, grid_.face_area(1, i, j, -1.0));
-      }
-    }
-  std::fill(lode_rate_.values().begin(), lode_rate_.values().end(), 0.0);
-  double rate = 0.0;
-  for (int j = b.ys; j < b.ye(); ++j)
-    for (int i = b.xs; i < b.xe(); ++i) {
-      if (grid_.axisymmetric()) {
-        const double hoop = u[j][i] / grid_.xc(i);
-        out[j][i] += 2.0 * mu[j][i] * hoop * hoop * grid_.volume(i, j);
-      }
-      rate += out[j][i];
-      const double theta = rheology::lode_angle(cell_strain_rate(grid_, u.data(), v.data(), i, j));
-      lode_rate_.add(theta * 180.0 / std::numbers::pi, out[j][i]);
-    }
-  return rate;  // owned cells only; the caller sums over ranks
-}
-
-void SoilPhase::accumulate_lode_energy(double dt) {
-  auto& e = lode_energy_.values();
-  const auto& r = lode_rate_.values();
-  for (size_t k = 0; k < e.size(); ++k) e[k] += r[k] * dt;
-}
-
-rheology::LodeHistogram SoilPhase::lode_energy() const {
-  rheology::LodeHistogram all(lode_energy_.bins());
-  MPI_Allreduce(lode_energy_.values().data(), all.values().data(), all.bins(), MPI_DOUBLE, MPI_SUM, grid_.comm());
-  return all;
-}
-
-// Energies with the mass of each phase, rho_s c + rho_a (1 - c), which the advection conserves to
-// round-off. The mixture density of the arctan interpolation ([VoF] App. A) is heavier than that in
-// partly filled cells, so its total (mixture_mass) grows as the interface spreads; energies taken with
-// it would count that growth as potential energy.
-SoilBudget SoilPhase::budget(const FlowSolver& flow) {
-  const auto& b = grid_.owned();
-  const auto& g = flow_settings_.gravity;
-  const double rho_s = settings_.soil_density, rho_a = settings_.air_density;
-  ConstFieldArray c(grid_.field_dm(), c_->global());
-  ConstFieldArray u = local_read(grid_, flow.velocity(0)), v = local_read(grid_, flow.velocity(1));
-  ConstFieldArray rho(grid_.field_dm(), flow.density().global());
-  double s[7] = {0, 0, 0, 0, compute_dissipation(flow), 0, outflow_};
-  const BlockedView mask(grid_, blocked_);
-  for (int j = b.ys; j < b.ye(); ++j)
-    for (int i = b.xs; i < b.xe(); ++i) {
-      if (is_blocked(mask.data(), i, j)) continue;  // solid, not the flow's
-      const double V = grid_.volume(i, j);
-      const double phase_density = rho_s * c[j][i] + rho_a * (1.0 - c[j][i]);
-      s[0] += c[j][i] * V;
-      s[1] += (1.0 - c[j][i]) * V;
-      s[2] += 0.5 * phase_density * (u[j][i] * u[j][i] + v[j][i] * v[j][i]) * V;
-      s[3] -= phase_density * (g[0] * grid_.xc(i) + g[1] * grid_.yc(j)) * V;
-      s[5] += rho[j][i] * V;
-    }
-  double t[7];
-  MPI_Allreduce(s, t, 7, MPI_DOUBLE, MPI_SUM, grid_.comm());
-  return {t[0], t[1], t[2], t[3], t[4], t[5], t[6]};
 }
 
 }  // namespace granflow
