@@ -220,7 +220,7 @@ set_tests_properties(cli_check_says_what_it_laid_out PROPERTIES LABELS cli
 # --restart too, and the first run goes on to its end; the second starts once the first has said it
 # is under way.
 add_test(NAME cli_second_run_into_a_busy_directory_refused
-         COMMAND sh -c "g=$0; c=$1; d=$2; rm -rf \"$d\" \"$d.log\"; mkdir -p \"$d\"; \"$g\" run \"$c\" -o \"$d\" --overwrite --set 'mesh.cells=[150,50]' --set time.end=0.3 --set output.progress_seconds=0 > \"$d.log\" 2>&1 & first=$!; k=0; until grep -q 'output in' \"$d.log\"; do k=$((k+1)); test $k -lt 600 || exit 1; sleep 0.1; done; for extra in --overwrite --restart; do out=$(\"$g\" run \"$c\" -o \"$d\" $extra --set 'mesh.cells=[150,50]' --set time.end=0.3 2>&1); status=$?; echo \"$out\"; test $status -eq 2 && echo \"$out\" | grep -q 'another granflow run is writing into this directory' || exit 1; done; wait $first"
+         COMMAND sh -c "g=$0; c=$1; d=$2; rm -rf \"$d\" \"$d.log\"; mkdir -p \"$d\"; \"$g\" run \"$c\" -o \"$d\" --overwrite --set 'mesh.cells=[150,50]' --set time.end=0.3 --set output.progress_seconds=0 > \"$d.log\" 2>&1 & first=$!; k=0; until grep -q 'output in' \"$d.log\"; do k=$((k+1)); test $k -lt 600 || { kill $first; exit 1; }; sleep 0.1; done; for extra in --overwrite --restart; do out=$(\"$g\" run \"$c\" -o \"$d\" $extra --set 'mesh.cells=[150,50]' --set time.end=0.3 2>&1); status=$?; echo \"$out\"; test $status -eq 2 && echo \"$out\" | grep -q 'another granflow run is writing into this directory' || { kill $first; exit 1; }; done; wait $first"
                  $<TARGET_FILE:granflow> ${CMAKE_SOURCE_DIR}/cases/bui2008_experiment.toml ${CMAKE_CURRENT_BINARY_DIR}/busy_directory)
 set_tests_properties(cli_second_run_into_a_busy_directory_refused PROPERTIES LABELS cli TIMEOUT 300)
 # An output path too long for the run's files under it is refused at once (status 2), not at the
@@ -300,7 +300,15 @@ add_test(NAME cli_restart_other_boundaries_warned
                  $<TARGET_FILE:granflow> ${CMAKE_CURRENT_BINARY_DIR}/restart_boundaries ${CMAKE_SOURCE_DIR}/cases/bui2008_experiment.toml
                  ${GRANFLOW_SHORT_RUN})
 set_tests_properties(cli_restart_other_boundaries_warned PROPERTIES LABELS cli
-                     PASS_REGULAR_EXPRESSION "warning: the case's physics [(][^)]*east wall [^)]*[)] differs from the checkpoint's run [(][^)]*east atmosphere 0 Pa total")
+                     PASS_REGULAR_EXPRESSION "warning: the case.s boundaries [(][^)]*east wall [^)]*[)] differ from the checkpoint.s run [(][^)]*east atmosphere 0 Pa total"
+                     FAIL_REGULAR_EXPRESSION "the case.s physics")
+# A checkpoint written before the boundaries were recorded (no 'boundaries' line) restarts the same
+# case without a warning.
+add_test(NAME cli_restart_older_checkpoint_not_warned
+         COMMAND sh -c "g=$0; d=$1; c=$2; shift 2; rm -rf \"$d\"; \"$g\" run \"$c\" -o \"$d\" \"$@\" > /dev/null || exit 1; sed -i '/^boundaries /d' \"$d/checkpoint/run.txt\"; out=$(\"$g\" run \"$c\" -o \"$d\" --restart \"$@\" --set time.end=0.03 2>&1) || exit 1; ! echo \"$out\" | grep -q 'warning'"
+                 $<TARGET_FILE:granflow> ${CMAKE_CURRENT_BINARY_DIR}/restart_older ${CMAKE_SOURCE_DIR}/cases/bui2008_experiment.toml
+                 ${GRANFLOW_SHORT_RUN})
+set_tests_properties(cli_restart_older_checkpoint_not_warned PROPERTIES LABELS cli)
 # The example of docs/case_file.md is a valid case, and runs.
 add_test(NAME cli_docs_case_example
          COMMAND sh -c "sed -n '/^## Example/,$p' \"$1\" | sed -n '/^```toml/,/^```$/p' | sed '1d;$d' > \"$2.toml\" && \"$0\" check \"$2.toml\" && \"$0\" run \"$2.toml\" -o \"$2\" --overwrite --set \"mesh.cells=[30,10]\" --set time.end=0.05 --set output.progress_seconds=0"

@@ -44,15 +44,17 @@ int report_shared_error(const std::exception& e, const std::string& case_file, i
 }  // namespace
 
 int main(int argc, char** argv) {
-  // Started with stdout closed (`>&-`), the first file MPI opens would take descriptor 1, and the
-  // progress lines would be written into it, or fail at the end: give stdout to /dev/null instead.
-  if (fcntl(STDOUT_FILENO, F_GETFD) == -1 && errno == EBADF) {
-    const int null = open("/dev/null", O_WRONLY);
-    if (null >= 0 && null != STDOUT_FILENO) {
-      dup2(null, STDOUT_FILENO);
-      close(null);
+  // Started with stdin, stdout or stderr closed (`>&-`), the first file MPI opens would take the
+  // descriptor, and the progress lines or warnings would be written into it, or fail: give each
+  // closed one to /dev/null instead.
+  for (int fd : {STDIN_FILENO, STDOUT_FILENO, STDERR_FILENO})
+    if (fcntl(fd, F_GETFD) == -1 && errno == EBADF) {
+      const int null = open("/dev/null", fd == STDIN_FILENO ? O_RDONLY : O_WRONLY);
+      if (null >= 0 && null != fd) {
+        dup2(null, fd);
+        close(null);
+      }
     }
-  }
   CLI::App app{"granflow: dense granular flows as a two-phase visco-plastic continuum"};
   app.require_subcommand(1);
   std::string case_file, out_dir;
@@ -204,7 +206,7 @@ int main(int argc, char** argv) {
     if (status == 0) {
       // As for PETSc's errors: one that every rank meets (a full disk under every rank's checkpoint
       // file) is said by rank 0, whose abort stops the others while they wait.
-      if (rank > 0) std::this_thread::sleep_for(std::chrono::milliseconds(500));
+      if (rank > 0) std::this_thread::sleep_for(std::chrono::seconds(2));
       fmt::print(stderr, "error: {}{}\n", e.what(), rank > 0 ? fmt::format(" (rank {})", rank) : "");
       if (size > 1) MPI_Abort(PETSC_COMM_WORLD, 1);
       status = 1;

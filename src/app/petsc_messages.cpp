@@ -54,8 +54,9 @@ PetscErrorCode one_line_petsc_error(MPI_Comm, int line, const char* function, co
   MPI_Comm_rank(MPI_COMM_WORLD, &world_rank);
   // Most such errors (an option value PETSc does not know) are met by every rank at once: the other
   // ranks wait, so that rank 0's abort stops them before they say it again. An error of one rank
-  // alone is still reported, by that rank, half a second later.
-  if (world_rank > 0) std::this_thread::sleep_for(std::chrono::milliseconds(500));
+  // alone is still reported, by that rank, two seconds later (time for an abort to arrive on a
+  // loaded machine).
+  if (world_rank > 0) std::this_thread::sleep_for(std::chrono::seconds(2));
   fmt::print(stderr, "error: PETSc: {} (PETSc error {} in {}, {}:{}){}\n", what, int(code), function, file, line,
              world_rank > 0 ? fmt::format(" (rank {})", world_rank) : "");
   std::fflush(stderr);

@@ -50,15 +50,18 @@ int run_case(const std::string& case_file, const std::vector<std::string>& overr
     if (std::filesystem::exists(out_dir, ec) && !std::filesystem::is_directory(out_dir, ec))
       throw CaseError(fmt::format("-o {}: not a directory", out_dir));
   }
-  // One run at a time in a directory (io/run_lock.hpp): taken here where the directory exists, so that
+  // One run at a time in a directory (io/run_lock.hpp): taken here if the directory exists, so that
   // a second run is told so rather than that the directory holds an earlier run, and below where the
-  // simulation has just made it. Rank 0 holds it for the whole run.
+  // simulation has just made it. Rank 0 alone looks and holds it for the whole run; every rank takes
+  // part in both calls alike.
   RunLock lock;
   auto take_lock = [&] {
-    const std::string problem = rank == 0 ? lock.take(out_dir) : std::string();
+    std::error_code ec;
+    const std::string problem =
+        rank == 0 && std::filesystem::is_directory(out_dir, ec) ? lock.take(out_dir) : std::string();
     if (auto text = first_failure(PETSC_COMM_WORLD, problem); !text.empty()) throw CaseError(text);
   };
-  if (std::filesystem::is_directory(out_dir)) take_lock();
+  take_lock();
   if (const auto aside = set_aside_run_in(out_dir); !aside.empty())
     throw CaseError(fmt::format("{} holds {}, the files of an earlier run that a run with --overwrite set aside and "
                                 "was stopped before its first step: move them back into {} (or remove {}), then "

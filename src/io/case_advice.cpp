@@ -12,12 +12,12 @@ std::vector<std::string> case_advice(const CaseConfig& config) {
       break;
     }
   for (const auto& key : config.keys_without_effect) advice.push_back(key + "; this case gives it to no effect");
-  if (!config.soil) return advice;
-  // Valid values that are most often a slip: no gravity, gravity upwards, grams per cubic
-  // centimetre, radians.
+  if (!config.soil || !config.soil->rheology) return advice;
+  // Valid values that are most often a slip in a granular case (a Newtonian pair of fluids may be
+  // driven by its walls, or light): no gravity, gravity upwards, grams per cubic centimetre, radians.
   const auto& g = config.flow.gravity;
   if (g[0] == 0.0 && g[1] == 0.0)
-    advice.push_back("physics.gravity is [0, 0] (the default without [physics]): the soil has no weight and will not move");
+    advice.push_back("physics.gravity is [0, 0] (the default without [physics]): the soil has no weight");
   else if (g[1] > 0.0)
     advice.push_back(fmt::format("physics.gravity = [{}, {}] points up (+y): the soil falls towards the top", g[0], g[1]));
   if (config.soil->soil_density < 100.0)
@@ -26,7 +26,6 @@ std::vector<std::string> case_advice(const CaseConfig& config) {
   if (config.soil->soil_density <= config.soil->air_density)
     advice.push_back(fmt::format("soil.density = {} kg/m^3 is not heavier than air.density = {} kg/m^3",
                                  config.soil->soil_density, config.soil->air_density));
-  if (!config.soil->rheology) return advice;
   const auto& r = *config.soil->rheology;
   if (r.friction != rheology::FrictionSource::mu_of_I && r.friction_angle_deg > 0.0 && r.friction_angle_deg < 1.0)
     advice.push_back(fmt::format("soil.rheology.friction_angle = {} is in degrees: {} rad would be {:.3g} deg",

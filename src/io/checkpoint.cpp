@@ -106,7 +106,8 @@ void write_run(const std::filesystem::path& path, const RunCheckpoint& r) {
     for (const auto& [t, f] : r.series) fmt::print(out, "{:a} {}\n", t, f);
     fmt::print(out, "history {}\n", r.history.size());
     for (const auto& row : r.history) fmt::print(out, "{}\n", row);
-    fmt::print(out, "domain {}\nsteps {}\nphysics {}\nfields {}\n", r.domain, r.steps, r.physics, r.fields);
+    fmt::print(out, "domain {}\nsteps {}\nphysics {}\nfields {}\nboundaries {}\n", r.domain, r.steps, r.physics, r.fields,
+               r.boundaries);
   });
 }
 
@@ -168,6 +169,7 @@ RunCheckpoint read_run(const std::filesystem::path& path) {
     else if (name == "steps") r.steps = long(count_in("steps", text, std::numeric_limits<long>::max()));
     else if (name == "physics") r.physics = text;
     else if (name == "fields") r.fields = text;
+    else if (name == "boundaries") r.boundaries = text;
   }
   return r;
 }

@@ -33,6 +33,7 @@ struct RunCheckpoint {
   long steps = 0;      // steps taken so far (0 in older checkpoints)
   std::string physics; // the materials and gravity, as Simulation describes them ("" in older checkpoints)
   std::string fields;  // the fields' names in the order written ("" in older checkpoints)
+  std::string boundaries;  // the sides' conditions, as Simulation describes them ("" in older checkpoints)
 };
 
 // Writes the checkpoint into dir/checkpoint/ (collective). It is assembled in checkpoint.partial/ and

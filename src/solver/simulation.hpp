@@ -81,6 +81,7 @@ class Simulation {
   void write_checkpoint(double next_dt);
   std::string domain() const;
   std::string physics() const;
+  std::string boundaries() const;
 
   static constexpr int max_step_retries = 4;
   static constexpr double retry_courant_factor = 4.0;  // retry a step above this multiple of the target

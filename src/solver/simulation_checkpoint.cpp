@@ -32,24 +32,10 @@ std::string Simulation::domain() const {
   return text + obstacles_;
 }
 
-// The materials, gravity and boundaries, as a checkpoint records them: a restart with others is most
-// likely the wrong case file, though a deliberate change is allowed.
+// The materials and gravity, as a checkpoint records them: a restart with others is most likely
+// the wrong case file, though a deliberate change is allowed.
 std::string Simulation::physics() const {
   std::string text = fmt::format("gravity [{:.9g}, {:.9g}]", config_.flow.gravity[0], config_.flow.gravity[1]);
-  for (Side side : all_sides) {
-    const BoundaryCondition& bc = boundary(config_.flow.boundaries, side);
-    text += fmt::format("; {} ", side_name(side));
-    switch (bc.kind) {
-      case BoundaryKind::wall:
-        text += fmt::format("wall [{:.9g}, {:.9g}] m/s", bc.wall_velocity[0], bc.wall_velocity[1]);
-        break;
-      case BoundaryKind::slip: text += "slip"; break;
-      case BoundaryKind::atmosphere:
-        text += fmt::format("atmosphere {:.9g} Pa {}, inflow c {:.9g}", bc.pressure,
-                            bc.total_pressure ? "total" : "static", bc.inflow_soil_fraction);
-        break;
-    }
-  }
   if (!config_.soil) return text + fmt::format("; fluid {:.9g} kg/m^3, {:.9g} Pa s", config_.fluid.density, config_.fluid.viscosity);
   const SoilSettings& s = *config_.soil;
   text += fmt::format("; air {:.9g} kg/m^3, {:.9g} Pa s; soil {:.9g} kg/m^3", s.air_density, s.air_viscosity, s.soil_density);
@@ -63,10 +49,31 @@ std::string Simulation::physics() const {
                             rheology::to_string(r.friction), r.friction_angle_deg, r.cohesion);
 }
 
+// The sides' conditions, as a checkpoint records them (apart from the physics, so that a checkpoint
+// written before they were recorded is not taken for one of other physics).
+std::string Simulation::boundaries() const {
+  std::string text;
+  for (Side side : all_sides) {
+    const BoundaryCondition& bc = boundary(config_.flow.boundaries, side);
+    text += fmt::format("{}{} ", text.empty() ? "" : "; ", side_name(side));
+    switch (bc.kind) {
+      case BoundaryKind::wall:
+        text += fmt::format("wall [{:.9g}, {:.9g}] m/s", bc.wall_velocity[0], bc.wall_velocity[1]);
+        break;
+      case BoundaryKind::slip: text += "slip"; break;
+      case BoundaryKind::atmosphere:
+        text += fmt::format("atmosphere {:.9g} Pa {}, inflow c {:.9g}", bc.pressure,
+                            bc.total_pressure ? "total" : "static", bc.inflow_soil_fraction);
+        break;
+    }
+  }
+  return text;
+}
+
 void Simulation::write_checkpoint(double next_dt) {
   if (out_.empty() || !config_.output.checkpoints) return;
   RunCheckpoint run{time_, next_dt, output_index_, dissipated_energy_, initial_soil_volume_, history_, {}, domain(), steps_, physics(),
-                    checkpoint_field_names()};
+                    checkpoint_field_names(), boundaries()};
   if (series_) run.series = series_->entries();
   std::vector<double> scalars{flow_->last_dt()};
   if (soil_)
@@ -102,6 +109,9 @@ void Simulation::restart() {
   if (const std::string ours = physics(); rank_ == 0 && !run.physics.empty() && run.physics != ours)
     fmt::print(stderr, "warning: the case's physics ({}) differs from the checkpoint's run ({}); continuing with the case's\n",
                ours, run.physics);
+  if (const std::string ours = boundaries(); rank_ == 0 && !run.boundaries.empty() && run.boundaries != ours)
+    fmt::print(stderr, "warning: the case's boundaries ({}) differ from the checkpoint's run ({}); continuing with the "
+                       "case's\n", ours, run.boundaries);
   output_index_ = run.output_index;
   dissipated_energy_ = run.dissipated_energy;
   initial_soil_volume_ = run.initial_soil_volume;

@@ -143,8 +143,8 @@ double toe_of(const std::vector<Segment>& surface) {
 }
 }  // namespace
 
-// Whether the point lies in a blocked cell (on rank 0; a point on a face between two cells counts
-// as in the higher one, and one on the domain's high side as in the last cell).
+// Whether the point lies inside the obstacles (on rank 0): in a blocked cell, and not on a face of
+// it to an open cell, to round-off, where it is on the wall and is sampled.
 bool Simulation::in_blocked_cell(double x, double y) const {
   if (!blocked_) return false;
   const Grid& g = *grid_;

@@ -144,7 +144,10 @@ ShapeUnion::ShapeUnion(std::vector<Shape> shapes) : shapes_(std::move(shapes)) {
       // of spikes): at most about 8 entries per edge.
       for (std::size_t count = std::min<std::size_t>(n, 1 << 16);; count = std::max<std::size_t>(count / 2, 1)) {
         bins.count = int(count);
-        bins.bins_per_metre = hi[1] > lo[1] ? double(count) / (hi[1] - lo[1]) : 0.0;
+        // One bin for a polygon of no height, or of a height beyond what a double holds.
+        const double per_metre = double(count) / (hi[1] - lo[1]);
+        bins.bins_per_metre = hi[1] > lo[1] && std::isfinite(per_metre) && per_metre > 0.0 ? per_metre : 0.0;
+        if (bins.bins_per_metre == 0.0) bins.count = int(count = 1);
         std::size_t entries = 0;
         for (std::size_t e = 0; e < n; ++e) {
           const auto [a, b] = std::minmax(v[e][1], v[(e + 1) % n][1]);
@@ -174,7 +177,7 @@ ShapeUnion::ShapeUnion(std::vector<Shape> shapes) : shapes_(std::move(shapes)) {
 // is in the bin of every height it spans.
 int ShapeUnion::EdgeBins::bin(double y) const {
   const double b = std::floor((y - y_lower) * bins_per_metre);
-  return b < 0.0 ? 0 : b >= count - 1 ? count - 1 : int(b);
+  return !(b > 0.0) ? 0 : b >= count - 1 ? count - 1 : int(b);  // NaN to the first bin
 }
 
 // The even-odd rule of contains(), over the edges of the query's height bin only. An edge that

@@ -117,6 +117,9 @@ TEST(InitialShapes, PreparedUnionAnswersAsTestingEveryEdge) {
   }
   unions.push_back({terrain});
   unions.push_back({comb});
+  // Heights no bin width can divide: beyond what a double's difference holds, and subnormal.
+  unions.push_back({Polygon{{{1.0, -1e308}, {5.0, -1e308}, {5.0, 1e308}, {1.0, 1e308}}}});
+  unions.push_back({Polygon{{{1.0, 0.0}, {5.0, 0.0}, {5.0, 1e-310}, {1.0, 1e-310}}}});
   long inside = 0, queries = 0, cut_cells = 0;
   for (const auto& shapes : unions) {
     const ShapeUnion prepared(shapes);

@@ -56,6 +56,9 @@ TEST(CaseAdvice, LikelySlipsOfUnitsAndSignsAreNamed) {
     EXPECT_NE(advice[0].find(slip.says), std::string::npos) << advice[0];
   }
   EXPECT_TRUE(case_advice(load_case(bui, {"physics.gravity=[4.1, -8.9]", "numerics.air_band=0"})).empty());  // a tilted bed
+  // A Newtonian pair of fluids may be driven by its walls, without gravity, and be light.
+  const auto water = std::string(GRANFLOW_SOURCE_DIR) + "/cases/water_dam_break.toml";
+  EXPECT_TRUE(case_advice(load_case(water, {"physics.gravity=[0.0, 0.0]", "soil.density=1.0"})).empty());
 }
 
 // A key the case gives to no effect is a warning, naming the key and what would use it.
