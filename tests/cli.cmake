@@ -240,6 +240,11 @@ add_test(NAME cli_output_dangling_link_and_case_file_reason
          COMMAND sh -c "ln -sfn \"$2.nowhere\" \"$2\"; out=$(\"$0\" run \"$1\" -o \"$2\" 2>&1); test $? -eq 2 && echo \"$out\" | grep -q 'cannot make the output directory: .*(it is a symbolic link to .*nowhere, which is not a directory)' && out=$(\"$0\" check \"$2.toml\" 2>&1); test $? -eq 2 && echo \"$out\" | grep -q 'cannot open the case file: No such file or directory'"
                  $<TARGET_FILE:granflow> ${CMAKE_SOURCE_DIR}/cases/lid_driven_cavity_re100.toml ${CMAKE_CURRENT_BINARY_DIR}/dangling_link)
 set_tests_properties(cli_output_dangling_link_and_case_file_reason PROPERTIES LABELS cli)
+# A name in the output path longer than the file system takes is bad input (status 2), named.
+add_test(NAME cli_output_name_too_long
+         COMMAND sh -c "out=$(\"$0\" run \"$1\" -o \"/tmp/$(printf '%0300d' 0)\" --set 'mesh.cells=[8,8]' 2>&1); test $? -eq 2 && echo \"$out\" | grep -q '^error: -o .*: cannot make the output directory: File name too long'"
+                 $<TARGET_FILE:granflow> ${CMAKE_SOURCE_DIR}/cases/lid_driven_cavity_re100.toml)
+set_tests_properties(cli_output_name_too_long PROPERTIES LABELS cli)
 # The comparison scripts name a missing or malformed file in one line, not a traceback.
 file(WRITE ${CMAKE_CURRENT_BINARY_DIR}/bad_refdata/ghia1982_cavity_re100.csv "y,u\n0.5,abc\n")
 add_test(NAME scripts_compare_missing_run
