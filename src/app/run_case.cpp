@@ -43,8 +43,14 @@ int run_case(const std::string& case_file, const std::vector<std::string>& overr
   if (out_dir.size() > 3800)
     throw CaseError(fmt::format("-o: the output directory's path is {} characters long, more than 3800 (the run's "
                                 "files under it would pass the system's limit of 4096)", out_dir.size()));
-  if (restart && !std::filesystem::exists(out_dir))
-    throw CheckpointError(fmt::format("no checkpoint to restart from in {}: no such directory", out_dir));
+  if (restart) {
+    std::error_code ec;
+    if (!std::filesystem::exists(out_dir, ec)) {
+      if (ec && ec != std::errc::no_such_file_or_directory)
+        throw CaseError(fmt::format("-o {}: {}", out_dir, ec.message()));
+      throw CheckpointError(fmt::format("no checkpoint to restart from in {}: no such directory", out_dir));
+    }
+  }
   {
     std::error_code ec;
     if (std::filesystem::exists(out_dir, ec) && !std::filesystem::is_directory(out_dir, ec))
