@@ -6,12 +6,10 @@
 #include <unistd.h>
 
 #include <cerrno>
-#include <chrono>
 #include <cstdio>
 #include <cstdlib>
 #include <sstream>
 #include <string>
-#include <thread>
 #include <vector>
 
 #include "app/petsc_messages.hpp"
@@ -204,10 +202,8 @@ int main(int argc, char** argv) {
   } catch (const std::exception& e) {
     status = report_shared_error(e, case_file, rank);
     if (status == 0) {
-      // As for PETSc's errors: one that every rank meets (a full disk under every rank's checkpoint
-      // file) is said by rank 0, whose abort stops the others while they wait.
-      if (rank > 0) std::this_thread::sleep_for(std::chrono::seconds(2));
-      fmt::print(stderr, "error: {}{}\n", e.what(), rank > 0 ? fmt::format(" (rank {})", rank) : "");
+      // As for PETSc's errors: one every rank may meet (a full disk under every rank's checkpoint file).
+      granflow::say_error_once(e.what());
       if (size > 1) MPI_Abort(PETSC_COMM_WORLD, 1);
       status = 1;
     }

@@ -40,6 +40,17 @@ void warn_unused_petsc_options(int rank) {
 // here, with status 1 whatever PETSc's error code.
 // Running out of memory while the grid is made is the common case. GRANFLOW_PETSC_TRACE=1 keeps
 // PETSc's own trace.
+void say_error_once(const std::string& what) {
+  int world_rank = 0;
+  MPI_Comm_rank(MPI_COMM_WORLD, &world_rank);
+  // The other ranks wait, so that rank 0's abort stops them before they say it again; an error of one
+  // rank alone is still said, by that rank, two seconds later (time for an abort to arrive on a loaded
+  // machine).
+  if (world_rank > 0) std::this_thread::sleep_for(std::chrono::seconds(2));
+  fmt::print(stderr, "error: {}{}\n", what, world_rank > 0 ? fmt::format(" (rank {})", world_rank) : "");
+  std::fflush(stderr);
+}
+
 PetscErrorCode one_line_petsc_error(MPI_Comm, int line, const char* function, const char* file, PetscErrorCode code,
                                     PetscErrorType type, const char* message, void*) {
   if (type != PETSC_ERROR_INITIAL) return code;
@@ -49,17 +60,10 @@ PetscErrorCode one_line_petsc_error(MPI_Comm, int line, const char* function, co
   std::string what = memory ? "out of memory (a coarser mesh may do)"
                             : text ? text : "error";
   if (!memory && message && *message && std::string_view(message) != what) what += fmt::format(": {}", message);
-  int world_size = 1, world_rank = 0;
+  // Most such errors (an option value PETSc does not know) are met by every rank at once.
+  say_error_once(fmt::format("PETSc: {} (PETSc error {} in {}, {}:{})", what, int(code), function, file, line));
+  int world_size = 1;
   MPI_Comm_size(MPI_COMM_WORLD, &world_size);
-  MPI_Comm_rank(MPI_COMM_WORLD, &world_rank);
-  // Most such errors (an option value PETSc does not know) are met by every rank at once: the other
-  // ranks wait, so that rank 0's abort stops them before they say it again. An error of one rank
-  // alone is still reported, by that rank, two seconds later (time for an abort to arrive on a
-  // loaded machine).
-  if (world_rank > 0) std::this_thread::sleep_for(std::chrono::seconds(2));
-  fmt::print(stderr, "error: PETSc: {} (PETSc error {} in {}, {}:{}){}\n", what, int(code), function, file, line,
-             world_rank > 0 ? fmt::format(" (rank {})", world_rank) : "");
-  std::fflush(stderr);
   if (world_size == 1) std::_Exit(1);
   MPI_Abort(MPI_COMM_WORLD, 1);  // the status of README's "Exit status", not PETSc's error code
   return code;

@@ -12,6 +12,10 @@ namespace granflow {
 // one warning each on rank 0: PETSc itself ignores them silently.
 void warn_unused_petsc_options(int rank);
 
+// An error that ends the run and that every rank may meet alike (and abort on): said by rank 0, and by
+// another rank only if the abort has not come two seconds later, with its rank.
+void say_error_once(const std::string& what);
+
 // PETSc's error handler: the error as one line (PETSc would print its whole trace), then the end of
 // the run with status 1. Pushed with PetscPushErrorHandler.
 PetscErrorCode one_line_petsc_error(MPI_Comm, int line, const char* function, const char* file, PetscErrorCode code,
