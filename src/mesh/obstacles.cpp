@@ -4,15 +4,14 @@
 
 namespace granflow {
 
-long mark_blocked_cells(const Grid& g, const std::vector<interface::Shape>& shapes, Field& mask) {
+long mark_blocked_cells(const Grid& g, const interface::ShapeUnion& shapes, Field& mask) {
   long count = 0;
   {
     FieldArray m(g.field_dm(), mask.global());
-    const interface::ShapeUnion obstacles(shapes);
     const auto& b = g.owned();
     for (int j = b.ys; j < b.ye(); ++j)
       for (int i = b.xs; i < b.xe(); ++i) {
-        m[j][i] = obstacles.contains(g.xc(i), g.yc(j)) ? 1.0 : 0.0;
+        m[j][i] = shapes.contains(g.xc(i), g.yc(j)) ? 1.0 : 0.0;
         count += m[j][i] > 0.5;
       }
   }

@@ -33,7 +33,7 @@ class BlockedView {
 
 // Marks the cells whose centre lies in any of the shapes (1, else 0), ghosts included; returns the
 // number of blocked cells over all ranks. Collective.
-long mark_blocked_cells(const Grid& g, const std::vector<interface::Shape>& shapes, Field& mask);
+long mark_blocked_cells(const Grid& g, const interface::ShapeUnion& shapes, Field& mask);
 
 // Sets the blocked cells of f's global vector to zero (its local vector is left as it is): after a
 // copy from the local values, e.g. a restored snapshot or a checkpoint, which hold the mirrors.

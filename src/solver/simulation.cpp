@@ -116,7 +116,7 @@ ObstacleLayout lay_out_obstacles(const Grid& g, const CaseConfig& config, Field&
       throw case_error(config, fmt::format("obstacle[{}]: the shape holds no cell centre on this {} x {} mesh (cells are "
                                   "blocked whole, by their centres)", k, g.nx(), g.ny()));
   ObstacleLayout layout;
-  layout.blocked_cells = mark_blocked_cells(g, config.obstacles, mask);
+  layout.blocked_cells = mark_blocked_cells(g, obstacles, mask);
   if (layout.blocked_cells == g.cell_count()) throw case_error(config, "obstacle: the obstacles block every cell of the domain");
   if (config.soil && config.soil->yield_pressure == YieldPressure::lithostatic_floor)
     throw case_error(config, "obstacle: soil.yield_pressure = \"lithostatic_floor\" takes the soil above each cell up to the "
