@@ -232,9 +232,4 @@ double ShapeUnion::fraction(double x0, double x1, double y0, double y1, bool axi
   return inside / all;
 }
 
-double union_fraction(const std::vector<Shape>& shapes, double x0, double x1, double y0, double y1, bool axisymmetric,
-                      int samples) {
-  return ShapeUnion(shapes).fraction(x0, x1, y0, y1, axisymmetric, samples);
-}
-
 }  // namespace granflow::interface

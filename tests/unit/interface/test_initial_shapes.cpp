@@ -156,10 +156,10 @@ TEST(InitialShapes, PreparedUnionAnswersAsTestingEveryEdge) {
 // that reads those five points.
 TEST(InitialShapes, AShapeSmallerThanTheCellIsSampled) {
   const std::vector<Shape> small{Circle{{0.305, 0.105}, 0.002}};
-  const double f = union_fraction(small, 0.3, 0.32, 0.1, 0.12);
+  const double f = ShapeUnion(small).fraction(0.3, 0.32, 0.1, 0.12);
   const double exact = 3.14159265 * 0.002 * 0.002 / (0.02 * 0.02);  // 0.0314
   EXPECT_NEAR(f, exact, 0.2 * exact);
-  EXPECT_EQ(union_fraction(small, 0.32, 0.34, 0.1, 0.12), 0.0);  // the next cell: none
+  EXPECT_EQ(ShapeUnion(small).fraction(0.32, 0.34, 0.1, 0.12), 0.0);  // the next cell: none
 }
 
 // Axisymmetric fractions are fractions of the cell's volume: a sphere of radius R on the axis (a
@@ -173,16 +173,16 @@ TEST(InitialShapes, AxisymmetricFractionsAreVolumeFractions) {
   for (int i = 0; i < 12; ++i)
     for (int j = -12; j < 12; ++j) {
       const double r0 = i * h, z0 = j * h, rc = r0 + 0.5 * h;
-      volume += union_fraction(sphere, r0, r0 + h, z0, z0 + h, true) * rc * h * h;
-      by_area += union_fraction(sphere, r0, r0 + h, z0, z0 + h, false) * rc * h * h;
+      volume += ShapeUnion(sphere).fraction(r0, r0 + h, z0, z0 + h, true) * rc * h * h;
+      by_area += ShapeUnion(sphere).fraction(r0, r0 + h, z0, z0 + h, false) * rc * h * h;
     }
   const double exact = 2.0 / 3.0 * R * R * R;
   EXPECT_NEAR(volume / exact, 1.0, 1e-4);
   EXPECT_GT(std::abs(by_area / exact - 1.0), 1e-3);
   // A cylinder r < 0.25 in the cell [0, 0.5] x [0, 1]: a quarter of its area but (0.25/0.5)^2 of its volume.
   const std::vector<Shape> cylinder{Box{{0.0, 0.0}, {0.25, 1.0}}};
-  EXPECT_NEAR(union_fraction(cylinder, 0.0, 0.5, 0.0, 1.0, true), 0.25, 1e-12);
-  EXPECT_NEAR(union_fraction(cylinder, 0.0, 0.5, 0.0, 1.0, false), 0.5, 1e-12);
+  EXPECT_NEAR(ShapeUnion(cylinder).fraction(0.0, 0.5, 0.0, 1.0, true), 0.25, 1e-12);
+  EXPECT_NEAR(ShapeUnion(cylinder).fraction(0.0, 0.5, 0.0, 1.0, false), 0.5, 1e-12);
 }
 
 }  // namespace

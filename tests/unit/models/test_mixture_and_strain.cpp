@@ -104,16 +104,16 @@ TEST(EulerAlmansi, AxisymmetricRadialStretchHasHoopStrain) {
 TEST(InitialShapes, BoxCircleAndPolygonFractions) {
   using namespace interface;
   const std::vector<Shape> box{Box{{0.0, 0.0}, {0.2, 0.1}}};
-  EXPECT_DOUBLE_EQ(union_fraction(box, 0.0, 0.01, 0.0, 0.01), 1.0);
-  EXPECT_DOUBLE_EQ(union_fraction(box, 0.2, 0.21, 0.0, 0.01), 0.0);
-  EXPECT_NEAR(union_fraction(box, 0.195, 0.205, 0.0, 0.01), 0.5, 1e-12);
+  EXPECT_DOUBLE_EQ(ShapeUnion(box).fraction(0.0, 0.01, 0.0, 0.01), 1.0);
+  EXPECT_DOUBLE_EQ(ShapeUnion(box).fraction(0.2, 0.21, 0.0, 0.01), 0.0);
+  EXPECT_NEAR(ShapeUnion(box).fraction(0.195, 0.205, 0.0, 0.01), 0.5, 1e-12);
   const std::vector<Shape> circle{Circle{{0.0, 0.0}, 1.0}};
   double area = 0.0;  // quarter of the unit disc on a 64 x 64 grid
   for (int i = 0; i < 64; ++i)
-    for (int j = 0; j < 64; ++j) area += union_fraction(circle, i / 64.0, (i + 1) / 64.0, j / 64.0, (j + 1) / 64.0) / 4096.0;
+    for (int j = 0; j < 64; ++j) area += ShapeUnion(circle).fraction(i / 64.0, (i + 1) / 64.0, j / 64.0, (j + 1) / 64.0) / 4096.0;
   EXPECT_NEAR(area, M_PI / 4, 2e-4);
   const std::vector<Shape> triangle{Polygon{{{0.0, 0.0}, {1.0, 0.0}, {0.0, 1.0}}}};
-  EXPECT_NEAR(union_fraction(triangle, 0.0, 1.0, 0.0, 1.0, false, 200), 0.5, 1e-2);
+  EXPECT_NEAR(ShapeUnion(triangle).fraction(0.0, 1.0, 0.0, 1.0, false, 200), 0.5, 1e-2);
   EXPECT_TRUE(union_contains({box[0], circle[0]}, 0.5, 0.5));
 }
 
