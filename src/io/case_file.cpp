@@ -384,6 +384,10 @@ NumericsSettings read_numerics(TableReader& top, std::vector<std::string>& keys_
   num.mean_viscosity_pressure =
       n.choice("viscosity_pressure", "last_iterate", {"last_iterate", "mean_of_last_two"}) == "mean_of_last_two";
   num.air_band = n.integer_in("air_band", num.air_band, 0, 1000000);
+  num.reuse_first_factorisation =
+      n.choice("later_iterations", "own_factorisation", {"own_factorisation", "first_factorisation"}) ==
+      "first_factorisation";
+  num.krylov_iterations = n.integer_in("krylov_iterations", num.krylov_iterations, 1, 100);
   num.pressure_correctors = n.integer_in("pressure_correctors", num.pressure_correctors, 1, 100);
   num.momentum_predictor = n.boolean("momentum_predictor", num.momentum_predictor);
   num.transpose_stress = n.boolean("transpose_stress", num.transpose_stress);
@@ -404,6 +408,11 @@ NumericsSettings read_numerics(TableReader& top, std::vector<std::string>& keys_
     if (n.has(key) && !used) keys_without_effect.push_back(n.key_path(key) + ": " + why);
   };
   without_effect("blending", conv == "blended", "used only with numerics.convection = \"blended\"");
+  // The projection and PISO factorise nothing: a case switched to them keeps its coupled settings.
+  without_effect("later_iterations", coupled, "used only with numerics.pressure_coupling = \"coupled\"");
+  without_effect("krylov_iterations", coupled && num.reuse_first_factorisation,
+                 "used only with numerics.later_iterations = \"first_factorisation\" and the coupled solve");
+  num.reuse_first_factorisation = num.reuse_first_factorisation && coupled;
   without_effect("rotational_coefficient", num.pressure_coupling == PressureCoupling::projection,
                  "used only with numerics.pressure_coupling = \"projection\"");
   without_effect("pressure_correctors", num.pressure_coupling == PressureCoupling::piso,
@@ -431,6 +440,13 @@ void read_solvers(TableReader& top, FlowSettings& flow) {
                                   "momentum matrix is not symmetric (convection); use \"hypre\", \"ilu\" or \"lu\"",
                                   spd_only));
   }
+  // The later outer iterations' Krylov solve keeps continuity exact only on the factorised matrix.
+  if (flow.numerics.reuse_first_factorisation && flow.coupled_solver.pc_type != "lu" &&
+      flow.coupled_solver.pc_type != "redundant")
+    throw CaseError(fmt::format("numerics.later_iterations: \"first_factorisation\" needs solver.coupled.pc_type = "
+                                "\"lu\" or \"redundant\" (it is \"{}\"): only an exact factorisation of the first "
+                                "iteration's matrix keeps its continuity rows in the later ones; or set "
+                                "numerics.later_iterations = \"own_factorisation\"", flow.coupled_solver.pc_type));
   s.finish();
 }
 

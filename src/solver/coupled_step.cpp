@@ -277,7 +277,7 @@ void FlowSolver::fill_coupled_rows() {
 
 // Solves the coupled rows from the current state and takes their solution as the state; the air
 // outside a band's region at rest and hydrostatic. Returns the iterations.
-int FlowSolver::solve_coupled_rows() {
+int FlowSolver::solve_coupled_rows(bool by_first_factorisation) {
   const auto& b = grid_.owned();
   // Initial guess: the current state.
   {
@@ -306,7 +306,13 @@ int FlowSolver::solve_coupled_rows() {
           x[j][i][P] = pressure_at_rest(rho[j][i], j);
         }
     DMDAVecRestoreArrayDOF(coupled_dm_, coupled_solution_, &x);
-    if (solve_region_->cell_count() > 0) iterations = solve_region_->solve(coupled_dm_, coupled_solution_);
+    if (solve_region_->cell_count() > 0)
+      iterations = by_first_factorisation ? solve_region_->solve_by_last_factorisation(
+                                                coupled_dm_, coupled_solution_, settings_.numerics.krylov_iterations)
+                                          : solve_region_->solve(coupled_dm_, coupled_solution_);
+  } else if (by_first_factorisation) {
+    iterations = coupled_solver_->solve_by_last_factorisation(coupled_rhs_, coupled_solution_,
+                                                               settings_.numerics.krylov_iterations);
   } else {
     coupled_solver_->set_operator(coupled_matrix_);
     iterations = coupled_solver_->solve(coupled_rhs_, coupled_solution_);
@@ -404,11 +410,19 @@ void FlowSolver::update_coupled_face_velocities() {
   }
 }
 
-int FlowSolver::solve_coupled() {
-  compute_mobilities();
+int FlowSolver::solve_coupled(bool by_first_factorisation) {
+  // A later outer iteration keeps the first's mobilities, so that its continuity rows are those the
+  // first factorised, and the solve by that factorisation holds them exactly. The density, the other
+  // thing a_P holds, is the same within a step. Without a factorisation at hand (a region with no
+  // soil in the first iteration) the iteration factorises its own.
+  if (by_first_factorisation) {
+    if (solve_region_) solve_region_->prepare();  // a step keeps its region: this only compares
+    by_first_factorisation = solve_region_ ? solve_region_->has_factorisation() : coupled_solver_->has_preconditioner();
+  }
+  if (!by_first_factorisation) compute_mobilities();
   store_cell_forces();
   fill_coupled_rows();
-  const int iterations = solve_coupled_rows();
+  const int iterations = solve_coupled_rows(by_first_factorisation);
   fill_velocity_ghosts();
   fill_scalar_ghosts(*p_);
   if (pins_pressure_level_) hold_pressure_at_top();  // the pinned level, moved to zero on the top

@@ -28,6 +28,12 @@ struct NumericsSettings {
   // or the mean of the last two (true, "mean_of_last_two"), which cancels a two-iteration cycle of a
   // stiff cell's pressure and viscosity (docs/method.md). A converged step is the same either way.
   bool mean_viscosity_pressure = false;
+  // Coupled solve only: the outer iterations after a step's first solved by Krylov iterations on the
+  // first's factorisation (true, "first_factorisation"), or each by its own (false). The first's
+  // Rhie-Chow mobilities are kept, so the continuity rows are the factorised ones and hold exactly
+  // (LinearSolver::solve_by_last_factorisation); within a step the density does not change.
+  bool reuse_first_factorisation = false;
+  int krylov_iterations = 2;  // FGMRES iterations of each such later outer iteration
   // Coupled solve only: cells of air around the soil that the solve covers (0: the whole domain).
   // The region is rebuilt with this band when the soil comes closer than half of it to its edge.
   int air_band = 0;

@@ -511,7 +511,7 @@ StepReport FlowSolver::step(double dt) {
     if (num.mean_viscosity_pressure) p_last_iterate_->copy_from(*p_);
     assemble_momentum(dt);
     if (num.pressure_coupling == PressureCoupling::coupled) {
-      report.pressure_iterations += solve_coupled();
+      report.pressure_iterations += solve_coupled(outer > 0 && num.reuse_first_factorisation);
       ++report.pressure_solves;
     } else {
     const bool projection = num.pressure_coupling == PressureCoupling::projection;

@@ -167,10 +167,11 @@ class FlowSolver {
   void create_coupled_system();
   void destroy_coupled_system();
   void store_cell_forces();
-  int solve_coupled();  // one outer iteration of the coupled solve, from the pieces below
+  // by_first_factorisation: numerics.later_iterations = "first_factorisation" in a later outer iteration.
+  int solve_coupled(bool by_first_factorisation);  // one outer iteration of the coupled solve, from the pieces below
   void compute_mobilities();
   void fill_coupled_rows();
-  int solve_coupled_rows();
+  int solve_coupled_rows(bool by_first_factorisation);
   void update_coupled_face_velocities();
   double coupled_mobility(const double* const* rau, int i, int j, int in, int jn) const;
   double pressure_at_rest(double rho, int j) const;  // air outside the solve region

@@ -83,8 +83,60 @@ LinearSolver::~LinearSolver() {
   // Quietly: after a failed solve a library's state may be left half made (hypre's vectors), and
   // PETSc would print a second trace while the run is already stopping with its message.
   PetscPushErrorHandler(PetscReturnErrorHandler, nullptr);
+  KSPDestroy(&reuse_ksp_);
+  VecDestroy(&residual_);
+  VecDestroy(&correction_);
   KSPDestroy(&ksp_);
   PetscPopErrorHandler();
+}
+
+int LinearSolver::solve_by_last_factorisation(Vec b, Vec x, int krylov_iterations) {
+  MPI_Comm comm;
+  PetscObjectGetComm(reinterpret_cast<PetscObject>(ksp_), &comm);
+  PC pc;
+  Mat a;
+  PetscCallAbort(comm, KSPGetPC(ksp_, &pc));
+  PetscCallAbort(comm, KSPGetOperators(ksp_, &a, nullptr));
+  // Only an exact factorisation of the earlier operator holds its rows (--petsc may have named another).
+  PetscBool lu, redundant;  // a redundant solve's own default is LU
+  PetscCallAbort(comm, PetscObjectTypeCompare(reinterpret_cast<PetscObject>(pc), PCLU, &lu));
+  PetscCallAbort(comm, PetscObjectTypeCompare(reinterpret_cast<PetscObject>(pc), PCREDUNDANT, &redundant));
+  if (!(lu || redundant) || !built_)
+    throw DivergenceError(fmt::format("linear solver '{}': a solve by the last factorisation needs an LU "
+                                      "factorisation (pc_type lu or redundant) built by an earlier solve", prefix_));
+  if (!residual_) {
+    PetscCallAbort(comm, VecDuplicate(b, &residual_));
+    PetscCallAbort(comm, VecDuplicate(b, &correction_));
+  }
+  PetscCallAbort(comm, PCSetReusePreconditioner(pc, PETSC_TRUE));  // a's new values are not factorised
+  PetscCallAbort(comm, MatMult(a, x, residual_));
+  PetscCallAbort(comm, VecAYPX(residual_, -1.0, b));
+  PetscCallAbort(comm, PCApply(pc, residual_, correction_));
+  PetscCallAbort(comm, VecAXPY(x, 1.0, correction_));
+  if (!reuse_ksp_) {
+    // Flexible GMRES keeps the preconditioned vectors: no application of P after its last iteration.
+    PetscCallAbort(comm, KSPCreate(comm, &reuse_ksp_));
+    PetscCallAbort(comm, KSPSetType(reuse_ksp_, KSPFGMRES));
+    PetscCallAbort(comm, KSPSetPC(reuse_ksp_, pc));
+    PetscCallAbort(comm, KSPSetPCSide(reuse_ksp_, PC_RIGHT));
+    PetscCallAbort(comm, KSPSetInitialGuessNonzero(reuse_ksp_, PETSC_TRUE));
+    // Its own prefix, for PETSc's monitors (-coupled_later_ksp_monitor_true_residual).
+    PetscCallAbort(comm, KSPSetOptionsPrefix(reuse_ksp_, (prefix_ + "_later_").c_str()));
+    PetscCallAbort(comm, KSPSetFromOptions(reuse_ksp_));
+  }
+  PetscCallAbort(comm, KSPSetOperators(reuse_ksp_, a, a));
+  PetscCallAbort(comm, KSPSetReusePreconditioner(reuse_ksp_, PETSC_TRUE));
+  // A fixed number of iterations: the outer iterations, not this solve, converge the step.
+  PetscCallAbort(comm, KSPSetTolerances(reuse_ksp_, 1e-14, 0.0, PETSC_DEFAULT, krylov_iterations));
+  PetscPushErrorHandler(PetscReturnErrorHandler, nullptr);
+  const PetscErrorCode error = KSPSolve(reuse_ksp_, b, x);
+  PetscPopErrorHandler();
+  PetscCallAbort(comm, PCSetReusePreconditioner(pc, PETSC_FALSE));  // solve() decides anew
+  if (error) throw DivergenceError(fmt::format("linear solver '{}' failed in a solve by its last factorisation "
+                                               "(PETSc error {})", prefix_, int(error)));
+  PetscInt its;
+  KSPGetIterationNumber(reuse_ksp_, &its);
+  return 1 + int(its);
 }
 
 void LinearSolver::set_operator(Mat a) {

@@ -38,6 +38,14 @@ class LinearSolver {
   void set_operator(Mat a);
   // Solves a x = b from the initial guess in x; returns the iteration count. Throws on divergence.
   int solve(Vec b, Vec x);
+  // Solves a x = b, a being the operator of the last solve() with new values, by that solve's
+  // factorisation P: one Richardson correction x += P^-1 (b - a x), then up to `krylov_iterations`
+  // of FGMRES preconditioned by P on the right. The rows where a equals P (a saddle point's
+  // constraint rows) hold exactly after the correction, and every Krylov update keeps them so: the
+  // Krylov vectors (a P^-1)^k r are zero in those rows when r is. Returns P's applications.
+  int solve_by_last_factorisation(Vec b, Vec x, int krylov_iterations);
+  // Whether solve() has built its preconditioner since it was made or last told to rebuild.
+  bool has_preconditioner() const { return built_; }
   // The next solve builds its preconditioner anew, as a solver made afresh would: a run restarted
   // from a checkpoint makes its solvers afresh, so the run that wrote it rebuilds there too.
   void rebuild_at_next_solve() { built_ = false; }
@@ -52,6 +60,8 @@ class LinearSolver {
 
  private:
   KSP ksp_ = nullptr;
+  KSP reuse_ksp_ = nullptr;  // FGMRES on ksp_'s preconditioner (solve_by_last_factorisation)
+  Vec residual_ = nullptr, correction_ = nullptr;
   std::string prefix_;
   int max_reuse_ = 1;
   bool built_ = false;

@@ -122,29 +122,38 @@ SolveRegion::RowWriter::~RowWriter() {
   PetscCallAbort(comm, MatAssemblyEnd(region_.matrix_, MAT_FINAL_ASSEMBLY));
 }
 
-int SolveRegion::solve(DM coupled_dm, Vec x) {
+// Copies the coupled state's region cells into the region's vector (into_region) or back.
+void SolveRegion::copy_solution(DM coupled_dm, Vec x, bool into_region) {
   const auto& box = grid_.owned();
-  auto copy = [&](bool into_region) {
-    PetscScalar*** full;
-    PetscScalar* region;
-    DMDAVecGetArrayDOF(coupled_dm, x, &full);
-    VecGetArray(solution_, &region);
-    for (size_t k = 0; k < owned_.size(); ++k) {
-      const int c = owned_[k];
-      PetscScalar* cell = full[box.ys + c / box.xm][box.xs + c % box.xm];
-      for (int u = 0; u < unknowns_per_cell; ++u) {
-        if (into_region) region[unknowns_per_cell * k + u] = cell[u];
-        else cell[u] = region[unknowns_per_cell * k + u];
-      }
+  PetscScalar*** full;
+  PetscScalar* region;
+  DMDAVecGetArrayDOF(coupled_dm, x, &full);
+  VecGetArray(solution_, &region);
+  for (size_t k = 0; k < owned_.size(); ++k) {
+    const int c = owned_[k];
+    PetscScalar* cell = full[box.ys + c / box.xm][box.xs + c % box.xm];
+    for (int u = 0; u < unknowns_per_cell; ++u) {
+      if (into_region) region[unknowns_per_cell * k + u] = cell[u];
+      else cell[u] = region[unknowns_per_cell * k + u];
     }
-    VecRestoreArray(solution_, &region);
-    DMDAVecRestoreArrayDOF(coupled_dm, x, &full);
-  };
-  copy(true);  // the initial guess of an iterative solver
+  }
+  VecRestoreArray(solution_, &region);
+  DMDAVecRestoreArrayDOF(coupled_dm, x, &full);
+}
+
+int SolveRegion::solve(DM coupled_dm, Vec x) {
+  copy_solution(coupled_dm, x, true);  // the initial guess of an iterative solver
   solver_->set_operator(matrix_);
   const int iterations = solver_->solve(rhs_, solution_);
-  copy(false);
+  copy_solution(coupled_dm, x, false);
   return iterations;
+}
+
+int SolveRegion::solve_by_last_factorisation(DM coupled_dm, Vec x, int krylov_iterations) {
+  copy_solution(coupled_dm, x, true);
+  const int applications = solver_->solve_by_last_factorisation(rhs_, solution_, krylov_iterations);
+  copy_solution(coupled_dm, x, false);
+  return applications;
 }
 
 }  // namespace granflow

@@ -97,8 +97,13 @@ class SolveRegion {
   // `x`, a (u, v, p) vector of the whole grid laid out as the grid; the other entries of x are left
   // as they are. `x` also gives the initial guess of an iterative solver. Returns the iterations.
   int solve(DM coupled_dm, Vec x);
+  // The same by the factorisation of the last solve() (LinearSolver::solve_by_last_factorisation).
+  int solve_by_last_factorisation(DM coupled_dm, Vec x, int krylov_iterations);
+  // Whether the last solve()'s factorisation is there for that: not after a new pattern (prepare()).
+  bool has_factorisation() const { return solver_ && solver_->has_preconditioner(); }
 
  private:
+  void copy_solution(DM coupled_dm, Vec x, bool into_region);
   const Grid& grid_;
   LinearSolverSettings solver_settings_;
   Field cells_;
