@@ -441,6 +441,9 @@ void read_solvers(TableReader& top, FlowSettings& flow) {
                                   spd_only));
   }
   // The later outer iterations' Krylov solve keeps continuity exact only on the factorised matrix.
+  if (flow.numerics.reuse_first_factorisation && flow.coupled_solver.max_reuse > 1)
+    throw CaseError("numerics.later_iterations: \"first_factorisation\" needs solver.coupled.reuse_preconditioner = 1: "
+                    "a step's first iteration must factorise its own matrix for the later ones to hold its continuity rows");
   if (flow.numerics.reuse_first_factorisation && flow.coupled_solver.pc_type != "lu" &&
       flow.coupled_solver.pc_type != "redundant")
     throw CaseError(fmt::format("numerics.later_iterations: \"first_factorisation\" needs solver.coupled.pc_type = "

@@ -101,7 +101,8 @@ int LinearSolver::solve_by_last_factorisation(Vec b, Vec x, int krylov_iteration
   PetscBool lu, redundant;  // a redundant solve's own default is LU
   PetscCallAbort(comm, PetscObjectTypeCompare(reinterpret_cast<PetscObject>(pc), PCLU, &lu));
   PetscCallAbort(comm, PetscObjectTypeCompare(reinterpret_cast<PetscObject>(pc), PCREDUNDANT, &redundant));
-  if (!(lu || redundant) || !built_)
+  // The last solve() must have factorised (not reused an older step's factorisation).
+  if (!(lu || redundant) || !built_ || changes_since_setup_ != 0)
     throw DivergenceError(fmt::format("linear solver '{}': a solve by the last factorisation needs an LU "
                                       "factorisation (pc_type lu or redundant) built by an earlier solve", prefix_));
   if (!residual_) {
@@ -117,11 +118,13 @@ int LinearSolver::solve_by_last_factorisation(Vec b, Vec x, int krylov_iteration
     // Flexible GMRES keeps the preconditioned vectors: no application of P after its last iteration.
     PetscCallAbort(comm, KSPCreate(comm, &reuse_ksp_));
     PetscCallAbort(comm, KSPSetType(reuse_ksp_, KSPFGMRES));
+    // Its own prefix, for PETSc's monitors (-coupled_later_ksp_monitor_true_residual), set before the
+    // shared preconditioner is attached, whose options stay the first solve's own.
+    PetscCallAbort(comm, KSPSetOptionsPrefix(reuse_ksp_, (prefix_ + "_later_").c_str()));
     PetscCallAbort(comm, KSPSetPC(reuse_ksp_, pc));
+    PetscCallAbort(comm, KSPSetSkipPCSetFromOptions(reuse_ksp_, PETSC_TRUE));
     PetscCallAbort(comm, KSPSetPCSide(reuse_ksp_, PC_RIGHT));
     PetscCallAbort(comm, KSPSetInitialGuessNonzero(reuse_ksp_, PETSC_TRUE));
-    // Its own prefix, for PETSc's monitors (-coupled_later_ksp_monitor_true_residual).
-    PetscCallAbort(comm, KSPSetOptionsPrefix(reuse_ksp_, (prefix_ + "_later_").c_str()));
     PetscCallAbort(comm, KSPSetFromOptions(reuse_ksp_));
   }
   PetscCallAbort(comm, KSPSetOperators(reuse_ksp_, a, a));
