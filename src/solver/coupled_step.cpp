@@ -411,18 +411,16 @@ void FlowSolver::update_coupled_face_velocities() {
 }
 
 int FlowSolver::solve_coupled(bool by_first_factorisation) {
-  // A later outer iteration keeps the first's mobilities, so that its continuity rows are those the
-  // first factorised, and the solve by that factorisation holds them exactly. The density, the other
-  // thing a_P holds, is the same within a step. Without a factorisation at hand (a region with no
-  // soil in the first iteration) the iteration factorises its own.
-  if (by_first_factorisation) {
-    if (solve_region_) solve_region_->prepare();  // a step keeps its region: this only compares
-    by_first_factorisation = solve_region_ ? solve_region_->has_factorisation() : coupled_solver_->has_preconditioner();
-  }
-  if (!by_first_factorisation) compute_mobilities();
+  // A later outer iteration keeps the first's mobilities: the continuity rows' entries are those and
+  // the geometry alone, so they are the rows the first factorised, and the solve by that
+  // factorisation holds them exactly. A step keeps its region, whose solver the first iteration
+  // made; without a factorisation at hand (no soil in the region) the iteration factorises its own.
+  const bool reuse = by_first_factorisation && (solve_region_ ? solve_region_->has_factorisation()
+                                                              : coupled_solver_->has_preconditioner());
+  if (!reuse) compute_mobilities();
   store_cell_forces();
   fill_coupled_rows();
-  const int iterations = solve_coupled_rows(by_first_factorisation);
+  const int iterations = solve_coupled_rows(reuse);
   fill_velocity_ghosts();
   fill_scalar_ghosts(*p_);
   if (pins_pressure_level_) hold_pressure_at_top();  // the pinned level, moved to zero on the top
