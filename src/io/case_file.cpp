@@ -410,8 +410,13 @@ NumericsSettings read_numerics(TableReader& top, std::vector<std::string>& keys_
   without_effect("blending", conv == "blended", "used only with numerics.convection = \"blended\"");
   // The projection and PISO factorise nothing: a case switched to them keeps its coupled settings.
   without_effect("later_iterations", coupled, "used only with numerics.pressure_coupling = \"coupled\"");
-  without_effect("krylov_iterations", coupled && num.reuse_first_factorisation,
-                 "used only with numerics.later_iterations = \"first_factorisation\" and the coupled solve");
+  // One outer iteration has no later ones to solve by its factorisation.
+  without_effect("later_iterations", !(coupled && num.reuse_first_factorisation && num.outer_iterations == 1),
+                 "\"first_factorisation\" has no effect with numerics.outer_iterations = 1: there are no later "
+                 "iterations");
+  without_effect("krylov_iterations", coupled && num.reuse_first_factorisation && num.outer_iterations > 1,
+                 "used only with numerics.later_iterations = \"first_factorisation\", the coupled solve and more "
+                 "than one outer iteration");
   num.reuse_first_factorisation = num.reuse_first_factorisation && coupled;
   without_effect("rotational_coefficient", num.pressure_coupling == PressureCoupling::projection,
                  "used only with numerics.pressure_coupling = \"projection\"");

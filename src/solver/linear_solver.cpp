@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <cstdlib>
 #include <set>
 #include <stdexcept>
 
@@ -15,6 +16,27 @@ namespace {
 // The case file's table of a solver from its options prefix (momentum_x and momentum_y: momentum).
 std::string solver_table_name(const std::string& prefix) {
   return prefix.rfind("momentum", 0) == 0 ? "momentum" : prefix;
+}
+
+// Ends the run after a PETSc error inside a solve: on one rank as a DivergenceError, on several with
+// an abort, since the others may still wait inside the solve for this one, where no collective call
+// of ours can meet them.
+[[noreturn]] void stop_after_error(KSP ksp, const std::string& problem) {
+  MPI_Comm comm;
+  PetscObjectGetComm(reinterpret_cast<PetscObject>(ksp), &comm);
+  int size;
+  MPI_Comm_size(comm, &size);
+  if (size == 1) throw DivergenceError(problem);
+  fmt::print(stderr, "error: {}\n", problem);
+  std::fflush(stderr);
+  MPI_Abort(comm, 3);
+  std::abort();  // MPI_Abort does not return
+}
+
+std::string petsc_error_text(PetscErrorCode error) {
+  const char* text = nullptr;
+  PetscErrorMessage(error, &text, nullptr);
+  return text ? fmt::format("{}, PETSc error {}", text, int(error)) : fmt::format("PETSc error {}", int(error));
 }
 }  // namespace
 
@@ -109,7 +131,19 @@ int LinearSolver::solve_by_last_factorisation(Vec b, Vec x, int krylov_iteration
     PetscCallAbort(comm, VecDuplicate(b, &residual_));
     PetscCallAbort(comm, VecDuplicate(b, &correction_));
   }
-  PetscCallAbort(comm, PCSetReusePreconditioner(pc, PETSC_TRUE));  // a's new values are not factorised
+  // a's new values are not factorised: not by the LU, nor by a redundant solve's inner LU, which on
+  // one rank factorises a itself and would see its values changed.
+  PC inner = nullptr;
+  if (redundant) {
+    KSP inner_ksp;
+    PetscCallAbort(comm, PCRedundantGetKSP(pc, &inner_ksp));
+    PetscCallAbort(comm, KSPGetPC(inner_ksp, &inner));
+  }
+  auto reuse = [&](PetscBool flag) {
+    PetscCallAbort(comm, PCSetReusePreconditioner(pc, flag));
+    if (inner) PetscCallAbort(comm, PCSetReusePreconditioner(inner, flag));
+  };
+  reuse(PETSC_TRUE);
   PetscCallAbort(comm, MatMult(a, x, residual_));
   PetscCallAbort(comm, VecAYPX(residual_, -1.0, b));
   PetscCallAbort(comm, PCApply(pc, residual_, correction_));
@@ -134,9 +168,16 @@ int LinearSolver::solve_by_last_factorisation(Vec b, Vec x, int krylov_iteration
   PetscPushErrorHandler(PetscReturnErrorHandler, nullptr);
   const PetscErrorCode error = KSPSolve(reuse_ksp_, b, x);
   PetscPopErrorHandler();
-  PetscCallAbort(comm, PCSetReusePreconditioner(pc, PETSC_FALSE));  // solve() decides anew
-  if (error) throw DivergenceError(fmt::format("linear solver '{}' failed in a solve by its last factorisation "
-                                               "(PETSc error {})", prefix_, int(error)));
+  reuse(PETSC_FALSE);  // solve() decides anew
+  if (error)
+    stop_after_error(reuse_ksp_, fmt::format("linear solver '{}' failed in a solve by its last factorisation: {}",
+                                             prefix_, petsc_error_text(error)));
+  // Stopping at the iteration count is the plan; a breakdown or a NaN is not (the same on every rank).
+  KSPConvergedReason reason;
+  KSPGetConvergedReason(reuse_ksp_, &reason);
+  if (reason < 0 && reason != KSP_DIVERGED_ITS)
+    throw DivergenceError(fmt::format("linear solver '{}' failed in a solve by its last factorisation: {}", prefix_,
+                                      KSPConvergedReasons[reason]));
   PetscInt its;
   KSPGetIterationNumber(reuse_ksp_, &its);
   return 1 + int(its);
@@ -158,25 +199,9 @@ int LinearSolver::solve(Vec b, Vec x) {
   PetscPushErrorHandler(PetscReturnErrorHandler, nullptr);
   const PetscErrorCode error = KSPSolve(ksp_, b, x);
   PetscPopErrorHandler();
-  std::string problem;
-  if (error) {
-    const char* text = nullptr;
-    PetscErrorMessage(error, &text, nullptr);
-    problem = fmt::format("linear solver '{}' failed: {}PETSc error {}; another solver.{}.pc_type may do", prefix_,
-                          text ? fmt::format("{}, ", text) : "", int(error), solver_table_name(prefix_));
-  }
-  if (!problem.empty()) {
-    MPI_Comm comm;
-    PetscObjectGetComm(reinterpret_cast<PetscObject>(ksp_), &comm);
-    int size;
-    MPI_Comm_size(comm, &size);
-    if (size == 1) throw DivergenceError(problem);
-    // On several ranks the others may still wait inside the solve for this one, where no collective
-    // call of ours can meet them: only an abort stops them all.
-    fmt::print(stderr, "error: {}\n", problem);
-    std::fflush(stderr);
-    MPI_Abort(comm, 3);
-  }
+  if (error)
+    stop_after_error(ksp_, fmt::format("linear solver '{}' failed: {}; another solver.{}.pc_type may do", prefix_,
+                                       petsc_error_text(error), solver_table_name(prefix_)));
   KSPConvergedReason reason;
   PetscInt its;
   KSPGetConvergedReason(ksp_, &reason);

@@ -18,6 +18,7 @@
 #include <string>
 #include <vector>
 
+#include "../lu_factorisations.hpp"
 #include "mesh/gather.hpp"
 #include "solver/simulation.hpp"
 #include "test_support.hpp"
@@ -26,7 +27,7 @@ namespace granflow {
 namespace {
 
 struct Outcome {
-  long steps = 0, outer_iterations = 0, unconverged_steps = 0;
+  long steps = 0, outer_iterations = 0, unconverged_steps = 0, factorisations = 0;
   std::vector<double> u, v;
   double volume_error = 0.0;
 };
@@ -37,8 +38,10 @@ Outcome run_collapse(const std::string& setting, int outer_iterations) {
       {"output.progress_seconds=0", "mesh.cells=[30, 10]", "time.end=0.06", "output.interval=0.06",
        "numerics.outer_iterations=" + std::to_string(outer_iterations), "numerics.outer_tolerance=1e-8", setting});
   Simulation sim(PETSC_COMM_WORLD, config, "");
+  const int factorisations_before = test::lu_factorisations();
   const RunSummary s = sim.run();
-  return {s.steps, s.outer_iterations, s.steps_outer_unconverged, gather_to_root(sim.grid(), sim.flow().velocity(0)),
+  return {s.steps, s.outer_iterations, s.steps_outer_unconverged, test::lu_factorisations() - factorisations_before,
+          gather_to_root(sim.grid(), sim.flow().velocity(0)),
           gather_to_root(sim.grid(), sim.flow().velocity(1)), s.soil_volume_error};
 }
 
@@ -94,11 +97,15 @@ TEST(OuterIteration, LaterIterationOnTheFirstFactorisationKeepsTheVolumeAndTheFl
                 first = run_collapse("numerics.later_iterations=\"first_factorisation\"", 2);
   EXPECT_LT(std::abs(own.volume_error), 1e-13);
   EXPECT_LT(std::abs(first.volume_error), 1e-13);
+  // One factorisation per outer iteration, against one per step (two iterations each).
+  EXPECT_EQ(own.factorisations, own.outer_iterations);
+  EXPECT_EQ(2 * first.factorisations, first.outer_iterations);
   if (!test::is_root()) return;
   const Difference d = velocity_difference(own, first);
   std::printf("later iteration by its own / the first factorisation: collapse 30 x 10 to t = 0.06 s: soil volume "
-              "error %.1e / %.1e, %ld / %ld steps, largest velocity difference %.2e m/s of %.3f m/s\n",
-              own.volume_error, first.volume_error, own.steps, first.steps, d.largest, d.scale);
+              "error %.1e / %.1e, %ld / %ld steps, %ld / %ld factorisations, largest velocity difference %.2e m/s "
+              "of %.3f m/s\n", own.volume_error, first.volume_error, own.steps, first.steps, own.factorisations,
+              first.factorisations, d.largest, d.scale);
   EXPECT_GT(d.largest, 0.0);  // the setting is in effect
   EXPECT_LT(d.largest, 0.05 * d.scale);
 }

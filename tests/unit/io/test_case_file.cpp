@@ -372,6 +372,35 @@ TEST(CaseFile, KeysWithoutEffectAreListed) {
   EXPECT_NE(soil.keys_without_effect[0].find("soil.failure_strain"), std::string::npos);
 }
 
+// The later outer iterations by the first one's factorisation: warned of where nothing uses them,
+// refused where the factorisation would not be the first iteration's own exact LU.
+TEST(CaseFile, FirstFactorisationIsWarnedOfWhereUnusedAndRefusedWhereInexact) {
+  const std::string coupled = "numerics.pressure_coupling=coupled";
+  const std::string first = "numerics.later_iterations=first_factorisation";
+  EXPECT_TRUE(parse_case(minimal, {coupled, first, "numerics.krylov_iterations=3"}).keys_without_effect.empty());
+  EXPECT_TRUE(parse_case(minimal, {coupled, first}).flow.numerics.reuse_first_factorisation);
+  const CaseConfig projection = parse_case(minimal, {first});
+  ASSERT_EQ(projection.keys_without_effect.size(), 1u);
+  EXPECT_NE(projection.keys_without_effect[0].find("numerics.later_iterations: used only with numerics.pressure_coupling"),
+            std::string::npos) << projection.keys_without_effect[0];
+  EXPECT_FALSE(projection.flow.numerics.reuse_first_factorisation);
+  const CaseConfig one = parse_case(minimal, {coupled, first, "numerics.outer_iterations=1", "numerics.krylov_iterations=3"});
+  ASSERT_EQ(one.keys_without_effect.size(), 2u);
+  EXPECT_NE(one.keys_without_effect[0].find("numerics.later_iterations: \"first_factorisation\" has no effect with "
+                                            "numerics.outer_iterations = 1"), std::string::npos) << one.keys_without_effect[0];
+  EXPECT_NE(one.keys_without_effect[1].find("numerics.krylov_iterations: used only with"), std::string::npos)
+      << one.keys_without_effect[1];
+  const CaseConfig own = parse_case(minimal, {coupled, "numerics.krylov_iterations=3"});
+  ASSERT_EQ(own.keys_without_effect.size(), 1u);
+  EXPECT_NE(own.keys_without_effect[0].find("numerics.krylov_iterations"), std::string::npos);
+  const std::string amg = error_of(minimal, {coupled, first, "solver.coupled.pc_type=\"hypre\""});
+  EXPECT_NE(amg.find("needs solver.coupled.pc_type = \"lu\" or \"redundant\" (it is \"hypre\")"), std::string::npos) << amg;
+  const std::string reused = error_of(minimal, {coupled, first, "solver.coupled.reuse_preconditioner=2"});
+  EXPECT_NE(reused.find("needs solver.coupled.reuse_preconditioner = 1"), std::string::npos) << reused;
+  EXPECT_NE(error_of(minimal, {coupled, first, "numerics.krylov_iterations=0"}).find("numerics.krylov_iterations"),
+            std::string::npos);
+}
+
 // A key that another choice of the case leaves unused says which choice, not "unknown key"; a
 // misspelt [soil.rheology] is named as such, not as a missing soil.viscosity.
 TEST(CaseFile, KeysOfAnotherChoiceAndAMisspeltRheologyAreNamed) {

@@ -7,8 +7,10 @@
 #include <algorithm>
 #include <cmath>
 #include <random>
+#include <string>
 #include <vector>
 
+#include "../../lu_factorisations.hpp"
 #include "solver/divergence_error.hpp"
 #include "solver/linear_solver.hpp"
 
@@ -139,6 +141,37 @@ TEST(LinearSolver, SolveByLastFactorisationConvergesToTheNewOperatorsSolution) {
   EXPECT_LT(difference, 1e-9 * size);
   VecDestroy(&reused);
   VecDestroy(&exact);
+}
+
+// The later solve factorises nothing, with LU and with a redundant solve's LU (on one rank the
+// latter factorises the operator itself, whose values have changed); the next solve() does.
+TEST(LinearSolver, SolveByLastFactorisationFactorisesNothing) {
+  PetscOptionsSetValue(nullptr, "-unit_redundant_redundant_pc_factor_mat_solver_type", "mumps");
+  for (const char* pc_type : {"lu", "redundant"}) {
+    Saddle s;
+    LinearSolverSettings settings = direct();
+    settings.pc_type = pc_type;
+    LinearSolver solver(PETSC_COMM_SELF, std::string("unit_") + pc_type, settings);
+    fill(s.a, s.first_mu);
+    Vec b = rhs(1.0), x;
+    VecDuplicate(b, &x);
+    VecSet(x, 0.0);
+    solver.set_operator(s.a);
+    const int before = test::lu_factorisations();
+    solver.solve(b, x);
+    EXPECT_EQ(test::lu_factorisations(), before + 1) << pc_type;
+    fill(s.a, s.later_mu);
+    solver.solve_by_last_factorisation(b, x, 2);
+    EXPECT_EQ(test::lu_factorisations(), before + 1) << pc_type << ": the later solve factorised";
+    const auto [constraint, all] = residuals(s.a, x, b);
+    EXPECT_LT(constraint, 1e-13) << pc_type;
+    solver.set_operator(s.a);
+    solver.solve(b, x);
+    EXPECT_EQ(test::lu_factorisations(), before + 2) << pc_type << ": solve() did not factorise the new values";
+    EXPECT_LT(residuals(s.a, x, b).second, 1e-10 * all + 1e-12) << pc_type;
+    VecDestroy(&b);
+    VecDestroy(&x);
+  }
 }
 
 TEST(LinearSolver, SolveByLastFactorisationNeedsOne) {
