@@ -3,9 +3,8 @@
 // MUMPS orders each new matrix pattern with PORD (Debian's MUMPS has no METIS), and PORD times its
 // own phases with clock(), some 17 000 calls per analysis of the Bui et al. collapse at 300 x 100.
 // glibc's clock() reads the process's CPU time, which has no user-space (vDSO) path: each call is a
-// system call, and together they were three quarters of an analysis (73 ms of 1.32 s for 18
-// analyses against 19 ms with this clock; docs/benchmarks.md). Nothing in granflow reads those
-// timings. This definition, exported by the executable (CMakeLists.txt), takes the place of glibc's
+// system call, and together they were three quarters of an analysis: 73 ms an analysis with glibc's
+// clock, 19 ms with this one (docs/benchmarks.md). Nothing in granflow reads those timings. This definition, exported by the executable (CMakeLists.txt), takes the place of glibc's
 // for every library loaded with it; it counts microseconds of the coarse monotonic clock, which the
 // kernel maps into user space, since the first call. It is wall time, not CPU time: the timings the
 // libraries keep for themselves include the time a rank waits. Results do not change (one rank:
