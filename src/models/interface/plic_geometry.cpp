@@ -15,6 +15,62 @@ Normal2 normalise_l1(double mx, double my) {
 
 double sign_or_zero(double v) { return v > 0.0 ? 1.0 : (v < 0.0 ? -1.0 : 0.0); }
 
+// The part of a rectangle on the soil side of a line, about the rectangle's centre (which keeps the
+// moments free of cancellation): its area, its first moment in X, and the line's chord through the
+// rectangle (length, and the integral of X along it).
+struct ClippedRectangle {
+  double area = 0.0;
+  double moment_x = 0.0;
+  double chord = 0.0;
+  double chord_x = 0.0;
+};
+
+ClippedRectangle clip_rectangle(Normal2 n, double alpha, double hx, double hy) {
+  ClippedRectangle out;
+  const double reach = std::abs(n.nx) * hx + std::abs(n.ny) * hy;
+  if (alpha <= -reach) return out;
+  if (alpha >= reach) {
+    out.area = 4.0 * hx * hy;
+    return out;
+  }
+  // One Sutherland-Hodgman pass against n.X <= alpha over the corners taken anticlockwise.
+  const double px[4] = {-hx, hx, hx, -hx}, py[4] = {-hy, -hy, hy, hy};
+  double qx[6], qy[6], ex[2] = {0.0, 0.0}, ey[2] = {0.0, 0.0};
+  int m = 0, crossings = 0;
+  for (int k = 0; k < 4; ++k) {
+    const int l = (k + 1) % 4;
+    const double da = n.nx * px[k] + n.ny * py[k] - alpha, db = n.nx * px[l] + n.ny * py[l] - alpha;
+    if (da <= 0.0) {
+      qx[m] = px[k];
+      qy[m++] = py[k];
+    }
+    if ((da < 0.0 && db > 0.0) || (da > 0.0 && db < 0.0)) {
+      const double t = da / (da - db);
+      qx[m] = px[k] + t * (px[l] - px[k]);
+      qy[m] = py[k] + t * (py[l] - py[k]);
+      if (crossings < 2) {
+        ex[crossings] = qx[m];
+        ey[crossings++] = qy[m];
+      }
+      ++m;
+    }
+  }
+  double twice_area = 0.0, six_moment = 0.0;
+  for (int k = 0; k < m; ++k) {
+    const int l = (k + 1) % m;
+    const double cross = qx[k] * qy[l] - qx[l] * qy[k];
+    twice_area += cross;
+    six_moment += (qx[k] + qx[l]) * cross;
+  }
+  out.area = 0.5 * twice_area;
+  out.moment_x = six_moment / 6.0;
+  if (crossings == 2) {
+    out.chord = std::hypot(ex[1] - ex[0], ey[1] - ey[0]);
+    out.chord_x = out.chord * 0.5 * (ex[0] + ex[1]);
+  }
+  return out;
+}
+
 }  // namespace
 
 double unit_square_fraction(double mx, double my, double a) {
@@ -69,7 +125,38 @@ double rectangle_fraction(Normal2 n, double alpha, double x0, double x1, double 
   return unit_square_fraction(n.nx * (x1 - x0), n.ny * (y1 - y0), alpha - n.nx * x0 - n.ny * y0);
 }
 
-CellLine cell_line(const Block3x3& b) {
+double weighted_rectangle_fraction(Normal2 n, double alpha, double rho, double x0, double x1, double y0,
+                                   double y1) {
+  const double xm = 0.5 * (x0 + x1), ym = 0.5 * (y0 + y1), hx = 0.5 * (x1 - x0), hy = 0.5 * (y1 - y0);
+  if (!(hx > 0.0 && hy > 0.0)) return 0.0;
+  const ClippedRectangle part = clip_rectangle(n, alpha - n.nx * xm - n.ny * ym, hx, hy);
+  const double weight = rho + xm;  // r / dx at the rectangle's centre
+  const double f = (part.area + part.moment_x / weight) / (4.0 * hx * hy);
+  return std::clamp(f, 0.0, 1.0);
+}
+
+double weighted_line_alpha(double c, Normal2 n, double rho) {
+  if (c <= 0.0) return -0.5;
+  if (c >= 1.0) return 0.5;
+  // Newton on the weighted share (a piecewise cubic, increasing in alpha) from the planar line,
+  // kept inside a bracket that bisects where a step would leave it or the chord vanishes.
+  const double norm = std::hypot(n.nx, n.ny);
+  double lo = -0.5, hi = 0.5, alpha = line_alpha(c, n);
+  for (int k = 0; k < 60; ++k) {
+    const ClippedRectangle part = clip_rectangle(n, alpha, 0.5, 0.5);
+    const double r = part.area + part.moment_x / rho - c;
+    if (std::abs(r) <= 1e-16) break;
+    (r > 0.0 ? hi : lo) = alpha;
+    const double slope = (part.chord + part.chord_x / rho) / norm;
+    double next = slope > 0.0 ? alpha - r / slope : 0.5 * (lo + hi);
+    if (!(next > lo && next < hi)) next = 0.5 * (lo + hi);
+    if (next == alpha) break;
+    alpha = next;
+  }
+  return alpha;
+}
+
+CellLine cell_line(const Block3x3& b, double rho) {
   double lo = b.c[0][0], hi = b.c[0][0];
   for (const auto& row : b.c)
     for (const double v : row) {
@@ -79,7 +166,7 @@ CellLine cell_line(const Block3x3& b) {
   if (hi - lo < 1e-8) return {};
   const Normal2 n = myc_normal(b);
   if (n.nx == 0.0 && n.ny == 0.0) return {};
-  return {true, n, line_alpha(b.c[1][1], n)};
+  return {true, n, rho > 0.0 ? weighted_line_alpha(b.c[1][1], n, rho) : line_alpha(b.c[1][1], n)};
 }
 
 double side_fraction(Normal2 n, double alpha, int axis, int sign) {

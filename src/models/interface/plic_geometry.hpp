@@ -50,7 +50,8 @@ struct CellLine {
   Normal2 n;
   double alpha = 0.0;
 };
-CellLine cell_line(const Block3x3& b);
+// With rho > 0 (an axisymmetric cell, below) alpha holds c as the share of the radius-weighted area.
+CellLine cell_line(const Block3x3& b, double rho = 0.0);
 
 // Youngs' normal: -grad c averaged over the four corners of the centre cell. Exact for lines
 // aligned with the grid axes or diagonals, first order otherwise.
@@ -85,6 +86,22 @@ double rectangle_fraction(Normal2 n, double alpha, double x0, double x1, double 
 // to `axis` (0 = x, 1 = y) at X or Y = sign * 0.5 (sign = -1 or +1). A side the line only touches
 // counts as soil if the soil lies along it (n.X * X + n.Y * Y <= alpha everywhere on it).
 double side_fraction(Normal2 n, double alpha, int axis, int sign);
+
+// Radius-weighted geometry of an axisymmetric cell (x = r). In the cell's scaled coordinates the
+// radius is r = dx (rho + X), with rho = r_c / dx >= 0.5 (0.5 for a cell on the axis), and the
+// cell's volume per radian is dx^2 dy times the integral of (rho + X) over the unit cell, rho. Its c is
+// the soil's share of that volume ([YS] Sec. 4's wedge), so the line holding c lies further out than
+// the planar one where the soil is on the axis side: soil nearer the axis weighs less.
+//
+// Share of the radius-weighted area of [x0, x1] x [y0, y1] (in [-0.5, 0.5]^2) lying on the soil side
+// of the line, relative to the sub-rectangle's own weighted area. rho >= 0.5.
+double weighted_rectangle_fraction(Normal2 n, double alpha, double rho, double x0, double x1, double y0,
+                                   double y1);
+
+// Line constant alpha such that the soil side of the line holds the share c of the cell's
+// radius-weighted area (the inverse of weighted_rectangle_fraction over the whole cell), to 1e-15 in
+// the share. n as for line_alpha; c is clamped to [0, 1]; rho >= 0.5.
+double weighted_line_alpha(double c, Normal2 n, double rho);
 
 // Area fraction of the unit square [0,1]^2 where mx*X + my*Y <= a (any signs, any magnitudes,
 // not necessarily normalised). Exact, cancellation-free piecewise formula; building block of the

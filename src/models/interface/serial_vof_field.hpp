@@ -51,6 +51,7 @@ class SerialVofField {
   // Axisymmetric (x = r >= 0, y = z): radius-weighted x-fluxes and volumes; the stream function of
   // set_velocity_from_stream_function is then Stokes's (r u_r = dpsi/dz, r u_z = -dpsi/dr).
   void set_axisymmetric(bool on);
+  RadialWeights radial() const;  // the sweeps' radius weights (none when planar)
   void fill_ghosts() { fill_ghosts(c_); }
 
   // Face velocities u = dpsi/dy, v = -dpsi/dx from psi sampled at cell corners: the discrete
@@ -79,7 +80,6 @@ class SerialVofField {
   GhostedArray2 c_, tmp_, cc_, ux_, uy_;
   VofBoundary bc_ = VofBoundary::ZeroGradient;
   std::vector<double> r_face_, r_centre_;  // empty in planar geometry
-  RadialWeights radial() const;
   double volume(int i, int j) const;
   long steps_ = 0;
 };

@@ -28,8 +28,11 @@ using granflow::CellBox;
 // Radius weights of an axisymmetric (r-z, x = r) mesh, ghost-offset like dx: face[i] is the radius of
 // cell i's east face, centre[i] that of its centre. Fluxes through x-faces are multiplied by the face
 // radius and the update divided by the centre radius (the cell volume is r_c dr dz per radian), which
-// keeps sum(c r_c dr dz) conserved; the flux polygon itself is the planar one (as in Basilisk's axi).
-// Both null: planar.
+// keeps sum(c r_c dr dz) conserved. c is the soil's share of the cell's volume, so the donor's line is
+// placed to hold c of the radius-weighted area, the flux is the radius-weighted soil in the swept strip,
+// and an x-strip's width is that of the face's swept volume r_f u dt (wider than u dt by the outer
+// face, narrower by the inner): the soil a strip carries is what it takes from its cell, and the sweep
+// stays bounded as the planar one does (plic_geometry.hpp, weighted_*). Both null: planar.
 struct RadialWeights {
   const double* face = nullptr;
   const double* centre = nullptr;

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <numbers>
 #include <random>
@@ -277,6 +278,66 @@ TEST(PlicGeometry, SideFractionIsTheLimitOfAThinStrip) {
   EXPECT_EQ(side_fraction(diagonal, 0.0, 1, -1), 1.0);
   EXPECT_EQ(side_fraction(diagonal, 0.0, 0, -1), 1.0);
   EXPECT_EQ(side_fraction(diagonal, 0.0, 1, +1), 0.0);
+}
+
+// --- radius-weighted geometry (axisymmetric cells, r = dx (rho + X)) ---------------------------
+
+// Reference: the weighted integral as a sum over thin slices across X, each slice's soil area exact
+// (the planar rectangle_fraction) and weighted by its mid radius; the slices' error is O(1/N^2).
+double sliced_weighted_fraction(Normal2 n, double alpha, double rho, double x0, double x1, double y0, double y1) {
+  const int slices = 4000;
+  const double w = (x1 - x0) / slices;
+  double soil = 0.0, total = 0.0;
+  for (int k = 0; k < slices; ++k) {
+    const double xa = x0 + k * w, weight = rho + xa + 0.5 * w;
+    soil += weight * w * rectangle_fraction(n, alpha, xa, xa + w, y0, y1);
+    total += weight * w;
+  }
+  return soil / total;
+}
+
+TEST(PlicGeometry, WeightedFractionIsTheRadiusWeightedShare) {
+  std::mt19937_64 rng(2024);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  int compared = 0;
+  for (const double rho : {0.5, 0.8, 3.0, 50.0})
+    for (const Normal2 n : test_normals(rng, 40)) {
+      const double alpha = line_alpha(u(rng), n);
+      double xa = u(rng) - 0.5, xb = u(rng) - 0.5, ya = u(rng) - 0.5, yb = u(rng) - 0.5;
+      if (xa > xb) std::swap(xa, xb);
+      if (ya > yb) std::swap(ya, yb);
+      if (xb - xa < 1e-3 || yb - ya < 1e-3) continue;
+      for (const auto& [x0, x1, y0, y1] : {std::array{-0.5, 0.5, -0.5, 0.5}, std::array{xa, xb, ya, yb}}) {
+        EXPECT_NEAR(weighted_rectangle_fraction(n, alpha, rho, x0, x1, y0, y1),
+                    sliced_weighted_fraction(n, alpha, rho, x0, x1, y0, y1), 1e-7)
+            << "rho " << rho << ", n = (" << n.nx << ", " << n.ny << "), alpha " << alpha;
+        ++compared;
+      }
+    }
+  EXPECT_GT(compared, 250);
+  // Far from the axis the weights are nearly uniform: the planar fraction to O(1/rho).
+  const Normal2 n = from_angle(0.4);
+  const double alpha = line_alpha(0.3, n);
+  EXPECT_NEAR(weighted_rectangle_fraction(n, alpha, 1e6, -0.5, 0.5, -0.5, 0.5), 0.3, 1e-6);
+  // Pure rectangles are exactly pure.
+  EXPECT_EQ(weighted_rectangle_fraction({1.0, 0.0}, 0.6, 0.5, -0.5, 0.5, -0.5, 0.5), 1.0);
+  EXPECT_EQ(weighted_rectangle_fraction({1.0, 0.0}, -0.6, 0.5, -0.5, 0.5, -0.5, 0.5), 0.0);
+}
+
+TEST(PlicGeometry, WeightedAlphaHoldsTheCellsShare) {
+  std::mt19937_64 rng(99);
+  for (const double rho : {0.5, 0.6, 2.5, 1e3})
+    for (const Normal2 n : test_normals(rng, 200))
+      for (const double c : test_fractions(rng, 20)) {
+        const double alpha = weighted_line_alpha(c, n, rho);
+        EXPECT_NEAR(weighted_rectangle_fraction(n, alpha, rho, -0.5, 0.5, -0.5, 0.5), c, 4e-16)
+            << "rho " << rho << ", n = (" << n.nx << ", " << n.ny << "), c " << c;
+      }
+  // A vertical interface in the cell on the axis (rho = 0.5, r = dx (0.5 + X)), soil towards the axis:
+  // a quarter of the cell's volume is the soil out to r = dx/2, the cell's middle (planar: X = -0.25).
+  EXPECT_NEAR(weighted_line_alpha(0.25, {1.0, 0.0}, 0.5), 0.0, 1e-15);
+  // Soil away from the axis: three quarters of the volume lie beyond r = dx/2.
+  EXPECT_NEAR(weighted_line_alpha(0.75, {-1.0, 0.0}, 0.5), 0.0, 1e-15);
 }
 
 }  // namespace
