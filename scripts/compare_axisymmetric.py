@@ -24,7 +24,7 @@ import sys
 
 import numpy as np
 
-from granflow_files import InputError, main_with_errors, one_cell_columns, one_cell_toe, read_csv
+from granflow_files import InputError, main_with_errors, one_cell_columns, one_cell_toe, read_csv, read_vtr
 
 MODELS = {"drucker_prager": ("Drucker-Prager", "C0", "-"), "mohr_coulomb": ("Mohr-Coulomb", "C3", "--"),
           "matsuoka_nakai": ("Matsuoka-Nakai", "C2", ":")}  # label, colour, line style (lode_dissipation.png)
@@ -54,23 +54,6 @@ def stamp_at(times, t):
     """The output nearest to time t (None if none within 1 ms)."""
     s = min(times, key=lambda k: abs(times[k] - t), default=None)
     return s if s is not None and abs(times[s] - t) < 1e-3 else None
-
-
-def read_vtr(path):
-    """ASCII VTK RectilinearGrid: node coordinates x, y and cell arrays shaped (ny, nx[, ncomp])."""
-    text = open(path).read()
-    arrays = {}
-    for attrs, body in re.findall(r"<DataArray([^>]*)>([^<]*)</DataArray>", text):
-        if 'format="ascii"' not in attrs:
-            raise ValueError(f"{path}: only ASCII data arrays are read")
-        name = re.search(r'Name="([^"]+)"', attrs).group(1)
-        ncomp = int((re.search(r'NumberOfComponents="(\d+)"', attrs) or [0, 1])[1])
-        arrays[name] = (np.array(body.split(), dtype=float), ncomp)
-    x, y = arrays.pop("x")[0], arrays.pop("y")[0]
-    nx, ny = len(x) - 1, len(y) - 1
-    cells = {n: v.reshape(ny, nx, c) if c > 1 else v.reshape(ny, nx)
-             for n, (v, c) in arrays.items() if v.size == nx * ny * c}
-    return x, y, cells
 
 
 def polylines(seg, tol=1e-7):

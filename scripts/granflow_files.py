@@ -1,9 +1,11 @@
-"""Reading granflow's CSV output and the reference data, for the comparison scripts.
+"""Reading granflow's output (CSV tables, VTK fields) and the reference data, for the comparison scripts.
 
 A missing or malformed file is an InputError naming the file; `main_with_errors` turns it (and any
 unreadable file) into one line `error: ...` and exit status 1 instead of a traceback.
 """
+import re
 import sys
+import zlib
 
 import numpy as np
 
@@ -62,6 +64,42 @@ def require_initial_volume(history, path, expected, what):
     if abs(volume / expected - 1) > 0.02:
         raise InputError(f"{path}: the run's initial volume is {volume:.6g}, not the {expected:.6g} of {what}; "
                          "a run of another case?")
+
+
+def read_vtr(path):
+    """VTK RectilinearGrid as granflow writes it: node coordinates x, y and cell arrays shaped
+    (ny, nx[, ncomp]). Cell arrays are zlib-compressed in the appended section (header_type UInt64);
+    files written before that hold them as text, and are read too."""
+    try:
+        with open(path, "rb") as f:
+            raw = f.read()
+    except OSError as e:
+        raise InputError(f"cannot read {path}: {e.strerror}")
+    head, _, appended = raw.partition(b'<AppendedData encoding="raw">')
+    text = head.decode()
+    blob = appended[appended.index(b"_") + 1:] if appended else b""
+    arrays = {}
+    for attrs, body in re.findall(r"<DataArray([^>]*?)(?:/>|>([^<]*)</DataArray>)", text):
+        name = re.search(r'Name="([^"]+)"', attrs).group(1)
+        ncomp = int((re.search(r'NumberOfComponents="(\d+)"', attrs) or [0, 1])[1])
+        if 'format="ascii"' in attrs:
+            arrays[name] = (np.array(body.split(), dtype=float), ncomp)
+        elif 'format="appended"' in attrs:
+            at = int(re.search(r'offset="(\d+)"', attrs).group(1))
+            blocks = int(np.frombuffer(blob, "<u8", 1, at)[0])
+            sizes = np.frombuffer(blob, "<u8", blocks, at + 24)
+            start, parts = at + 8 * (3 + blocks), []
+            for size in sizes:
+                parts.append(zlib.decompress(blob[start:start + int(size)]))
+                start += int(size)
+            arrays[name] = (np.frombuffer(b"".join(parts), "<f8"), ncomp)
+        else:
+            raise InputError(f"{path}: array {name} is neither text nor appended")
+    x, y = arrays.pop("x")[0], arrays.pop("y")[0]
+    nx, ny = len(x) - 1, len(y) - 1
+    cells = {n: v.reshape(ny, nx, c) if c > 1 else v.reshape(ny, nx)
+             for n, (v, c) in arrays.items() if v.size == nx * ny * c}
+    return x, y, cells
 
 
 def main_with_errors(main):

@@ -1,6 +1,7 @@
 #pragma once
 // ParaView time series: one VTK XML rectilinear-grid file (.vtr) per output time with cell data,
-// indexed by a .pvd collection that is rewritten whole after each file.
+// indexed by a .pvd collection that is rewritten whole after each file. The cell data are binary,
+// zlib-compressed, in the file's appended section (exact doubles); coordinates and time are text.
 #include <filesystem>
 #include <string>
 #include <utility>
@@ -15,6 +16,10 @@ struct CellData {
   int components = 1;          // 1 (scalar) or 3 (vector, xyz interleaved)
   std::vector<double> values;  // natural order, size cells * components
 };
+
+// One array in VTK's compressed binary layout (header_type UInt64, vtkZLibDataCompressor): the header
+// of block sizes, then the zlib blocks. What follows "_" in the appended section, per array.
+std::string vtk_compressed_array(const std::vector<double>& values);
 
 class VtkSeries {
  public:
