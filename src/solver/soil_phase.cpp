@@ -221,7 +221,7 @@ void SoilPhase::update_face_viscosity(FlowSolver& flow) const {
           // The face's own soil fraction: how much of it the cell's soil covers. A film on the floor
           // covers all of the floor under it, so the floor rubs on soil, not on the air mixture.
           const double cf = face_fraction ? interface::wetted_side_fraction(c.data(), grid_.dx_data(), grid_.dy_data(),
-                                                                            i, j, axis, sign)
+                                                                            i, j, axis, sign, grid_.radius_centre_data())
                                           : c[j][i];
           const auto& bc = obstacle ? obstacle_wall : boundary(flow_settings_.boundaries, side_of(axis, sign));
           const auto rate = quadratic_wall && bc.kind != BoundaryKind::atmosphere

@@ -103,6 +103,11 @@ double weighted_rectangle_fraction(Normal2 n, double alpha, double rho, double x
 // the share. n as for line_alpha; c is clamped to [0, 1]; rho >= 0.5.
 double weighted_line_alpha(double c, Normal2 n, double rho);
 
+// Share of side (axis, sign) of an axisymmetric cell lying on the soil side of the line, the side's
+// points weighted by their radius: for a side normal to y, the share of its area (the integral of r
+// over it); a side normal to x lies at one radius, and its share is side_fraction's. rho >= 0.5.
+double weighted_side_fraction(Normal2 n, double alpha, int axis, int sign, double rho);
+
 // Area fraction of the unit square [0,1]^2 where mx*X + my*Y <= a (any signs, any magnitudes,
 // not necessarily normalised). Exact, cancellation-free piecewise formula; building block of the
 // functions above.

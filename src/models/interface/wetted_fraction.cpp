@@ -5,10 +5,15 @@
 namespace granflow::interface {
 
 double wetted_side_fraction(const double* const* c, const double* dx, const double* dy, int i, int j,
-                            int axis, int sign) {
+                            int axis, int sign, const double* radius_centre) {
   const double cc = c[j][i];
   if (cc <= 0.0) return 0.0;
   if (cc >= 1.0) return 1.0;
+  const double rho = radius_centre != nullptr ? radius_centre[i] / dx[i] : 0.0;
+  if (rho >= 0.5) {
+    const CellLine line = cell_line(gather_block(c, dx, dy, i, j), rho);
+    return line.found ? weighted_side_fraction(line.n, line.alpha, axis, sign, rho) : cc;
+  }
   const CellLine line = cell_line(gather_block(c, dx, dy, i, j));
   return line.found ? side_fraction(line.n, line.alpha, axis, sign) : cc;
 }

@@ -12,7 +12,9 @@ namespace granflow::interface {
 // Why: the soil fraction of a wall face is what decides whether the wall rubs on soil or on air. The
 // cell's own c says a film one tenth of a cell thick on the floor is one tenth soil, but all of the
 // floor under it is soil.
+// With `radius_centre` (an axisymmetric mesh's centre radii, indexed like dx) the line holds c of the
+// radius-weighted area, and a side normal to y counts its points by their radius (plic_geometry.hpp).
 double wetted_side_fraction(const double* const* c, const double* dx, const double* dy, int i, int j,
-                            int axis, int sign);
+                            int axis, int sign, const double* radius_centre = nullptr);
 
 }  // namespace granflow::interface

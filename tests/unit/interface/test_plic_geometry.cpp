@@ -340,5 +340,24 @@ TEST(PlicGeometry, WeightedAlphaHoldsTheCellsShare) {
   EXPECT_NEAR(weighted_line_alpha(0.75, {-1.0, 0.0}, 0.5), 0.0, 1e-15);
 }
 
+// A side's weighted share is the limit of the weighted share of a thin strip along it.
+TEST(PlicGeometry, WeightedSideFractionIsTheLimitOfAThinStrip) {
+  std::mt19937_64 rng(11);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  const double eps = 1e-7;
+  for (const double rho : {0.5, 0.9, 7.0})
+    for (const Normal2 n : test_normals(rng, 200)) {
+      const double alpha = weighted_line_alpha(u(rng), n, rho);
+      const double strip[2][2] = {{weighted_rectangle_fraction(n, alpha, rho, -0.5, -0.5 + eps, -0.5, 0.5),
+                                   weighted_rectangle_fraction(n, alpha, rho, 0.5 - eps, 0.5, -0.5, 0.5)},
+                                  {weighted_rectangle_fraction(n, alpha, rho, -0.5, 0.5, -0.5, -0.5 + eps),
+                                   weighted_rectangle_fraction(n, alpha, rho, -0.5, 0.5, 0.5 - eps, 0.5)}};
+      for (int axis = 0; axis < 2; ++axis)
+        for (int k = 0; k < 2; ++k)
+          EXPECT_NEAR(weighted_side_fraction(n, alpha, axis, 2 * k - 1, rho), strip[axis][k], 1e-5)
+              << "rho " << rho << ", n = (" << n.nx << ", " << n.ny << "), axis " << axis;
+    }
+}
+
 }  // namespace
 }  // namespace granflow::interface
