@@ -90,8 +90,8 @@ double side_fraction(Normal2 n, double alpha, int axis, int sign);
 // Radius-weighted geometry of an axisymmetric cell (x = r). In the cell's scaled coordinates the
 // radius is r = dx (rho + X), with rho = r_c / dx >= 0.5 (0.5 for a cell on the axis), and the
 // cell's volume per radian is dx^2 dy times the integral of (rho + X) over the unit cell, rho. Its c is
-// the soil's share of that volume ([YS] Sec. 4's wedge), so the line holding c lies further out than
-// the planar one where the soil is on the axis side: soil nearer the axis weighs less.
+// the soil's share of that volume, so the line holding c lies further out than the planar one where
+// the soil is on the axis side: soil nearer the axis weighs less.
 //
 // Share of the radius-weighted area of [x0, x1] x [y0, y1] (in [-0.5, 0.5]^2) lying on the soil side
 // of the line, relative to the sub-rectangle's own weighted area. rho >= 0.5.
@@ -99,8 +99,8 @@ double weighted_rectangle_fraction(Normal2 n, double alpha, double rho, double x
                                    double y1);
 
 // Line constant alpha such that the soil side of the line holds the share c of the cell's
-// radius-weighted area (the inverse of weighted_rectangle_fraction over the whole cell), to 1e-15 in
-// the share. n as for line_alpha; c is clamped to [0, 1]; rho >= 0.5.
+// radius-weighted area (the inverse of weighted_rectangle_fraction over the whole cell), to about 1e-16
+// in the share. n as for line_alpha; c is clamped to [0, 1]; rho >= 0.5.
 double weighted_line_alpha(double c, Normal2 n, double rho);
 
 // Share of side (axis, sign) of an axisymmetric cell lying on the soil side of the line, the side's
