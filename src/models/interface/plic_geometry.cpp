@@ -179,19 +179,13 @@ double side_fraction(Normal2 n, double alpha, int axis, int sign) {
 }
 
 double weighted_side_fraction(Normal2 n, double alpha, int axis, int sign, double rho) {
-  if (axis == 0) return side_fraction(n, alpha, axis, sign);
-  // Along the side (normal to y) X runs over [-0.5, 0.5] and the soil is where n.nx X <= b.
-  const double b = alpha - 0.5 * sign * n.ny;
-  double lo = -0.5, hi = 0.5;
-  if (n.nx > 0.0)
-    hi = std::clamp(b / n.nx, -0.5, 0.5);
-  else if (n.nx < 0.0)
-    lo = std::clamp(b / n.nx, -0.5, 0.5);
-  else if (b < 0.0)
-    return 0.0;
-  if (!(hi > lo)) return 0.0;
-  // The integral of (rho + X) over [lo, hi], over rho, the side's.
-  return std::clamp((hi - lo) * (rho + 0.5 * (lo + hi)) / rho, 0.0, 1.0);
+  const double f = side_fraction(n, alpha, axis, sign);
+  if (axis == 0) return f;
+  // Along a side normal to y the covered length f starts at the end the soil lies towards: X = -0.5
+  // where the normal points to +X, X = 0.5 where it points to -X. Its share is the integral of
+  // (rho + X) over it, over rho, the side's.
+  const double lo = n.nx < 0.0 ? 0.5 - f : -0.5;
+  return std::clamp(f * (rho + lo + 0.5 * f) / rho, 0.0, 1.0);
 }
 
 Normal2 to_physical(Normal2 n, double dx, double dy) { return normalise_l1(n.nx / dx, n.ny / dy); }

@@ -10,12 +10,10 @@ double wetted_side_fraction(const double* const* c, const double* dx, const doub
   if (cc <= 0.0) return 0.0;
   if (cc >= 1.0) return 1.0;
   const double rho = radius_centre != nullptr ? radius_centre[i] / dx[i] : 0.0;
-  if (rho >= 0.5) {
-    const CellLine line = cell_line(gather_block(c, dx, dy, i, j), rho);
-    return line.found ? weighted_side_fraction(line.n, line.alpha, axis, sign, rho) : cc;
-  }
-  const CellLine line = cell_line(gather_block(c, dx, dy, i, j));
-  return line.found ? side_fraction(line.n, line.alpha, axis, sign) : cc;
+  const bool weighted = rho >= 0.5;
+  const CellLine line = cell_line(gather_block(c, dx, dy, i, j), weighted ? rho : 0.0);
+  if (!line.found) return cc;
+  return weighted ? weighted_side_fraction(line.n, line.alpha, axis, sign, rho) : side_fraction(line.n, line.alpha, axis, sign);
 }
 
 }  // namespace granflow::interface

@@ -95,9 +95,9 @@ TEST(VofSweep, PlaneInterfaceFluxesAreExact) {
 
 // An axisymmetric cell gives away no more soil than it holds, nor air. Unit cells from the axis, soil
 // filling cell 3 (r in [3, 4]) beyond r = 3.8 and the cells outside it, or the reverse, flowing out
-// at u = 0.3 (the two cells at the axis still). The strip by the face at r = 4 sweeps the face's volume r_f u dt = 1.2 from r = 3.69
-// outwards, so it takes all of cell 3's soil (or air), 0.78 of its 3.5: the cell is left exactly
-// empty (full). A planar strip, r_f times the planar sliver of 0.223, took 0.89 and left -0.032.
+// at u = 0.3 (the two cells at the axis still). The strip by the face at r = 4 sweeps the face's
+// volume r_f u dt = 1.2 from r = 3.69 outwards, so it takes all of cell 3's soil (or air), 0.78 of
+// its 3.5: the cell is left exactly empty (full). A planar strip, r_f times the planar sliver of 0.223, took 0.89 and left -0.032.
 TEST(VofSweep, AxisymmetricCellGivesAwayNoMoreThanItHolds) {
   for (const bool soil_outside : {true, false}) {
     SerialVofField f(8, 4, 8.0, 4.0);
