@@ -67,8 +67,8 @@ int main(int argc, char** argv) {
   run->add_option("--petsc", petsc_options, "options passed to PETSc, e.g. --petsc=-pressure_ksp_monitor")
       ->allow_extra_args(false);
   auto* restart_flag = run->add_flag("--restart", restart,
-                "continue from the checkpoint in the output directory (written at each output time; same case, "
-                "mesh and number of ranks)");
+                "continue from the checkpoint in the output directory (written at each output time; same case "
+                "and mesh, any number of ranks)");
   run->add_flag("--overwrite", overwrite, "replace an earlier run in the output directory (refused without it)")
       ->excludes(restart_flag);
 

@@ -18,84 +18,193 @@ namespace granflow {
 
 namespace {
 
-// The format's version is the magic's last character: "GRNFCKT2" since history.csv holds the
-// forces on the sides (a version 1 checkpoint's history rows lack them).
-constexpr std::uint64_t magic = 0x32544b43464e5247ull;  // "GRNFCKT2"
+// The format's version is the magic's last character: "GRNFCKT3" since the fields are one file over
+// the whole mesh; version 2 held one file per rank, version 1 a history without the side forces.
+constexpr std::uint64_t magic = 0x33544b43464e5247ull;  // "GRNFCKT3"
+constexpr std::uint64_t magic_version_2 = 0x32544b43464e5247ull;
 constexpr std::uint64_t magic_version_1 = 0x31544b43464e5247ull;
 
-struct RankHeader {
+// fields.bin: this header; then each field as (nx + 2 ghosts) x (ny + 2 ghosts) doubles in rows of
+// constant j, the ghost cells beyond the mesh's sides included (they hold boundary values and the
+// blocked cells' mirrors); then, rank by rank, the `shared` and `summed` numbers of the ranks that wrote it.
+struct FieldsHeader {
   std::uint64_t magic;
-  std::int64_t ranks, rank, nx, ny, fields, scalars;
+  std::int64_t nx, ny, ghosts, fields, ranks, shared, summed;
 };
 
-std::filesystem::path rank_file(const std::filesystem::path& d, int rank) { return d / fmt::format("rank_{}.bin", rank); }
-
-void write_rank(const std::filesystem::path& path, const RankHeader& h, std::span<Field* const> fields,
-                std::span<const double> scalars) {
-  write_file_atomically(path, [&](std::ostream& out) {
-    out.write(reinterpret_cast<const char*>(&h), sizeof h);
-    for (Field* f : fields) {
-      PetscInt n;
-      VecGetLocalSize(f->local(), &n);
-      const std::int64_t size = n;
-      const PetscScalar* a;
-      VecGetArrayRead(f->local(), &a);
-      out.write(reinterpret_cast<const char*>(&size), sizeof size);
-      out.write(reinterpret_cast<const char*>(a), std::streamsize(sizeof(double) * n));
-      VecRestoreArrayRead(f->local(), &a);
-    }
-    out.write(reinterpret_cast<const char*>(scalars.data()), std::streamsize(sizeof(double) * scalars.size()));
-  });
-}
+constexpr const char* fields_file = "fields.bin";
 
 std::string other_mesh(std::int64_t nx, std::int64_t ny, std::int64_t case_nx, std::int64_t case_ny) {
   return fmt::format("the checkpoint is of a {} x {} mesh, the case has {} x {} cells", nx, ny, case_nx, case_ny);
 }
 
 // The header alone, where the file has one.
-std::optional<RankHeader> read_header(const std::filesystem::path& path) {
+std::optional<FieldsHeader> read_header(const std::filesystem::path& path) {
   std::ifstream in(path, std::ios::binary);
-  RankHeader h{};
+  FieldsHeader h{};
   if (!in.read(reinterpret_cast<char*>(&h), sizeof h) || h.magic != magic) return std::nullopt;
   return h;
 }
 
-// Reads this rank's file; returns an empty string or what is wrong with it.
-std::string read_rank(const std::filesystem::path& path, const RankHeader& expected, std::span<Field* const> fields,
-                      std::vector<double>& scalars) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) return fmt::format("cannot read {}", path.string());
-  RankHeader h{};
-  in.read(reinterpret_cast<char*>(&h), sizeof h);
-  if (in && h.magic == magic_version_1)
-    return fmt::format("{} was written by an earlier version of granflow (checkpoint format 1, before the history "
-                       "held the side forces); run the case anew",
-                       path.string());
-  if (!in || h.magic != magic) return fmt::format("{} is not a granflow checkpoint", path.string());
-  if (h.ranks != expected.ranks)
-    return fmt::format("the checkpoint was written on {0} rank{1}; restart it on {0} rank{1}, not {2}", h.ranks,
-                       h.ranks == 1 ? "" : "s", expected.ranks);
-  if (h.nx != expected.nx || h.ny != expected.ny) return other_mesh(h.nx, h.ny, expected.nx, expected.ny);
-  if (h.fields != expected.fields)
-    return fmt::format("the checkpoint holds {} fields, this case needs {} (a different model or numerics)", h.fields,
-                       expected.fields);
-  for (Field* f : fields) {
-    PetscInt n;
-    VecGetLocalSize(f->local(), &n);
-    std::int64_t size = -1;
-    in.read(reinterpret_cast<char*>(&size), sizeof size);
-    if (!in || size != n) return fmt::format("{}: a field's size does not match this rank's part of the mesh", path.string());
-    PetscScalar* a;
-    VecGetArray(f->local(), &a);
-    in.read(reinterpret_cast<char*>(a), std::streamsize(sizeof(double) * n));
-    VecRestoreArray(f->local(), &a);
-    if (!in) return fmt::format("{} is truncated", path.string());
-    f->gather_from_local();
+// This rank's rectangle of the whole ghosted mesh, in its coordinates (cell i at i + ghosts):
+// `window` is what its local vectors hold, `own` what it writes (its cells, and the ghosts beyond
+// the mesh's sides it touches), so that the ranks together write every value once.
+struct Rectangle {
+  int x0, y0, width, height;
+};
+struct RankLayout {
+  int full_x, full_y;  // the whole ghosted mesh
+  Rectangle window, own;
+};
+
+RankLayout rank_layout(DM dm, int nx, int ny) {
+  PetscInt xs, ys, xm, ym, gxs, gys, gxm, gym, g;
+  DMDAGetCorners(dm, &xs, &ys, nullptr, &xm, &ym, nullptr);
+  DMDAGetGhostCorners(dm, &gxs, &gys, nullptr, &gxm, &gym, nullptr);
+  DMDAGetInfo(dm, nullptr, nullptr, nullptr, nullptr, nullptr, nullptr, nullptr, nullptr, &g, nullptr, nullptr,
+              nullptr, nullptr);
+  const int w = int(g);
+  const int x0 = xs == 0 ? 0 : int(xs) + w, x1 = xs + xm == nx ? nx + 2 * w : int(xs + xm) + w;
+  const int y0 = ys == 0 ? 0 : int(ys) + w, y1 = ys + ym == ny ? ny + 2 * w : int(ys + ym) + w;
+  return {nx + 2 * w, ny + 2 * w, {int(gxs) + w, int(gys) + w, int(gxm), int(gym)}, {x0, y0, x1 - x0, y1 - y0}};
+}
+
+// A rectangle of a row-major array of full_x x full_y doubles, as an MPI datatype.
+struct Subarray {
+  MPI_Datatype type = MPI_DATATYPE_NULL;
+  Subarray(int full_x, int full_y, const Rectangle& r) {
+    const int sizes[2] = {full_y, full_x}, sub[2] = {r.height, r.width}, starts[2] = {r.y0, r.x0};
+    MPI_Type_create_subarray(2, sizes, sub, starts, MPI_ORDER_C, MPI_DOUBLE, &type);
+    MPI_Type_commit(&type);
   }
-  scalars.assign(size_t(h.scalars), 0.0);
-  in.read(reinterpret_cast<char*>(scalars.data()), std::streamsize(sizeof(double) * scalars.size()));
-  if (!in) return fmt::format("{} is truncated", path.string());
-  return {};
+  ~Subarray() { MPI_Type_free(&type); }
+  Subarray(const Subarray&) = delete;
+  Subarray& operator=(const Subarray&) = delete;
+};
+
+// An MPI-IO file, closed on every path out. Errors come back as text ("" if none), the same on
+// every rank, since each call below is collective.
+class MpiFile {
+ public:
+  MpiFile(MPI_Comm comm, const std::filesystem::path& path, int mode) : comm_(comm), path_(path) {
+    agreed(MPI_File_open(comm, path.c_str(), mode, MPI_INFO_NULL, &file_), "open");
+    open_ = problem_.empty();
+  }
+  ~MpiFile() {
+    if (open_) MPI_File_close(&file_);
+  }
+  MpiFile(const MpiFile&) = delete;
+  MpiFile& operator=(const MpiFile&) = delete;
+  const std::string& problem() const { return problem_; }
+  MPI_File get() const { return file_; }
+  // Records the first failure of a collective step, on every rank.
+  void agreed(int code, const char* what) {
+    std::string mine;
+    if (code != MPI_SUCCESS) {
+      char text[MPI_MAX_ERROR_STRING];
+      int length = 0;
+      MPI_Error_string(code, text, &length);
+      mine = fmt::format("cannot {} {}: {}", what, path_.string(), std::string(text, size_t(length)));
+    }
+    if (auto first = first_failure(comm_, mine); problem_.empty()) problem_ = std::move(first);
+  }
+
+ private:
+  MPI_Comm comm_;
+  std::filesystem::path path_;
+  MPI_File file_ = MPI_FILE_NULL;
+  bool open_ = false;
+  std::string problem_;
+};
+
+MPI_Offset field_offset(const FieldsHeader& h, std::int64_t k) {
+  return MPI_Offset(sizeof h) + MPI_Offset(sizeof(double)) * (h.nx + 2 * h.ghosts) * (h.ny + 2 * h.ghosts) * k;
+}
+
+std::string write_fields(MPI_Comm comm, const std::filesystem::path& path, const FieldsHeader& h,
+                         std::span<Field* const> fields, const CheckpointScalars& scalars) {
+  int rank;
+  MPI_Comm_rank(comm, &rank);
+  MpiFile file(comm, path, MPI_MODE_WRONLY | MPI_MODE_CREATE);
+  if (!file.problem().empty()) return file.problem();
+  MPI_Status status;
+  file.agreed(rank == 0 ? MPI_File_write_at(file.get(), 0, &h, int(sizeof h), MPI_BYTE, &status) : MPI_SUCCESS, "write");
+  std::vector<double> row = scalars.shared;
+  row.insert(row.end(), scalars.summed.begin(), scalars.summed.end());
+  const MPI_Offset rows = field_offset(h, h.fields) + MPI_Offset(sizeof(double)) * rank * MPI_Offset(row.size());
+  file.agreed(MPI_File_write_at_all(file.get(), rows, row.data(), int(row.size()), MPI_DOUBLE, &status), "write");
+  if (!fields.empty()) {
+    const RankLayout l = rank_layout(fields[0]->dm(), int(h.nx), int(h.ny));
+    const Subarray in_file(l.full_x, l.full_y, l.own);
+    const Rectangle own_in_window{l.own.x0 - l.window.x0, l.own.y0 - l.window.y0, l.own.width, l.own.height};
+    const Subarray in_memory(l.window.width, l.window.height, own_in_window);
+    for (size_t k = 0; k < fields.size() && file.problem().empty(); ++k) {
+      file.agreed(MPI_File_set_view(file.get(), field_offset(h, std::int64_t(k)), MPI_DOUBLE, in_file.type, "native",
+                                    MPI_INFO_NULL), "write");
+      const PetscScalar* a;
+      VecGetArrayRead(fields[k]->local(), &a);
+      file.agreed(MPI_File_write_all(file.get(), a, 1, in_memory.type, &status), "write");
+      VecRestoreArrayRead(fields[k]->local(), &a);
+    }
+  }
+  return file.problem();
+}
+
+// Reads the fields and this rank's scalars; returns an empty string or what is wrong (the same on
+// every rank).
+std::string read_fields(MPI_Comm comm, const std::filesystem::path& path, int nx, int ny,
+                        std::span<Field* const> fields, CheckpointScalars& scalars) {
+  int rank, size;
+  MPI_Comm_rank(comm, &rank);
+  MPI_Comm_size(comm, &size);
+  MpiFile file(comm, path, MPI_MODE_RDONLY);
+  if (!file.problem().empty()) return file.problem();
+  FieldsHeader h{};
+  MPI_Status status;
+  file.agreed(MPI_File_read_at_all(file.get(), 0, &h, int(sizeof h), MPI_BYTE, &status), "read");
+  MPI_Offset bytes = 0;
+  file.agreed(MPI_File_get_size(file.get(), &bytes), "read");
+  if (!file.problem().empty()) return file.problem();
+  if (h.magic == magic_version_1 || h.magic == magic_version_2)
+    return fmt::format("{} was written by an earlier version of granflow (checkpoint format {}); run the case anew",
+                       path.string(), h.magic == magic_version_1 ? 1 : 2);
+  if (bytes < MPI_Offset(sizeof h) || h.magic != magic) return fmt::format("{} is not a granflow checkpoint", path.string());
+  if (h.nx != nx || h.ny != ny) return other_mesh(h.nx, h.ny, nx, ny);
+  if (h.fields != std::int64_t(fields.size()))
+    return fmt::format("the checkpoint holds {} fields, this case needs {} (a different model or numerics)", h.fields,
+                       fields.size());
+  const std::int64_t width = h.shared + h.summed;
+  if (h.ghosts != Grid::ghost_width || h.ranks < 1 || h.shared < 0 || h.summed < 0 ||
+      bytes != field_offset(h, h.fields) + MPI_Offset(sizeof(double)) * h.ranks * width)
+    return fmt::format("{} is truncated or damaged (its size does not match its header)", path.string());
+  // The numbers: this rank's own where the decomposition is the one written; else the shared ones of
+  // the first rank, and the totals of the summed ones on rank 0.
+  std::vector<double> table(size_t(h.ranks * width));
+  file.agreed(MPI_File_read_at_all(file.get(), field_offset(h, h.fields), table.data(), int(table.size()), MPI_DOUBLE,
+                                   &status), "read");
+  const double* row = table.data() + (h.ranks == size ? rank * width : 0);
+  scalars.shared.assign(row, row + h.shared);
+  scalars.summed.assign(row + h.shared, row + width);
+  if (h.ranks != size)
+    for (std::int64_t s = 0; s < h.summed; ++s) {
+      double total = 0.0;
+      for (std::int64_t r = 0; r < h.ranks; ++r) total += table[size_t(r * width + h.shared + s)];
+      scalars.summed[size_t(s)] = rank == 0 ? total : 0.0;
+    }
+  if (!fields.empty()) {
+    const RankLayout l = rank_layout(fields[0]->dm(), nx, ny);
+    const Subarray in_file(l.full_x, l.full_y, l.window);
+    for (size_t k = 0; k < fields.size() && file.problem().empty(); ++k) {
+      file.agreed(MPI_File_set_view(file.get(), field_offset(h, std::int64_t(k)), MPI_DOUBLE, in_file.type, "native",
+                                    MPI_INFO_NULL), "read");
+      PetscScalar* a;
+      VecGetArray(fields[k]->local(), &a);
+      file.agreed(MPI_File_read_all(file.get(), a, l.window.width * l.window.height, MPI_DOUBLE, &status), "read");
+      VecRestoreArray(fields[k]->local(), &a);
+      fields[k]->gather_from_local();
+    }
+  }
+  return file.problem();
 }
 
 void write_run(const std::filesystem::path& path, const RunCheckpoint& r) {
@@ -182,7 +291,7 @@ void agree(MPI_Comm comm, const std::string& mine) {
 }  // namespace
 
 void write_checkpoint(MPI_Comm comm, const std::filesystem::path& dir, int nx, int ny, const RunCheckpoint& run,
-                      std::span<Field* const> fields, std::span<const double> scalars) {
+                      std::span<Field* const> fields, const CheckpointScalars& scalars) {
   int rank, size;
   MPI_Comm_rank(comm, &rank);
   MPI_Comm_size(comm, &size);
@@ -192,8 +301,10 @@ void write_checkpoint(MPI_Comm comm, const std::filesystem::path& dir, int nx, i
     std::filesystem::create_directories(partial);
   }
   MPI_Barrier(comm);
-  const RankHeader h{magic, size, rank, nx, ny, std::int64_t(fields.size()), std::int64_t(scalars.size())};
-  write_rank(rank_file(partial, rank), h, fields, scalars);
+  const FieldsHeader h{magic, nx, ny, Grid::ghost_width, std::int64_t(fields.size()), size,
+                       std::int64_t(scalars.shared.size()), std::int64_t(scalars.summed.size())};
+  if (auto problem = write_fields(comm, partial / fields_file, h, fields, scalars); !problem.empty())
+    throw std::runtime_error(problem);
   if (rank == 0) write_run(partial / "run.txt", run);
   MPI_Barrier(comm);
   if (rank == 0) {
@@ -212,7 +323,7 @@ void write_checkpoint(MPI_Comm comm, const std::filesystem::path& dir, int nx, i
 
 RunCheckpoint read_checkpoint(MPI_Comm comm, const std::filesystem::path& dir, int nx, int ny,
                               const std::string& domain, const std::string& field_names,
-                              std::span<Field* const> fields, std::vector<double>& scalars) {
+                              std::span<Field* const> fields, CheckpointScalars& scalars) {
   int rank, size;
   MPI_Comm_rank(comm, &rank);
   MPI_Comm_size(comm, &size);
@@ -235,7 +346,7 @@ RunCheckpoint read_checkpoint(MPI_Comm comm, const std::filesystem::path& dir, i
     }
     if (problem.empty() && !run.domain.empty() && run.domain != domain) {
       // Another mesh blocks other cells of the same obstacles: name the mesh, the cause.
-      const auto h = read_header(rank_file(from, 0));
+      const auto h = read_header(from / fields_file);
       problem = h && (h->nx != nx || h->ny != ny)
                     ? other_mesh(h->nx, h->ny, nx, ny)
                     : fmt::format("the checkpoint is of the domain {}; the case's is {}", run.domain, domain);
@@ -247,8 +358,11 @@ RunCheckpoint read_checkpoint(MPI_Comm comm, const std::filesystem::path& dir, i
                             field_names);
   }
   agree(comm, problem);
-  const RankHeader expected{magic, size, rank, nx, ny, std::int64_t(fields.size()), 0};
-  agree(comm, read_rank(rank_file(from, rank), expected, fields, scalars));
+  if (!std::filesystem::exists(from / fields_file) && std::filesystem::exists(from / "rank_0.bin"))
+    problem = fmt::format("{} was written by an earlier version of granflow (checkpoint format 2, one file per rank); "
+                          "run the case anew", from.string());
+  agree(comm, problem);
+  agree(comm, read_fields(comm, from / fields_file, nx, ny, fields, scalars));
   double clock[6] = {run.time, run.next_dt, double(run.output_index), run.dissipated_energy, run.initial_soil_volume,
                      double(run.steps)};
   MPI_Bcast(clock, 6, MPI_DOUBLE, 0, comm);

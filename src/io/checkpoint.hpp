@@ -1,8 +1,9 @@
 #pragma once
 // Checkpoint of a run, written at each output time into OUT/checkpoint/: what the time loop needs to
-// continue exactly where it stopped. Each rank writes its own part of the fields, ghosts
-// included, as raw doubles (rank_N.bin); rank 0 adds the run's clock, the history rows and the
-// field-series index as text (run.txt). A restart must use the same mesh and the same number of ranks.
+// continue where it stopped. The fields are stored over the whole mesh, the boundary's ghost cells
+// included, as raw doubles in one file (fields.bin, written and read by all ranks through MPI-IO),
+// so that a restart may take another number of ranks; rank 0 adds the run's clock, the history rows
+// and the field-series index as text (run.txt). A restart must use the same mesh.
 #include <mpi.h>
 
 #include <filesystem>
@@ -36,19 +37,28 @@ struct RunCheckpoint {
   std::string boundaries;  // the sides' conditions, as Simulation describes them ("" in older checkpoints)
 };
 
+// The numbers a checkpoint holds besides the fields: `shared` are the same on every rank (a step
+// size, a sweep order); `summed` are this rank's shares of totals (soil carried out, energy by Lode
+// angle), which a restart on another number of ranks gives to rank 0 whole and to the others as 0.
+struct CheckpointScalars {
+  std::vector<double> shared;
+  std::vector<double> summed;
+};
+
 // Writes the checkpoint into dir/checkpoint/ (collective). It is assembled in checkpoint.partial/ and
 // swapped in whole, so a run killed while writing keeps the previous checkpoint.
 void write_checkpoint(MPI_Comm comm, const std::filesystem::path& dir, int nx, int ny, const RunCheckpoint& run,
-                      std::span<Field* const> fields, std::span<const double> scalars);
+                      std::span<Field* const> fields, const CheckpointScalars& scalars);
 
-// Reads the checkpoint of dir back (collective): the fields in the same order as written, this rank's
-// scalars into `scalars` and rank 0's run part into the return value (on every rank; the history,
-// series and domain on rank 0 only). Throws CheckpointError naming what does not match, on every rank:
-// the number of ranks, the mesh, the fields (their number, and their names where the checkpoint
-// records them, against `field_names`), or a domain other than `domain`. Nothing is read into the
-// fields unless the run's record matches.
+// Reads the checkpoint of dir back (collective): the fields in the same order as written, each rank's
+// window of them with its ghosts; the scalars into `scalars` (this rank's own where the number of
+// ranks is the one written, else as CheckpointScalars says); and rank 0's run part into the return
+// value (on every rank; the history, series and domain on rank 0 only). Throws CheckpointError naming
+// what does not match, on every rank: the mesh, the fields (their number, and their names where the
+// checkpoint records them, against `field_names`), or a domain other than `domain`. Nothing is read
+// into the fields unless the run's record matches.
 RunCheckpoint read_checkpoint(MPI_Comm comm, const std::filesystem::path& dir, int nx, int ny,
                               const std::string& domain, const std::string& field_names,
-                              std::span<Field* const> fields, std::vector<double>& scalars);
+                              std::span<Field* const> fields, CheckpointScalars& scalars);
 
 }  // namespace granflow

@@ -23,6 +23,7 @@ class Field {
 
   Vec global() const { return global_; }
   Vec local() const { return local_; }
+  DM dm() const { return dm_; }
   // Owned values -> local ghosts (interior ghosts only; domain-boundary ghosts are the caller's).
   void scatter_to_local() {
     PetscCallAbort(PETSC_COMM_WORLD, DMGlobalToLocalBegin(dm_, global_, INSERT_VALUES, local_));

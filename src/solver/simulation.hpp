@@ -62,7 +62,8 @@ class Simulation {
 
   // Continues from the checkpoint in the output directory (written at the last output time of an
   // earlier run of this case), so that run() carries on exactly as the earlier run would have.
-  // Throws CheckpointError if there is none or it does not fit this case or number of ranks.
+  // On another number of ranks it carries on to the solver's round-off. Throws CheckpointError if there
+  // is none or it does not fit this case.
   void restart();
 
  private:

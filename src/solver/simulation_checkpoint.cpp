@@ -75,9 +75,12 @@ void Simulation::write_checkpoint(double next_dt) {
   RunCheckpoint run{time_, next_dt, output_index_, dissipated_energy_, initial_soil_volume_, history_, {}, domain(), steps_, physics(),
                     checkpoint_field_names(), boundaries()};
   if (series_) run.series = series_->entries();
-  std::vector<double> scalars{flow_->last_dt()};
-  if (soil_)
-    for (double s : soil_->checkpoint_scalars()) scalars.push_back(s);
+  CheckpointScalars scalars{{flow_->last_dt()}, {}};
+  if (soil_) {
+    const CheckpointScalars own = soil_->checkpoint_scalars();
+    scalars.shared.insert(scalars.shared.end(), own.shared.begin(), own.shared.end());
+    scalars.summed = own.summed;
+  }
   const auto fields = checkpoint_fields();
   granflow::write_checkpoint(grid_->comm(), out_, grid_->nx(), grid_->ny(), run, fields, scalars);
   // A run restarted from here builds its preconditioners afresh; so does this one, to go on alike.
@@ -87,7 +90,7 @@ void Simulation::write_checkpoint(double next_dt) {
 void Simulation::restart() {
   if (out_.empty()) throw CheckpointError("a restart needs the output directory of the earlier run");
   const auto fields = checkpoint_fields();
-  std::vector<double> scalars;
+  CheckpointScalars scalars;
   RunCheckpoint run = read_checkpoint(grid_->comm(), out_, grid_->nx(), grid_->ny(), domain(), checkpoint_field_names(),
                                       fields, scalars);
   flow_->clear_blocked_cells();  // the fields were read with their ghosts, the blocked cells' mirrors among them
@@ -99,10 +102,11 @@ void Simulation::restart() {
     throw CheckpointError(fmt::format("time.max_steps = {} is not past the checkpoint's {} steps (it counts the "
                                       "whole run's): raise it to run on",
                                       config_.time.max_steps, run.steps));
-  const size_t expected = 1 + (soil_ ? soil_->checkpoint_scalars().size() : 0);
-  if (scalars.size() != expected) throw CheckpointError("the checkpoint's state does not match this case's model");
-  flow_->set_last_dt(scalars[0]);
-  if (soil_) soil_->restore_scalars(std::span<const double>(scalars).subspan(1));
+  const CheckpointScalars expected = soil_ ? soil_->checkpoint_scalars() : CheckpointScalars{};
+  if (scalars.shared.size() != 1 + expected.shared.size() || scalars.summed.size() != expected.summed.size())
+    throw CheckpointError("the checkpoint's state does not match this case's model");
+  flow_->set_last_dt(scalars.shared[0]);
+  if (soil_) soil_->restore_scalars(std::span<const double>(scalars.shared).subspan(1), scalars.summed);
   time_ = run.time;
   restart_dt_ = run.next_dt;
   steps_ = run.steps;

@@ -52,18 +52,18 @@ void SoilPhase::save_state() {
   saved_outflow_ = outflow_;
 }
 
-std::vector<double> SoilPhase::checkpoint_scalars() const {
-  std::vector<double> v{double(sweep_parity_), outflow_};
-  v.insert(v.end(), lode_energy_.values().begin(), lode_energy_.values().end());
+CheckpointScalars SoilPhase::checkpoint_scalars() const {
+  CheckpointScalars v{{double(sweep_parity_)}, {outflow_}};
+  v.summed.insert(v.summed.end(), lode_energy_.values().begin(), lode_energy_.values().end());
   return v;
 }
 
-void SoilPhase::restore_scalars(std::span<const double> values) {
-  if (values.size() != 2 + lode_energy_.values().size())
+void SoilPhase::restore_scalars(std::span<const double> shared, std::span<const double> summed) {
+  if (shared.size() != 1 || summed.size() != 1 + lode_energy_.values().size())
     throw std::runtime_error("the checkpoint's soil state does not match this case");
-  sweep_parity_ = int(values[0]);
-  outflow_ = values[1];
-  std::copy(values.begin() + 2, values.end(), lode_energy_.values().begin());
+  sweep_parity_ = int(shared[0]);
+  outflow_ = summed[0];
+  std::copy(summed.begin() + 1, summed.end(), lode_energy_.values().begin());
 }
 
 void SoilPhase::clear_blocked_cells() {

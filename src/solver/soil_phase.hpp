@@ -7,6 +7,7 @@
 #include <optional>
 #include <span>
 
+#include "io/checkpoint.hpp"
 #include "mesh/field.hpp"
 #include "mesh/field_snapshot.hpp"
 #include "models/interface/vof_advection.hpp"
@@ -83,12 +84,12 @@ class SoilPhase {
   void restore_state();
   // No soil and no displacement in the blocked cells' global values, after they were read from local ones.
   void clear_blocked_cells();
-  // What a checkpoint holds: c and the displacement; the sweep parity, this rank's outflow and
-  // dissipated energy by Lode angle as numbers.
+  // What a checkpoint holds: c and the displacement; the sweep parity, and this rank's shares of the
+  // outflow and of the dissipated energy by Lode angle, as numbers.
   std::vector<Field*> checkpoint_fields() { return state_fields(); }
   static constexpr const char* checkpoint_field_names = "c displacement_x displacement_y";  // of checkpoint_fields()
-  std::vector<double> checkpoint_scalars() const;
-  void restore_scalars(std::span<const double> values);
+  CheckpointScalars checkpoint_scalars() const;
+  void restore_scalars(std::span<const double> shared, std::span<const double> summed);
  private:
   void fill_displacement_ghosts();
   std::vector<Field*> state_fields() { return {c_.get(), disp_[0].get(), disp_[1].get()}; }  // what a step changes

@@ -1,4 +1,4 @@
-// Checkpoint and restart on two ranks: each rank writes and reads its own part of the state, and a
+// Checkpoint and restart on two ranks: the ranks write and read their parts of the fields file, and a
 // run stopped and restarted ends exactly where the run never stopped ends (the one-rank tests are
 // in tests/verification/test_restart.cpp). Run under mpirun -np 2 (tests/parallel.cmake).
 #include <gtest/gtest.h>

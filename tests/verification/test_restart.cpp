@@ -148,6 +148,22 @@ TEST(Restart, RefusesAMissingOrForeignCheckpoint) {
   EXPECT_NE(fields.find("the checkpoint holds the fields of other numerics (u v face_u"), std::string::npos) << fields;
   EXPECT_NE(fields.find("u_previous v_previous solve_region c displacement_x displacement_y); this case's are u v"),
             std::string::npos) << fields;
+  // A cut fields file, and one of the format before it (a file per rank), are named as such.
+  {
+    const auto checkpoint = dir / "checkpoint", fields_bin = checkpoint / "fields.bin", kept = dir / "fields.bin.kept";
+    std::filesystem::copy_file(fields_bin, kept);
+    std::filesystem::resize_file(fields_bin, std::filesystem::file_size(fields_bin) - 8);
+    Simulation cut(PETSC_COMM_WORLD, load_case(test::repo_path("cases/bui2008_experiment.toml"), small), dir);
+    const std::string truncated = refusal(cut);
+    EXPECT_NE(truncated.find("fields.bin is truncated or damaged"), std::string::npos) << truncated;
+    std::filesystem::rename(fields_bin, checkpoint / "rank_0.bin");
+    Simulation older(PETSC_COMM_WORLD, load_case(test::repo_path("cases/bui2008_experiment.toml"), small), dir);
+    const std::string format_2 = refusal(older);
+    EXPECT_NE(format_2.find("written by an earlier version of granflow (checkpoint format 2"), std::string::npos)
+        << format_2;
+    std::filesystem::remove(checkpoint / "rank_0.bin");
+    std::filesystem::rename(kept, fields_bin);
+  }
   // A run of more steps than an int holds restarts (time.max_steps goes to 1e12).
   {
     const auto run_txt = dir / "checkpoint" / "run.txt";

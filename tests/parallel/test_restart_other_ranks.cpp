@@ -1,0 +1,162 @@
+// A checkpoint holds the fields over the whole mesh, so a run may continue on another number of
+// ranks: stopped on one rank and continued on two, or the other way round, it must end where the
+// run that was never stopped ends, to the solver's tolerance, with the totals kept per rank (the
+// soil carried out, the energy dissipated by Lode angle) carried over. Run under mpirun -np 2
+// (tests/parallel.cmake).
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "../verification/restart_check.hpp"
+
+namespace granflow {
+namespace {
+
+using test::EndState;
+
+// Stopped after this many steps (of 86), the run continues from its checkpoint at t = 0.2 s, when soil
+// has been leaving through the east side since t = 0.16 s.
+constexpr long stop_after = 70;
+
+// The shipped collapse settings on a small mesh whose east side the soil reaches before the end, so
+// that some soil leaves the domain. Each rank factorises the whole region itself (PCREDUNDANT), so
+// that one and two ranks solve the same systems (docs/benchmarks.md: MUMPS's factorisation
+// distributed over ranks sums in an order that depends on timing, which the collapse amplifies).
+CaseConfig collapse() {
+  PetscOptionsSetValue(nullptr, "-coupled_redundant_pc_type", "lu");
+  PetscOptionsSetValue(nullptr, "-coupled_redundant_pc_factor_mat_solver_type", "mumps");
+  return load_case(test::repo_path("cases/bui2008_experiment.toml"),
+                   {"mesh.cells=[60,20]", "mesh.upper=[0.3,0.2]", "time.end=0.4", "output.interval=0.1",
+                    "output.progress_seconds=0", "numerics.air_band=5", "solver.coupled.pc_type=redundant"});
+}
+
+// What the comparison reads from a finished run, on the root of its communicator.
+struct Finished {
+  EndState end;
+  std::map<std::string, std::vector<double>> history, lode;
+};
+
+Finished finish(Simulation& sim, const RunSummary& s, const std::filesystem::path& dir) {
+  Finished f{test::end_state(sim, s.steps), {}, {}};
+  int rank;
+  MPI_Comm_rank(sim.grid().comm(), &rank);
+  if (rank == 0) {
+    f.history = test::read_csv((dir / "history.csv").string());
+    f.lode = test::read_csv((dir / "lode_dissipation.csv").string());
+  }
+  return f;
+}
+
+// Runs the case on `comm` into `dir` and stops it (as if killed) after `stop_after` steps.
+void run_and_kill(MPI_Comm comm, const CaseConfig& config, const std::filesystem::path& dir, long stop_after) {
+  struct Killed {};
+  Simulation sim(comm, config, dir);
+  try {
+    sim.run([&, steps = 0L](const Simulation&, double) mutable {
+      if (++steps == stop_after) throw Killed{};
+    });
+    ADD_FAILURE() << "the run ended before step " << stop_after;
+  } catch (const Killed&) {
+  }
+}
+
+Finished run_whole(MPI_Comm comm, const CaseConfig& config, const std::filesystem::path& dir) {
+  Simulation sim(comm, config, dir);
+  const RunSummary s = sim.run();
+  return finish(sim, s, dir);
+}
+
+Finished restart(MPI_Comm comm, const CaseConfig& config, const std::filesystem::path& dir, double& checkpoint_time) {
+  Simulation sim(comm, config, dir);
+  sim.restart();
+  checkpoint_time = sim.time();
+  const RunSummary s = sim.run();
+  return finish(sim, s, dir);
+}
+
+double largest_difference(const std::vector<double>& a, const std::vector<double>& b) {
+  EXPECT_EQ(a.size(), b.size());
+  if (a.size() != b.size() || a.empty()) return INFINITY;
+  double d = 0.0;
+  for (size_t k = 0; k < a.size(); ++k) d = std::max(d, std::abs(a[k] - b[k]));
+  return d;
+}
+
+// On rank 0: the continued run against the one never stopped.
+void expect_same_run(const Finished& resumed, const Finished& whole, const char* what) {
+  EXPECT_EQ(resumed.end.time, whole.end.time);
+  const char* names[] = {"u", "v", "p", "c"};
+  // m/s, m/s, Pa, 1. Measured either way: 2-4e-15 m/s, 2e-12 Pa, 2e-15, the round-off of sums taken
+  // in another order; the bounds are those of the rank-consistency tests.
+  const double tolerance[] = {1e-9, 1e-9, 1e-4, 1e-9};
+  ASSERT_EQ(resumed.end.fields.size(), 4u);
+  for (size_t k = 0; k < 4; ++k) {
+    const double d = largest_difference(resumed.end.fields[k], whole.end.fields[k]);
+    std::printf("%s: largest difference in %s %.2e\n", what, names[k], d);
+    EXPECT_LT(d, tolerance[k]) << names[k];
+  }
+  // The totals each rank keeps a share of: the soil carried out through the east side and the energy
+  // dissipated by Lode angle.
+  const auto& out_resumed = resumed.history.at("soil_outflow");
+  const auto& out_whole = whole.history.at("soil_outflow");
+  ASSERT_EQ(out_resumed.size(), out_whole.size());
+  EXPECT_GT(out_whole.back(), 1e-6 * whole.history.at("soil_volume").front());
+  EXPECT_NEAR(out_resumed.back(), out_whole.back(), 1e-9 * out_whole.back());
+  const auto& lode_resumed = resumed.lode.at("energy");
+  const auto& lode_whole = whole.lode.at("energy");
+  ASSERT_EQ(lode_resumed.size(), lode_whole.size());
+  double total = 0.0;
+  for (double e : lode_whole) total += e;
+  EXPECT_GT(total, 0.0);
+  EXPECT_LT(largest_difference(lode_resumed, lode_whole), 1e-9 * total);
+}
+
+TEST(RestartOtherRanks, CollapseStoppedOnOneRankContinuesOnTwo) {
+  int rank;
+  MPI_Comm_rank(PETSC_COMM_WORLD, &rank);
+  const auto whole_dir = test::scratch("one_to_two_whole"), split_dir = test::scratch("one_to_two_split");
+  test::remove_scratch(whole_dir);
+  test::remove_scratch(split_dir);
+  const CaseConfig config = collapse();
+  Finished whole;
+  if (rank == 0) {
+    whole = run_whole(PETSC_COMM_SELF, config, whole_dir);
+    run_and_kill(PETSC_COMM_SELF, config, split_dir, stop_after);
+  }
+  MPI_Barrier(PETSC_COMM_WORLD);
+  double checkpoint_time = 0.0;
+  const Finished resumed = restart(PETSC_COMM_WORLD, config, split_dir, checkpoint_time);
+  if (rank == 0) {
+    EXPECT_GE(checkpoint_time, 0.2 - 1e-12);
+    expect_same_run(resumed, whole, "one rank, then two");
+  }
+  test::remove_scratch(whole_dir);
+  test::remove_scratch(split_dir);
+}
+
+TEST(RestartOtherRanks, CollapseStoppedOnTwoRanksContinuesOnOne) {
+  int rank;
+  MPI_Comm_rank(PETSC_COMM_WORLD, &rank);
+  const auto whole_dir = test::scratch("two_to_one_whole"), split_dir = test::scratch("two_to_one_split");
+  test::remove_scratch(whole_dir);
+  test::remove_scratch(split_dir);
+  const CaseConfig config = collapse();
+  run_and_kill(PETSC_COMM_WORLD, config, split_dir, stop_after);
+  if (rank == 0) {
+    const Finished whole = run_whole(PETSC_COMM_SELF, config, whole_dir);
+    double checkpoint_time = 0.0;
+    const Finished resumed = restart(PETSC_COMM_SELF, config, split_dir, checkpoint_time);
+    EXPECT_GE(checkpoint_time, 0.2 - 1e-12);
+    expect_same_run(resumed, whole, "two ranks, then one");
+  }
+  test::remove_scratch(whole_dir);
+  test::remove_scratch(split_dir);
+}
+
+}  // namespace
+}  // namespace granflow
