@@ -25,14 +25,6 @@ Snapshot run_on(MPI_Comm comm, const CaseConfig& config) {
           gather_to_root(sim.grid(), sim.flow().pressure())};
 }
 
-double max_difference(const std::vector<double>& a, const std::vector<double>& b) {
-  EXPECT_EQ(a.size(), b.size());
-  if (a.size() != b.size() || a.empty()) return INFINITY;
-  double d = 0.0;
-  for (size_t k = 0; k < a.size(); ++k) d = std::max(d, std::abs(a[k] - b[k]));
-  return d;
-}
-
 void expect_rank_independent(const std::string& case_file, const CaseConfig& config, double tol) {
   int rank, size;
   MPI_Comm_rank(PETSC_COMM_WORLD, &rank);
@@ -42,9 +34,9 @@ void expect_rank_independent(const std::string& case_file, const CaseConfig& con
   double diff[3] = {0, 0, 0};
   if (rank == 0) {
     const Snapshot serial = run_on(PETSC_COMM_SELF, config);
-    diff[0] = max_difference(parallel.u, serial.u);
-    diff[1] = max_difference(parallel.v, serial.v);
-    diff[2] = max_difference(parallel.p, serial.p);
+    diff[0] = test::max_difference(parallel.u, serial.u);
+    diff[1] = test::max_difference(parallel.v, serial.v);
+    diff[2] = test::max_difference(parallel.p, serial.p);
     std::printf("%s on %d ranks vs 1: max |du| %.2e  |dv| %.2e  |dp| %.2e\n", case_file.c_str(), size, diff[0], diff[1],
                 diff[2]);
   }

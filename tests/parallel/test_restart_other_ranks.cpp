@@ -52,19 +52,6 @@ Finished finish(Simulation& sim, const RunSummary& s, const std::filesystem::pat
   return f;
 }
 
-// Runs the case on `comm` into `dir` and stops it (as if killed) after `stop_after` steps.
-void run_and_kill(MPI_Comm comm, const CaseConfig& config, const std::filesystem::path& dir, long stop_after) {
-  struct Killed {};
-  Simulation sim(comm, config, dir);
-  try {
-    sim.run([&, steps = 0L](const Simulation&, double) mutable {
-      if (++steps == stop_after) throw Killed{};
-    });
-    ADD_FAILURE() << "the run ended before step " << stop_after;
-  } catch (const Killed&) {
-  }
-}
-
 Finished run_whole(MPI_Comm comm, const CaseConfig& config, const std::filesystem::path& dir) {
   Simulation sim(comm, config, dir);
   const RunSummary s = sim.run();
@@ -79,14 +66,6 @@ Finished restart(MPI_Comm comm, const CaseConfig& config, const std::filesystem:
   return finish(sim, s, dir);
 }
 
-double largest_difference(const std::vector<double>& a, const std::vector<double>& b) {
-  EXPECT_EQ(a.size(), b.size());
-  if (a.size() != b.size() || a.empty()) return INFINITY;
-  double d = 0.0;
-  for (size_t k = 0; k < a.size(); ++k) d = std::max(d, std::abs(a[k] - b[k]));
-  return d;
-}
-
 // On rank 0: the continued run against the one never stopped.
 void expect_same_run(const Finished& resumed, const Finished& whole, const char* what) {
   EXPECT_EQ(resumed.end.time, whole.end.time);
@@ -96,7 +75,7 @@ void expect_same_run(const Finished& resumed, const Finished& whole, const char*
   const double tolerance[] = {1e-9, 1e-9, 1e-4, 1e-9};
   ASSERT_EQ(resumed.end.fields.size(), 4u);
   for (size_t k = 0; k < 4; ++k) {
-    const double d = largest_difference(resumed.end.fields[k], whole.end.fields[k]);
+    const double d = test::max_difference(resumed.end.fields[k], whole.end.fields[k]);
     std::printf("%s: largest difference in %s %.2e\n", what, names[k], d);
     EXPECT_LT(d, tolerance[k]) << names[k];
   }
@@ -113,7 +92,7 @@ void expect_same_run(const Finished& resumed, const Finished& whole, const char*
   double total = 0.0;
   for (double e : lode_whole) total += e;
   EXPECT_GT(total, 0.0);
-  EXPECT_LT(largest_difference(lode_resumed, lode_whole), 1e-9 * total);
+  EXPECT_LT(test::max_difference(lode_resumed, lode_whole), 1e-9 * total);
 }
 
 TEST(RestartOtherRanks, CollapseStoppedOnOneRankContinuesOnTwo) {
@@ -126,7 +105,7 @@ TEST(RestartOtherRanks, CollapseStoppedOnOneRankContinuesOnTwo) {
   Finished whole;
   if (rank == 0) {
     whole = run_whole(PETSC_COMM_SELF, config, whole_dir);
-    run_and_kill(PETSC_COMM_SELF, config, split_dir, stop_after);
+    test::run_and_kill(PETSC_COMM_SELF, config, split_dir, stop_after);
   }
   MPI_Barrier(PETSC_COMM_WORLD);
   double checkpoint_time = 0.0;
@@ -146,7 +125,7 @@ TEST(RestartOtherRanks, CollapseStoppedOnTwoRanksContinuesOnOne) {
   test::remove_scratch(whole_dir);
   test::remove_scratch(split_dir);
   const CaseConfig config = collapse();
-  run_and_kill(PETSC_COMM_WORLD, config, split_dir, stop_after);
+  test::run_and_kill(PETSC_COMM_WORLD, config, split_dir, stop_after);
   if (rank == 0) {
     const Finished whole = run_whole(PETSC_COMM_SELF, config, whole_dir);
     double checkpoint_time = 0.0;

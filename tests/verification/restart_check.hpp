@@ -39,6 +39,21 @@ inline EndState end_state(Simulation& sim, long steps) {
   return e;
 }
 
+// Runs the case on `comm` into `dir` and stops it as if killed after `stop_after` steps, between
+// outputs: nothing more is written.
+inline void run_and_kill(MPI_Comm comm, const CaseConfig& config, const std::filesystem::path& dir, long stop_after) {
+  struct Killed {};
+  Simulation sim(comm, config, dir);
+  try {
+    sim.run([&, steps = 0L](const Simulation&, double) mutable {
+      if (++steps == stop_after) throw Killed{};
+    });
+    ADD_FAILURE() << "the run ended before step " << stop_after;
+  } catch (const Killed&) {
+  }
+  EXPECT_LT(sim.time(), config.time.end);
+}
+
 // On all ranks of PETSC_COMM_WORLD: runs the case whole into one directory; into another, kills it
 // after `stop_after` steps and runs it again from the checkpoint. Returns the checkpoint's time.
 inline double expect_restart_reproduces(const std::string& case_file, std::vector<std::string> overrides,
@@ -53,19 +68,7 @@ inline double expect_restart_reproduces(const std::string& case_file, std::vecto
     const RunSummary s = sim.run();
     whole = end_state(sim, s.steps);
   }
-  {
-    // Killed after `stop_after` steps, between outputs: nothing more is written.
-    struct Killed {};
-    Simulation stopped(PETSC_COMM_WORLD, config, split_dir);
-    try {
-      stopped.run([&, steps = 0L](const Simulation&, double) mutable {
-        if (++steps == stop_after) throw Killed{};
-      });
-      ADD_FAILURE() << "the run ended before step " << stop_after;
-    } catch (const Killed&) {
-    }
-    EXPECT_LT(stopped.time(), config.time.end);
-  }
+  run_and_kill(PETSC_COMM_WORLD, config, split_dir, stop_after);
   double checkpoint_time = 0.0;
   EndState resumed;
   {

@@ -2,6 +2,7 @@
 // Helpers shared by the solver verification tests.
 #include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -18,6 +19,14 @@
 namespace granflow::test {
 
 inline std::string repo_path(const std::string& rel) { return std::string(GRANFLOW_SOURCE_DIR) + "/" + rel; }
+
+// The largest difference between two fields gathered alike; infinite where their sizes differ.
+inline double max_difference(const std::vector<double>& a, const std::vector<double>& b) {
+  if (a.size() != b.size() || a.empty()) return INFINITY;
+  double d = 0.0;
+  for (size_t k = 0; k < a.size(); ++k) d = std::max(d, std::abs(a[k] - b[k]));
+  return d;
+}
 
 // A directory for a test's run, in the build tree's tests/runs.
 inline std::filesystem::path output_dir(const std::string& name) {
