@@ -367,3 +367,12 @@ add_test(NAME cli_check_conservative_momentum_needs_coupled
          COMMAND sh -c "out=$(\"$0\" check \"$1\" --set numerics.momentum_transport=conservative 2>&1); test $? -ne 0 && echo \"$out\" | grep -q 'numerics.momentum_transport: .conservative. needs numerics.pressure_coupling = .coupled. (it is .projection.)'"
                  $<TARGET_FILE:granflow> ${CMAKE_SOURCE_DIR}/cases/water_dam_break.toml)
 set_tests_properties(cli_check_conservative_momentum_needs_coupled PROPERTIES LABELS cli)
+# The run records the case as it took it (granflow_case.toml, with the --set assignments applied):
+# run from that record, the case gives the same history to the bit.
+add_test(NAME cli_case_record_runs_the_same_case
+         COMMAND sh -c "g=$0; d=$1; c=$2; shift 2; rm -rf \"$d\" \"$d.again\"; \"$g\" run \"$c\" -o \"$d\" \"$@\" > /dev/null || exit 1; grep -q \"^#   --set 'mesh.cells=\\[20,20\\]'\" \"$d/granflow_case.toml\" || exit 1; \"$g\" run \"$d/granflow_case.toml\" -o \"$d.again\" > /dev/null || exit 1; cmp \"$d/history.csv\" \"$d.again/history.csv\""
+                 $<TARGET_FILE:granflow> ${CMAKE_CURRENT_BINARY_DIR}/case_record ${CMAKE_SOURCE_DIR}/cases/bui2008_experiment.toml
+                 ${GRANFLOW_SHORT_RUN})
+set_tests_properties(cli_case_record_runs_the_same_case PROPERTIES LABELS cli)
+add_test(NAME cli_version COMMAND granflow --version)
+set_tests_properties(cli_version PROPERTIES LABELS cli PASS_REGULAR_EXPRESSION "^granflow [0-9]+[.][0-9]+[.][0-9]+\n$")

@@ -54,6 +54,7 @@ int main(int argc, char** argv) {
       }
     }
   CLI::App app{"granflow: dense granular flows as a two-phase visco-plastic continuum"};
+  app.set_version_flag("--version", fmt::format("granflow {}", GRANFLOW_VERSION));
   app.require_subcommand(1);
   std::string case_file, out_dir;
   std::vector<std::string> overrides;

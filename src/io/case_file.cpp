@@ -4,6 +4,8 @@
 #include <pthread.h>
 
 #include <algorithm>
+#include <cctype>
+#include <charconv>
 #include <cmath>
 #include <cerrno>
 #include <cstring>
@@ -621,6 +623,52 @@ CaseConfig read_case(const toml::table& root, const std::filesystem::path& sourc
   return c;
 }
 
+// toml++ writes a float with 17 significant digits (0.20000000000000001): each float outside the
+// strings of `toml` is written again as the shortest text that reads back to the same double (0.2),
+// kept a TOML float (100000.0, not the integer 100000).
+std::string shortest_floats(std::string_view toml) {
+  std::string out;
+  out.reserve(toml.size());
+  size_t k = 0;
+  while (k < toml.size()) {
+    const char ch = toml[k];
+    if (ch == '\'' || ch == '"') {  // a string, written through (a basic string's \" does not end it)
+      size_t end = k + 1;
+      while (end < toml.size() && toml[end] != ch) end += ch == '"' && toml[end] == '\\' ? 2 : 1;
+      end = std::min(end + 1, toml.size());
+      out.append(toml.substr(k, end - k));
+      k = end;
+      continue;
+    }
+    const bool starts_value = (std::isdigit(static_cast<unsigned char>(ch)) || ch == '-' || ch == '+') &&
+                              (k == 0 || std::string_view(" \t[,=").find(toml[k - 1]) != std::string_view::npos);
+    if (starts_value) {
+      size_t end = k;
+      while (end < toml.size() && std::string_view("0123456789+-.eE_").find(toml[end]) != std::string_view::npos) ++end;
+      const std::string token(toml.substr(k, end - k));
+      if (token.find_first_of(".eE") != std::string::npos && token.find('_') == std::string::npos) {
+        double x = 0.0;
+        const auto [ptr, ec] = std::from_chars(token.data(), token.data() + token.size(), x);
+        char buffer[64];
+        if (ec == std::errc() && ptr == token.data() + token.size()) {
+          const auto written = std::to_chars(buffer, buffer + sizeof buffer, x);
+          std::string shortest(buffer, written.ptr);
+          if (shortest.find_first_of(".e") == std::string::npos) shortest += ".0";
+          out += shortest;
+          k = end;
+          continue;
+        }
+      }
+      out += token;
+      k = end;
+      continue;
+    }
+    out += ch;
+    ++k;
+  }
+  return out;
+}
+
 CaseConfig parse_case_here(std::string_view text, const std::vector<std::string>& overrides,
                            const std::filesystem::path& source) {
   toml::table root;
@@ -631,7 +679,12 @@ CaseConfig parse_case_here(std::string_view text, const std::vector<std::string>
     throw CaseError(fmt::format("{}:{}:{}: {}", source.string(), where.line, where.column, e.description()));
   }
   for (const auto& o : overrides) apply_override(root, o);
-  return read_case(root, source);
+  CaseConfig c = read_case(root, source);
+  c.overrides = overrides;
+  std::ostringstream as_run;
+  as_run << toml::toml_formatter{root};
+  c.as_run = shortest_floats(as_run.str());
+  return c;
 }
 
 }  // namespace

@@ -65,6 +65,11 @@ struct CaseConfig {
   // Keys the case gives that its other choices make of no effect, each "KEY: why" (a warning, not an
   // error: a key kept for switching numerics with --set is legitimate; case_advice prints them).
   std::vector<std::string> keys_without_effect;
+  // The --set assignments the case was read with, and the whole case with them applied as TOML text
+  // (toml++'s layout, without the file's comments): what a run records as granflow_case.toml, which
+  // reads back to the same case.
+  std::vector<std::string> overrides;
+  std::string as_run;
 };
 
 // "key.path=value" overrides; value is parsed as TOML (number, bool, array, quoted string) and

@@ -1,5 +1,7 @@
 #include "io/run_directory.hpp"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <fstream>
 #include <set>
@@ -43,7 +45,7 @@ std::vector<std::filesystem::path> run_files_in(const std::filesystem::path& dir
   auto is_run_file = [&](const std::string& name) {
     const bool fixed = name == "fields.pvd" || name == "history.csv" || name == "lode_dissipation.csv" ||
                        name == "checkpoint" || name == "checkpoint.old" || name == "checkpoint.partial" ||
-                       name == run_record_name;
+                       name == run_record_name || name == case_record_name;
     const std::string csv_stem = numbered_stem(name, ".csv");
     const bool series = (!csv_stem.empty() && (csv_series.count(csv_stem) || line_names.count(csv_stem))) ||
                         numbered_stem(name, ".vtr") == "fields";
@@ -126,6 +128,15 @@ void restore_set_aside_run(const std::filesystem::path& dir, const std::vector<L
   if (!fs::is_directory(aside, ec)) return;
   for (const auto& file : run_files_in(dir, lines)) fs::remove_all(file, ec);
   move_back(dir, aside);
+}
+
+void record_case(const std::filesystem::path& dir, const CaseConfig& config, int ranks, double continued_from) {
+  std::string how = fmt::format("# The case as granflow {} ran it into this directory, on {} rank{}: {}\n", GRANFLOW_VERSION, ranks,
+                                ranks == 1 ? "" : "s", config.source.string());
+  for (const auto& o : config.overrides) how += fmt::format("#   --set '{}'\n", o);
+  if (continued_from >= 0.0) how += fmt::format("# continued from the checkpoint at t = {:.9g} s\n", continued_from);
+  how += "# `granflow run` on this file runs it again (the file's comments are not kept).\n\n";
+  write_file_atomically(dir / case_record_name, [&](std::ostream& out) { out << how << config.as_run << "\n"; });
 }
 
 void record_run(const std::filesystem::path& dir, const std::vector<LineSample>& lines) {

@@ -13,10 +13,12 @@
 namespace granflow {
 
 inline constexpr const char* run_record_name = "granflow_run.txt";
+// The case as the run took it (CaseConfig::as_run), with how it was run in comment lines.
+inline constexpr const char* case_record_name = "granflow_case.toml";
 
 // The earlier run's files in `dir`: fields.pvd and fields_NNNNN.vtr, history.csv,
 // lode_dissipation.csv, the numbered soil series (surface_, failure_line_, column_height_), the
-// checkpoint directories, the record, and NAME.csv and NAME_NNNNN.csv of each line sample the record
+// checkpoint directories, the records, and NAME.csv and NAME_NNNNN.csv of each line sample the record
 // names or `lines` (the new run's) holds. Empty if `dir` is not a directory.
 std::vector<std::filesystem::path> run_files_in(const std::filesystem::path& dir, const std::vector<LineSample>& lines);
 
@@ -44,5 +46,11 @@ void restore_set_aside_run(const std::filesystem::path& dir, const std::vector<L
 // Writes the record of `lines` into `dir`, keeping the names an earlier record there holds (a restart
 // with other line samples leaves both kinds of file). Throws std::runtime_error if it cannot write.
 void record_run(const std::filesystem::path& dir, const std::vector<LineSample>& lines);
+
+// Writes the case as the run took it into `dir` (case_record_name): how it was run (the case file, the
+// --set assignments, the version and the number of ranks, the checkpoint's time if it was continued
+// from one) in comment lines, then the case with the assignments applied, which `granflow run` takes
+// as it is. Throws std::runtime_error if it cannot write.
+void record_case(const std::filesystem::path& dir, const CaseConfig& config, int ranks, double continued_from = -1.0);
 
 }  // namespace granflow

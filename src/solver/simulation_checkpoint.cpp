@@ -108,6 +108,7 @@ void Simulation::restart() {
   flow_->set_last_dt(scalars.shared[0]);
   if (soil_) soil_->restore_scalars(std::span<const double>(scalars.shared).subspan(1), scalars.summed);
   time_ = run.time;
+  restart_time_ = run.time;
   restart_dt_ = run.next_dt;
   steps_ = run.steps;
   if (const std::string ours = physics(); rank_ == 0 && !run.physics.empty() && run.physics != ours)

@@ -19,9 +19,14 @@ namespace granflow {
 void Simulation::write_output() {
   if (out_.empty()) return;
   const Grid& g = *grid_;
-  // The record of the line samples goes with the first output, after a --overwrite has cleared the
-  // directory of the earlier run (io/run_directory.hpp).
-  if (!run_recorded_ && rank_ == 0) record_run(out_, config_.output.lines);
+  // The records of the case and of the line samples go with the first output, after a --overwrite has
+  // cleared the directory of the earlier run (io/run_directory.hpp).
+  if (!run_recorded_ && rank_ == 0) {
+    record_run(out_, config_.output.lines);
+    int ranks;
+    MPI_Comm_size(g.comm(), &ranks);
+    record_case(out_, config_, ranks, restarted_ ? restart_time_ : -1.0);
+  }
   run_recorded_ = true;
   // The strain norm behind the failure line is a diagnostic: bring it up to date for the soil lines
   // as well as for the fields, which may be switched off.

@@ -36,11 +36,13 @@ TEST(RunDirectory, FindsTheRunsFilesAndLeavesOthers) {
   fs::create_directories(dir / "checkpoint");
   for (const char* name : {"fields.pvd", "fields_00000.vtr", "history.csv", "lode_dissipation.csv", "surface_00003.csv",
                            "failure_line_00003.csv", "column_height_00003.csv", "old_line.csv", "old_line_00002.csv",
-                           "new_line_00000.csv", "survey.csv", "survey_20240.csv", "notes.txt", "fields_1.vtr"})
+                           "new_line_00000.csv", "survey.csv", "survey_20240.csv", "notes.txt", "fields_1.vtr",
+                           "granflow_case.toml", "case.toml"})
     std::ofstream(dir / name) << "x\n";
   EXPECT_EQ(names_of(run_files_in(dir, {})),
             (std::vector<std::string>{"checkpoint", "column_height_00003.csv", "failure_line_00003.csv", "fields.pvd",
-                                      "fields_00000.vtr", "history.csv", "lode_dissipation.csv", "surface_00003.csv"}));
+                                      "fields_00000.vtr", "granflow_case.toml", "history.csv", "lode_dissipation.csv",
+                                      "surface_00003.csv"}));
   record_run(dir, lines({"old_line"}));
   const auto with_lines = names_of(run_files_in(dir, lines({"new_line"})));
   for (const char* name : {"old_line.csv", "old_line_00002.csv", "new_line_00000.csv", run_record_name})
