@@ -30,12 +30,12 @@ run() {  # name ranks case overrides...
     end=$(date +%s.%N)
     local steps its
     steps=$(grep -oP 'in \K[0-9]+(?= steps)' "$log")
-    its=$(grep -oP 'outer iterations \K.*(?= iterations each)' "$log" | sed -E 's/ \([0-9]+ of [0-9]+ steps[^)]*\)//; s/momentum iterations //; s/pressure solves //; s/ \(/, /')
+    its=$(grep -oP 'outer iterations \K.*(?= iterations each)' "$log" | sed -E 's/ \([0-9]+ of [0-9]+ steps[^)]*\)//; s/momentum iterations //; s/(pressure|coupled \(velocity and pressure\)) solves //; s/ \(/, /')
     printf "| %s | %d | %.1f | %s | %s |\n" "$name" "$ranks" "$(awk -v a="$start" -v b="$end" 'BEGIN { print b - a }')" "$steps" "$its"
     rm -rf "$out"
   done
 }
-echo "| run | ranks | wall s | steps | outer its, momentum its, pressure solves, pressure its/solve |"
+echo "| run | ranks | wall s | steps | outer its, momentum its, pressure (or coupled) solves, its/solve |"
 echo "|---|---|---|---|---|"
 if [[ $which == cavity || $which == all ]]; then
   for n in 1 2; do run "cavity Re 1000, 256 x 256, to steady state" $n cases/lid_driven_cavity_re1000.toml "--set" "mesh.cells=[256,256]" "--set" "time.end=400"; done

@@ -134,7 +134,7 @@ add_test(NAME cli_earlier_run_of_line_samples_refused
                  $<TARGET_FILE:granflow> ${CMAKE_CURRENT_BINARY_DIR}/earlier_lines ${CMAKE_SOURCE_DIR}/cases/lid_driven_cavity_re100.toml
                  --set "mesh.cells=[8,8]" --set time.end=0.02 --set output.fields=false --set output.checkpoints=false --set output.progress_seconds=0)
 set_tests_properties(cli_earlier_run_of_line_samples_refused PROPERTIES LABELS cli
-                     PASS_REGULAR_EXPRESSION "holds an earlier run [(][^)]*(granflow_run.txt|centreline)[^)]*[)]")
+                     PASS_REGULAR_EXPRESSION "holds an earlier run [(][^)]*(granflow_run.txt|granflow_case.toml|centreline)[^)]*[)]")
 add_test(NAME cli_unknown_command COMMAND granflow runn ${CMAKE_SOURCE_DIR}/cases/lid_driven_cavity_re100.toml)
 set_tests_properties(cli_unknown_command PROPERTIES LABELS cli PASS_REGULAR_EXPRESSION "error: unknown command 'runn'")
 add_test(NAME cli_check_unknown_solver

@@ -125,9 +125,11 @@ int run_case(const std::string& case_file, const std::vector<std::string>& overr
                : s.stopped_at_max_steps ? fmt::format(", stopped at time.max_steps = {} before time.end = {} s",
                                                       sim.config().time.max_steps, sim.config().time.end)
                                         : std::string());
+    const bool coupled = sim.config().flow.numerics.pressure_coupling == PressureCoupling::coupled;
     fmt::print("outer iterations {} ({} of {} steps stopped at numerics.outer_iterations, not at outer_tolerance), "
-               "momentum iterations {}, pressure solves {} ({:.1f} iterations each)\n",
-               s.outer_iterations, s.steps_outer_unconverged, s.steps, s.momentum_iterations, s.pressure_solves,
+               "momentum iterations {}, {} solves {} ({:.1f} iterations each)\n",
+               s.outer_iterations, s.steps_outer_unconverged, s.steps, s.momentum_iterations,
+               coupled ? "coupled (velocity and pressure)" : "pressure", s.pressure_solves,
                s.pressure_solves ? double(s.pressure_iterations) / s.pressure_solves : 0.0);
     if (s.solves_at_iteration_limit > 0)
       fmt::print("warning: {} linear solves stopped at their solver's max_iterations before its rtol; the face fluxes "
