@@ -14,6 +14,7 @@
 
 #include "app/petsc_messages.hpp"
 #include "app/run_case.hpp"
+#include "app/run_stability.hpp"
 #include "io/case_advice.hpp"
 #include "io/case_error.hpp"
 #include "io/case_file.hpp"
@@ -73,6 +74,23 @@ int main(int argc, char** argv) {
   run->add_flag("--overwrite", overwrite, "replace an earlier run in the output directory (refused without it)")
       ->excludes(restart_flag);
 
+  granflow::StrengthReductionSettings strength;
+  auto* stability = app.add_subcommand(
+      "stability", "factor of safety by strength reduction: the case run with C / F and tan(phi) / F, F bisected "
+                   "between standing and failing within time.end");
+  stability->add_option("case", case_file, "case file (TOML)")->required();
+  stability->add_option("-o,--output", out_dir, "output directory (default out/<case name>_stability)");
+  stability->add_option("--set", overrides, "override a case key: KEY=VALUE (repeatable)")->allow_extra_args(false);
+  stability->add_option("--petsc", petsc_options, "options passed to PETSc")->allow_extra_args(false);
+  stability->add_option("--first", strength.first_factor, "the first factor tried (default 1)")
+      ->check(CLI::Range(0.01, 100.0));
+  stability->add_option("--tolerance", strength.tolerance, "bisect until the factors that stand and fail are this close (default 0.01)")
+      ->check(CLI::Range(1e-4, 10.0));
+  stability->add_option("--displacement", strength.displacement_limit,
+                        "the soil fails when it moves further than this, m (default: a tenth of a cell)")
+      ->check(CLI::PositiveNumber);
+  stability->add_flag("--overwrite", overwrite, "replace an earlier analysis in the output directory");
+
   auto* check = app.add_subcommand("check", "validate a case file without running it");
   check->add_option("case", case_file, "case file (TOML)")->required();
   check->add_option("--set", overrides, "override a case key: KEY=VALUE (repeatable)")->allow_extra_args(false);
@@ -91,8 +109,9 @@ int main(int argc, char** argv) {
   // CLI11 would say only that a subcommand is required.
   if (argc > 1 && argv[1][0] != '-') {
     const std::string command = argv[1];
-    if (command != "run" && command != "check" && command != "element-test") {
-      fmt::print(stderr, "error: unknown command '{}' (the commands are run, check and element-test; see granflow --help)\n",
+    if (command != "run" && command != "check" && command != "stability" && command != "element-test") {
+      fmt::print(stderr, "error: unknown command '{}' (the commands are run, check, stability and element-test; see "
+                         "granflow --help)\n",
                  command);
       return 2;
     }
@@ -103,7 +122,7 @@ int main(int argc, char** argv) {
     // CLI11's message (or the help, status 0); a command line it refuses is status 2, as a case is.
     return app.exit(e) == 0 ? 0 : 2;
   }
-  if (run->count("--output") && out_dir.empty()) {
+  if ((run->count("--output") || stability->count("--output")) && out_dir.empty()) {
     fmt::print(stderr, "error: -o/--output: the output directory is empty\n");
     return 2;
   }
@@ -198,7 +217,8 @@ int main(int argc, char** argv) {
   // alone while the others wait in a collective call: that rank reports it and stops them all.
   int status = 0;
   try {
-    status = granflow::run_case(case_file, overrides, out_dir, restart, overwrite);
+    status = *stability ? granflow::run_stability(case_file, overrides, out_dir, overwrite, strength)
+                        : granflow::run_case(case_file, overrides, out_dir, restart, overwrite);
     granflow::warn_unused_petsc_options(rank);
   } catch (const std::exception& e) {
     status = report_shared_error(e, case_file, rank);

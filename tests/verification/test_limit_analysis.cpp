@@ -26,6 +26,7 @@
 #include <vector>
 
 #include "collapse_measures.hpp"
+#include "solver/strength_reduction.hpp"
 #include "test_support.hpp"
 
 namespace granflow {
@@ -62,6 +63,35 @@ TEST(VerticalCut, StandsBelowAndFailsAboveTheBoundsOfLimitAnalysis) {
   EXPECT_LT(std::abs(stand_move), 0.1);
   EXPECT_LT(std::abs(stand_top), 0.1);
   EXPECT_GT(fail_move, 1.0);
+}
+
+// The same cut's factor of safety by strength reduction (`granflow stability`): at gamma H / c = 3 the
+// cut stands with its cohesion divided by F up to F = N_c / 3, so limit analysis brackets the factor
+// between 3.64 / 3 = 1.213 and 4 / 3 = 1.333. Measured on these cells, each trial to t = 1 s: stands at
+// F = 1.3281, fails at 1.3438 (N_c 3.98-4.03, the 3.9-4.0 of the runs above; on 8 mm cells the model's
+// N_c lies a little above limit analysis's, and approaches it as the cells shrink, docs/validation.md).
+TEST(VerticalCut, FactorOfSafetyByStrengthReductionLiesBetweenTheBounds) {
+  const double cohesion = soil_density * gravity * height / 3.0;
+  const CaseConfig config = load_case(
+      test::repo_path("cases/bui2008_experiment.toml"),
+      {fmt::format("mesh.cells=[{},{}]", cells_x, cells_y), "soil.rheology.friction_angle=0.001",
+       fmt::format("soil.rheology.cohesion={}", cohesion), "time.end=1.0", "output.progress_seconds=0"});
+  StrengthReductionSettings settings;
+  settings.tolerance = 0.02;
+  const StrengthReductionResult r = factor_of_safety(PETSC_COMM_WORLD, config, "", settings);
+  ASSERT_TRUE(r.bracketed());
+  if (test::is_root())
+    std::printf("vertical cut at gamma H / c = 3: stands at F = %.4f, fails at %.4f (%zu trials)\n", r.stands_at,
+                r.fails_at, r.trials.size());
+  EXPECT_LE(r.fails_at - r.stands_at, 0.02);
+  EXPECT_GT(r.stands_at, 3.64 / 3.0);
+  EXPECT_LT(r.fails_at, 4.0 / 3.0 * 1.02);  // the wedge's upper bound, and these cells' error
+  // Standing trials creep at the regularisation's rate; failing ones moved past a tenth of a cell.
+  for (const auto& t : r.trials) {
+    if (t.fails) EXPECT_GT(t.largest_displacement, 0.1 * cell);
+    else EXPECT_LT(t.largest_displacement, 0.1 * cell);
+    EXPECT_FALSE(t.diverged);
+  }
 }
 
 // The Bui et al. case with a wedge of slope angle beta against the wall in place of its block: 0.3 m

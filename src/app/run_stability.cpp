@@ -1,0 +1,97 @@
+#include "app/run_stability.hpp"
+
+#include <fmt/format.h>
+#include <petscsys.h>
+
+#include <cstdio>
+#include <filesystem>
+
+#include "app/run_case.hpp"
+#include "io/atomic_file.hpp"
+#include "io/case_error.hpp"
+#include "io/collective_failure.hpp"
+#include "io/run_directory.hpp"
+
+namespace granflow {
+
+namespace {
+
+constexpr const char* table_name = "stability.csv";
+
+// The earlier analysis in dir: its table and its trials' directories (F_<factor> holding a case record).
+std::vector<std::filesystem::path> earlier_analysis(const std::filesystem::path& dir) {
+  namespace fs = std::filesystem;
+  std::vector<fs::path> found;
+  std::error_code ec;
+  if (!fs::is_directory(dir, ec)) return found;
+  for (const auto& entry : fs::directory_iterator(dir, ec)) {
+    const std::string name = entry.path().filename().string();
+    if (name == table_name || (name.starts_with("F_") && fs::exists(entry.path() / case_record_name, ec)))
+      found.push_back(entry.path());
+  }
+  return found;
+}
+
+void write_table(const std::filesystem::path& path, const StrengthReductionResult& r) {
+  write_file_atomically(path, [&](std::ostream& out) {
+    out << "factor,fails,diverged,largest_displacement_m,time_s,steps,wall_seconds\n";
+    for (const auto& t : r.trials)
+      out << fmt::format("{},{},{},{:.6g},{:.6g},{},{:.3f}\n", t.factor, int(t.fails), int(t.diverged),
+                         t.largest_displacement, t.time, t.steps, t.wall_seconds);
+  });
+}
+
+}  // namespace
+
+int run_stability(const std::string& case_file, const std::vector<std::string>& overrides, std::string out_dir,
+                  bool overwrite, const StrengthReductionSettings& settings) {
+  const CaseConfig config = load_case(case_file, overrides);
+  check_solver_methods(config);
+  reduced_strength(config, settings.first_factor);  // a case with nothing to reduce, before any directory is made
+  if (out_dir.empty())
+    out_dir = (std::filesystem::path("out") / (std::filesystem::path(case_file).stem().string() + "_stability")).string();
+  int rank;
+  MPI_Comm_rank(PETSC_COMM_WORLD, &rank);
+  std::string problem;
+  if (rank == 0) {
+    std::error_code ec;
+    if (std::filesystem::exists(out_dir, ec) && !std::filesystem::is_directory(out_dir, ec))
+      problem = fmt::format("-o {}: not a directory", out_dir);
+    else if (const auto earlier = earlier_analysis(out_dir); !earlier.empty()) {
+      if (!overwrite)
+        problem = fmt::format("{} holds an earlier analysis ({}): replace it with --overwrite, or choose another "
+                              "directory with -o",
+                              out_dir, earlier.front().string());
+      else
+        for (const auto& p : earlier) std::filesystem::remove_all(p, ec);
+    }
+  }
+  if (auto text = first_failure(PETSC_COMM_WORLD, problem); !text.empty()) throw CaseError(text);
+  if (rank == 0) {
+    fmt::print("granflow: factor of safety of {} by strength reduction (C / F, tan(phi) / F), each trial to t = {} s, "
+               "output in {}\n",
+               config.title, config.time.end, out_dir);
+    std::fflush(stdout);
+  }
+  const StrengthReductionResult r = factor_of_safety(
+      PETSC_COMM_WORLD, config, out_dir, settings, [&](const StrengthTrial& t) {
+        if (rank != 0) return;
+        fmt::print("F = {:.4f}: {} (largest displacement {:.3g} m at t = {:.4g} s; {} steps, {:.1f} s)\n", t.factor,
+                   t.diverged ? "fails (diverged)" : t.fails ? "fails" : "stands", t.largest_displacement, t.time,
+                   t.steps, t.wall_seconds);
+        std::fflush(stdout);
+      });
+  if (rank == 0) write_table(std::filesystem::path(out_dir) / table_name, r);
+  if (!r.bracketed()) {
+    if (rank == 0)
+      fmt::print(stderr, "error: the soil {} at every factor tried ({} to {}); no factor of safety found\n",
+                 r.stands_at > 0.0 ? "stands" : "fails", settings.smallest_factor, settings.largest_factor);
+    return 1;
+  }
+  if (rank == 0)
+    fmt::print("factor of safety: {:.3f} (stands at F = {:.4f}, fails at F = {:.4f}; trials in {})\n",
+               0.5 * (r.stands_at + r.fails_at), r.stands_at, r.fails_at, out_dir);
+  return 0;
+}
+
+}  // namespace granflow

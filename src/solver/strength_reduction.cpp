@@ -1,0 +1,113 @@
+#include "solver/strength_reduction.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <numbers>
+
+#include "io/case_error.hpp"
+#include "solver/simulation.hpp"
+
+namespace granflow {
+
+CaseConfig reduced_strength(const CaseConfig& config, double factor) {
+  if (!(factor > 0.0 && std::isfinite(factor)))
+    throw CaseError(fmt::format("strength reduction: the factor {} is not a positive number", factor));
+  if (!config.soil || !config.soil->rheology)
+    throw CaseError(fmt::format("{}: strength reduction needs soil with a rheology ([soil.rheology]) to reduce",
+                                config.source.string()));
+  const auto& r = *config.soil->rheology;
+  if (r.friction != rheology::FrictionSource::constant)
+    throw CaseError(fmt::format("{}: strength reduction divides a constant friction angle; mu(I) friction has none "
+                                "(use soil.rheology.friction = \"constant\")",
+                                config.source.string()));
+  const double deg = std::numbers::pi / 180.0;
+  const double friction = std::atan(std::tan(r.friction_angle_deg * deg) / factor) / deg;
+  const auto& num = config.flow.numerics;
+  std::vector<std::string> keys{fmt::format("soil.rheology.friction_angle={}", friction),
+                                fmt::format("soil.rheology.cohesion={}", r.cohesion / factor),
+                                fmt::format("numerics.outer_iterations={}", std::max(num.outer_iterations, 10)),
+                                fmt::format("numerics.outer_tolerance={}", std::min(num.outer_tolerance, 1e-6)),
+                                "soil.displacement=true"};
+  CaseConfig reduced = parse_case(config.as_run, keys, config.source);
+  reduced.overrides.insert(reduced.overrides.begin(), config.overrides.begin(), config.overrides.end());
+  return reduced;
+}
+
+std::filesystem::path trial_directory(const std::filesystem::path& out, double factor) {
+  return out.empty() ? out : out / fmt::format("F_{:.4f}", factor);
+}
+
+namespace {
+
+// The largest displacement of the soil (cells with c >= 0.5), on every rank.
+double largest_displacement(Simulation& sim) {
+  const Grid& g = sim.grid();
+  const SoilPhase& soil = *sim.soil();
+  ConstFieldArray c(g.field_dm(), soil.soil_fraction().global());
+  ConstFieldArray dx(g.field_dm(), soil.displacement(0).global()), dy(g.field_dm(), soil.displacement(1).global());
+  const auto& b = g.owned();
+  double largest = 0.0;
+  for (int j = b.ys; j < b.ye(); ++j)
+    for (int i = b.xs; i < b.xe(); ++i)
+      if (c[j][i] >= 0.5) largest = std::max(largest, std::hypot(dx[j][i], dy[j][i]));
+  double all = 0.0;
+  MPI_Allreduce(&largest, &all, 1, MPI_DOUBLE, MPI_MAX, g.comm());
+  return all;
+}
+
+StrengthTrial run_trial(MPI_Comm comm, const CaseConfig& config, const std::filesystem::path& out, double factor,
+                        double limit_setting) {
+  StrengthTrial trial;
+  trial.factor = factor;
+  const auto start = std::chrono::steady_clock::now();
+  Simulation sim(comm, reduced_strength(config, factor), trial_directory(out, factor));
+  const double limit = limit_setting > 0.0 ? limit_setting : 0.1 * sim.grid().min_spacing();
+  struct Moved {};  // the soil has moved past the limit: the trial's verdict is in
+  try {
+    const RunSummary s = sim.run([&](Simulation& running, double) {
+      ++trial.steps;
+      if (largest_displacement(running) > limit) throw Moved{};
+    });
+    trial.steps = s.steps;
+  } catch (const Moved&) {
+    if (!out.empty()) sim.write_output();  // the state at which it was seen to fail
+  } catch (const DivergenceError&) {
+    trial.diverged = true;
+  }
+  trial.largest_displacement = largest_displacement(sim);
+  trial.fails = trial.diverged || trial.largest_displacement > limit;
+  trial.time = sim.time();
+  trial.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return trial;
+}
+
+}  // namespace
+
+StrengthReductionResult factor_of_safety(MPI_Comm comm, const CaseConfig& config, const std::filesystem::path& out,
+                                         const StrengthReductionSettings& settings,
+                                         const std::function<void(const StrengthTrial&)>& on_trial) {
+  reduced_strength(config, settings.first_factor);  // the case's own errors, before any trial runs
+  StrengthReductionResult result;
+  auto trial = [&](double factor) {
+    const StrengthTrial t = run_trial(comm, config, out, factor, settings.displacement_limit);
+    result.trials.push_back(t);
+    if (t.fails) result.fails_at = std::min(result.fails_at, factor);
+    else result.stands_at = std::max(result.stands_at, factor);
+    if (on_trial) on_trial(t);
+  };
+  // A bracket: double while the soil stands, halve while it fails.
+  double factor = settings.first_factor;
+  trial(factor);
+  while (!result.bracketed()) {
+    factor = result.stands_at > 0.0 ? factor * 2.0 : factor / 2.0;
+    if (factor > settings.largest_factor || factor < settings.smallest_factor) return result;
+    trial(factor);
+  }
+  while (result.fails_at - result.stands_at > settings.tolerance) trial(0.5 * (result.stands_at + result.fails_at));
+  return result;
+}
+
+}  // namespace granflow

@@ -1,0 +1,61 @@
+#pragma once
+// Factor of safety by strength reduction, as finite-element slope analysis finds it (Griffiths & Lane
+// 1999, Geotechnique 49(3)): the case is run with the soil's strength divided by a factor F, the
+// cohesion as C / F and the friction as tan(phi) / F, and F is bisected between the largest factor at
+// which the soil stands and the smallest at which it fails. "Fails" means that some soil moves
+// further than a limit (a tenth of a cell by default) within the case's time.end.
+#include <mpi.h>
+
+#include <filesystem>
+#include <functional>
+#include <limits>
+#include <vector>
+
+#include "io/case_file.hpp"
+
+namespace granflow {
+
+// The case with its soil's strength divided by `factor`: cohesion C / F and friction angle
+// atan(tan(phi) / F), with the outer iterations converged (at least 10 per step, to a velocity change
+// of 1e-6 or less), which the onset of failure needs (docs/validation.md, "A vertical cut"). The
+// result is read anew from the case's text with these keys set, so that its record holds them.
+// Throws CaseError for a case whose soil has no rheology of constant friction, or a factor <= 0.
+CaseConfig reduced_strength(const CaseConfig& config, double factor);
+
+struct StrengthTrial {
+  double factor = 0.0;
+  bool fails = false;
+  bool diverged = false;              // the run stopped on divergence (counted as failing)
+  double largest_displacement = 0.0;  // m, of the soil (cells with c >= 0.5) when the trial ended
+  double time = 0.0;                  // s, when it ended: time.end, or earlier once the soil moved past the limit
+  long steps = 0;
+  double wall_seconds = 0.0;
+};
+
+struct StrengthReductionSettings {
+  double first_factor = 1.0;
+  double tolerance = 0.01;          // bisect until fails_at - stands_at <= tolerance
+  // m; 0: a tenth of the mesh's smallest spacing. A soil that stands creeps by the regularisation's
+  // rate, some H t / m ([VoF] Eq. 12: 1e-3 m for H = 10 m over 10 s at m = 1e5 s), far below it.
+  double displacement_limit = 0.0;
+  double smallest_factor = 0.01, largest_factor = 100.0;  // where the search gives up
+};
+
+struct StrengthReductionResult {
+  double stands_at = 0.0;                                        // largest factor tried at which the soil stands
+  double fails_at = std::numeric_limits<double>::infinity();     // smallest at which it fails
+  std::vector<StrengthTrial> trials;
+  bool bracketed() const { return stands_at > 0.0 && fails_at < std::numeric_limits<double>::infinity(); }
+};
+
+// Runs the trials (collective on comm), each into out/F_<factor> (no files if out is empty): from
+// first_factor, doubling or halving until one stands and one fails, then bisecting. on_trial is
+// called after each trial, on every rank.
+StrengthReductionResult factor_of_safety(MPI_Comm comm, const CaseConfig& config, const std::filesystem::path& out,
+                                         const StrengthReductionSettings& settings,
+                                         const std::function<void(const StrengthTrial&)>& on_trial = {});
+
+// A trial's output directory under out.
+std::filesystem::path trial_directory(const std::filesystem::path& out, double factor);
+
+}  // namespace granflow

@@ -1,0 +1,86 @@
+// The case a strength-reduction trial runs: the soil's cohesion and tan(phi) divided by the factor,
+// converged outer iterations, everything else the case's own.
+#include "solver/strength_reduction.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+#include <string>
+
+#include "io/case_error.hpp"
+
+namespace granflow {
+namespace {
+
+const char* slope = R"(
+title = "a slope"
+[mesh]
+cells = [20, 10]
+upper = [2.0, 1.0]
+[time]
+end = 1.0
+[air]
+density = 1.0
+viscosity = 1.8e-5
+[soil]
+density = 2000.0
+[soil.rheology]
+friction_angle = 30.0
+cohesion = 5000.0
+[boundary]
+west = { type = "wall" }
+east = { type = "atmosphere" }
+south = { type = "wall" }
+north = { type = "atmosphere" }
+[[initial.soil]]
+shape = "polygon"
+points = [[0.0, 0.0], [1.5, 0.0], [0.5, 0.5], [0.0, 0.5]]
+)";
+
+double tan_deg(double deg) { return std::tan(deg * std::numbers::pi / 180.0); }
+
+TEST(StrengthReduction, DividesCohesionAndTheTangentOfFriction) {
+  const CaseConfig c = parse_case(slope, {"numerics.outer_iterations=2"});
+  for (double factor : {0.5, 1.0, 1.37, 4.0}) {
+    const CaseConfig r = reduced_strength(c, factor);
+    const auto& rheology = *r.soil->rheology;
+    EXPECT_NEAR(rheology.cohesion, 5000.0 / factor, 1e-12 * 5000.0);
+    EXPECT_NEAR(tan_deg(rheology.friction_angle_deg), tan_deg(30.0) / factor, 1e-14);
+    // Converged outer iterations, whatever the case asked for.
+    EXPECT_EQ(r.flow.numerics.outer_iterations, 10);
+    EXPECT_LE(r.flow.numerics.outer_tolerance, 1e-6);
+    EXPECT_TRUE(r.soil->displacement);
+    // The rest is the case's; its record holds the reduced strength and reads back to it.
+    EXPECT_EQ(r.mesh.cells, c.mesh.cells);
+    EXPECT_EQ(r.soil->soil_density, c.soil->soil_density);
+    EXPECT_EQ(parse_case(r.as_run).soil->rheology->cohesion, rheology.cohesion);
+  }
+  // More iterations than ten, or a tighter tolerance, are kept.
+  const CaseConfig tight = parse_case(slope, {"numerics.outer_iterations=20", "numerics.outer_tolerance=1e-8"});
+  EXPECT_EQ(reduced_strength(tight, 1.2).flow.numerics.outer_iterations, 20);
+  EXPECT_EQ(reduced_strength(tight, 1.2).flow.numerics.outer_tolerance, 1e-8);
+}
+
+TEST(StrengthReduction, RefusesWhatHasNoStrengthToReduce) {
+  auto refusal = [](const CaseConfig& c, double factor) -> std::string {
+    try {
+      reduced_strength(c, factor);
+    } catch (const CaseError& e) {
+      return e.what();
+    }
+    return "";
+  };
+  const CaseConfig c = parse_case(slope);
+  EXPECT_NE(refusal(c, 0.0).find("the factor 0 is not a positive number"), std::string::npos);
+  EXPECT_NE(refusal(c, -1.0).find("not a positive number"), std::string::npos);
+  const CaseConfig mu_of_i = parse_case(slope, {"soil.rheology={model = \"drucker_prager\", friction = \"mu_of_I\"}"});
+  EXPECT_NE(refusal(mu_of_i, 1.0).find("mu(I) friction has none"), std::string::npos) << refusal(mu_of_i, 1.0);
+  std::string without(slope);
+  without.erase(without.find("[soil.rheology]"), std::string("[soil.rheology]\nfriction_angle = 30.0\ncohesion = 5000.0\n").size());
+  const CaseConfig newtonian = parse_case(without, {"soil.viscosity=1e-3"});  // a Newtonian dense phase
+  EXPECT_NE(refusal(newtonian, 1.0).find("needs soil with a rheology"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace granflow
