@@ -376,3 +376,19 @@ add_test(NAME cli_case_record_runs_the_same_case
 set_tests_properties(cli_case_record_runs_the_same_case PROPERTIES LABELS cli)
 add_test(NAME cli_version COMMAND granflow --version)
 set_tests_properties(cli_version PROPERTIES LABELS cli PASS_REGULAR_EXPRESSION "^granflow [0-9]+[.][0-9]+[.][0-9]+\n$")
+# granflow stability: a case with no strength to reduce is refused with one message; a soil that stands
+# at every factor says so (status 1) and leaves its table; a second analysis into the directory is
+# refused without --overwrite.
+add_test(NAME cli_stability_needs_a_rheology
+         COMMAND granflow stability ${CMAKE_SOURCE_DIR}/cases/lid_driven_cavity_re100.toml -o ${CMAKE_CURRENT_BINARY_DIR}/stability_none)
+set_tests_properties(cli_stability_needs_a_rheology PROPERTIES LABELS cli
+                     PASS_REGULAR_EXPRESSION "^error: [^\n]*lid_driven_cavity_re100.toml: strength reduction needs soil with a rheology")
+add_test(NAME cli_stability_refuses_mu_of_i
+         COMMAND granflow stability ${CMAKE_SOURCE_DIR}/cases/bui2008_experiment_mu_of_i.toml -o ${CMAKE_CURRENT_BINARY_DIR}/stability_none)
+set_tests_properties(cli_stability_refuses_mu_of_i PROPERTIES LABELS cli
+                     PASS_REGULAR_EXPRESSION "strength reduction divides a constant friction angle; mu[(]I[)] friction has none")
+add_test(NAME cli_stability_stands_at_every_factor_and_keeps_its_analysis
+         COMMAND sh -c "g=$0; d=$1; c=$2; shift 2; rm -rf \"$d\"; \"$g\" stability \"$c\" -o \"$d\" \"$@\" > /dev/null 2> \"$d.err\"; test $? -eq 1 && grep -q 'stands at every factor tried, up to F = 64' \"$d.err\" && test $(wc -l < \"$d/stability.csv\") -eq 8 && test -f \"$d/F_64.0000/granflow_case.toml\" || exit 1; out=$(\"$g\" stability \"$c\" -o \"$d\" \"$@\" 2>&1); test $? -eq 2 && echo \"$out\" | grep -q 'holds an earlier analysis'"
+                 $<TARGET_FILE:granflow> ${CMAKE_CURRENT_BINARY_DIR}/stability_stands ${CMAKE_SOURCE_DIR}/cases/bui2008_experiment.toml
+                 --set "mesh.cells=[30,10]" --set time.end=0.02 --set soil.rheology.cohesion=1e5 --set output.progress_seconds=0 --set output.fields=false)
+set_tests_properties(cli_stability_stands_at_every_factor_and_keeps_its_analysis PROPERTIES LABELS cli)

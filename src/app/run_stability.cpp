@@ -83,9 +83,16 @@ int run_stability(const std::string& case_file, const std::vector<std::string>& 
       });
   if (rank == 0) write_table(std::filesystem::path(out_dir) / table_name, r);
   if (!r.bracketed()) {
-    if (rank == 0)
-      fmt::print(stderr, "error: the soil {} at every factor tried ({} to {}); no factor of safety found\n",
-                 r.stands_at > 0.0 ? "stands" : "fails", settings.smallest_factor, settings.largest_factor);
+    if (rank == 0) {
+      if (r.stands_at > 0.0)
+        fmt::print(stderr, "error: the soil stands at every factor tried, up to F = {} (the search stops below {}): no "
+                           "factor of safety found; a longer time.end gives weakened soil the time to move\n",
+                   r.stands_at, settings.largest_factor);
+      else
+        fmt::print(stderr, "error: the soil fails at every factor tried, down to F = {} (the search stops above {}): "
+                           "no factor of safety found; it does not stand even with its strength multiplied\n",
+                   r.fails_at, settings.smallest_factor);
+    }
     return 1;
   }
   if (rank == 0)

@@ -1,0 +1,71 @@
+#!/usr/bin/python3
+"""The mechanism of a strength-reduction analysis (`granflow stability`): the displacement of the soil
+in the trial at the smallest factor that failed, as it was when the trial saw it fail.
+
+Usage: plot_stability.py OUT [--png FILE]
+Prints the bracket (the largest factor that stood, the smallest that failed) from OUT/stability.csv;
+with --png draws the displacement magnitude over the soil (cells with c >= 0.5) of that trial's last
+fields file, with the soil's surface (c = 0.5). The trials must have written fields
+(output.fields = true).
+"""
+import argparse
+import glob
+import os
+
+import numpy as np
+
+from granflow_files import InputError, main_with_errors, read_csv, read_vtr, require_columns
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument("out")
+    ap.add_argument("--png")
+    a = ap.parse_args()
+    path = os.path.join(a.out, "stability.csv")
+    t = read_csv(path)
+    require_columns(t, path, ["factor", "fails", "largest_displacement_m"])
+    fails = t["fails"] > 0.5
+    if not fails.any() or fails.all():
+        raise InputError(f"{path}: the soil {'fails' if fails.all() else 'stands'} in every trial: no bracket")
+    stands_at, fails_at = t["factor"][~fails].max(), t["factor"][fails].min()
+    print(f"stands at F = {stands_at:.4f}, fails at F = {fails_at:.4f}: factor of safety {0.5 * (stands_at + fails_at):.3f}")
+    if not a.png:
+        return 0
+    trial = os.path.join(a.out, f"F_{fails_at:.4f}")
+    files = sorted(glob.glob(os.path.join(trial, "fields_*.vtr")))
+    if not files:
+        raise InputError(f"{trial}: no fields_*.vtr (run the analysis with output.fields = true)")
+    x, y, cells = read_vtr(files[-1])
+    for name in ("soil_fraction", "displacement"):
+        if name not in cells:
+            raise InputError(f"{files[-1]}: no field {name}")
+    c = cells["soil_fraction"]
+    d = np.hypot(cells["displacement"][..., 0], cells["displacement"][..., 1])
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    xc, yc = 0.5 * (x[1:] + x[:-1]), 0.5 * (y[1:] + y[:-1])
+    soil = c > 0.5
+    top = yc[np.any(soil, axis=1)].max() if soil.any() else y[-1]
+    right = xc[np.any(soil, axis=0)].max() if soil.any() else x[-1]
+    fig, ax = plt.subplots(figsize=(9, 3.4))
+    shown = np.ma.masked_where(c < 0.5, d)
+    m = ax.pcolormesh(x, y, shown, cmap="viridis", shading="flat")
+    fig.colorbar(m, ax=ax, label="displacement (m)")
+    ax.contour(xc, yc, c, levels=[0.5], colors="k", linewidths=1.0)
+    ax.set_ylim(y[0], min(y[-1], 1.6 * top))
+    ax.set_xlim(x[0], min(x[-1], x[0] + 1.2 * (right - x[0])))
+    ax.set_aspect("equal")
+    ax.set_xlabel("x (m)")
+    ax.set_ylabel("y (m)")
+    ax.set_title(f"strength reduction: stands at F = {stands_at:.4f}, fails at F = {fails_at:.4f} "
+                 f"(displacement at F = {fails_at:.4f})", fontsize=10)
+    fig.tight_layout()
+    fig.savefig(a.png, dpi=120)
+    print(f"wrote {a.png}")
+    return 0
+
+
+if __name__ == "__main__":
+    main_with_errors(main)
