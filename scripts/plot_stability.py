@@ -9,12 +9,13 @@ fields file, with the soil's surface (c = 0.5). The trials must have written fie
 (output.fields = true).
 """
 import argparse
+import csv
 import glob
 import os
 
 import numpy as np
 
-from granflow_files import InputError, main_with_errors, read_csv, read_vtr, require_columns
+from granflow_files import InputError, main_with_errors, read_vtr
 
 
 def main():
@@ -23,16 +24,25 @@ def main():
     ap.add_argument("--png")
     a = ap.parse_args()
     path = os.path.join(a.out, "stability.csv")
-    t = read_csv(path)
-    require_columns(t, path, ["factor", "fails", "largest_displacement_m"])
-    fails = t["fails"] > 0.5
-    if not fails.any() or fails.all():
-        raise InputError(f"{path}: the soil {'fails' if fails.all() else 'stands'} in every trial: no bracket")
-    stands_at, fails_at = t["factor"][~fails].max(), t["factor"][fails].min()
+    try:
+        with open(path) as f:
+            rows = list(csv.DictReader(f))
+    except OSError as e:
+        raise InputError(f"cannot read {path}: {e.strerror}")
+    try:
+        trials = [(float(r["factor"]), r["fails"] == "1", r["directory"]) for r in rows]
+    except (KeyError, TypeError, ValueError):
+        raise InputError(f"{path}: not a table of trials (factor, fails, ..., directory)")
+    failed = [t for t in trials if t[1]]
+    stood = [t for t in trials if not t[1]]
+    if not failed or not stood:
+        raise InputError(f"{path}: the soil {'stands' if stood else 'fails'} in every trial: no bracket")
+    stands_at = max(t[0] for t in stood)
+    fails_at, _, directory = min(failed)
     print(f"stands at F = {stands_at:.4f}, fails at F = {fails_at:.4f}: factor of safety {0.5 * (stands_at + fails_at):.3f}")
     if not a.png:
         return 0
-    trial = os.path.join(a.out, f"F_{fails_at:.4f}")
+    trial = os.path.join(a.out, directory)
     files = sorted(glob.glob(os.path.join(trial, "fields_*.vtr")))
     if not files:
         raise InputError(f"{trial}: no fields_*.vtr (run the analysis with output.fields = true)")

@@ -388,7 +388,7 @@ add_test(NAME cli_stability_refuses_mu_of_i
 set_tests_properties(cli_stability_refuses_mu_of_i PROPERTIES LABELS cli
                      PASS_REGULAR_EXPRESSION "strength reduction divides a constant friction angle; mu[(]I[)] friction has none")
 add_test(NAME cli_stability_stands_at_every_factor_and_keeps_its_analysis
-         COMMAND sh -c "g=$0; d=$1; c=$2; shift 2; rm -rf \"$d\"; \"$g\" stability \"$c\" -o \"$d\" \"$@\" > /dev/null 2> \"$d.err\"; test $? -eq 1 && grep -q 'stands at every factor tried, up to F = 64' \"$d.err\" && test $(wc -l < \"$d/stability.csv\") -eq 8 && test -f \"$d/F_64.0000/granflow_case.toml\" || exit 1; out=$(\"$g\" stability \"$c\" -o \"$d\" \"$@\" 2>&1); test $? -eq 2 && echo \"$out\" | grep -q 'holds an earlier analysis'"
+         COMMAND sh -c "g=$0; d=$1; c=$2; shift 2; rm -rf \"$d\"; \"$g\" stability \"$c\" -o \"$d\" \"$@\" > /dev/null 2> \"$d.err\"; test $? -eq 1 && grep -q 'stands at every factor tried, up to F = 64' \"$d.err\" && test $(wc -l < \"$d/stability.csv\") -eq 8 && test -f \"$d/F_64/granflow_case.toml\" || exit 1; out=$(\"$g\" stability \"$c\" -o \"$d\" \"$@\" 2>&1); test $? -eq 2 && echo \"$out\" | grep -q 'holds an earlier analysis'"
                  $<TARGET_FILE:granflow> ${CMAKE_CURRENT_BINARY_DIR}/stability_stands ${CMAKE_SOURCE_DIR}/cases/bui2008_experiment.toml
                  --set "mesh.cells=[30,10]" --set time.end=0.02 --set soil.rheology.cohesion=1e5 --set output.progress_seconds=0 --set output.fields=false)
 set_tests_properties(cli_stability_stands_at_every_factor_and_keeps_its_analysis PROPERTIES LABELS cli)

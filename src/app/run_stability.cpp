@@ -34,10 +34,11 @@ std::vector<std::filesystem::path> earlier_analysis(const std::filesystem::path&
 
 void write_table(const std::filesystem::path& path, const StrengthReductionResult& r) {
   write_file_atomically(path, [&](std::ostream& out) {
-    out << "factor,fails,diverged,largest_displacement_m,time_s,steps,wall_seconds\n";
+    out << "factor,fails,diverged,largest_displacement_m,time_s,steps,wall_seconds,directory\n";
     for (const auto& t : r.trials)
-      out << fmt::format("{},{},{},{:.6g},{:.6g},{},{:.3f}\n", t.factor, int(t.fails), int(t.diverged),
-                         t.largest_displacement, t.time, t.steps, t.wall_seconds);
+      out << fmt::format("{},{},{},{:.6g},{:.6g},{},{:.3f},{}\n", t.factor, int(t.fails), int(t.diverged),
+                         t.largest_displacement, t.time, t.steps, t.wall_seconds,
+                         trial_directory(".", t.factor).filename().string());
   });
 }
 
@@ -76,7 +77,7 @@ int run_stability(const std::string& case_file, const std::vector<std::string>& 
   const StrengthReductionResult r = factor_of_safety(
       PETSC_COMM_WORLD, config, out_dir, settings, [&](const StrengthTrial& t) {
         if (rank != 0) return;
-        fmt::print("F = {:.4f}: {} (largest displacement {:.3g} m at t = {:.4g} s; {} steps, {:.1f} s)\n", t.factor,
+        fmt::print("F = {}: {} (largest displacement {:.3g} m at t = {:.4g} s; {} steps, {:.1f} s)\n", t.factor,
                    t.diverged ? "fails (diverged)" : t.fails ? "fails" : "stands", t.largest_displacement, t.time,
                    t.steps, t.wall_seconds);
         std::fflush(stdout);
@@ -96,7 +97,7 @@ int run_stability(const std::string& case_file, const std::vector<std::string>& 
     return 1;
   }
   if (rank == 0)
-    fmt::print("factor of safety: {:.3f} (stands at F = {:.4f}, fails at F = {:.4f}; trials in {})\n",
+    fmt::print("factor of safety: {:.3f} (stands at F = {}, fails at F = {}; trials in {})\n",
                0.5 * (r.stands_at + r.fails_at), r.stands_at, r.fails_at, out_dir);
   return 0;
 }

@@ -633,9 +633,18 @@ std::string shortest_floats(std::string_view toml) {
   while (k < toml.size()) {
     const char ch = toml[k];
     if (ch == '\'' || ch == '"') {  // a string, written through (a basic string's \" does not end it)
-      size_t end = k + 1;
-      while (end < toml.size() && toml[end] != ch) end += ch == '"' && toml[end] == '\\' ? 2 : 1;
-      end = std::min(end + 1, toml.size());
+      const std::string triple(3, ch);  // a multi-line string ends at its own three quotes only
+      size_t end;
+      if (toml.substr(k, 3) == triple) {
+        end = k + 3;
+        while (end < toml.size() && toml.substr(end, 3) != triple) end += ch == '"' && toml[end] == '\\' ? 2 : 1;
+        end = std::min(end + 3, toml.size());
+        while (end < toml.size() && toml[end] == ch) ++end;  // up to two quotes of the content before the closing three
+      } else {
+        end = k + 1;
+        while (end < toml.size() && toml[end] != ch) end += ch == '"' && toml[end] == '\\' ? 2 : 1;
+        end = std::min(end + 1, toml.size());
+      }
       out.append(toml.substr(k, end - k));
       k = end;
       continue;
@@ -646,7 +655,9 @@ std::string shortest_floats(std::string_view toml) {
       size_t end = k;
       while (end < toml.size() && std::string_view("0123456789+-.eE_").find(toml[end]) != std::string_view::npos) ++end;
       const std::string token(toml.substr(k, end - k));
-      if (token.find_first_of(".eE") != std::string::npos && token.find('_') == std::string::npos) {
+      const size_t next = toml.find_first_not_of(" \t", end);
+      const bool is_key = next != std::string_view::npos && toml[next] == '=';  // a bare key of digits, kept
+      if (!is_key && token.find_first_of(".eE") != std::string::npos && token.find('_') == std::string::npos) {
         double x = 0.0;
         const auto [ptr, ec] = std::from_chars(token.data(), token.data() + token.size(), x);
         char buffer[64];

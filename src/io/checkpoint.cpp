@@ -21,7 +21,6 @@ namespace {
 // The format's version is the magic's last character: "GRNFCKT3" since the fields are one file over
 // the whole mesh; version 2 held one file per rank, version 1 a history without the side forces.
 constexpr std::uint64_t magic = 0x33544b43464e5247ull;  // "GRNFCKT3"
-constexpr std::uint64_t magic_version_2 = 0x32544b43464e5247ull;
 constexpr std::uint64_t magic_version_1 = 0x31544b43464e5247ull;
 
 // fields.bin: this header; then each field as (nx + 2 ghosts) x (ny + 2 ghosts) doubles in rows of
@@ -165,16 +164,18 @@ std::string read_fields(MPI_Comm comm, const std::filesystem::path& path, int nx
   MPI_Offset bytes = 0;
   file.agreed(MPI_File_get_size(file.get(), &bytes), "read");
   if (!file.problem().empty()) return file.problem();
-  if (h.magic == magic_version_1 || h.magic == magic_version_2)
-    return fmt::format("{} was written by an earlier version of granflow (checkpoint format {}); run the case anew",
-                       path.string(), h.magic == magic_version_1 ? 1 : 2);
   if (bytes < MPI_Offset(sizeof h) || h.magic != magic) return fmt::format("{} is not a granflow checkpoint", path.string());
   if (h.nx != nx || h.ny != ny) return other_mesh(h.nx, h.ny, nx, ny);
   if (h.fields != std::int64_t(fields.size()))
     return fmt::format("the checkpoint holds {} fields, this case needs {} (a different model or numerics)", h.fields,
                        fields.size());
+  // Bounded before they are multiplied: a damaged header must not overflow the size check.
+  constexpr std::int64_t most = 1 << 24;
+  if (h.ranks < 1 || h.ranks > most || h.shared < 0 || h.shared > most || h.summed < 0 || h.summed > most)
+    return fmt::format("{} is damaged (its header counts {} ranks, {} and {} numbers)", path.string(), h.ranks,
+                       h.shared, h.summed);
   const std::int64_t width = h.shared + h.summed;
-  if (h.ghosts != Grid::ghost_width || h.ranks < 1 || h.shared < 0 || h.summed < 0 ||
+  if (h.ghosts != Grid::ghost_width ||
       bytes != field_offset(h, h.fields) + MPI_Offset(sizeof(double)) * h.ranks * width)
     return fmt::format("{} is truncated or damaged (its size does not match its header)", path.string());
   // The numbers: this rank's own where the decomposition is the one written; else the shared ones of
@@ -358,9 +359,12 @@ RunCheckpoint read_checkpoint(MPI_Comm comm, const std::filesystem::path& dir, i
                             field_names);
   }
   agree(comm, problem);
-  if (!std::filesystem::exists(from / fields_file) && std::filesystem::exists(from / "rank_0.bin"))
-    problem = fmt::format("{} was written by an earlier version of granflow (checkpoint format 2, one file per rank); "
-                          "run the case anew", from.string());
+  if (!std::filesystem::exists(from / fields_file) && std::filesystem::exists(from / "rank_0.bin")) {
+    std::uint64_t first = 0;
+    std::ifstream(from / "rank_0.bin", std::ios::binary).read(reinterpret_cast<char*>(&first), sizeof first);
+    problem = fmt::format("{} was written by an earlier version of granflow (checkpoint format {}, one file per rank); "
+                          "run the case anew", from.string(), first == magic_version_1 ? 1 : 2);
+  }
   agree(comm, problem);
   agree(comm, read_fields(comm, from / fields_file, nx, ny, fields, scalars));
   double clock[6] = {run.time, run.next_dt, double(run.output_index), run.dissipated_energy, run.initial_soil_volume,

@@ -130,10 +130,19 @@ void restore_set_aside_run(const std::filesystem::path& dir, const std::vector<L
   move_back(dir, aside);
 }
 
+namespace {
+// Text for one comment line: a line break in it (a --set value over two lines) as \n.
+std::string one_line(const std::string& text) {
+  std::string out;
+  for (char ch : text) out += ch == '\n' ? std::string("\\n") : ch == '\r' ? std::string("\\r") : std::string(1, ch);
+  return out;
+}
+}  // namespace
+
 void record_case(const std::filesystem::path& dir, const CaseConfig& config, int ranks, double continued_from) {
   std::string how = fmt::format("# The case as granflow {} ran it into this directory, on {} rank{}: {}\n", GRANFLOW_VERSION, ranks,
-                                ranks == 1 ? "" : "s", config.source.string());
-  for (const auto& o : config.overrides) how += fmt::format("#   --set '{}'\n", o);
+                                ranks == 1 ? "" : "s", one_line(config.source.string()));
+  for (const auto& o : config.overrides) how += fmt::format("#   --set '{}'\n", one_line(o));
   if (continued_from >= 0.0) how += fmt::format("# continued from the checkpoint at t = {:.9g} s\n", continued_from);
   how += "# `granflow run` on this file runs it again (the file's comments are not kept).\n\n";
   write_file_atomically(dir / case_record_name, [&](std::ostream& out) { out << how << config.as_run << "\n"; });

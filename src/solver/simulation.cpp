@@ -303,6 +303,12 @@ RunSummary Simulation::run(const StepObserver& after_step) {
   if (!restarted_) write_output();
   Vec previous[2];
   for (int a = 0; a < 2; ++a) VecDuplicate(flow_->velocity(a).global(), &previous[a]);
+  struct Freed {  // also when the loop ends in an exception (divergence, an observer that stops the run)
+    Vec* v;
+    ~Freed() {
+      for (int a = 0; a < 2; ++a) VecDestroy(&v[a]);
+    }
+  } freed{previous};
   // Whether the state at hand has been written, and checkpointed: at the start it has been written
   // (just above, or by the run a restart continues), and checkpointed if this is a restart.
   bool output_is_current = true;
@@ -406,7 +412,6 @@ RunSummary Simulation::run(const StepObserver& after_step) {
       checkpoint_is_current = true;
     }
   }
-  for (int a = 0; a < 2; ++a) VecDestroy(&previous[a]);
   // A run that stops before time.end (steady, or out of steps) writes where it stopped, once, with a
   // checkpoint to go on from.
   if (summary.reached_steady_state || steps_ >= tc.max_steps) {

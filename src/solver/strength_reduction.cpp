@@ -37,7 +37,7 @@ CaseConfig reduced_strength(const CaseConfig& config, double factor) {
 }
 
 std::filesystem::path trial_directory(const std::filesystem::path& out, double factor) {
-  return out.empty() ? out : out / fmt::format("F_{:.4f}", factor);
+  return out.empty() ? out : out / fmt::format("F_{}", factor);  // the shortest form: distinct factors, distinct names
 }
 
 namespace {
@@ -90,6 +90,8 @@ StrengthReductionResult factor_of_safety(MPI_Comm comm, const CaseConfig& config
                                          const StrengthReductionSettings& settings,
                                          const std::function<void(const StrengthTrial&)>& on_trial) {
   reduced_strength(config, settings.first_factor);  // the case's own errors, before any trial runs
+  if (!(settings.tolerance > 0.0))
+    throw CaseError(fmt::format("strength reduction: the tolerance {} is not a positive number", settings.tolerance));
   StrengthReductionResult result;
   auto trial = [&](double factor) {
     const StrengthTrial t = run_trial(comm, config, out, factor, settings.displacement_limit);
@@ -106,7 +108,11 @@ StrengthReductionResult factor_of_safety(MPI_Comm comm, const CaseConfig& config
     if (factor > settings.largest_factor || factor < settings.smallest_factor) return result;
     trial(factor);
   }
-  while (result.fails_at - result.stands_at > settings.tolerance) trial(0.5 * (result.stands_at + result.fails_at));
+  while (result.fails_at - result.stands_at > settings.tolerance) {
+    const double middle = 0.5 * (result.stands_at + result.fails_at);
+    if (middle <= result.stands_at || middle >= result.fails_at) break;  // the factors' last bit
+    trial(middle);
+  }
   return result;
 }
 

@@ -63,6 +63,17 @@ TEST(CaseRecord, NumbersAreWrittenShortestAndReadBackToTheBit) {
   EXPECT_EQ(again.title, c.title);
 }
 
+// A title over two lines with an apostrophe is written as a multi-line string, which the numbers'
+// rewriting passes over whole; the comment lines of the record keep a --set over two lines on one.
+TEST(CaseRecord, MultiLineStringsAreWrittenThrough) {
+  const CaseConfig c = parse_case(two_phase, {"title=\"it's\\nx 2.50 y 0.20000000000000001\"", "time.end=0.7"});
+  EXPECT_NE(c.as_run.find("x 2.50 y 0.20000000000000001"), std::string::npos) << c.as_run;
+  EXPECT_NE(c.as_run.find("end = 0.7"), std::string::npos) << c.as_run;  // numbers after it are still rewritten
+  const CaseConfig again = parse_case(c.as_run);
+  EXPECT_EQ(again.title, "it's\nx 2.50 y 0.20000000000000001");
+  EXPECT_EQ(again.as_run, c.as_run);
+}
+
 // Each shipped case, with an assignment, reads back to itself: the record runs the same case.
 TEST(CaseRecord, EveryShippedCaseReadsBackToItself) {
   int cases = 0;
