@@ -625,7 +625,7 @@ CaseConfig read_case(const toml::table& root, const std::filesystem::path& sourc
 
 // toml++ writes a float with 17 significant digits (0.20000000000000001): each float outside the
 // strings of `toml` is written again as the shortest text that reads back to the same double (0.2),
-// kept a TOML float (100000.0, not the integer 100000).
+// kept a TOML float (2650.0, not the integer 2650).
 std::string shortest_floats(std::string_view toml) {
   std::string out;
   out.reserve(toml.size());
