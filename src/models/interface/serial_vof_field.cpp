@@ -1,5 +1,7 @@
 #include "models/interface/serial_vof_field.hpp"
 
+#include "models/interface/material_transport.hpp"
+
 #include <algorithm>
 #include <limits>
 #include <stdexcept>
@@ -116,19 +118,63 @@ double SerialVofField::max_courant(double dt) const {
                   max_sweep_courant(1, dt, uy_.rows(), dx(), dy(), owned()));
 }
 
+void SerialVofField::track_materials(int count) {
+  materials_.clear();
+  material_start_.clear();
+  material_tmp_.clear();
+  for (int k = 0; k < count; ++k) {
+    materials_.emplace_back(mx_, my_, g);
+    material_start_.emplace_back(mx_, my_, g);
+    material_tmp_.emplace_back(mx_, my_, g);
+  }
+  face_soil_ = GhostedArray2(mx_, my_, g);
+}
+
+void SerialVofField::sweep(int axis, double dt, const GhostedArray2& from, GhostedArray2& to,
+                           std::vector<GhostedArray2>& m_from, std::vector<GhostedArray2>& m_to) {
+  const auto* velocity = axis == 0 ? ux_.rows() : uy_.rows();
+  if (materials_.empty()) {
+    vof_sweep(axis, dt, from.rows(), velocity, cc_.rows(), dx(), dy(), owned(), to.rows(), radial());
+  } else {
+    for (int j = -g; j < my_ + g; ++j)
+      for (int i = -g; i < mx_ + g; ++i) face_soil_(i, j) = 0.0;
+    vof_sweep(axis, dt, from.rows(), velocity, cc_.rows(), dx(), dy(), owned(), to.rows(), radial(), face_soil_.rows());
+    std::vector<const double* const*> m, m0;
+    std::vector<double**> m_new;
+    for (std::size_t k = 0; k < materials_.size(); ++k) {
+      m.push_back(m_from[k].rows());
+      m0.push_back(material_start_[k].rows());
+      m_new.push_back(m_to[k].rows());
+    }
+    material_sweep(axis, dt, from.rows(), to.rows(), int(m.size()), m.data(), m0.data(), velocity, face_soil_.rows(),
+                   cc_.rows(), dx(), dy(), owned(), m_new.data(), radial());
+    for (auto& a : m_to) fill_ghosts(a);
+  }
+  fill_ghosts(to);
+}
+
 void SerialVofField::step(double dt) {
   fill_ghosts(c_);
   // Held fixed over both sweeps (Weymouth & Yue): the dilatation terms then cancel exactly.
   dilatation_indicator(c_.rows(), owned(), cc_.rows());
+  for (std::size_t k = 0; k < materials_.size(); ++k) {
+    fill_ghosts(materials_[k]);
+    for (int j = 0; j < my_; ++j)
+      for (int i = 0; i < mx_; ++i) material_start_[k](i, j) = materials_[k](i, j);
+  }
   // Alternating the order (Strang-like) removes the directional bias of a fixed x-y order.
   const int first = steps_ % 2 == 0 ? 0 : 1;
   const int second = 1 - first;
-  const auto velocity = [this](int axis) { return axis == 0 ? ux_.rows() : uy_.rows(); };
-  vof_sweep(first, dt, c_.rows(), velocity(first), cc_.rows(), dx(), dy(), owned(), tmp_.rows(), radial());
-  fill_ghosts(tmp_);
-  vof_sweep(second, dt, tmp_.rows(), velocity(second), cc_.rows(), dx(), dy(), owned(), c_.rows(), radial());
-  fill_ghosts(c_);
+  sweep(first, dt, c_, tmp_, materials_, material_tmp_);
+  sweep(second, dt, tmp_, c_, material_tmp_, materials_);
   ++steps_;
+}
+
+double SerialVofField::material_volume(int k) const {
+  double v = 0.0;
+  for (int j = 0; j < my_; ++j)
+    for (int i = 0; i < mx_; ++i) v += c_(i, j) * materials_[k](i, j) * volume(i, j);
+  return v;
 }
 
 double SerialVofField::total_volume() const {

@@ -68,6 +68,13 @@ class SerialVofField {
   // c after the first sweep of the last step (with ghosts), e.g. to check intermediate bounds.
   const GhostedArray2& intermediate() const { return tmp_; }
 
+  // Carries `count` soil materials with the soil (material_transport.hpp): material(k) is the share of
+  // each cell's soil that is material k, set by the caller before the first step.
+  void track_materials(int count);
+  GhostedArray2& material(int k) { return materials_[k]; }
+  const GhostedArray2& material(int k) const { return materials_[k]; }
+  double material_volume(int k) const;  // sum of c m_k * cell volume over owned cells
+
   double total_volume() const;  // sum of c * cell area (times r_c when axisymmetric) over owned cells
   double min_fraction() const;
   double max_fraction() const;
@@ -80,6 +87,10 @@ class SerialVofField {
   GhostedArray2 c_, tmp_, cc_, ux_, uy_;
   VofBoundary bc_ = VofBoundary::ZeroGradient;
   std::vector<double> r_face_, r_centre_;  // empty in planar geometry
+  std::vector<GhostedArray2> materials_, material_start_, material_tmp_;
+  GhostedArray2 face_soil_;  // one sweep's soil volume per unit face area, with materials only
+  void sweep(int axis, double dt, const GhostedArray2& from, GhostedArray2& to, std::vector<GhostedArray2>& m_from,
+             std::vector<GhostedArray2>& m_to);
   double volume(int i, int j) const;
   long steps_ = 0;
 };

@@ -102,6 +102,16 @@ class GranularRheology {
         inertial_number(strain_rate_norm, grain_diameter_, density_, yield_pressure));
   }
 
+  // ||T_dev|| at yield for a deformation already reduced to its norm and sin(3 theta), at a pressure
+  // not yet clipped: what several soils at one point each contribute (SoilMaterials).
+  [[nodiscard]] double yield_stress_at(double strain_rate_norm, double sin_three_lode,
+                                       double pressure) const noexcept {
+    const double p = yield_pressure(pressure);
+    return yield_stress(friction_coefficient(strain_rate_norm, p), sin_three_lode, p);
+  }
+
+  [[nodiscard]] bool needs_lode_angle() const noexcept { return needs_lode_angle_; }
+
   // ||T_dev|| at yield for the model's surface, given friction, sin(3 theta) and p >= 0.
   [[nodiscard]] double yield_stress(double friction, double sin_three_lode,
                                     double yield_pressure) const noexcept {

@@ -78,8 +78,12 @@ std::optional<std::string> validate(const RheologyParameters& p) {
     return "rheology parameter matsuoka_nakai_fit has an invalid value";
   }
   // Negated comparisons so that NaN fails every check.
-  if (!(p.friction_angle_deg > 0.0 && p.friction_angle_deg < 90.0)) {
-    return bad("friction_angle (phi)", p.friction_angle_deg, "must lie in (0, 90) degrees");
+  // phi = 0 with C > 0 is an undrained clay: the cone is then von Mises, in plane strain Tresca with
+  // c_u = C ([VoF] Eq. 9 with tan(phi) = 0). The other surfaces have no cohesion, so need phi > 0.
+  const bool undrained = p.model == Model::drucker_prager_bingham && p.cohesion > 0.0;
+  if (!((undrained ? p.friction_angle_deg >= 0.0 : p.friction_angle_deg > 0.0) && p.friction_angle_deg < 90.0)) {
+    return bad("friction_angle (phi)", p.friction_angle_deg,
+               undrained ? "must lie in [0, 90) degrees" : "must lie in (0, 90) degrees ([0, 90) with a cohesion)");
   }
   if (!(p.cohesion >= 0.0 && std::isfinite(p.cohesion))) {
     return bad("cohesion (C)", p.cohesion, "must be finite and >= 0 Pa");

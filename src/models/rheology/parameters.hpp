@@ -37,7 +37,7 @@ struct RheologyParameters {
   Regularisation regularisation = Regularisation::exponential;
   MatsuokaNakaiFit matsuoka_nakai_fit = MatsuokaNakaiFit::isochoric_shear;
 
-  double friction_angle_deg = 30.0;         // phi, degrees, in (0, 90)
+  double friction_angle_deg = 30.0;         // phi, degrees, in (0, 90); 0 too with a cohesion
   double cohesion = 0.0;                    // C, Pa ([VoF] Eq. 9; Drucker-Prager-Bingham only)
   double regularisation_time = 1e5;         // m, s ([VoF] Eq. 12)
   double min_dynamic_viscosity = 1e-3;      // mu_min, Pa s ([VoF] Sec. 2)

@@ -71,6 +71,12 @@ TEST(RheologyParameters, ValidationNamesTheBadParameter) {
     p.friction_angle_deg = phi;
     expect_rejected(p, "friction_angle (phi)");
   }
+  for (double phi : {-1e-9, 90.0, nan}) {  // an undrained clay (C > 0) may have phi = 0, no less
+    RheologyParameters p;
+    p.cohesion = 2e4;
+    p.friction_angle_deg = phi;
+    expect_rejected(p, "friction_angle (phi)");
+  }
   {
     RheologyParameters p;
     p.density = -1430.0;
@@ -142,6 +148,25 @@ TEST(RheologyParameters, MuOfIWithEveryYieldSurfaceIsValid) {
     p.friction = FrictionSource::mu_of_I;
     EXPECT_FALSE(validate(p).has_value()) << to_string(model);
   }
+}
+
+}  // namespace
+}  // namespace granflow::rheology
+
+namespace granflow::rheology {
+namespace {
+
+// phi = 0 with a cohesion: the cone of [VoF] Eqs. 8-9 has alpha_phi = 0 and k_c = C, a yield stress C
+// at every pressure (Tresca's c_u in plane strain).
+TEST(RheologyParameters, UndrainedClayYieldsAtItsCohesionAtAnyPressure) {
+  RheologyParameters p;
+  p.friction_angle_deg = 0.0;
+  p.cohesion = 2.5e4;
+  ASSERT_FALSE(validate(p).has_value());
+  const GranularRheology clay(p);
+  const StrainRate shear = planar_strain_rate(0.0, 0.0, 0.5);
+  for (double pressure : {0.0, 1e3, 1e6})
+    EXPECT_DOUBLE_EQ(clay.evaluate(shear, pressure).yield_stress, 2.5e4) << pressure;
 }
 
 }  // namespace

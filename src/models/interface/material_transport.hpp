@@ -1,0 +1,31 @@
+// Soil materials carried with the soil: each material's share m of a cell's soil moves with the soil
+// volume that the geometric VoF sweep moved through each face (vof_sweep's face_soil), so that a
+// material goes where its soil goes, its volume is conserved as c's is, and its share stays in [0, 1].
+// Same data layout as vof_advection.hpp.
+#pragma once
+
+#include "models/interface/vof_advection.hpp"
+
+namespace granflow::interface {
+
+inline constexpr int max_materials = 16;  // the base's included
+
+// One directional sweep, after vof_sweep of the same axis took c to c_new and recorded F, the soil
+// volume per unit face area that crossed each face in this sweep (face_soil, zeroed before it). For
+// each of `count` materials (m[k]: its share of each cell's soil; the base material, not stored, holds
+// the rest), with q = c m its volume fraction,
+//   q_new = q + (F_low m_low - F_high m_high)/h + cc m0 (u_high - u_low) dt/h,   m_new = q_new / c_new.
+// The share a face carries is the donor's (upwind cell's), corrected towards the acceptor's by a
+// limited slope (superbee, a TVD face value), the base's likewise, then all of them divided by their
+// sum: the soil through a face is shared out whole. cc and m0 (the shares at the start of the step)
+// are held over both sweeps, so that the dilatation terms of a divergence-free velocity cancel over
+// the step as they do for c, and sum(q V) is conserved to round-off. A cell the soil leaves
+// (c_new <= 0) keeps its shares; round-off in a sliver is clipped to [0, 1]. Radial weights as in
+// vof_sweep. Reads c and m on owned cells and two ghost layers along `axis`, F on the faces bounding
+// owned cells along it. count < max_materials.
+void material_sweep(int axis, double dt, const double* const* c, const double* const* c_new, int count,
+                    const double* const* const* m, const double* const* const* m0, const double* const* face_velocity,
+                    const double* const* face_soil, const double* const* cc, const double* dx, const double* dy,
+                    CellBox owned, double** const* m_new, RadialWeights radial = {});
+
+}  // namespace granflow::interface

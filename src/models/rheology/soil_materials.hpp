@@ -1,0 +1,60 @@
+// Several soils of one rheology: the model, friction law and regularisation are shared, the strength
+// (friction angle phi and cohesion C) is each soil's own. Where soils share a cell or a face, the
+// yield stress is the mean of theirs weighted by their shares of the soil there, regularised once
+// ([VoF] Eq. 12): a mixture is as strong as its parts in proportion.
+#pragma once
+
+#include <array>
+#include <vector>
+
+#include "models/rheology/granular_rheology.hpp"
+#include "models/rheology/parameters.hpp"
+
+namespace granflow::rheology {
+
+struct MaterialStrength {
+  double friction_angle_deg = 0.0;  // phi, degrees
+  double cohesion = 0.0;            // C, Pa
+};
+
+// The base's parameters with another strength.
+RheologyParameters with_strength(const RheologyParameters& base, const MaterialStrength& strength);
+
+class SoilMaterials {
+ public:
+  static constexpr int max_count = 16;  // materials, the base included
+  // Shares of the soil at a point held by materials 1 .. count() - 1; material 0 (the base) holds the rest.
+  using Shares = std::array<double, max_count - 1>;
+
+  // Throws std::invalid_argument naming the material whose parameters are unusable, or for more than
+  // max_count materials.
+  SoilMaterials(const RheologyParameters& base, const std::vector<MaterialStrength>& others);
+
+  [[nodiscard]] int count() const noexcept { return int(materials_.size()); }
+  [[nodiscard]] const GranularRheology& material(int k) const noexcept { return materials_[k]; }
+
+  // eta at a point whose soil is shared out as `shares` (count() - 1 entries, each clipped to [0, 1]).
+  // With every share 0 it is the base's own dynamic_viscosity, to the bit.
+  [[nodiscard]] double dynamic_viscosity(const StrainRate& strain_rate, double pressure,
+                                         const double* shares) const noexcept {
+    const SymmetricTensor dev = deviatoric(strain_rate);
+    double rate = norm(dev);
+    if (std::isnan(rate)) rate = 0.0;
+    const GranularRheology& base = materials_[0];
+    const double sin3 = base.needs_lode_angle() ? sin_three_lode_angle(dev, rate) : 0.0;
+    double rest = 1.0, tau = 0.0;
+    for (int k = 1; k < count(); ++k) {
+      const double share = std::clamp(shares[k - 1], 0.0, 1.0);
+      if (share == 0.0) continue;
+      tau += share * materials_[k].yield_stress_at(rate, sin3, pressure);
+      rest -= share;
+    }
+    if (rest > 0.0) tau += rest * base.yield_stress_at(rate, sin3, pressure);
+    return base.regularise(tau, rate);
+  }
+
+ private:
+  std::vector<GranularRheology> materials_;
+};
+
+}  // namespace granflow::rheology

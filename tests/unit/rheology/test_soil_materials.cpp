@@ -1,0 +1,67 @@
+// Several soils of one rheology: each material's strength alone, and a shared point's yield stress as
+// the share-weighted mean of theirs.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+#include "models/rheology/soil_materials.hpp"
+
+namespace granflow::rheology {
+namespace {
+
+RheologyParameters clay() {
+  RheologyParameters p;
+  p.friction_angle_deg = 0.0;
+  p.cohesion = 2e4;
+  p.regularisation_time = 1e5;
+  p.min_dynamic_viscosity = 1e-3;
+  return p;
+}
+
+TEST(SoilMaterials, EachMaterialAloneIsItsOwnRheology) {
+  const SoilMaterials soils(clay(), {{0.0, 1e4}, {30.0, 0.0}});
+  ASSERT_EQ(soils.count(), 3);
+  const StrainRate rate = planar_strain_rate(0.3, -0.3, 0.2);
+  const double pressure = 5e4;
+  SoilMaterials::Shares shares{};
+  EXPECT_EQ(soils.dynamic_viscosity(rate, pressure, shares.data()), GranularRheology(clay()).dynamic_viscosity(rate, pressure));
+  shares[0] = 1.0;
+  EXPECT_DOUBLE_EQ(soils.dynamic_viscosity(rate, pressure, shares.data()),
+                   GranularRheology(with_strength(clay(), {0.0, 1e4})).dynamic_viscosity(rate, pressure));
+  shares = {};
+  shares[1] = 1.0;
+  EXPECT_DOUBLE_EQ(soils.dynamic_viscosity(rate, pressure, shares.data()),
+                   GranularRheology(with_strength(clay(), {30.0, 0.0})).dynamic_viscosity(rate, pressure));
+}
+
+// Half the soft clay (C = 1e4), a quarter each of the base (2e4) and the sand: the yield stress is
+// 0.5 1e4 + 0.25 2e4 + 0.25 (3 alpha_phi p), regularised once ([VoF] Eq. 12):
+// eta = mu_min + tau (1 - exp(-2 m ||D||)) / (2 ||D||).
+TEST(SoilMaterials, ASharedPointYieldsAtTheShareWeightedMeanStress) {
+  const SoilMaterials soils(clay(), {{0.0, 1e4}, {30.0, 0.0}});
+  const StrainRate rate = planar_strain_rate(0.0, 0.0, 0.5);
+  const double pressure = 5e4;
+  const double sand = GranularRheology(with_strength(clay(), {30.0, 0.0})).evaluate(rate, pressure).yield_stress;
+  const double tau = 0.5 * 1e4 + 0.25 * 2e4 + 0.25 * sand;
+  const double d = norm(deviatoric(rate));
+  const double expected = 1e-3 + tau * (1.0 - std::exp(-2e5 * d)) / (2.0 * d);
+  SoilMaterials::Shares shares{};
+  shares[0] = 0.5;
+  shares[1] = 0.25;
+  EXPECT_NEAR(soils.dynamic_viscosity(rate, pressure, shares.data()), expected, 1e-12 * expected);
+}
+
+TEST(SoilMaterials, RefusesAnUnusableMaterialNamingIt) {
+  try {
+    SoilMaterials(clay(), {{0.0, 1e4}, {0.0, 0.0}});  // phi = 0 and no cohesion: no strength at all
+    FAIL() << "accepted";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("soil material 2"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("friction_angle"), std::string::npos) << e.what();
+  }
+}
+
+}  // namespace
+}  // namespace granflow::rheology
