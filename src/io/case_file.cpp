@@ -164,7 +164,10 @@ rheology::RheologyParameters read_rheology(TableReader r, double soil_density) {
   return p;
 }
 
-interface::Shape read_shape(TableReader r) {
+// material: where given, the shape's `material` key is read into it ("" when absent); elsewhere the key
+// is unknown.
+interface::Shape read_shape(TableReader r, std::string* material = nullptr) {
+  if (material) *material = r.string("material", "");
   const std::string shape = r.choice("shape", "", {"box", "circle", "polygon"});
   interface::Shape out;
   if (shape == "box") {
@@ -191,6 +194,28 @@ interface::Shape read_shape(TableReader r) {
   }
   r.finish();
   return out;
+}
+
+// One of [[soil.materials]]: a soil of the rheology's model with its own strength.
+SoilMaterial read_material(TableReader r, const std::optional<rheology::RheologyParameters>& rheology) {
+  using namespace rheology;
+  if (!rheology)
+    throw CaseError(r.path() + ": soil materials need a granular soil ([soil.rheology]), whose model they share");
+  if (rheology->friction != FrictionSource::constant)
+    throw CaseError(r.path() + ": soil materials have their own friction angle, which needs soil.rheology.friction = \"constant\"");
+  SoilMaterial m;
+  m.name = r.required_string("name");
+  const bool plain = !m.name.empty() && std::all_of(m.name.begin(), m.name.end(), [](char ch) {
+    return std::isalnum(static_cast<unsigned char>(ch)) || ch == '_' || ch == '-';
+  });
+  if (!plain)
+    throw CaseError(fmt::format("{}: '{}' is not a plain name (letters, digits, '_' and '-'; it names an output field)",
+                                r.key_path("name"), m.name));
+  m.strength.friction_angle_deg = r.number("friction_angle", rheology->friction_angle_deg);
+  m.strength.cohesion = r.number("cohesion", rheology->cohesion);
+  r.finish();
+  if (auto err = validate(with_strength(*rheology, m.strength))) throw CaseError(fmt::format("{}: {}", r.path(), *err));
+  return m;
 }
 
 // without_effect: collects the keys given that the soil's other choices make of no effect.
@@ -222,6 +247,16 @@ SoilSettings read_soil(TableReader& top, std::vector<std::string>& without_effec
       s.soil_viscosity = so.required_number("viscosity");
       so.require_range("viscosity", s.soil_viscosity, 0.0, inf, "zero or positive");
     }
+    for (TableReader material : so.tables("materials")) {
+      s.materials.push_back(read_material(material, s.rheology));
+      const auto& name = s.materials.back().name;
+      for (size_t k = 0; k + 1 < s.materials.size(); ++k)
+        if (s.materials[k].name == name)
+          throw CaseError(fmt::format("{}: the name '{}' is taken by soil.materials[{}]", material.key_path("name"), name, k));
+    }
+    if (s.materials.size() + 1 > size_t(rheology::SoilMaterials::max_count))
+      throw CaseError(fmt::format("soil.materials: {} materials, more than the {} a case may have besides the rheology's own",
+                                  s.materials.size(), rheology::SoilMaterials::max_count - 1));
     s.displacement = so.boolean("displacement", s.rheology.has_value());
     const std::string yp = so.choice("yield_pressure", "cell", {"cell", "face", "lithostatic_floor"});
     s.yield_pressure = yp == "face" ? YieldPressure::face
@@ -256,8 +291,29 @@ SoilSettings read_soil(TableReader& top, std::vector<std::string>& without_effec
   {
     TableReader init = top.table("initial");
     if (!init.present()) throw CaseError("initial: missing table [[initial.soil]] (where the soil starts)" + top.misspelling_of("initial"));
-    for (TableReader shape : init.tables("soil")) s.initial_soil.push_back(read_shape(shape));
+    std::vector<bool> used(s.materials.size(), false);
+    for (TableReader shape : init.tables("soil")) {
+      std::string material;
+      s.initial_soil.push_back(read_shape(shape, &material));
+      int index = 0;
+      if (!material.empty()) {
+        const auto it = std::find_if(s.materials.begin(), s.materials.end(), [&](const SoilMaterial& m) { return m.name == material; });
+        if (it == s.materials.end()) {
+          std::string names;
+          for (const auto& m : s.materials) names += (names.empty() ? "" : ", ") + m.name;
+          throw CaseError(fmt::format("{}: no soil material named '{}' ({})", shape.key_path("material"), material,
+                                      names.empty() ? "the case has no [[soil.materials]]" : "the case's are: " + names));
+        }
+        index = int(it - s.materials.begin()) + 1;
+        used[index - 1] = true;
+      }
+      s.initial_material.push_back(index);
+    }
     if (s.initial_soil.empty()) throw CaseError("initial.soil: at least one shape is required" + init.misspelling_of("soil"));
+    for (size_t k = 0; k < used.size(); ++k)
+      if (!used[k])
+        throw CaseError(fmt::format("soil.materials[{}]: no initial.soil shape is of material '{}' (give one `material = \"{}\"`)",
+                                    k, s.materials[k].name, s.materials[k].name));
     init.finish();
   }
   return s;

@@ -17,7 +17,7 @@ std::vector<Field*> Simulation::checkpoint_fields() {
 
 std::string Simulation::checkpoint_field_names() {
   std::string names = flow_->checkpoint_field_names();
-  if (soil_) names += std::string(" ") + SoilPhase::checkpoint_field_names;
+  if (soil_) names += " " + soil_->checkpoint_field_names();
   return names;
 }
 

@@ -51,7 +51,14 @@ void Simulation::write_output() {
         disp[3 * k] = dx[k];
         disp[3 * k + 1] = dy[k];
       }
-      data.push_back({"soil_fraction", 1, gather_to_root(g, soil_->soil_fraction())});
+      const auto c = gather_to_root(g, soil_->soil_fraction());
+      data.push_back({"soil_fraction", 1, c});
+      // Each material's volume fraction c m: the soil fraction shared out (the rheology's own soil holds the rest).
+      for (int k = 1; k <= soil_->material_count(); ++k) {
+        auto q = gather_to_root(g, soil_->material_share(k));
+        for (size_t n = 0; n < q.size(); ++n) q[n] *= c[n];
+        data.push_back({"soil_fraction_" + soil_->material_name(k), 1, std::move(q)});
+      }
       data.push_back({"displacement", 3, disp});
       data.push_back({"strain_norm", 1, gather_to_root(g, soil_->strain_norm())});
       data.push_back({"strain_rate_norm", 1, gather_to_root(g, soil_->strain_rate_norm())});

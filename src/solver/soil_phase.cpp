@@ -9,8 +9,10 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <deque>
 #include <optional>
 
+#include "models/interface/material_transport.hpp"
 #include "models/interface/vof_advection.hpp"
 #include "models/interface/wetted_fraction.hpp"
 #include "models/rheology/invariants.hpp"
@@ -25,6 +27,21 @@ SoilPhase::SoilPhase(const Grid& grid, const FlowSettings& flow, const SoilSetti
     : grid_(grid), flow_settings_(flow), settings_(settings), ambient_pressure_(ambient_pressure(flow.boundaries)) {
   if (settings.rheology) rheology_.emplace(*settings.rheology);
   auto make = [&] { return std::make_unique<Field>(grid); };
+  if (!settings.materials.empty()) {
+    std::vector<rheology::MaterialStrength> strengths;
+    for (const auto& m : settings.materials) strengths.push_back(m.strength);
+    materials_.emplace(settings.rheology.value(), strengths);
+    for (size_t k = 0; k < settings.materials.size(); ++k) {
+      for (auto* list : {&share_, &share_tmp_, &share_start_}) {
+        list->push_back(make());
+        list->back()->set(0.0);
+      }
+    }
+    for (auto& f : face_soil_) {
+      f = make();
+      f->set(0.0);
+    }
+  }
   c_ = make();
   c_tmp_ = make();
   dilatation_ = make();
@@ -44,6 +61,18 @@ SoilPhase::SoilPhase(const Grid& grid, const FlowSettings& flow, const SoilSetti
   for (Field* f : {c_.get(), c_tmp_.get(), dilatation_.get(), region_[0].get(), region_[1].get(), strain_norm_.get(), rate_norm_.get(), lode_.get(), stress_ratio_.get(), dissipation_.get(),
                    overburden_.get()})
     f->set(0.0);
+}
+
+std::vector<Field*> SoilPhase::state_fields() {
+  std::vector<Field*> fields{c_.get(), disp_[0].get(), disp_[1].get()};
+  for (auto& f : share_) fields.push_back(f.get());
+  return fields;
+}
+
+std::string SoilPhase::checkpoint_field_names() const {
+  std::string names = "c displacement_x displacement_y";
+  for (const auto& m : settings_.materials) names += " share_" + m.name;
+  return names;
 }
 
 void SoilPhase::save_state() {
@@ -70,6 +99,7 @@ void SoilPhase::clear_blocked_cells() {
   if (!blocked_) return;
   for (auto* f : {disp_[0].get(), disp_[1].get()}) zero_blocked_cells(grid_, blocked_, *f);
   fill_fraction_ghosts(*c_);  // zeroes c there, and mirrors anew
+  for (auto& f : share_) fill_share_ghosts(*f);
 }
 
 void SoilPhase::restore_state() {
@@ -91,6 +121,82 @@ void SoilPhase::initialise() {
       }
   }
   fill_fraction_ghosts(*c_);
+  if (materials_) initialise_materials();
+}
+
+// Each material's share of a cell's soil, by samples x samples midpoint sampling: a sample in the
+// shapes' union belongs to the last shape listed that holds it (weighted by its radius when
+// axisymmetric, as the soil fraction's samples are).
+void SoilPhase::initialise_materials() {
+  constexpr int samples = 16;
+  const interface::ShapeUnion shapes(settings_.initial_soil);
+  const auto& b = grid_.owned();
+  ConstFieldArray c(grid_.field_dm(), c_->global());
+  std::vector<std::unique_ptr<FieldArray>> m;
+  for (auto& f : share_) m.push_back(std::make_unique<FieldArray>(grid_.field_dm(), f->global()));
+  const int count = int(share_.size());
+  const int shape_count = int(settings_.initial_soil.size());
+  std::vector<double> weight(size_t(count) + 1);
+  for (int j = b.ys; j < b.ye(); ++j)
+    for (int i = b.xs; i < b.xe(); ++i) {
+      for (int k = 0; k < count; ++k) (*m[k])[j][i] = 0.0;
+      if (!(c[j][i] > 0.0)) continue;
+      std::fill(weight.begin(), weight.end(), 0.0);
+      const double x0 = grid_.xc(i) - 0.5 * grid_.dx(i), y0 = grid_.yc(j) - 0.5 * grid_.dy(j);
+      for (int sy = 0; sy < samples; ++sy)
+        for (int sx = 0; sx < samples; ++sx) {
+          const double x = x0 + (sx + 0.5) * grid_.dx(i) / samples, y = y0 + (sy + 0.5) * grid_.dy(j) / samples;
+          for (int shape = shape_count - 1; shape >= 0; --shape)
+            if (shapes.shape_contains(size_t(shape), x, y)) {
+              weight[size_t(settings_.initial_material[size_t(shape)])] += grid_.axisymmetric() ? x : 1.0;
+              break;
+            }
+        }
+      double total = 0.0;
+      for (double w : weight) total += w;
+      if (total > 0.0)
+        for (int k = 0; k < count; ++k) (*m[k])[j][i] = weight[size_t(k) + 1] / total;
+      else  // soil the samples missed (a sliver of a cell): the first shape's material that overlaps the cell
+        for (int shape = 0; shape < shape_count; ++shape)
+          if (interface::overlaps(settings_.initial_soil[size_t(shape)], {x0, y0}, {x0 + grid_.dx(i), y0 + grid_.dy(j)})) {
+            const int k = settings_.initial_material[size_t(shape)];
+            if (k > 0) (*m[k - 1])[j][i] = 1.0;
+            break;
+          }
+    }
+  m.clear();
+  for (auto& f : share_) fill_share_ghosts(*f);
+}
+
+// Ghosts of a material share: zero gradient at the sides (soil coming in takes the share of the cell
+// it enters), mirrors in the blocked cells.
+void SoilPhase::fill_share_ghosts(Field& f) const {
+  zero_blocked_cells(grid_, blocked_, f);
+  f.scatter_to_local();
+  FieldArray a(grid_.field_dm(), f.local());
+  mirror_into_blocked(grid_, BlockedView(grid_, blocked_).data(), a.data(), 1.0);
+  const auto& b = grid_.owned();
+  const int nx = grid_.nx(), ny = grid_.ny(), gw = Grid::ghost_width;
+  for (int k = 1; k <= gw; ++k)
+    for (int j = b.ys - gw; j < b.ye() + gw; ++j) {
+      if (b.xs == 0) a[j][-k] = a[j][0];
+      if (b.xe() == nx) a[j][nx - 1 + k] = a[j][nx - 1];
+    }
+  for (int k = 1; k <= gw; ++k)
+    for (int i = b.xs - gw; i < b.xe() + gw; ++i) {
+      if (b.ys == 0) a[-k][i] = a[0][i];
+      if (b.ye() == ny) a[ny - 1 + k][i] = a[ny - 1][i];
+    }
+}
+
+std::deque<ConstFieldArray> SoilPhase::share_arrays(bool ghosted) const {
+  std::deque<ConstFieldArray> arrays;
+  for (const auto& f : share_) arrays.emplace_back(grid_.field_dm(), ghosted ? f->local() : f->global());
+  return arrays;
+}
+
+void SoilPhase::cell_shares(const std::deque<ConstFieldArray>& m, int i, int j, Shares& out) const {
+  for (size_t k = 0; k < m.size(); ++k) out[k] = m[k][j][i];
 }
 
 // Ghosts of c: soil carried in through an atmosphere boundary has the boundary's inflow fraction;
@@ -141,10 +247,12 @@ void SoilPhase::fill_displacement_ghosts() {
 
 // Viscosity of a mixture at soil fraction c: the soil's from the rheology at the given pressure (its
 // excess over the ambient pressure) and strain rate (or its Newtonian value), mixed with the air's.
-double SoilPhase::mixture_viscosity(double c, double pressure, const rheology::StrainRate& rate) const {
+double SoilPhase::mixture_viscosity(double c, double pressure, const rheology::StrainRate& rate,
+                                    const double* shares) const {
   const auto& s = settings_;
-  const double mu_soil =
-      rheology_ && c > 0.0 ? rheology_->dynamic_viscosity(rate, pressure - ambient_pressure_) : s.soil_viscosity;
+  const double mu_soil = !rheology_ || !(c > 0.0) ? s.soil_viscosity
+                         : shares ? materials_->dynamic_viscosity(rate, pressure - ambient_pressure_, shares)
+                                  : rheology_->dynamic_viscosity(rate, pressure - ambient_pressure_);
   return s.viscosity_mixing(c, s.air_viscosity, mu_soil);
 }
 
@@ -166,12 +274,15 @@ void SoilPhase::update_properties(FlowSolver& flow) const {
   ConstFieldArray p(grid_.field_dm(), flow.pressure().global());
   FieldArray rho(grid_.field_dm(), flow.density().global()), mu(grid_.field_dm(), flow.viscosity().global());
   const auto overburden = overburden_if_floor();
+  const auto m = share_arrays(false);
+  Shares shares{};
   for (int j = b.ys; j < b.ye(); ++j)
     for (int i = b.xs; i < b.xe(); ++i) {
       const double cc = c[j][i];
       rho[j][i] = mixture_density(cc);
+      cell_shares(m, i, j, shares);
       mu[j][i] = mixture_viscosity(cc, cell_yield_pressure(p[j][i], overburden.get(), i, j),
-                                   cell_strain_rate(grid_, u.data(), v.data(), i, j));
+                                   cell_strain_rate(grid_, u.data(), v.data(), i, j), materials_ ? shares.data() : nullptr);
     }
 }
 
@@ -189,6 +300,21 @@ void SoilPhase::update_face_viscosity(FlowSolver& flow) const {
   ConstFieldArray c = local_read(grid_, *c_);
   ConstFieldArray u = local_read(grid_, flow.velocity(0)), v = local_read(grid_, flow.velocity(1));
   ConstFieldArray p = local_read(grid_, flow.pressure()), rho = local_read(grid_, flow.density());
+  // With soil materials: the shares of a cell (own, other) and of a face (both), null without.
+  const auto m = share_arrays(true);
+  Shares own{}, other{};
+  const double* own_shares = materials_ ? own.data() : nullptr;
+  const double* other_shares = materials_ ? other.data() : nullptr;
+  // One evaluation on the face at soil fraction cf. Between two soils the face is as strong as the
+  // weaker side: a slip surface along the contact of two materials runs on the weaker one's side (with
+  // the mean of their strengths a slip along a stiff foundation had to run a cell higher). A side
+  // without soil has no shares to give.
+  auto on_face = [&](int i, int j, int in, int jn, double cf, double pressure, const rheology::StrainRate& rate) {
+    if (!materials_) return mixture_viscosity(cf, pressure, rate);
+    if (!(c[jn][in] > 0.0)) return mixture_viscosity(cf, pressure, rate, own_shares);
+    if (!(c[j][i] > 0.0) || own == other) return mixture_viscosity(cf, pressure, rate, other_shares);
+    return std::min(mixture_viscosity(cf, pressure, rate, own_shares), mixture_viscosity(cf, pressure, rate, other_shares));
+  };
   // Face (axis, i, j) lies between cell (i, j) and its neighbour at +1 along axis.
   auto face = [&](int axis, int i, int j, double pressure) {
     const int in = i + (axis == 0), jn = j + (axis == 1);
@@ -196,14 +322,20 @@ void SoilPhase::update_face_viscosity(FlowSolver& flow) const {
       const double air = mixture_viscosity(0.0, pressure, rheology::StrainRate{});
       return at_face ? air : face_mean(kind, air, air);
     }
+    if (materials_) {
+      cell_shares(m, i, j, own);
+      cell_shares(m, in, jn, other);
+    }
     if (at_face) {
       const auto rate = face_strain_rate(grid_, u.data(), v.data(), axis, i, j);
       // One evaluation at the face's soil fraction; also where both sides hold the same mixture (the bulk).
-      if (face_fraction || c[jn][in] == c[j][i]) return mixture_viscosity(0.5 * (c[j][i] + c[jn][in]), pressure, rate);
-      return face_mean(kind, mixture_viscosity(c[j][i], pressure, rate), mixture_viscosity(c[jn][in], pressure, rate));
+      if (face_fraction || c[jn][in] == c[j][i])
+        return on_face(i, j, in, jn, 0.5 * (c[j][i] + c[jn][in]), pressure, rate);
+      return face_mean(kind, mixture_viscosity(c[j][i], pressure, rate, own_shares),
+                       mixture_viscosity(c[jn][in], pressure, rate, other_shares));
     }
-    return face_mean(kind, mixture_viscosity(c[j][i], pressure, cell_strain_rate(grid_, u.data(), v.data(), i, j)),
-                     mixture_viscosity(c[jn][in], pressure, cell_strain_rate(grid_, u.data(), v.data(), in, jn)));
+    return face_mean(kind, mixture_viscosity(c[j][i], pressure, cell_strain_rate(grid_, u.data(), v.data(), i, j), own_shares),
+                     mixture_viscosity(c[jn][in], pressure, cell_strain_rate(grid_, u.data(), v.data(), in, jn), other_shares));
   };
   fill_owned_faces(
       grid_, flow.face_viscosity(0), flow.face_viscosity(1),
@@ -216,6 +348,7 @@ void SoilPhase::update_face_viscosity(FlowSolver& flow) const {
         const bool obstacle = in >= 0 && in < grid_.nx() && jn >= 0 && jn < grid_.ny();  // a blocked neighbour
         const double half = 0.5 * sign * (axis == 0 ? grid_.dx(i) : grid_.dy(j));
         const double pressure = p[j][i] + rho[j][i] * g[axis] * half;
+        if (materials_) cell_shares(m, i, j, own);
         if (at_face) {  // the face between the ghost and the cell, the ghost's velocity encoding the wall
           const int il = sign < 0 ? i - (axis == 0) : i, jl = sign < 0 ? j - (axis == 1) : j;
           // The face's own soil fraction: how much of it the cell's soil covers. A film on the floor
@@ -228,9 +361,9 @@ void SoilPhase::update_face_viscosity(FlowSolver& flow) const {
                                 ? quadratic_wall_strain_rate(grid_, u.data(), v.data(), axis, i, j, sign,
                                                              bc.wall_velocity, bc.kind == BoundaryKind::slip)
                                 : face_strain_rate(grid_, u.data(), v.data(), axis, il, jl);
-          return mixture_viscosity(cf, pressure, rate);
+          return mixture_viscosity(cf, pressure, rate, own_shares);
         }
-        return mixture_viscosity(c[j][i], pressure, cell_strain_rate(grid_, u.data(), v.data(), i, j));
+        return mixture_viscosity(c[j][i], pressure, cell_strain_rate(grid_, u.data(), v.data(), i, j), own_shares);
       },
       BlockedView(grid_, blocked_).data());
 }
@@ -340,7 +473,6 @@ void SoilPhase::advect(FlowSolver& flow, double dt) {
   const auto& b = grid_.owned();
   ConstFieldArray fx = local_read(grid_, flow.face_velocity(0)), fy = local_read(grid_, flow.face_velocity(1));
   const double* const* face[2] = {fx.data(), fy.data()};
-  const interface::RadialWeights radial = radial_weights();
   // The soil volume per unit area through each face adds up in the flow's mass fluxes, which become
   // mass fluxes below.
   const bool carry_mass = flow.carries_mass_transport();
@@ -364,23 +496,11 @@ void SoilPhase::advect(FlowSolver& flow, double dt) {
       ConstFieldArray c(grid_.field_dm(), c_->local());
       FieldArray cc(grid_.field_dm(), dilatation_->local());
       interface::dilatation_indicator(c.data(), b, cc.data());
-      FieldArray tmp(grid_.field_dm(), c_tmp_->global());
-      interface::vof_sweep(first, h, c.data(), face[first], cc.data(), grid_.dx_data(), grid_.dy_data(), b, tmp.data(), radial,
-                           carry_mass ? soil_through[first]->data() : nullptr, {grid_.nx(), grid_.ny()});
-      outflow_ += interface::boundary_outflow(first, h, c.data(), face[first], grid_.dx_data(), grid_.dy_data(), b,
-                                              grid_.nx(), grid_.ny(), radial);
     }
-    fill_fraction_ghosts(*c_tmp_);
-    {
-      ConstFieldArray tmp(grid_.field_dm(), c_tmp_->local());
-      ConstFieldArray cc(grid_.field_dm(), dilatation_->local());
-      FieldArray c(grid_.field_dm(), c_->global());
-      interface::vof_sweep(second, h, tmp.data(), face[second], cc.data(), grid_.dx_data(), grid_.dy_data(), b, c.data(), radial,
-                           carry_mass ? soil_through[second]->data() : nullptr, {grid_.nx(), grid_.ny()});
-      outflow_ += interface::boundary_outflow(second, h, tmp.data(), face[second], grid_.dx_data(), grid_.dy_data(), b,
-                                              grid_.nx(), grid_.ny(), radial);
-    }
-    fill_fraction_ghosts(*c_);
+    // The materials' shares at the start, held with the indicator over both sweeps.
+    for (size_t k = 0; k < share_.size(); ++k) VecCopy(share_[k]->global(), share_start_[k]->global());
+    sweep(first, h, *c_, *c_tmp_, true, carry_mass ? soil_through[first]->data() : nullptr, face[first]);
+    sweep(second, h, *c_tmp_, *c_, false, carry_mass ? soil_through[second]->data() : nullptr, face[second]);
   }
   if (carry_mass) {
     // Mass flux = u rho(c_swept), the mixture density of what crossed the face: c_swept = s / u with s
@@ -396,6 +516,56 @@ void SoilPhase::advect(FlowSolver& flow, double dt) {
     for (int j = b.ys - 1; j < b.ye(); ++j)
       for (int i = b.xs; i < b.xe(); ++i) to_mass(soil_through[1]->data(), fy.data(), i, j);
   }
+}
+
+void SoilPhase::sweep(int axis, double dt, const Field& from, Field& to, bool from_shares, double** soil_through,
+                      const double* const* face_velocity) {
+  const auto& b = grid_.owned();
+  const interface::RadialWeights radial = radial_weights();
+  {
+    ConstFieldArray c(grid_.field_dm(), from.local());
+    ConstFieldArray cc(grid_.field_dm(), dilatation_->local());
+    FieldArray c_new(grid_.field_dm(), to.global());
+    if (!materials_) {
+      interface::vof_sweep(axis, dt, c.data(), face_velocity, cc.data(), grid_.dx_data(), grid_.dy_data(), b, c_new.data(),
+                           radial, soil_through, {grid_.nx(), grid_.ny()});
+    } else {
+      // The sweep's own face fluxes, which carry the materials' shares, then add up in soil_through.
+      FieldArray through(grid_.field_dm(), face_soil_[axis]->local());
+      for (int j = b.ys - 1; j < b.ye(); ++j)
+        for (int i = b.xs - 1; i < b.xe(); ++i) through[j][i] = 0.0;
+      interface::vof_sweep(axis, dt, c.data(), face_velocity, cc.data(), grid_.dx_data(), grid_.dy_data(), b, c_new.data(),
+                           radial, through.data(), {grid_.nx(), grid_.ny()});
+      const auto& in = from_shares ? share_ : share_tmp_;
+      auto& out = from_shares ? share_tmp_ : share_;
+      std::deque<ConstFieldArray> m, m0;
+      std::deque<FieldArray> m_new;
+      std::vector<const double* const*> m_rows, m0_rows;
+      std::vector<double**> m_new_rows;
+      for (size_t k = 0; k < share_.size(); ++k) {
+        m_rows.push_back(m.emplace_back(grid_.field_dm(), in[k]->local()).data());
+        m0_rows.push_back(m0.emplace_back(grid_.field_dm(), share_start_[k]->global()).data());
+        m_new_rows.push_back(m_new.emplace_back(grid_.field_dm(), out[k]->global()).data());
+      }
+      interface::material_sweep(axis, dt, c.data(), c_new.data(), int(share_.size()), m_rows.data(), m0_rows.data(),
+                                face_velocity, through.data(), cc.data(), grid_.dx_data(), grid_.dy_data(), b,
+                                m_new_rows.data(), radial);
+      if (soil_through) {
+        if (axis == 0) {
+          for (int j = b.ys; j < b.ye(); ++j)
+            for (int i = b.xs - 1; i < b.xe(); ++i) soil_through[j][i] += through[j][i];
+        } else {
+          for (int j = b.ys - 1; j < b.ye(); ++j)
+            for (int i = b.xs; i < b.xe(); ++i) soil_through[j][i] += through[j][i];
+        }
+      }
+    }
+    outflow_ += interface::boundary_outflow(axis, dt, c.data(), face_velocity, grid_.dx_data(), grid_.dy_data(), b,
+                                            grid_.nx(), grid_.ny(), radial);
+  }
+  fill_fraction_ghosts(to);
+  if (materials_)
+    for (auto& f : from_shares ? share_tmp_ : share_) fill_share_ghosts(*f);
 }
 
 void SoilPhase::transport_displacement(const FlowSolver& flow, double dt) {

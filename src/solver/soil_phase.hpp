@@ -3,9 +3,12 @@
 // properties and the granular viscosity it gives the flow solver; the Eulerian displacement and
 // the Euler-Almansi strain ([VoF] Eqs. 13-16, 19-20).
 #include <array>
+#include <deque>
 #include <memory>
 #include <optional>
 #include <span>
+#include <string>
+#include <vector>
 
 #include "io/checkpoint.hpp"
 #include "mesh/field.hpp"
@@ -63,6 +66,12 @@ class SoilPhase {
   // Dissipated energy so far, binned by Lode angle ([YS] Fig. 17), summed over ranks (collective).
   rheology::LodeHistogram lode_energy() const;
 
+  // Soil materials ([[soil.materials]]): how many besides the rheology's own, and the share of each
+  // cell's soil that material k (1 .. material_count()) holds. None without materials.
+  int material_count() const { return int(share_.size()); }
+  const Field& material_share(int k) const { return *share_[k - 1]; }
+  const std::string& material_name(int k) const { return settings_.materials[k - 1].name; }
+
   Field& soil_fraction() { return *c_; }
   const Field& soil_fraction() const { return *c_; }
   const Field& displacement(int axis) const { return *disp_[axis]; }
@@ -87,15 +96,26 @@ class SoilPhase {
   // What a checkpoint holds: c and the displacement; the sweep parity, and this rank's shares of the
   // outflow and of the dissipated energy by Lode angle, as numbers.
   std::vector<Field*> checkpoint_fields() { return state_fields(); }
-  static constexpr const char* checkpoint_field_names = "c displacement_x displacement_y";  // of checkpoint_fields()
+  std::string checkpoint_field_names() const;  // of checkpoint_fields()
   CheckpointScalars checkpoint_scalars() const;
   void restore_scalars(std::span<const double> shared, std::span<const double> summed);
  private:
   void fill_displacement_ghosts();
-  std::vector<Field*> state_fields() { return {c_.get(), disp_[0].get(), disp_[1].get()}; }  // what a step changes
+  std::vector<Field*> state_fields();  // what a step changes: c, the displacement, the materials' shares
+  void fill_share_ghosts(Field& f) const;
+  void initialise_materials();
+  // One directional sweep of c (from -> to) and, with materials, of their shares (share_ / share_tmp_
+  // as from_shares says); adds the soil each face carried to soil_through when given.
+  void sweep(int axis, double dt, const Field& from, Field& to, bool from_shares, double** soil_through,
+             const double* const* face_velocity);
   interface::RadialWeights radial_weights() const { return {grid_.radius_face_data(), grid_.radius_centre_data()}; }
   double compute_dissipation(const FlowSolver& flow);
-  double mixture_viscosity(double c, double pressure, const rheology::StrainRate& rate) const;
+  double mixture_viscosity(double c, double pressure, const rheology::StrainRate& rate,
+                           const double* shares = nullptr) const;
+  // The shares of the materials in cell (i, j) (arrays of share_).
+  using Shares = rheology::SoilMaterials::Shares;
+  void cell_shares(const std::deque<ConstFieldArray>& m, int i, int j, Shares& out) const;
+  std::deque<ConstFieldArray> share_arrays(bool ghosted) const;
   double cell_yield_pressure(double cell_pressure, const ConstFieldArray* overburden, int i, int j) const;
   std::unique_ptr<ConstFieldArray> overburden_if_floor() const;
   // Density of a mixture at soil fraction c ([VoF] Eq. 1 or App. A).
@@ -111,6 +131,9 @@ class SoilPhase {
   int saved_parity_ = 0;
   double outflow_ = 0.0, saved_outflow_ = 0.0;  // this rank's soil volume carried out of the domain
   std::optional<rheology::GranularRheology> rheology_;
+  std::optional<rheology::SoilMaterials> materials_;  // with [[soil.materials]]
+  std::vector<std::unique_ptr<Field>> share_, share_tmp_, share_start_;
+  std::unique_ptr<Field> face_soil_[2];  // one sweep's soil volume per unit face area, with materials
   std::unique_ptr<Field> c_, c_tmp_, dilatation_;
   std::unique_ptr<Field> region_[2];  // scratch of soil_region
   std::unique_ptr<Field> disp_[2], disp_new_[2];

@@ -1,17 +1,26 @@
 #pragma once
 // Settings of the two-phase (soil and air) model, filled from the case file.
 #include <optional>
+#include <string>
 #include <vector>
 
 #include "models/interface/initial_shapes.hpp"
 #include "models/mixture/mixture_interpolation.hpp"
 #include "models/rheology/parameters.hpp"
+#include "models/rheology/soil_materials.hpp"
 
 namespace granflow {
 
 enum class YieldPressure { cell, face, lithostatic_floor };
 enum class StrainRateAt { cell, face };
 enum class FaceFraction { cells, face };
+
+// A soil beyond the rheology's own ([[soil.materials]]): the same model and regularisation, its own
+// strength.
+struct SoilMaterial {
+  std::string name;
+  rheology::MaterialStrength strength;
+};
 
 struct SoilSettings {
   double air_density = 1.0;
@@ -22,6 +31,10 @@ struct SoilSettings {
   mixture::MixtureInterpolation density_mixing;
   mixture::MixtureInterpolation viscosity_mixing;
   std::vector<interface::Shape> initial_soil;
+  std::vector<SoilMaterial> materials;  // soils other than the rheology's own, carried with the soil
+  // Per initial shape, its soil: 0 the rheology's own, k materials[k - 1]. Where shapes overlap, the
+  // last listed holds the point.
+  std::vector<int> initial_material;
   double interface_courant = 0.45;  // largest Courant number of one VoF sweep (< 0.5 for boundedness)
   bool displacement = true;         // carry the Eulerian displacement and strain ([VoF] Eq. 16); the case
                                     // file turns it on where there is a rheology (soil.displacement)

@@ -24,13 +24,20 @@ CaseConfig reduced_strength(const CaseConfig& config, double factor) {
                                 "(use soil.rheology.friction = \"constant\")",
                                 config.source.string()));
   const double deg = std::numbers::pi / 180.0;
-  const double friction = std::atan(std::tan(r.friction_angle_deg * deg) / factor) / deg;
+  auto reduced_friction = [&](double phi) { return std::atan(std::tan(phi * deg) / factor) / deg; };
   const auto& num = config.flow.numerics;
-  std::vector<std::string> keys{fmt::format("soil.rheology.friction_angle={}", friction),
+  std::vector<std::string> keys{fmt::format("soil.rheology.friction_angle={}", reduced_friction(r.friction_angle_deg)),
                                 fmt::format("soil.rheology.cohesion={}", r.cohesion / factor),
                                 fmt::format("numerics.outer_iterations={}", std::max(num.outer_iterations, 10)),
                                 fmt::format("numerics.outer_tolerance={}", std::min(num.outer_tolerance, 1e-6)),
                                 "soil.displacement=true"};
+  if (!config.soil->materials.empty()) {  // every soil material's strength too, the array written whole
+    std::string materials;
+    for (const auto& m : config.soil->materials)
+      materials += fmt::format("{}{{name = \"{}\", friction_angle = {}, cohesion = {}}}", materials.empty() ? "" : ", ",
+                               m.name, reduced_friction(m.strength.friction_angle_deg), m.strength.cohesion / factor);
+    keys.push_back("soil.materials=[" + materials + "]");
+  }
   CaseConfig reduced = parse_case(config.as_run, keys, config.source);
   reduced.overrides.insert(reduced.overrides.begin(), config.overrides.begin(), config.overrides.end());
   return reduced;
@@ -58,8 +65,10 @@ double largest_displacement(Simulation& sim) {
   return all;
 }
 
-StrengthTrial run_trial(MPI_Comm comm, const CaseConfig& config, const std::filesystem::path& out, double factor,
-                        double limit_setting) {
+}  // namespace
+
+StrengthTrial strength_trial(MPI_Comm comm, const CaseConfig& config, const std::filesystem::path& out, double factor,
+                             double limit_setting) {
   StrengthTrial trial;
   trial.factor = factor;
   const auto start = std::chrono::steady_clock::now();
@@ -83,8 +92,6 @@ StrengthTrial run_trial(MPI_Comm comm, const CaseConfig& config, const std::file
   return trial;
 }
 
-}  // namespace
-
 StrengthReductionResult factor_of_safety(MPI_Comm comm, const CaseConfig& config, const std::filesystem::path& out,
                                          const StrengthReductionSettings& settings,
                                          const std::function<void(const StrengthTrial&)>& on_trial) {
@@ -93,7 +100,7 @@ StrengthReductionResult factor_of_safety(MPI_Comm comm, const CaseConfig& config
     throw CaseError(fmt::format("strength reduction: the tolerance {} is not a positive number", settings.tolerance));
   StrengthReductionResult result;
   auto trial = [&](double factor) {
-    const StrengthTrial t = run_trial(comm, config, out, factor, settings.displacement_limit);
+    const StrengthTrial t = strength_trial(comm, config, out, factor, settings.displacement_limit);
     result.trials.push_back(t);
     if (t.fails) result.fails_at = std::min(result.fails_at, factor);
     else result.stands_at = std::max(result.stands_at, factor);

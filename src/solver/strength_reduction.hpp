@@ -48,6 +48,12 @@ struct StrengthReductionResult {
   bool bracketed() const { return stands_at > 0.0 && fails_at < std::numeric_limits<double>::infinity(); }
 };
 
+// One trial (collective on comm): the case at `factor` into trial_directory(out, factor) (no files if out
+// is empty), failing when the soil moves further than displacement_limit (0: a tenth of the mesh's
+// smallest spacing) within time.end, or diverges.
+StrengthTrial strength_trial(MPI_Comm comm, const CaseConfig& config, const std::filesystem::path& out, double factor,
+                             double displacement_limit = 0.0);
+
 // Runs the trials (collective on comm), each into out/F_<factor> (no files if out is empty): from
 // first_factor, doubling or halving until one stands and one fails, then bisecting. on_trial is
 // called after each trial, on every rank.

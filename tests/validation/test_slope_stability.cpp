@@ -3,9 +3,12 @@
 // a 2:1 slope 10 m high on a rigid base at the toe's level, phi = 20 deg, c / (gamma H) = 0.05. Their
 // elasto-plastic finite elements (Mohr-Coulomb, no dilation) give F = 1.4, Bishop and Morgenstern's
 // charts 1.38. The shipped mesh (0.4 m cells) takes about 5 minutes; here the cells are 0.8 m.
+// Example 4 (cases/slope_griffiths_lane1999_foundation.toml), two soil materials: an undrained clay slope
+// (c_u1 = 0.25 gamma H) on a foundation of c_u2 = lambda c_u1.
 #include <gtest/gtest.h>
 
 #include <cstdio>
+#include <string>
 
 #include "io/case_file.hpp"
 #include "solver/strength_reduction.hpp"
@@ -31,6 +34,35 @@ TEST(SlopeStability, GriffithsLaneExampleOneFactorOfSafety) {
     std::printf("Griffiths & Lane example 1 at 100 x 25: stands at F = %.4f, fails at %.4f: %.3f (published 1.4 and "
                 "Bishop's 1.38, for the model's cone 1.370 and 1.351)\n", r.stands_at, r.fails_at, factor);
   EXPECT_NEAR(factor, 1.36, 0.027);  // within 2 % of 1.351 and 1.370
+}
+
+// Griffiths & Lane's example 4: which mechanism fails depends on the foundation's strength, so the factor
+// does. Their factors, and circular-slip limit equilibrium over the same geometry (docs/validation.md),
+// are 2.03 (2.02) for lambda >= 1.5, the toe circle in the slope; 1.45 (1.47) for one clay, a circle
+// through the foundation to the base; 0.87 for lambda = 0.5. Measured by bisection at 90 x 30 (1 m cells):
+// 2.102 for lambda = 2, 1.506 for lambda = 1, 0.883 for lambda = 0.5; at 180 x 60, 2.070 for lambda = 2.
+// Here single trials on 1 m cells: with the strong foundation the slope stands at F = 1.9, where one clay
+// fails (its deep circle at 1.45-1.5), and fails at 2.25; with a foundation half as strong it fails at
+// F = 1, where the slope on the strong one stands, and stands at 0.8.
+TEST(SlopeStability, GriffithsLaneExampleFourFoundationDecidesTheFactor) {
+  const std::string path = test::repo_path("cases/slope_griffiths_lane1999_foundation.toml");
+  const CaseConfig strong = load_case(path, {"mesh.cells=[90,30]", "output.progress_seconds=0"});
+  const CaseConfig weak = load_case(path, {"mesh.cells=[90,30]", "output.progress_seconds=0",
+                                           "soil.materials=[{name = \"foundation\", cohesion = 24525.0}]"});
+  struct Expected {
+    const CaseConfig* config;
+    const char* name;
+    double factor;
+    bool fails;
+  };
+  for (const Expected& e : {Expected{&strong, "lambda = 2", 1.9, false}, Expected{&strong, "lambda = 2", 2.25, true},
+                            Expected{&weak, "lambda = 0.5", 0.8, false}, Expected{&weak, "lambda = 0.5", 1.0, true}}) {
+    const StrengthTrial t = strength_trial(PETSC_COMM_WORLD, *e.config, "", e.factor);
+    if (test::is_root())
+      std::printf("Griffiths & Lane example 4, %s, F = %.2f: %s (largest displacement %.3g m at t = %.3g s)\n", e.name,
+                  e.factor, t.fails ? "fails" : "stands", t.largest_displacement, t.time);
+    EXPECT_EQ(t.fails, e.fails) << e.name << ", F = " << e.factor;
+  }
 }
 
 }  // namespace

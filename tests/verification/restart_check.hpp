@@ -28,7 +28,7 @@ inline std::string file_text(const std::filesystem::path& p) {
 struct EndState {
   double time = 0.0;
   long steps = 0;
-  std::vector<std::vector<double>> fields;  // u, v, p (and c)
+  std::vector<std::vector<double>> fields;  // u, v, p (and c, and the soil materials' shares)
 };
 
 inline EndState end_state(Simulation& sim, long steps) {
@@ -36,6 +36,9 @@ inline EndState end_state(Simulation& sim, long steps) {
   for (int a = 0; a < 2; ++a) e.fields.push_back(gather_to_root(sim.grid(), sim.flow().velocity(a)));
   e.fields.push_back(gather_to_root(sim.grid(), sim.flow().pressure()));
   if (sim.soil()) e.fields.push_back(gather_to_root(sim.grid(), sim.soil()->soil_fraction()));
+  if (sim.soil())
+    for (int k = 1; k <= sim.soil()->material_count(); ++k)
+      e.fields.push_back(gather_to_root(sim.grid(), sim.soil()->material_share(k)));
   return e;
 }
 

@@ -28,6 +28,18 @@ TEST(Restart, CollapseContinuesExactlyFromItsLastCheckpoint) {
   std::printf("collapse restarted from its checkpoint at t = %.3g s\n", t);
 }
 
+// Two soil materials: their shares are part of the checkpoint.
+TEST(Restart, LayeredCollapseContinuesExactlyFromItsLastCheckpoint) {
+  const double t = expect_restart_reproduces(
+      "cases/bui2008_experiment.toml",
+      {"mesh.cells=[60,20]", "time.end=0.3", "output.interval=0.1", "output.progress_seconds=0",
+       "soil.materials=[{name = \"lower\", friction_angle = 10.0}]",
+       "initial.soil=[{shape = \"box\", lower = [0, 0], upper = [0.2, 0.1]}, "
+       "{shape = \"box\", lower = [0, 0], upper = [0.2, 0.05], material = \"lower\"}]"},
+      45, true);
+  std::printf("layered collapse restarted from its checkpoint at t = %.3g s\n", t);
+}
+
 TEST(Restart, CavityContinuesExactlyFromItsLastCheckpoint) {
   const double t = expect_restart_reproduces(
       "cases/lid_driven_cavity_re100.toml",

@@ -152,6 +152,44 @@ TEST(CaseFile, RheologyParametersAreValidated) {
                                          "soil.yield_pressure=face", "soil.face_fraction=face"}));
 }
 
+// Soil materials: each names a strength of the rheology's model; a shape's `material` must name one,
+// and each must be some shape's.
+TEST(CaseFile, SoilMaterialsAreNamedValidatedAndUsed) {
+  const std::string phi = "soil.rheology.friction_angle=30";
+  const std::string clay = "soil.materials=[{name = \"clay\", friction_angle = 0.0, cohesion = 2e4}]";
+  const std::string shapes = "initial.soil=[{shape = \"box\", lower = [0, 0], upper = [1, 0.2], material = \"clay\"}, "
+                             "{shape = \"box\", lower = [0, 0.2], upper = [0.5, 0.5]}]";
+  const CaseConfig c = parse_case(two_phase, {phi, clay, shapes});
+  ASSERT_EQ(c.soil->materials.size(), 1u);
+  EXPECT_EQ(c.soil->materials[0].name, "clay");
+  EXPECT_EQ(c.soil->materials[0].strength.cohesion, 2e4);
+  EXPECT_EQ(c.soil->initial_material, (std::vector<int>{1, 0}));
+  // A key the material does not have; no strength at all (phi = 0 without cohesion); a name twice.
+  const std::string density = error_of(two_phase, {phi, "soil.materials=[{name = \"clay\", density = 1800.0}]", shapes});
+  EXPECT_NE(density.find("soil.materials[0].density"), std::string::npos) << density;
+  const std::string weak = error_of(two_phase, {phi, "soil.materials=[{name = \"clay\", friction_angle = 0.0}]", shapes});
+  EXPECT_NE(weak.find("soil.materials[0]"), std::string::npos) << weak;
+  EXPECT_NE(weak.find("friction_angle"), std::string::npos) << weak;
+  const std::string twice = error_of(two_phase, {phi, "soil.materials=[{name = \"clay\"}, {name = \"clay\"}]", shapes});
+  EXPECT_NE(twice.find("soil.materials[1].name"), std::string::npos) << twice;
+  const std::string odd = error_of(two_phase, {phi, "soil.materials=[{name = \"wet clay\"}]", shapes});
+  EXPECT_NE(odd.find("not a plain name"), std::string::npos) << odd;
+  // A shape of a material the case does not have, a material of no shape.
+  const std::string missing = error_of(two_phase, {phi, clay, "initial.soil=[{shape = \"box\", lower = [0, 0], upper = [1, 0.2], material = \"sand\"}]"});
+  EXPECT_NE(missing.find("initial.soil[0].material"), std::string::npos) << missing;
+  EXPECT_NE(missing.find("'sand'"), std::string::npos) << missing;
+  EXPECT_NE(missing.find("clay"), std::string::npos) << missing;
+  const std::string unused = error_of(two_phase, {phi, clay});
+  EXPECT_NE(unused.find("soil.materials[0]"), std::string::npos) << unused;
+  EXPECT_NE(unused.find("no initial.soil shape"), std::string::npos) << unused;
+  // Materials share the rheology's constant friction.
+  const std::string mu = error_of(two_phase, {"soil.rheology={model = \"drucker_prager\", friction = \"mu_of_I\"}", clay, shapes});
+  EXPECT_NE(mu.find("soil.materials[0]"), std::string::npos) << mu;
+  EXPECT_NE(mu.find("constant"), std::string::npos) << mu;
+  const std::string no_materials = error_of(two_phase, {phi, shapes});
+  EXPECT_NE(no_materials.find("the case has no [[soil.materials]]"), std::string::npos) << no_materials;
+}
+
 // A rheology constant that the chosen model, friction or regularisation does not read is refused,
 // naming the key and what reads it; the same key is accepted where it is read.
 TEST(CaseFile, RheologyConstantsTheModelDoesNotReadAreRefused) {

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <numbers>
 #include <string>
+#include <vector>
 
 #include "io/case_error.hpp"
 
@@ -60,6 +61,24 @@ TEST(StrengthReduction, DividesCohesionAndTheTangentOfFriction) {
   const CaseConfig tight = parse_case(slope, {"numerics.outer_iterations=20", "numerics.outer_tolerance=1e-8"});
   EXPECT_EQ(reduced_strength(tight, 1.2).flow.numerics.outer_iterations, 20);
   EXPECT_EQ(reduced_strength(tight, 1.2).flow.numerics.outer_tolerance, 1e-8);
+}
+
+// Every soil material's strength is divided too, and the trial keeps each shape's material.
+TEST(StrengthReduction, DividesEverySoilMaterialsStrength) {
+  const CaseConfig c = parse_case(slope, {"soil.materials=[{name = \"clay\", friction_angle = 0.0, cohesion = 8000.0}, "
+                                          "{name = \"sand\", friction_angle = 35.0, cohesion = 0.0}]",
+                                          "initial.soil=[{shape = \"box\", lower = [0, 0], upper = [2, 0.2], material = \"clay\"}, "
+                                          "{shape = \"box\", lower = [0, 0.2], upper = [1, 0.4], material = \"sand\"}, "
+                                          "{shape = \"box\", lower = [0, 0.4], upper = [0.5, 0.5]}]"});
+  const CaseConfig r = reduced_strength(c, 1.6);
+  ASSERT_EQ(r.soil->materials.size(), 2u);
+  EXPECT_EQ(r.soil->materials[0].name, "clay");
+  EXPECT_EQ(r.soil->materials[0].strength.friction_angle_deg, 0.0);
+  EXPECT_NEAR(r.soil->materials[0].strength.cohesion, 5000.0, 1e-12 * 5000.0);
+  EXPECT_NEAR(tan_deg(r.soil->materials[1].strength.friction_angle_deg), tan_deg(35.0) / 1.6, 1e-14);
+  EXPECT_EQ(r.soil->materials[1].strength.cohesion, 0.0);
+  EXPECT_NEAR(r.soil->rheology->cohesion, 5000.0 / 1.6, 1e-12 * 5000.0);
+  EXPECT_EQ(r.soil->initial_material, (std::vector<int>{1, 2, 0}));
 }
 
 TEST(StrengthReduction, RefusesWhatHasNoStrengthToReduce) {
