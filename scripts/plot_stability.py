@@ -5,7 +5,8 @@ in the trial at the smallest factor that failed, as it was when the trial saw it
 Usage: plot_stability.py OUT [--png FILE]
 Prints the bracket (the largest factor that stood, the smallest that failed) from OUT/stability.csv;
 with --png draws the displacement magnitude over the soil (cells with c >= 0.5) of that trial's last
-fields file, with the soil's surface (c = 0.5). The trials must have written fields
+fields file, with the soil's surface (c = 0.5) and, dashed, the contacts of the soil materials (where
+a material's share of the soil is a half). The trials must have written fields
 (output.fields = true).
 """
 import argparse
@@ -64,6 +65,11 @@ def main():
     m = ax.pcolormesh(x, y, shown, cmap="viridis", shading="flat")
     fig.colorbar(m, ax=ax, label="displacement (m)")
     ax.contour(xc, yc, c, levels=[0.5], colors="k", linewidths=1.0)
+    # Soil materials: where each one's share of the soil is a half, dashed.
+    for name in sorted(k for k in cells if k.startswith("soil_fraction_")):
+        share = np.where(c > 0.5, cells[name] / np.maximum(c, 1e-300), np.nan)
+        if np.nanmin(share) < 0.5 < np.nanmax(share):
+            ax.contour(xc, yc, share, levels=[0.5], colors="w", linewidths=1.0, linestyles="--")
     ax.set_ylim(y[0], min(y[-1], 1.6 * top))
     ax.set_xlim(x[0], min(x[-1], x[0] + 1.2 * (right - x[0])))
     ax.set_aspect("equal")

@@ -169,9 +169,14 @@ void SoilPhase::initialise_materials() {
 }
 
 // Ghosts of a material share: zero gradient at the sides (soil coming in takes the share of the cell
-// it enters), mirrors in the blocked cells.
+// it enters), mirrors in the blocked cells, which hold no share.
 void SoilPhase::fill_share_ghosts(Field& f) const {
   zero_blocked_cells(grid_, blocked_, f);
+  fill_copied_ghosts(f);
+}
+
+// Ghosts that copy the nearest cell at the domain's sides and mirror the open cells in blocked ones.
+void SoilPhase::fill_copied_ghosts(Field& f) const {
   f.scatter_to_local();
   FieldArray a(grid_.field_dm(), f.local());
   mirror_into_blocked(grid_, BlockedView(grid_, blocked_).data(), a.data(), 1.0);
@@ -226,23 +231,7 @@ void SoilPhase::fill_fraction_ghosts(Field& f) const {
 }
 
 void SoilPhase::fill_displacement_ghosts() {
-  const auto& b = grid_.owned();
-  const int nx = grid_.nx(), ny = grid_.ny(), gw = Grid::ghost_width;
-  for (int a = 0; a < 2; ++a) {
-    disp_[a]->scatter_to_local();
-    FieldArray d(grid_.field_dm(), disp_[a]->local());
-    mirror_into_blocked(grid_, BlockedView(grid_, blocked_).data(), d.data(), 1.0);
-    for (int k = 1; k <= gw; ++k)
-      for (int j = b.ys - gw; j < b.ye() + gw; ++j) {
-        if (b.xs == 0) d[j][-k] = d[j][0];
-        if (b.xe() == nx) d[j][nx - 1 + k] = d[j][nx - 1];
-      }
-    for (int k = 1; k <= gw; ++k)
-      for (int i = b.xs - gw; i < b.xe() + gw; ++i) {
-        if (b.ys == 0) d[-k][i] = d[0][i];
-        if (b.ye() == ny) d[ny - 1 + k][i] = d[ny - 1][i];
-      }
-  }
+  for (auto& d : disp_) fill_copied_ghosts(*d);
 }
 
 // Viscosity of a mixture at soil fraction c: the soil's from the rheology at the given pressure (its

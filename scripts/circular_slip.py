@@ -1,0 +1,69 @@
+#!/usr/bin/python3
+"""Circular-slip limit equilibrium of an undrained (phi = 0) clay slope on a clay foundation: the
+reference for the factors of safety of cases/slope_griffiths_lane1999_foundation.toml.
+
+For phi = 0 the moment equilibrium of a rigid body sliding on a circle is exact (the "phi = 0 method"):
+    F = R sum(c_u ds) / (gamma int (x_c - x) h dx),
+h the height of soil above the arc. The script searches circles (centre on a 1 m grid, radius in 0.5 m
+steps) that stay inside the domain and above the rigid base, with c_u1 in the slope (above the toe's
+level) and c_u2 = lambda c_u1 in the foundation, and prints the smallest F and its circle.
+
+Usage: circular_slip.py [--lambda 2] [--H 10] [--cot 2] [--D 2] [--c1 0.25] [--crest 30] [--ahead 40]
+(c1 is c_u1 / (gamma H); crest and ahead are the lengths of ground behind the crest and before the
+toe, m; the defaults are the shipped case's geometry.)
+"""
+import argparse
+
+import numpy as np
+
+
+def smallest_factor(lam, H, cot, D, c1, crest, ahead):
+    gamma = 1.0  # F is independent of it once c_u is given as a fraction of gamma H
+    cu1 = c1 * gamma * H
+    base = -(D - 1.0) * H                    # the toe at y = 0, the crest at y = H
+    toe = crest + cot * H
+    right = toe + ahead
+    xs = np.linspace(0.0, right, int(right / 0.02) + 1)
+    dx = xs[1] - xs[0]
+    ground = np.where(xs < crest, H, np.where(xs < toe, H - (xs - crest) / cot, 0.0))
+    best = (np.inf, None)
+    for xc in np.arange(crest - H, right, 1.0):
+        for yc in np.arange(H, H + 6.0 * H, 1.0):
+            for R in np.arange(1.0, yc - base + 1e-9, 0.5):
+                inside = np.abs(xs - xc) < R
+                arc = np.full_like(xs, np.inf)
+                arc[inside] = yc - np.sqrt(R * R - (xs[inside] - xc) ** 2)
+                below = inside & (arc < ground)
+                idx = np.nonzero(below)[0]
+                # one slipping body, within the domain's sides
+                if len(idx) < 3 or idx[0] == 0 or idx[-1] == len(xs) - 1 or idx[-1] - idx[0] + 1 != len(idx):
+                    continue
+                driving = gamma * np.sum((xc - xs[idx]) * (ground[idx] - arc[idx])) * dx
+                if driving <= 0.0:
+                    continue
+                t0, t1 = (np.arcsin(np.clip((xs[k] - xc) / R, -1.0, 1.0)) for k in (idx[0], idx[-1]))
+                theta = np.linspace(t0, t1, 400)
+                cu = np.where(yc - R * np.cos(theta) < 0.0, lam * cu1, cu1)
+                resisting = R * np.trapz(cu * R, theta)
+                if resisting / driving < best[0]:
+                    best = (resisting / driving, (xc, yc - base, R))
+    return best
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument("--lambda", dest="lam", type=float, default=2.0, help="c_u2 / c_u1 of the foundation")
+    ap.add_argument("--H", type=float, default=10.0)
+    ap.add_argument("--cot", type=float, default=2.0, help="cot(beta) of the slope")
+    ap.add_argument("--D", type=float, default=2.0, help="depth to the rigid base over H, from the crest")
+    ap.add_argument("--c1", type=float, default=0.25, help="c_u1 / (gamma H)")
+    ap.add_argument("--crest", type=float, default=30.0)
+    ap.add_argument("--ahead", type=float, default=40.0)
+    a = ap.parse_args()
+    f, circle = smallest_factor(a.lam, a.H, a.cot, a.D, a.c1, a.crest, a.ahead)
+    print(f"lambda = {a.lam:g}: F = {f:.3f} on the circle of centre ({circle[0]:g}, {circle[1]:g}) m above the base's "
+          f"left end, radius {circle[2]:g} m")
+
+
+if __name__ == "__main__":
+    main()
