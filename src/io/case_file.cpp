@@ -167,7 +167,12 @@ rheology::RheologyParameters read_rheology(TableReader r, double soil_density) {
 // material: where given, the shape's `material` key is read into it ("" when absent); elsewhere the key
 // is unknown.
 interface::Shape read_shape(TableReader r, std::string* material = nullptr) {
-  if (material) *material = r.string("material", "");
+  if (material) {
+    *material = r.string("material", "");
+    if (r.has("material") && material->empty())
+      throw CaseError(r.key_path("material") + ": empty; name a [[soil.materials]] entry, or leave the key out for the "
+                      "rheology's own soil");
+  }
   const std::string shape = r.choice("shape", "", {"box", "circle", "polygon"});
   interface::Shape out;
   if (shape == "box") {

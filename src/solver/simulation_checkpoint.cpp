@@ -45,8 +45,11 @@ std::string Simulation::physics() const {
     return text + fmt::format(", {} with mu(I) friction, mu_s {:.9g}, mu_2 {:.9g}, I_0 {:.9g}, d {:.9g} m",
                               rheology::to_string(r.model), r.static_friction, r.limiting_friction,
                               r.reference_inertial_number, r.grain_diameter);
-  return text + fmt::format(", {} with {} friction, phi {:.9g} deg, cohesion {:.9g} Pa", rheology::to_string(r.model),
-                            rheology::to_string(r.friction), r.friction_angle_deg, r.cohesion);
+  text += fmt::format(", {} with {} friction, phi {:.9g} deg, cohesion {:.9g} Pa", rheology::to_string(r.model),
+                      rheology::to_string(r.friction), r.friction_angle_deg, r.cohesion);
+  for (const auto& m : s.materials)
+    text += fmt::format("; {}: phi {:.9g} deg, cohesion {:.9g} Pa", m.name, m.strength.friction_angle_deg, m.strength.cohesion);
+  return text;
 }
 
 // The sides' conditions, as a checkpoint records them (apart from the physics, so that a checkpoint

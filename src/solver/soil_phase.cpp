@@ -156,8 +156,8 @@ void SoilPhase::initialise_materials() {
       for (double w : weight) total += w;
       if (total > 0.0)
         for (int k = 0; k < count; ++k) (*m[k])[j][i] = weight[size_t(k) + 1] / total;
-      else  // soil the samples missed (a sliver of a cell): the first shape's material that overlaps the cell
-        for (int shape = 0; shape < shape_count; ++shape)
+      else  // soil the samples missed (a sliver of a cell): the material of the last shape that overlaps the cell
+        for (int shape = shape_count - 1; shape >= 0; --shape)
           if (interface::overlaps(settings_.initial_soil[size_t(shape)], {x0, y0}, {x0 + grid_.dx(i), y0 + grid_.dy(j)})) {
             const int k = settings_.initial_material[size_t(shape)];
             if (k > 0) (*m[k - 1])[j][i] = 1.0;
@@ -168,11 +168,25 @@ void SoilPhase::initialise_materials() {
   for (auto& f : share_) fill_share_ghosts(*f);
 }
 
-// Ghosts of a material share: zero gradient at the sides (soil coming in takes the share of the cell
-// it enters), mirrors in the blocked cells, which hold no share.
+// Ghosts of a material share: walls mirror (zero gradient), blocked cells hold none; soil coming in
+// through an atmosphere side is the rheology's own (share 0).
 void SoilPhase::fill_share_ghosts(Field& f) const {
   zero_blocked_cells(grid_, blocked_, f);
   fill_copied_ghosts(f);
+  FieldArray a(grid_.field_dm(), f.local());
+  const auto& b = grid_.owned();
+  const int nx = grid_.nx(), ny = grid_.ny(), gw = Grid::ghost_width;
+  auto open = [&](Side side) { return boundary(flow_settings_.boundaries, side).kind == BoundaryKind::atmosphere; };
+  for (int k = 1; k <= gw; ++k)
+    for (int j = b.ys - gw; j < b.ye() + gw; ++j) {
+      if (b.xs == 0 && open(Side::west)) a[j][-k] = 0.0;
+      if (b.xe() == nx && open(Side::east)) a[j][nx - 1 + k] = 0.0;
+    }
+  for (int k = 1; k <= gw; ++k)
+    for (int i = b.xs - gw; i < b.xe() + gw; ++i) {
+      if (b.ys == 0 && open(Side::south)) a[-k][i] = 0.0;
+      if (b.ye() == ny && open(Side::north)) a[ny - 1 + k][i] = 0.0;
+    }
 }
 
 // Ghosts that copy the nearest cell at the domain's sides and mirror the open cells in blocked ones.
@@ -297,11 +311,11 @@ void SoilPhase::update_face_viscosity(FlowSolver& flow) const {
   // One evaluation on the face at soil fraction cf. Between two soils the face is as strong as the
   // weaker side: a slip surface along the contact of two materials runs on the weaker one's side (with
   // the mean of their strengths a slip along a stiff foundation had to run a cell higher). A side
-  // without soil has no shares to give.
+  // without soil, or with a sliver whose shares are round-off, has no shares to give.
   auto on_face = [&](int i, int j, int in, int jn, double cf, double pressure, const rheology::StrainRate& rate) {
     if (!materials_) return mixture_viscosity(cf, pressure, rate);
-    if (!(c[jn][in] > 0.0)) return mixture_viscosity(cf, pressure, rate, own_shares);
-    if (!(c[j][i] > 0.0) || own == other) return mixture_viscosity(cf, pressure, rate, other_shares);
+    if (!(c[jn][in] > interface::no_soil)) return mixture_viscosity(cf, pressure, rate, own_shares);
+    if (!(c[j][i] > interface::no_soil) || own == other) return mixture_viscosity(cf, pressure, rate, other_shares);
     return std::min(mixture_viscosity(cf, pressure, rate, own_shares), mixture_viscosity(cf, pressure, rate, other_shares));
   };
   // Face (axis, i, j) lies between cell (i, j) and its neighbour at +1 along axis.

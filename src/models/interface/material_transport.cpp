@@ -31,7 +31,6 @@ void material_sweep(int axis, double dt, const double* const* c, const double* c
   // The shares the soil crossing the face after cell (i, j) carries, summing to 1. Where the cell
   // upstream of the donor or the acceptor holds no soil, its shares mean nothing and the donor's own
   // are taken.
-  constexpr double no_soil = 1e-9;
   auto face_shares = [&](int i, int j, double f, Shares& s) {
     const int dir = f > 0.0 ? 1 : -1;
     const int id = f > 0.0 ? i : i + di, jd = f > 0.0 ? j : j + dj;  // donor
@@ -42,19 +41,26 @@ void material_sweep(int axis, double dt, const double* const* c, const double* c
     Shares a, up;
     shares_of(ia, ja, a);
     shares_of(iu, ju, up);
-    // The share of the donor's soil that leaves through the face: the soil's own Courant number. A
-    // donor that gives all its soil away can give only its own shares (the TVD bound 1 - sigma).
-    const double courant = std::min(std::abs(f) / (c[jd][id] * (axis == 0 ? dx[id] : dy[jd])), 1.0);
+    // The share of the donor's soil that leaves through the face: the soil's own Courant number (the
+    // face's swept volume over the donor's soil, radius-weighted in an axisymmetric x sweep). A donor
+    // that gives all its soil away can give only its own shares (the TVD bound 1 - sigma).
+    const double swept = std::abs(f) * (weighted ? radial.face[i] / radial.centre[id] : 1.0);
+    const double courant = std::min(swept / (c[jd][id] * (axis == 0 ? dx[id] : dy[jd])), 1.0);
+    // Each material's face share limited by its own slope (superbee is continuous in the shares, so
+    // round-off stays round-off), then the shares scaled to add up to 1: the soil through a face is
+    // shared out whole. With two materials the scaling is exact (both are limited alike); with three or
+    // more it can take a share a little past its bound, which the cell then clips (docs/method.md).
+    // One limiter for all, the most restrictive, kept the sum but not the rank-independence: a jump of
+    // round-off in one material set the others' limiter at random.
+    const double keep = 0.5 * (1.0 - courant);
     Shares limited;
     double sum = 0.0;
     for (int k = 0; k <= count; ++k) {
       const double jump = a[k] - s[k];
-      limited[k] = jump != 0.0 ? s[k] + 0.5 * superbee((s[k] - up[k]) / jump) * (1.0 - courant) * jump : s[k];
-      sum += limited[k];  // each lies between the donor's and the acceptor's, in [0, 1]
+      limited[k] = jump != 0.0 ? s[k] + keep * superbee((s[k] - up[k]) / jump) * jump : s[k];
+      sum += limited[k];  // each between the donor's and the acceptor's, in [0, 1]
     }
-    // Three or more materials are limited each by its own slope, so their sum is near 1, not 1; a sum
-    // far from it (shares swapping places between donor and acceptor) keeps the donor's.
-    if (!(sum > 0.5)) return;
+    if (!(sum > 0.5)) return;  // shares swapping places between donor and acceptor: the donor's
     for (int k = 0; k <= count; ++k) s[k] = limited[k] / sum;
   };
   // Through the face after cell (i, j) along the axis: each material's volume (per unit face area,
@@ -82,7 +88,8 @@ void material_sweep(int axis, double dt, const double* const* c, const double* c
         const double q = c[j][i] * m[k][j][i] + (low[k] - high[k]) / h + m0[k][j][i] * dilatation;
         sum += (m_new[k][j][i] = c_new[j][i] > 0.0 ? std::clamp(q / c_new[j][i], 0.0, 1.0) : m[k][j][i]);
       }
-      // Shares a partition still where round-off in a sliver of soil made them add up past 1.
+      // Shares a partition still where round-off in a sliver of soil (c_new of 1e-17, say) made them
+      // add up past 1.
       if (sum > 1.0)
         for (int k = 0; k < count; ++k) m_new[k][j][i] /= sum;
     }

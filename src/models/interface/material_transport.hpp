@@ -10,14 +10,17 @@ namespace granflow::interface {
 
 inline constexpr int max_materials = 16;  // the base's included
 
+// A cell with less soil than this has no shares that mean anything: they are q / c of round-off.
+inline constexpr double no_soil = 1e-9;
+
 // One directional sweep, after vof_sweep of the same axis took c to c_new and recorded F, the soil
 // volume per unit face area that crossed each face in this sweep (face_soil, zeroed before it). For
 // each of `count` materials (m[k]: its share of each cell's soil; the base material, not stored, holds
 // the rest), with q = c m its volume fraction,
 //   q_new = q + (F_low m_low - F_high m_high)/h + cc m0 (u_high - u_low) dt/h,   m_new = q_new / c_new.
-// The share a face carries is the donor's (upwind cell's), corrected towards the acceptor's by a
-// limited slope (superbee, a TVD face value), the base's likewise, then all of them divided by their
-// sum: the soil through a face is shared out whole. cc and m0 (the shares at the start of the step)
+// The shares a face carries are the donor's (upwind cell's), corrected towards the acceptor's by a
+// limited slope (superbee, a TVD face value), the base's likewise, then scaled to add up to 1: the soil
+// through a face is shared out whole. cc and m0 (the shares at the start of the step)
 // are held over both sweeps, so that the dilatation terms of a divergence-free velocity cancel over
 // the step as they do for c, and sum(q V) is conserved to round-off. A cell the soil leaves
 // (c_new <= 0) keeps its shares; round-off in a sliver is clipped to [0, 1]. Radial weights as in
