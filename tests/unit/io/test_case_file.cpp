@@ -186,6 +186,8 @@ TEST(CaseFile, SoilMaterialsAreNamedValidatedAndUsed) {
   const std::string mu = error_of(two_phase, {"soil.rheology={model = \"drucker_prager\", friction = \"mu_of_I\"}", clay, shapes});
   EXPECT_NE(mu.find("soil.materials[0]"), std::string::npos) << mu;
   EXPECT_NE(mu.find("constant"), std::string::npos) << mu;
+  const std::string empty = error_of(two_phase, {phi, clay, "initial.soil=[{shape = \"box\", lower = [0, 0], upper = [1, 0.2], material = \"\"}]"});
+  EXPECT_NE(empty.find("initial.soil[0].material: empty"), std::string::npos) << empty;
   const std::string no_materials = error_of(two_phase, {phi, shapes});
   EXPECT_NE(no_materials.find("the case has no [[soil.materials]]"), std::string::npos) << no_materials;
 }
