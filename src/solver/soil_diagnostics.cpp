@@ -25,6 +25,8 @@ void SoilPhase::compute_diagnostics(const FlowSolver& flow) {
   FieldArray en(grid_.field_dm(), strain_norm_->global()), rn(grid_.field_dm(), rate_norm_->global()),
       lo(grid_.field_dm(), lode_->global()), ratio(grid_.field_dm(), stress_ratio_->global());
   const BlockedView mask(grid_, blocked_);
+  const auto m = share_arrays(false);
+  Shares shares{};
   for (int j = b.ys; j < b.ye(); ++j)
     for (int i = b.xs; i < b.xe(); ++i) {
       if (is_blocked(mask.data(), i, j)) {  // no soil, no flow
@@ -42,9 +44,13 @@ void SoilPhase::compute_diagnostics(const FlowSolver& flow) {
       const auto D = cell_strain_rate(grid_, u.data(), v.data(), i, j);
       rn[j][i] = rheology::norm(rheology::deviatoric(D));
       lo[j][i] = rheology::lode_angle(D) * 180.0 / std::numbers::pi;
-      ratio[j][i] = rheology_ ? rheology_->stress_ratio_to_drucker_prager(
-                                    D, cell_yield_pressure(p[j][i], overburden.get(), i, j) - ambient_pressure_)
-                              : 1.0;
+      const double pressure = cell_yield_pressure(p[j][i], overburden.get(), i, j) - ambient_pressure_;
+      if (materials_) {
+        cell_shares(m, i, j, shares);
+        ratio[j][i] = materials_->stress_ratio_to_drucker_prager(D, pressure, shares.data());
+      } else {
+        ratio[j][i] = rheology_ ? rheology_->stress_ratio_to_drucker_prager(D, pressure) : 1.0;
+      }
     }
 }
 

@@ -33,6 +33,22 @@ class SoilMaterials {
   [[nodiscard]] int count() const noexcept { return int(materials_.size()); }
   [[nodiscard]] const GranularRheology& material(int k) const noexcept { return materials_[k]; }
 
+  // The stress ratio of the model's surface to Drucker-Prager's ([YS] Figs. 8, 11, 15) at a point whose
+  // soil is shared out as `shares`: the share-weighted mean of the materials' own ratios (each depends
+  // on its friction); 1 for the Drucker-Prager models and at rest.
+  [[nodiscard]] double stress_ratio_to_drucker_prager(const StrainRate& strain_rate, double pressure,
+                                                      const double* shares) const noexcept {
+    double rest = 1.0, ratio = 0.0;
+    for (int k = 1; k < count(); ++k) {
+      const double share = std::clamp(shares[k - 1], 0.0, 1.0);
+      if (share == 0.0) continue;
+      ratio += share * materials_[k].stress_ratio_to_drucker_prager(strain_rate, pressure);
+      rest -= share;
+    }
+    if (rest > 0.0) ratio += rest * materials_[0].stress_ratio_to_drucker_prager(strain_rate, pressure);
+    return ratio;
+  }
+
   // eta at a point whose soil is shared out as `shares` (count() - 1 entries, each clipped to [0, 1]).
   // With every share 0 it is the base's own dynamic_viscosity, to the bit.
   [[nodiscard]] double dynamic_viscosity(const StrainRate& strain_rate, double pressure,

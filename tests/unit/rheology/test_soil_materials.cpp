@@ -53,6 +53,23 @@ TEST(SoilMaterials, ASharedPointYieldsAtTheShareWeightedMeanStress) {
   EXPECT_NEAR(soils.dynamic_viscosity(rate, pressure, shares.data()), expected, 1e-12 * expected);
 }
 
+// The stress ratio to Drucker-Prager of Mohr-Coulomb soils of 20 and 40 deg, half and half: the mean of
+// theirs (each depends on its friction), and each alone its own.
+TEST(SoilMaterials, StressRatioIsTheSharesMeanOfTheMaterials) {
+  RheologyParameters sand;
+  sand.model = Model::mohr_coulomb;
+  sand.friction_angle_deg = 20.0;
+  const SoilMaterials soils(sand, {{40.0, 0.0}});
+  const StrainRate compression{-1.0, 0.5, 0.5, 0.0, 0.0, 0.0};  // triaxial: the ratio is not 1 here
+  const double loose = GranularRheology(sand).stress_ratio_to_drucker_prager(compression, 1e3);
+  const double dense = GranularRheology(with_strength(sand, {40.0, 0.0})).stress_ratio_to_drucker_prager(compression, 1e3);
+  ASSERT_GT(std::abs(loose - dense), 1e-3);
+  SoilMaterials::Shares shares{};
+  EXPECT_DOUBLE_EQ(soils.stress_ratio_to_drucker_prager(compression, 1e3, shares.data()), loose);
+  shares[0] = 0.5;
+  EXPECT_DOUBLE_EQ(soils.stress_ratio_to_drucker_prager(compression, 1e3, shares.data()), 0.5 * (loose + dense));
+}
+
 TEST(SoilMaterials, RefusesAnUnusableMaterialNamingIt) {
   try {
     SoilMaterials(clay(), {{0.0, 1e4}, {0.0, 0.0}});  // phi = 0 and no cohesion: no strength at all
