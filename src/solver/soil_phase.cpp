@@ -283,7 +283,7 @@ void SoilPhase::update_properties(FlowSolver& flow) const {
     for (int i = b.xs; i < b.xe(); ++i) {
       const double cc = c[j][i];
       rho[j][i] = mixture_density(cc);
-      cell_shares(m, i, j, shares);
+      if (materials_) cell_shares(m, i, j, shares);
       mu[j][i] = mixture_viscosity(cc, cell_yield_pressure(p[j][i], overburden.get(), i, j),
                                    cell_strain_rate(grid_, u.data(), v.data(), i, j), materials_ ? shares.data() : nullptr);
     }
