@@ -23,6 +23,9 @@
 
 namespace granflow {
 
+// The rheology's and the transport's bounds on the number of soil materials are one bound.
+static_assert(rheology::SoilMaterials::max_count == interface::max_materials);
+
 SoilPhase::SoilPhase(const Grid& grid, const FlowSettings& flow, const SoilSettings& settings)
     : grid_(grid), flow_settings_(flow), settings_(settings), ambient_pressure_(ambient_pressure(flow.boundaries)) {
   if (settings.rheology) rheology_.emplace(*settings.rheology);
