@@ -201,8 +201,9 @@ interface::Shape read_shape(TableReader r, std::string* material = nullptr) {
   return out;
 }
 
-// One of [[soil.materials]]: a soil of the rheology's model with its own strength.
-SoilMaterial read_material(TableReader r, const std::optional<rheology::RheologyParameters>& rheology) {
+// One of [[soil.materials]]: a soil of the rheology's model with its own strength and density.
+SoilMaterial read_material(TableReader r, const std::optional<rheology::RheologyParameters>& rheology,
+                           double soil_density) {
   using namespace rheology;
   if (!rheology)
     throw CaseError(r.path() + ": soil materials need a granular soil ([soil.rheology]), whose model they share");
@@ -218,6 +219,8 @@ SoilMaterial read_material(TableReader r, const std::optional<rheology::Rheology
                                 r.key_path("name"), m.name));
   m.strength.friction_angle_deg = r.number("friction_angle", rheology->friction_angle_deg);
   m.strength.cohesion = r.number("cohesion", rheology->cohesion);
+  m.density = r.number("density", soil_density);
+  r.require_range("density", m.density, 1e-300, inf, "positive");
   r.finish();
   if (auto err = validate(with_strength(*rheology, m.strength))) throw CaseError(fmt::format("{}: {}", r.path(), *err));
   return m;
@@ -253,7 +256,7 @@ SoilSettings read_soil(TableReader& top, std::vector<std::string>& without_effec
       so.require_range("viscosity", s.soil_viscosity, 0.0, inf, "zero or positive");
     }
     for (TableReader material : so.tables("materials")) {
-      s.materials.push_back(read_material(material, s.rheology));
+      s.materials.push_back(read_material(material, s.rheology, s.soil_density));
       const auto& name = s.materials.back().name;
       for (size_t k = 0; k + 1 < s.materials.size(); ++k)
         if (s.materials[k].name == name)

@@ -47,8 +47,10 @@ std::string Simulation::physics() const {
                               r.reference_inertial_number, r.grain_diameter);
   text += fmt::format(", {} with {} friction, phi {:.9g} deg, cohesion {:.9g} Pa", rheology::to_string(r.model),
                       rheology::to_string(r.friction), r.friction_angle_deg, r.cohesion);
-  for (const auto& m : s.materials)
+  for (const auto& m : s.materials) {
     text += fmt::format("; {}: phi {:.9g} deg, cohesion {:.9g} Pa", m.name, m.strength.friction_angle_deg, m.strength.cohesion);
+    if (m.density != s.soil_density) text += fmt::format(", {:.9g} kg/m^3", m.density);
+  }
   return text;
 }
 

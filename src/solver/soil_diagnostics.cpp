@@ -188,8 +188,8 @@ rheology::LodeHistogram SoilPhase::lode_energy() const {
   return all;
 }
 
-// Energies with the mass of each phase, rho_s c + rho_a (1 - c), which the advection conserves to
-// round-off. The mixture density of the arctan interpolation ([VoF] App. A) is heavier than that in
+// Energies with the mass of each phase, rho_s c + rho_a (1 - c) (rho_s the cell's soils' mean by their
+// shares), which the advection conserves to round-off. The mixture density of the arctan interpolation ([VoF] App. A) is heavier than that in
 // partly filled cells, so its total (mixture_mass) grows as the interface spreads; energies taken with
 // it would count that growth as potential energy.
 SoilBudget SoilPhase::budget(const FlowSolver& flow) {
@@ -199,13 +199,16 @@ SoilBudget SoilPhase::budget(const FlowSolver& flow) {
   ConstFieldArray c(grid_.field_dm(), c_->global());
   ConstFieldArray u = local_read(grid_, flow.velocity(0)), v = local_read(grid_, flow.velocity(1));
   ConstFieldArray rho(grid_.field_dm(), flow.density().global());
+  const auto m = share_arrays(false);
+  Shares shares{};
   double s[7] = {0, 0, 0, 0, compute_dissipation(flow), 0, outflow_};
   const BlockedView mask(grid_, blocked_);
   for (int j = b.ys; j < b.ye(); ++j)
     for (int i = b.xs; i < b.xe(); ++i) {
       if (is_blocked(mask.data(), i, j)) continue;  // solid, not the flow's
       const double V = grid_.volume(i, j);
-      const double phase_density = rho_s * c[j][i] + rho_a * (1.0 - c[j][i]);
+      if (densities_differ()) cell_shares(m, i, j, shares);
+      const double phase_density = (densities_differ() ? soil_density(shares) : rho_s) * c[j][i] + rho_a * (1.0 - c[j][i]);
       s[0] += c[j][i] * V;
       s[1] += (1.0 - c[j][i]) * V;
       s[2] += 0.5 * phase_density * (u[j][i] * u[j][i] + v[j][i] * v[j][i]) * V;

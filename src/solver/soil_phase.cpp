@@ -44,6 +44,16 @@ SoilPhase::SoilPhase(const Grid& grid, const FlowSettings& flow, const SoilSetti
       f = make();
       f->set(0.0);
     }
+    if (settings.materials_differ_in_density()) {
+      soil_densities_.push_back(settings.soil_density);
+      for (const auto& m : settings.materials) soil_densities_.push_back(m.density);
+      for (int a = 0; a < 2; ++a) {
+        face_soil_density_[a] = make();
+        face_soil_density_[a]->set(0.0);
+        soil_mass_through_[a] = make();
+        soil_mass_through_[a]->set(0.0);
+      }
+    }
   }
   c_ = make();
   c_tmp_ = make();
@@ -211,6 +221,18 @@ void SoilPhase::fill_copied_ghosts(Field& f) const {
     }
 }
 
+void SoilPhase::soil_density_field(Field& out) const {
+  const auto& b = grid_.owned();
+  FieldArray rho(grid_.field_dm(), out.global());
+  const auto m = share_arrays(false);
+  Shares shares{};
+  for (int j = b.ys; j < b.ye(); ++j)
+    for (int i = b.xs; i < b.xe(); ++i) {
+      if (densities_differ()) cell_shares(m, i, j, shares);
+      rho[j][i] = densities_differ() ? soil_density(shares) : settings_.soil_density;
+    }
+}
+
 std::deque<ConstFieldArray> SoilPhase::share_arrays(bool ghosted) const {
   std::deque<ConstFieldArray> arrays;
   for (const auto& f : share_) arrays.emplace_back(grid_.field_dm(), ghosted ? f->local() : f->global());
@@ -285,8 +307,8 @@ void SoilPhase::update_properties(FlowSolver& flow) const {
   for (int j = b.ys; j < b.ye(); ++j)
     for (int i = b.xs; i < b.xe(); ++i) {
       const double cc = c[j][i];
-      rho[j][i] = mixture_density(cc);
       if (materials_) cell_shares(m, i, j, shares);
+      rho[j][i] = densities_differ() ? mixture_density(cc, soil_density(shares)) : mixture_density(cc);
       mu[j][i] = mixture_viscosity(cc, cell_yield_pressure(p[j][i], overburden.get(), i, j),
                                    cell_strain_rate(grid_, u.data(), v.data(), i, j), materials_ ? shares.data() : nullptr);
     }
@@ -381,7 +403,16 @@ void SoilPhase::refresh(const FlowSolver& flow) {
 // Depth of soil above each cell centre, sum of c dy over the cells above plus half the cell's own,
 // times rho_s |g|. Columns cross ranks, so the soil fraction is gathered whole (once per step).
 void SoilPhase::compute_overburden(const std::array<double, 2>& gravity) {
-  const std::vector<double> c = gather_to_all(grid_, *c_);
+  // Soils of several densities: the column's mass per area, c rho_s / soil.density in place of c.
+  if (densities_differ()) {
+    soil_density_field(*overburden_);
+    FieldArray o(grid_.field_dm(), overburden_->global());
+    ConstFieldArray cf(grid_.field_dm(), c_->global());
+    const auto& ob = grid_.owned();
+    for (int j = ob.ys; j < ob.ye(); ++j)
+      for (int i = ob.xs; i < ob.xe(); ++i) o[j][i] *= cf[j][i] / settings_.soil_density;
+  }
+  const std::vector<double> c = gather_to_all(grid_, densities_differ() ? *overburden_ : *c_);
   DM dm = grid_.field_dm();
   const int nx = grid_.nx(), ny = grid_.ny();
   const double weight = settings_.soil_density * std::abs(gravity[1]);
@@ -482,19 +513,29 @@ void SoilPhase::advect(FlowSolver& flow, double dt) {
   // The soil volume per unit area through each face adds up in the flow's mass fluxes, which become
   // mass fluxes below.
   const bool carry_mass = flow.carries_mass_transport();
-  std::optional<FieldArray> soil_through[2];
+  std::optional<FieldArray> soil_through[2], soil_mass_through[2];
   if (carry_mass) {
     {
       ConstFieldArray c(grid_.field_dm(), c_->global());
       FieldArray rho0 = local_array(grid_, flow.start_density());
+      const auto m = share_arrays(false);
+      Shares shares{};
       for (int j = b.ys; j < b.ye(); ++j)
-        for (int i = b.xs; i < b.xe(); ++i) rho0[j][i] = mixture_density(c[j][i]);
+        for (int i = b.xs; i < b.xe(); ++i) {
+          if (densities_differ()) cell_shares(m, i, j, shares);
+          rho0[j][i] = densities_differ() ? mixture_density(c[j][i], soil_density(shares)) : mixture_density(c[j][i]);
+        }
     }
     for (int a = 0; a < 2; ++a) {
       flow.mass_flux(a).set(0.0);
       soil_through[a].emplace(grid_.field_dm(), flow.mass_flux(a).local());
+      if (densities_differ()) {
+        soil_mass_through_[a]->set(0.0);
+        soil_mass_through[a].emplace(grid_.field_dm(), soil_mass_through_[a]->local());
+      }
     }
   }
+  auto mass_through = [&](int axis) { return soil_mass_through[axis] ? soil_mass_through[axis]->data() : nullptr; };
   for (int s = 0; s < substeps; ++s) {
     const int first = sweep_parity_, second = 1 - sweep_parity_;
     sweep_parity_ = 1 - sweep_parity_;  // alternate the sweep order (Strang-like symmetry over two steps)
@@ -505,27 +546,37 @@ void SoilPhase::advect(FlowSolver& flow, double dt) {
     }
     // The materials' shares at the start, held with the indicator over both sweeps.
     for (size_t k = 0; k < share_.size(); ++k) VecCopy(share_[k]->global(), share_start_[k]->global());
-    sweep(first, h, *c_, *c_tmp_, true, carry_mass ? soil_through[first]->data() : nullptr, face[first]);
-    sweep(second, h, *c_tmp_, *c_, false, carry_mass ? soil_through[second]->data() : nullptr, face[second]);
+    sweep(first, h, *c_, *c_tmp_, true, carry_mass ? soil_through[first]->data() : nullptr, mass_through(first),
+          face[first]);
+    sweep(second, h, *c_tmp_, *c_, false, carry_mass ? soil_through[second]->data() : nullptr, mass_through(second),
+          face[second]);
   }
   if (carry_mass) {
     // Mass flux = u rho(c_swept), the mixture density of what crossed the face: c_swept = s / u with s
     // the soil's volume flux per unit area over the step. With the linear mixture that is the phases'
     // own masses, rho_a (u - s) + rho_s s; with the arctan one the mass the time derivative takes
     // (start_density) is the same function of c, so a face fed by a pure cell carries exactly that.
-    auto to_mass = [&](double** m, const double* const* u, int i, int j) {
+    // Soils of several densities: rho_s is that of the soil that crossed, its mass over its volume.
+    auto to_mass = [&](int axis, const double* const* u, int i, int j) {
+      double** m = soil_through[axis]->data();
       const double swept = u[j][i] != 0.0 ? std::clamp(m[j][i] / (dt * u[j][i]), 0.0, 1.0) : 0.0;
-      m[j][i] = u[j][i] * mixture_density(swept);
+      if (!densities_differ()) {
+        m[j][i] = u[j][i] * mixture_density(swept);
+        return;
+      }
+      const double soil_mass = (*soil_mass_through[axis])[j][i];
+      const double rho_s = m[j][i] != 0.0 ? soil_mass / m[j][i] : settings_.soil_density;
+      m[j][i] = u[j][i] * mixture_density(swept, rho_s);
     };
     for (int j = b.ys; j < b.ye(); ++j)
-      for (int i = b.xs - 1; i < b.xe(); ++i) to_mass(soil_through[0]->data(), fx.data(), i, j);
+      for (int i = b.xs - 1; i < b.xe(); ++i) to_mass(0, fx.data(), i, j);
     for (int j = b.ys - 1; j < b.ye(); ++j)
-      for (int i = b.xs; i < b.xe(); ++i) to_mass(soil_through[1]->data(), fy.data(), i, j);
+      for (int i = b.xs; i < b.xe(); ++i) to_mass(1, fy.data(), i, j);
   }
 }
 
 void SoilPhase::sweep(int axis, double dt, const Field& from, Field& to, bool from_shares, double** soil_through,
-                      const double* const* face_velocity) {
+                      double** soil_mass_through, const double* const* face_velocity) {
   const auto& b = grid_.owned();
   const interface::RadialWeights radial = radial_weights();
   {
@@ -553,17 +604,20 @@ void SoilPhase::sweep(int axis, double dt, const Field& from, Field& to, bool fr
         m0_rows.push_back(m0.emplace_back(grid_.field_dm(), share_start_[k]->global()).data());
         m_new_rows.push_back(m_new.emplace_back(grid_.field_dm(), out[k]->global()).data());
       }
+      std::optional<FieldArray> face_density;
+      if (soil_mass_through) face_density.emplace(grid_.field_dm(), face_soil_density_[axis]->local());
       interface::material_sweep(axis, dt, c.data(), c_new.data(), int(share_.size()), m_rows.data(), m0_rows.data(),
                                 face_velocity, through.data(), cc.data(), grid_.dx_data(), grid_.dy_data(), b,
-                                m_new_rows.data(), radial);
+                                m_new_rows.data(), radial, soil_densities_.data(),
+                                face_density ? face_density->data() : nullptr);
       if (soil_through) {
-        if (axis == 0) {
-          for (int j = b.ys; j < b.ye(); ++j)
-            for (int i = b.xs - 1; i < b.xe(); ++i) soil_through[j][i] += through[j][i];
-        } else {
-          for (int j = b.ys - 1; j < b.ye(); ++j)
-            for (int i = b.xs; i < b.xe(); ++i) soil_through[j][i] += through[j][i];
-        }
+        // The faces bounding owned cells along the axis.
+        const int i0 = axis == 0 ? b.xs - 1 : b.xs, j0 = axis == 0 ? b.ys : b.ys - 1;
+        for (int j = j0; j < b.ye(); ++j)
+          for (int i = i0; i < b.xe(); ++i) {
+            soil_through[j][i] += through[j][i];
+            if (soil_mass_through && through[j][i] != 0.0) soil_mass_through[j][i] += through[j][i] * (*face_density)[j][i];
+          }
       }
     }
     outflow_ += interface::boundary_outflow(axis, dt, c.data(), face_velocity, grid_.dx_data(), grid_.dy_data(), b,

@@ -2,6 +2,7 @@
 // The soil phase on the grid: its fraction c, carried by geometric VoF advection; the mixture
 // properties and the granular viscosity it gives the flow solver; the Eulerian displacement and
 // the Euler-Almansi strain ([VoF] Eqs. 13-16, 19-20).
+#include <algorithm>
 #include <array>
 #include <deque>
 #include <memory>
@@ -107,8 +108,9 @@ class SoilPhase {
   void initialise_materials();
   // One directional sweep of c (from -> to) and, with materials, of their shares (share_ / share_tmp_
   // as from_shares says); adds the soil each face carried to soil_through when given.
+  // With soils of several densities, also adds the soil's mass each face carried to soil_mass_through.
   void sweep(int axis, double dt, const Field& from, Field& to, bool from_shares, double** soil_through,
-             const double* const* face_velocity);
+             double** soil_mass_through, const double* const* face_velocity);
   interface::RadialWeights radial_weights() const { return {grid_.radius_face_data(), grid_.radius_centre_data()}; }
   double compute_dissipation(const FlowSolver& flow);
   double mixture_viscosity(double c, double pressure, const rheology::StrainRate& rate,
@@ -119,10 +121,29 @@ class SoilPhase {
   std::deque<ConstFieldArray> share_arrays(bool ghosted) const;
   double cell_yield_pressure(double cell_pressure, const ConstFieldArray* overburden, int i, int j) const;
   std::unique_ptr<ConstFieldArray> overburden_if_floor() const;
-  // Density of a mixture at soil fraction c ([VoF] Eq. 1 or App. A).
+  // Density of a mixture at soil fraction c ([VoF] Eq. 1 or App. A), of the soil's own density or of
+  // rho_s given.
   double mixture_density(double c) const {
     return settings_.density_mixing(c, settings_.air_density, settings_.soil_density);
   }
+  double mixture_density(double c, double soil_density) const {
+    return settings_.density_mixing(c, settings_.air_density, soil_density);
+  }
+  // Whether the soils differ in density (SoilSettings::materials_differ_in_density).
+  bool densities_differ() const { return !soil_densities_.empty(); }
+  // rho_s of soil shared out as `shares` among the materials: the mean of their densities weighted by
+  // their shares (the base holds the rest). With one density, the soil's own.
+  double soil_density(const Shares& shares) const {
+    double rest = 1.0, rho = 0.0;
+    for (size_t k = 1; k < soil_densities_.size(); ++k) {
+      const double share = std::clamp(shares[k - 1], 0.0, 1.0);
+      rho += share * soil_densities_[k];
+      rest -= share;
+    }
+    return rest > 0.0 ? rho + rest * settings_.soil_density : rho;
+  }
+  // rho_s of each cell's soil on owned cells (soil.density where all soils share it).
+  void soil_density_field(Field& out) const;
 
   const Grid& grid_;
   const FlowSettings& flow_settings_;
@@ -135,6 +156,10 @@ class SoilPhase {
   std::optional<rheology::SoilMaterials> materials_;  // with [[soil.materials]]
   std::vector<std::unique_ptr<Field>> share_, share_tmp_, share_start_;
   std::unique_ptr<Field> face_soil_[2];  // one sweep's soil volume per unit face area, with materials
+  // Soils of several densities: rho_s of each, the base's first (empty with one density); the density
+  // of the soil each face carried in one sweep, and the soil's mass through each face over a step.
+  std::vector<double> soil_densities_;
+  std::unique_ptr<Field> face_soil_density_[2], soil_mass_through_[2];
   std::unique_ptr<Field> c_, c_tmp_, dilatation_;
   std::unique_ptr<Field> region_[2];  // scratch of soil_region
   std::unique_ptr<Field> disp_[2], disp_new_[2];

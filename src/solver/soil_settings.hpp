@@ -16,10 +16,11 @@ enum class StrainRateAt { cell, face };
 enum class FaceFraction { cells, face };
 
 // A soil beyond the rheology's own ([[soil.materials]]): the same model and regularisation, its own
-// strength.
+// strength and density.
 struct SoilMaterial {
   std::string name;
   rheology::MaterialStrength strength;
+  double density = 0.0;  // rho_s of this soil, kg/m^3 (the case's soil.density unless given)
 };
 
 struct SoilSettings {
@@ -35,6 +36,13 @@ struct SoilSettings {
   // Per initial shape, its soil: 0 the rheology's own, k materials[k - 1]. Where shapes overlap, the
   // last listed holds the point.
   std::vector<int> initial_material;
+  // Whether some material's density is not soil_density: the mixture's density then follows the
+  // cells' shares (otherwise the one-density forms run, to the bit).
+  bool materials_differ_in_density() const {
+    for (const auto& m : materials)
+      if (m.density != soil_density) return true;
+    return false;
+  }
   double interface_courant = 0.45;  // largest Courant number of one VoF sweep (< 0.5 for boundedness)
   bool displacement = true;         // carry the Eulerian displacement and strain ([VoF] Eq. 16); the case
                                     // file turns it on where there is a rheology (soil.displacement)

@@ -19,7 +19,8 @@ using Shares = std::array<double, max_materials>;
 void material_sweep(int axis, double dt, const double* const* c, const double* const* c_new, int count,
                     const double* const* const* m, const double* const* const* m0, const double* const* u,
                     const double* const* face_soil, const double* const* cc, const double* dx, const double* dy,
-                    CellBox o, double** const* m_new, RadialWeights radial) {
+                    CellBox o, double** const* m_new, RadialWeights radial, const double* density,
+                    double** face_density) {
   const bool weighted = axis == 0 && radial.face != nullptr;
   const int di = axis == 0, dj = axis == 1;
   // Shares of cell (i, j): the stored materials', then the base's (the rest).
@@ -72,6 +73,11 @@ void material_sweep(int axis, double dt, const double* const* c, const double* c
       return;
     }
     face_shares(i, j, f, out);
+    if (face_density) {
+      double rho = 0.0;
+      for (int k = 0; k < count; ++k) rho += out[k] * density[k + 1];
+      face_density[j][i] = rho + out[count] * density[0];
+    }
     const double volume = (weighted ? radial.face[i] : 1.0) * f;
     for (int k = 0; k < count; ++k) out[k] *= volume;
   };

@@ -26,9 +26,15 @@ inline constexpr double no_soil = 1e-9;
 // (c_new <= 0) keeps its shares; round-off in a sliver is clipped to [0, 1]. Radial weights as in
 // vof_sweep. Reads c and m on owned cells and two ghost layers along `axis`, F on the faces bounding
 // owned cells along it. count < max_materials.
+//
+// With `density` (count + 1 entries: the base's, then the stored materials'), also sets face_density on
+// each face bounding owned cells along the axis that carried soil: the density of the soil it carried,
+// sum_k rho_k s_k over the face's shares s_k. F face_density is then the soil's mass through the face,
+// which the materials' volumes moved: a mixture of soils of several densities conserves its mass.
 void material_sweep(int axis, double dt, const double* const* c, const double* const* c_new, int count,
                     const double* const* const* m, const double* const* const* m0, const double* const* face_velocity,
                     const double* const* face_soil, const double* const* cc, const double* dx, const double* dy,
-                    CellBox owned, double** const* m_new, RadialWeights radial = {});
+                    CellBox owned, double** const* m_new, RadialWeights radial = {}, const double* density = nullptr,
+                    double** face_density = nullptr);
 
 }  // namespace granflow::interface
