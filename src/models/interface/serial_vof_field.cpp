@@ -130,6 +130,12 @@ void SerialVofField::track_materials(int count) {
   face_soil_ = GhostedArray2(mx_, my_, g);
 }
 
+void SerialVofField::set_material_densities(std::vector<double> densities) {
+  densities_ = std::move(densities);
+  face_density_ = GhostedArray2(mx_, my_, g);
+  for (auto& a : mass_through_) a = GhostedArray2(mx_, my_, g);
+}
+
 void SerialVofField::sweep(int axis, double dt, const GhostedArray2& from, GhostedArray2& to,
                            std::vector<GhostedArray2>& m_from, std::vector<GhostedArray2>& m_to) {
   const auto* velocity = axis == 0 ? ux_.rows() : uy_.rows();
@@ -146,8 +152,14 @@ void SerialVofField::sweep(int axis, double dt, const GhostedArray2& from, Ghost
       m0.push_back(material_start_[k].rows());
       m_new.push_back(m_to[k].rows());
     }
+    const bool mass = !densities_.empty();
     material_sweep(axis, dt, from.rows(), to.rows(), int(m.size()), m.data(), m0.data(), velocity, face_soil_.rows(),
-                   cc_.rows(), dx(), dy(), owned(), m_new.data(), radial());
+                   cc_.rows(), dx(), dy(), owned(), m_new.data(), radial(), mass ? densities_.data() : nullptr,
+                   mass ? face_density_.rows() : nullptr);
+    if (mass)
+      for (int j = -1; j < my_; ++j)
+        for (int i = -1; i < mx_; ++i)
+          if (face_soil_(i, j) != 0.0) mass_through_[axis](i, j) += face_soil_(i, j) * face_density_(i, j);
     for (auto& a : m_to) fill_ghosts(a);
   }
   fill_ghosts(to);

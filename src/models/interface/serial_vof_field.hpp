@@ -74,6 +74,11 @@ class SerialVofField {
   GhostedArray2& material(int k) { return materials_[k]; }
   const GhostedArray2& material(int k) const { return materials_[k]; }
   double material_volume(int k) const;  // sum of c m_k * cell volume over owned cells
+  // Soils of their own densities (after track_materials; the base's first, then material k's): each
+  // step then adds the soil's mass through each face (per unit face area, material_sweep's
+  // face_density times F) to soil_mass_through(axis), which the caller zeroes.
+  void set_material_densities(std::vector<double> densities);
+  GhostedArray2& soil_mass_through(int axis) { return mass_through_[axis]; }
 
   double total_volume() const;  // sum of c * cell area (times r_c when axisymmetric) over owned cells
   double min_fraction() const;
@@ -89,6 +94,8 @@ class SerialVofField {
   std::vector<double> r_face_, r_centre_;  // empty in planar geometry
   std::vector<GhostedArray2> materials_, material_start_, material_tmp_;
   GhostedArray2 face_soil_;  // one sweep's soil volume per unit face area, with materials only
+  std::vector<double> densities_;
+  GhostedArray2 face_density_, mass_through_[2];
   void sweep(int axis, double dt, const GhostedArray2& from, GhostedArray2& to, std::vector<GhostedArray2>& m_from,
              std::vector<GhostedArray2>& m_to);
   double volume(int i, int j) const;
