@@ -142,11 +142,13 @@ TEST(RankConsistency, CollapseAgainstABarrierSplitAcrossItsTopOneAndTwoRanksAgre
 // weaker and its outer part (x > 0.12 m) of a third material, so that a contact crosses the boundary
 // along each axis: 25 columns split at x = 0.12-0.13 m, and a mesh taller than wide split across y at
 // y = 0.1 m. Before faces ignored the round-off shares of slivers of soil, three runs in ten differed by
-// 1e-4 m/s.
+// 1e-4 m/s. The three soils differ in density too (2650, 3500 and 1800 kg/m^3), so that the mass the
+// faces at the ranks' boundary carry is of the soils they move.
 std::vector<std::string> layered_block(std::vector<std::string> overrides) {
   overrides.insert(overrides.end(),
                    {"time.end=0.1", "output.progress_seconds=0",
-                    "soil.materials=[{name = \"lower\", friction_angle = 10.0}, {name = \"outer\", friction_angle = 30.0}]",
+                    "soil.materials=[{name = \"lower\", friction_angle = 10.0, density = 3500.0}, "
+                    "{name = \"outer\", friction_angle = 30.0, density = 1800.0}]",
                     "initial.soil=[{shape = \"box\", lower = [0, 0], upper = [0.2, 0.1]}, "
                     "{shape = \"box\", lower = [0, 0], upper = [0.2, 0.05], material = \"lower\"}, "
                     "{shape = \"box\", lower = [0.12, 0.05], upper = [0.2, 0.1], material = \"outer\"}]"});

@@ -28,12 +28,12 @@ TEST(Restart, CollapseContinuesExactlyFromItsLastCheckpoint) {
   std::printf("collapse restarted from its checkpoint at t = %.3g s\n", t);
 }
 
-// Two soil materials: their shares are part of the checkpoint.
+// Two soil materials of two densities: their shares are part of the checkpoint.
 TEST(Restart, LayeredCollapseContinuesExactlyFromItsLastCheckpoint) {
   const double t = expect_restart_reproduces(
       "cases/bui2008_experiment.toml",
       {"mesh.cells=[60,20]", "time.end=0.3", "output.interval=0.1", "output.progress_seconds=0",
-       "soil.materials=[{name = \"lower\", friction_angle = 10.0}]",
+       "soil.materials=[{name = \"lower\", friction_angle = 10.0, density = 4000.0}]",
        "initial.soil=[{shape = \"box\", lower = [0, 0], upper = [0.2, 0.1]}, "
        "{shape = \"box\", lower = [0, 0], upper = [0.2, 0.05], material = \"lower\"}]"},
       45, true);

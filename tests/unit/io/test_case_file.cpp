@@ -164,9 +164,18 @@ TEST(CaseFile, SoilMaterialsAreNamedValidatedAndUsed) {
   EXPECT_EQ(c.soil->materials[0].name, "clay");
   EXPECT_EQ(c.soil->materials[0].strength.cohesion, 2e4);
   EXPECT_EQ(c.soil->initial_material, (std::vector<int>{1, 0}));
-  // A key the material does not have; no strength at all (phi = 0 without cohesion); a name twice.
-  const std::string density = error_of(two_phase, {phi, "soil.materials=[{name = \"clay\", density = 1800.0}]", shapes});
+  // A material's density is the soil's unless given; given, it must be positive.
+  EXPECT_EQ(c.soil->materials[0].density, c.soil->soil_density);
+  EXPECT_FALSE(c.soil->materials_differ_in_density());
+  const CaseConfig heavy = parse_case(two_phase, {phi, "soil.materials=[{name = \"clay\", density = 1800.0}]", shapes});
+  EXPECT_EQ(heavy.soil->materials[0].density, 1800.0);
+  EXPECT_TRUE(heavy.soil->materials_differ_in_density());
+  const std::string density = error_of(two_phase, {phi, "soil.materials=[{name = \"clay\", density = -1800.0}]", shapes});
   EXPECT_NE(density.find("soil.materials[0].density"), std::string::npos) << density;
+  EXPECT_NE(density.find("positive"), std::string::npos) << density;
+  // A key the material does not have; no strength at all (phi = 0 without cohesion); a name twice.
+  const std::string viscosity = error_of(two_phase, {phi, "soil.materials=[{name = \"clay\", viscosity = 1.0}]", shapes});
+  EXPECT_NE(viscosity.find("soil.materials[0].viscosity"), std::string::npos) << viscosity;
   const std::string weak = error_of(two_phase, {phi, "soil.materials=[{name = \"clay\", friction_angle = 0.0}]", shapes});
   EXPECT_NE(weak.find("soil.materials[0]"), std::string::npos) << weak;
   EXPECT_NE(weak.find("friction_angle"), std::string::npos) << weak;
