@@ -3,13 +3,14 @@
 reference for the factors of safety of cases/slope_griffiths_lane1999_foundation.toml.
 
 For phi = 0 the moment equilibrium of a rigid body sliding on a circle is exact (the "phi = 0 method"):
-    F = R sum(c_u ds) / (gamma int (x_c - x) h dx),
-h the height of soil above the arc. The script searches circles (centre on a 1 m grid, radius in 0.5 m
+    F = R sum(c_u ds) / int (x_c - x) (gamma_1 h_1 + gamma_2 h_2) dx,
+h_1 and h_2 the heights of the slope's and the foundation's soil above the arc (the foundation of unit
+weight gamma_2 = gamma_ratio gamma_1). The script searches circles (centre on a 1 m grid, radius in 0.5 m
 steps) that stay inside the domain and above the rigid base, with c_u1 in the slope (above the toe's
 level) and c_u2 = lambda c_u1 in the foundation, and prints the smallest F and its circle.
 
-Usage: circular_slip.py [--lambda 2] [--H 10] [--cot 2] [--D 2] [--c1 0.25] [--crest 30] [--ahead 40]
-(c1 is c_u1 / (gamma H); crest and ahead are the lengths of ground behind the crest and before the
+Usage: circular_slip.py [--lambda 2] [--gamma-ratio 1] [--H 10] [--cot 2] [--D 2] [--c1 0.25] [--crest 30]
+[--ahead 40] (c1 is c_u1 / (gamma_1 H); crest and ahead are the lengths of ground behind the crest and before the
 toe, m; the defaults are the shipped case's geometry.)
 """
 import argparse
@@ -17,8 +18,8 @@ import argparse
 import numpy as np
 
 
-def smallest_factor(lam, H, cot, D, c1, crest, ahead):
-    gamma = 1.0  # F is independent of it once c_u is given as a fraction of gamma H
+def smallest_factor(lam, H, cot, D, c1, crest, ahead, gamma_ratio=1.0):
+    gamma = 1.0  # F is independent of gamma_1 once c_u is given as a fraction of gamma_1 H
     cu1 = c1 * gamma * H
     base = -(D - 1.0) * H                    # the toe at y = 0, the crest at y = H
     toe = crest + cot * H
@@ -38,7 +39,10 @@ def smallest_factor(lam, H, cot, D, c1, crest, ahead):
                 # one slipping body, within the domain's sides
                 if len(idx) < 3 or idx[0] == 0 or idx[-1] == len(xs) - 1 or idx[-1] - idx[0] + 1 != len(idx):
                     continue
-                driving = gamma * np.sum((xc - xs[idx]) * (ground[idx] - arc[idx])) * dx
+                # the soil above the arc: the slope's above the toe's level (y = 0), the foundation's below
+                slope = ground[idx] - np.maximum(arc[idx], 0.0)
+                foundation = np.maximum(-arc[idx], 0.0)
+                driving = gamma * np.sum((xc - xs[idx]) * (slope + gamma_ratio * foundation)) * dx
                 if driving <= 0.0:
                     continue
                 t0, t1 = (np.arcsin(np.clip((xs[k] - xc) / R, -1.0, 1.0)) for k in (idx[0], idx[-1]))
@@ -53,6 +57,7 @@ def smallest_factor(lam, H, cot, D, c1, crest, ahead):
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--lambda", dest="lam", type=float, default=2.0, help="c_u2 / c_u1 of the foundation")
+    ap.add_argument("--gamma-ratio", type=float, default=1.0, help="the foundation's unit weight over the slope's")
     ap.add_argument("--H", type=float, default=10.0)
     ap.add_argument("--cot", type=float, default=2.0, help="cot(beta) of the slope")
     ap.add_argument("--D", type=float, default=2.0, help="depth to the rigid base over H, from the crest")
@@ -60,8 +65,8 @@ def main():
     ap.add_argument("--crest", type=float, default=30.0)
     ap.add_argument("--ahead", type=float, default=40.0)
     a = ap.parse_args()
-    f, circle = smallest_factor(a.lam, a.H, a.cot, a.D, a.c1, a.crest, a.ahead)
-    print(f"lambda = {a.lam:g}: F = {f:.3f} on the circle of centre ({circle[0]:g}, {circle[1]:g}) m above the base's "
+    f, circle = smallest_factor(a.lam, a.H, a.cot, a.D, a.c1, a.crest, a.ahead, a.gamma_ratio)
+    print(f"lambda = {a.lam:g}, gamma_2 / gamma_1 = {a.gamma_ratio:g}: F = {f:.3f} on the circle of centre ({circle[0]:g}, {circle[1]:g}) m above the base's "
           f"left end, radius {circle[2]:g} m")
 
 

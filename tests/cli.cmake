@@ -216,6 +216,17 @@ add_test(NAME cli_check_says_what_it_laid_out
          COMMAND granflow check ${CMAKE_SOURCE_DIR}/cases/barrier_collapse.toml)
 set_tests_properties(cli_check_says_what_it_laid_out PROPERTIES LABELS cli
                      PASS_REGULAR_EXPRESSION "valid [(]150 x 50 cells, t_end = 2 s; initial soil 0[.]02 m\\^2 per metre of depth; 21 cells blocked by obstacles[)]")
+# ... and with soil materials, each one's soil; a material whose shapes all lie under later shapes
+# holds none, which check finds as a run does (exit 2, the message naming it).
+add_test(NAME cli_check_says_each_materials_soil
+         COMMAND granflow check ${CMAKE_SOURCE_DIR}/cases/slope_griffiths_lane1999_foundation.toml --set "mesh.cells=[90,30]")
+set_tests_properties(cli_check_says_each_materials_soil PROPERTIES LABELS cli
+                     PASS_REGULAR_EXPRESSION "initial soil 1300 m\\^2 per metre of depth, of which the rheology's own soil 400, foundation 900[)]")
+add_test(NAME cli_check_material_under_later_shapes
+         COMMAND sh -c "out=$(\"$0\" check \"$1\" --set 'mesh.cells=[90,30]' --set \"$2\" 2>&1); test $? -eq 2 && echo \"$out\" | grep -q \"^error: $1: soil.materials\\[0\\]: 'foundation' holds no soil once the shapes are laid out\""
+                 $<TARGET_FILE:granflow> ${CMAKE_SOURCE_DIR}/cases/slope_griffiths_lane1999_foundation.toml
+                 "initial.soil=[{shape = \"box\", lower = [0, 0], upper = [90, 10], material = \"foundation\"}, {shape = \"box\", lower = [0, 0], upper = [90, 20]}]")
+set_tests_properties(cli_check_material_under_later_shapes PROPERTIES LABELS cli)
 # A second run into a directory a run is writing into is refused (status 2), with --overwrite or
 # --restart too; the second starts once the first has said it is under way, and the first (of some
 # ten seconds) is stopped when both have been refused.

@@ -198,6 +198,10 @@ int main(int argc, char** argv) {
         if (c.soil)
           placed += fmt::format("; initial soil {:.6g} {}", laid_out.soil_volume,
                                 c.mesh.axisymmetric ? "m^3 per radian" : "m^2 per metre of depth");
+        const auto& volumes = laid_out.material_volumes;
+        for (size_t k = 0; k < volumes.size(); ++k)
+          placed += fmt::format("{}{} {:.6g}", k == 0 ? ", of which " : ", ",
+                                k == 0 ? std::string("the rheology's own soil") : c.soil->materials[k - 1].name, volumes[k]);
         if (!c.obstacles.empty()) placed += fmt::format("; {} cells blocked by obstacles", laid_out.blocked_cells);
         fmt::print("{}: valid ({} x {} cells, t_end = {} s{})\n", case_file, c.mesh.cells[0], c.mesh.cells[1], c.time.end,
                    placed);

@@ -33,6 +33,20 @@ CaseError no_initial_soil(const CaseConfig& config, const Grid& g, bool obstacle
                                         "mesh (a shape far smaller than a cell)", g.nx(), g.ny()));
 }
 
+// Each soil material holds some soil once the shapes are laid out: one whose shapes all lie under
+// shapes listed after it (the last listed holds a point), or in blocked cells, would be a material
+// of no effect.
+void check_materials_hold_soil(const CaseConfig& config, const std::vector<double>& volumes) {
+  for (size_t k = 1; k < volumes.size(); ++k)
+    if (!(volumes[k] > 0.0)) {
+      const std::string& name = config.soil->materials[k - 1].name;
+      throw case_error(config, fmt::format("soil.materials[{}]: '{}' holds no soil once the shapes are laid out: where "
+                                           "shapes overlap, the last listed holds the point, and the shapes of '{}' "
+                                           "lie under later ones{}", k - 1, name, name,
+                                           config.obstacles.empty() ? "" : " or in the obstacles' blocked cells"));
+    }
+}
+
 // The checks the whole mask needs, on rank 0: no obstacle one cell thick (the values mirrored behind
 // a wall cannot serve both its sides, mesh/obstacles.hpp), and no open cells that the obstacles close
 // off from every open side (their pressure would have no level); a closed domain's open cells are one
@@ -192,6 +206,7 @@ Simulation::Simulation(MPI_Comm comm, const CaseConfig& config, std::filesystem:
   if (soil_) initial_soil_volume_ = soil_->budget(*flow_).soil_volume;
   if (soil_ && !(initial_soil_volume_ > 0.0))  // the budget is summed over all ranks: all stop alike
     throw no_initial_soil(config_, *grid_, blocked_ != nullptr);
+  if (soil_) check_materials_hold_soil(config_, soil_->material_volumes());
   if (!out_.empty()) {
     std::string problem;
     if (rank_ == 0) {
@@ -230,6 +245,13 @@ InitialState check_initial_state(MPI_Comm comm, const CaseConfig& config) {
   if (!config.soil) return state;
   state.soil_volume = initial_soil_in_open_cells(grid, config, blocked.get());
   if (!(state.soil_volume > 0.0)) throw no_initial_soil(config, grid, blocked != nullptr);
+  if (!config.soil->materials.empty()) {  // the shares as a run lays them out
+    SoilPhase soil(grid, config.flow, *config.soil);
+    soil.set_blocked(blocked.get());
+    soil.initialise();
+    state.material_volumes = soil.material_volumes();
+    check_materials_hold_soil(config, state.material_volumes);
+  }
   return state;
 }
 

@@ -188,6 +188,27 @@ rheology::LodeHistogram SoilPhase::lode_energy() const {
   return all;
 }
 
+std::vector<double> SoilPhase::material_volumes() const {
+  const auto& b = grid_.owned();
+  ConstFieldArray c(grid_.field_dm(), c_->global());
+  const auto m = share_arrays(false);
+  const BlockedView mask(grid_, blocked_);
+  std::vector<double> volume(share_.size() + 1, 0.0);
+  for (int j = b.ys; j < b.ye(); ++j)
+    for (int i = b.xs; i < b.xe(); ++i) {
+      if (is_blocked(mask.data(), i, j)) continue;
+      const double soil = c[j][i] * grid_.volume(i, j);
+      double rest = soil;
+      for (size_t k = 0; k < m.size(); ++k) {
+        volume[k + 1] += soil * m[k][j][i];
+        rest -= soil * m[k][j][i];
+      }
+      volume[0] += rest;
+    }
+  MPI_Allreduce(MPI_IN_PLACE, volume.data(), int(volume.size()), MPI_DOUBLE, MPI_SUM, grid_.comm());
+  return volume;
+}
+
 // Energies with the mass of each phase, rho_s c + rho_a (1 - c) (rho_s the cell's soils' mean by their
 // shares), which the advection conserves to round-off. The mixture density of the arctan interpolation ([VoF] App. A) is heavier than that in
 // partly filled cells, so its total (mixture_mass) grows as the interface spreads; energies taken with

@@ -72,6 +72,8 @@ class SoilPhase {
   int material_count() const { return int(share_.size()); }
   const Field& material_share(int k) const { return *share_[k - 1]; }
   const std::string& material_name(int k) const { return settings_.materials[k - 1].name; }
+  // The soil volume of each material now, the rheology's own first, in open cells (collective).
+  std::vector<double> material_volumes() const;
 
   Field& soil_fraction() { return *c_; }
   const Field& soil_fraction() const { return *c_; }
