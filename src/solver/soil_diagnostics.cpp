@@ -216,20 +216,18 @@ std::vector<double> SoilPhase::material_volumes() const {
 SoilBudget SoilPhase::budget(const FlowSolver& flow) {
   const auto& b = grid_.owned();
   const auto& g = flow_settings_.gravity;
-  const double rho_s = settings_.soil_density, rho_a = settings_.air_density;
+  const double rho_a = settings_.air_density;
   ConstFieldArray c(grid_.field_dm(), c_->global());
   ConstFieldArray u = local_read(grid_, flow.velocity(0)), v = local_read(grid_, flow.velocity(1));
   ConstFieldArray rho(grid_.field_dm(), flow.density().global());
   const auto m = share_arrays(false);
-  Shares shares{};
   double s[7] = {0, 0, 0, 0, compute_dissipation(flow), 0, outflow_};
   const BlockedView mask(grid_, blocked_);
   for (int j = b.ys; j < b.ye(); ++j)
     for (int i = b.xs; i < b.xe(); ++i) {
       if (is_blocked(mask.data(), i, j)) continue;  // solid, not the flow's
       const double V = grid_.volume(i, j);
-      if (densities_differ()) cell_shares(m, i, j, shares);
-      const double phase_density = (densities_differ() ? soil_density(shares) : rho_s) * c[j][i] + rho_a * (1.0 - c[j][i]);
+      const double phase_density = cell_soil_density(m, i, j) * c[j][i] + rho_a * (1.0 - c[j][i]);
       s[0] += c[j][i] * V;
       s[1] += (1.0 - c[j][i]) * V;
       s[2] += 0.5 * phase_density * (u[j][i] * u[j][i] + v[j][i] * v[j][i]) * V;

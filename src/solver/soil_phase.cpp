@@ -221,18 +221,6 @@ void SoilPhase::fill_copied_ghosts(Field& f) const {
     }
 }
 
-void SoilPhase::soil_density_field(Field& out) const {
-  const auto& b = grid_.owned();
-  FieldArray rho(grid_.field_dm(), out.global());
-  const auto m = share_arrays(false);
-  Shares shares{};
-  for (int j = b.ys; j < b.ye(); ++j)
-    for (int i = b.xs; i < b.xe(); ++i) {
-      if (densities_differ()) cell_shares(m, i, j, shares);
-      rho[j][i] = densities_differ() ? soil_density(shares) : settings_.soil_density;
-    }
-}
-
 std::deque<ConstFieldArray> SoilPhase::share_arrays(bool ghosted) const {
   std::deque<ConstFieldArray> arrays;
   for (const auto& f : share_) arrays.emplace_back(grid_.field_dm(), ghosted ? f->local() : f->global());
@@ -405,12 +393,12 @@ void SoilPhase::refresh(const FlowSolver& flow) {
 void SoilPhase::compute_overburden(const std::array<double, 2>& gravity) {
   // Soils of several densities: the column's mass per area, c rho_s / soil.density in place of c.
   if (densities_differ()) {
-    soil_density_field(*overburden_);
     FieldArray o(grid_.field_dm(), overburden_->global());
     ConstFieldArray cf(grid_.field_dm(), c_->global());
+    const auto m = share_arrays(false);
     const auto& ob = grid_.owned();
     for (int j = ob.ys; j < ob.ye(); ++j)
-      for (int i = ob.xs; i < ob.xe(); ++i) o[j][i] *= cf[j][i] / settings_.soil_density;
+      for (int i = ob.xs; i < ob.xe(); ++i) o[j][i] = cf[j][i] * cell_soil_density(m, i, j) / settings_.soil_density;
   }
   const std::vector<double> c = gather_to_all(grid_, densities_differ() ? *overburden_ : *c_);
   DM dm = grid_.field_dm();
@@ -519,12 +507,9 @@ void SoilPhase::advect(FlowSolver& flow, double dt) {
       ConstFieldArray c(grid_.field_dm(), c_->global());
       FieldArray rho0 = local_array(grid_, flow.start_density());
       const auto m = share_arrays(false);
-      Shares shares{};
       for (int j = b.ys; j < b.ye(); ++j)
-        for (int i = b.xs; i < b.xe(); ++i) {
-          if (densities_differ()) cell_shares(m, i, j, shares);
-          rho0[j][i] = densities_differ() ? mixture_density(c[j][i], soil_density(shares)) : mixture_density(c[j][i]);
-        }
+        for (int i = b.xs; i < b.xe(); ++i)
+          rho0[j][i] = densities_differ() ? mixture_density(c[j][i], cell_soil_density(m, i, j)) : mixture_density(c[j][i]);
     }
     for (int a = 0; a < 2; ++a) {
       flow.mass_flux(a).set(0.0);

@@ -144,8 +144,13 @@ class SoilPhase {
     }
     return rest > 0.0 ? rho + rest * settings_.soil_density : rho;
   }
-  // rho_s of each cell's soil on owned cells (soil.density where all soils share it).
-  void soil_density_field(Field& out) const;
+  // rho_s of cell (i, j)'s soil (arrays of share_; soil.density where all soils share it).
+  double cell_soil_density(const std::deque<ConstFieldArray>& m, int i, int j) const {
+    if (!densities_differ()) return settings_.soil_density;
+    Shares shares{};
+    cell_shares(m, i, j, shares);
+    return soil_density(shares);
+  }
 
   const Grid& grid_;
   const FlowSettings& flow_settings_;
