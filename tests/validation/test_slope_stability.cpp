@@ -44,11 +44,17 @@ TEST(SlopeStability, GriffithsLaneExampleOneFactorOfSafety) {
 // Here single trials on 1 m cells: with the strong foundation the slope stands at F = 1.9, where one clay
 // fails (its deep circle at 1.45-1.5), and fails at 2.25; with a foundation half as strong it fails at
 // F = 1, where the slope on the strong one stands, and stands at 0.8.
+// The slope's clay 25 % heavier (2500 kg/m^3, the foundation's 2000 given as its own): the toe circle's
+// driving moment grows by 1.25 and its resistance stays, so F is 0.8 times as large, 1.616 by circles;
+// measured 1.684 by bisection (0.8 x 2.102 = 1.682). It fails at F = 1.9, where the lighter slope stands,
+// and stands at 1.5.
 TEST(SlopeStability, GriffithsLaneExampleFourFoundationDecidesTheFactor) {
   const std::string path = test::repo_path("cases/slope_griffiths_lane1999_foundation.toml");
   const CaseConfig strong = load_case(path, {"mesh.cells=[90,30]", "output.progress_seconds=0"});
   const CaseConfig weak = load_case(path, {"mesh.cells=[90,30]", "output.progress_seconds=0",
                                            "soil.materials=[{name = \"foundation\", cohesion = 24525.0}]"});
+  const CaseConfig heavy = load_case(path, {"mesh.cells=[90,30]", "output.progress_seconds=0", "soil.density=2500",
+                                            "soil.materials=[{name = \"foundation\", cohesion = 98100.0, density = 2000.0}]"});
   struct Expected {
     const CaseConfig* config;
     const char* name;
@@ -56,7 +62,9 @@ TEST(SlopeStability, GriffithsLaneExampleFourFoundationDecidesTheFactor) {
     bool fails;
   };
   for (const Expected& e : {Expected{&strong, "lambda = 2", 1.9, false}, Expected{&strong, "lambda = 2", 2.25, true},
-                            Expected{&weak, "lambda = 0.5", 0.8, false}, Expected{&weak, "lambda = 0.5", 1.0, true}}) {
+                            Expected{&weak, "lambda = 0.5", 0.8, false}, Expected{&weak, "lambda = 0.5", 1.0, true},
+                            Expected{&heavy, "lambda = 2, heavier slope", 1.5, false},
+                            Expected{&heavy, "lambda = 2, heavier slope", 1.9, true}}) {
     const StrengthTrial t = strength_trial(PETSC_COMM_WORLD, *e.config, "", e.factor);
     if (test::is_root())
       std::printf("Griffiths & Lane example 4, %s, F = %.2f: %s (largest displacement %.3g m at t = %.3g s)\n", e.name,
