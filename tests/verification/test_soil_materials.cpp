@@ -149,67 +149,16 @@ TEST(SoilMaterials, ABedOfTwoDensitiesRestsOnTheFloorWithItsWeight) {
 // at one density, the cells the heavy half enters weigh more than the momentum equation moved into
 // them, and the block falls 0.14 % slower.
 TEST(SoilMaterials, ABlockOfTwoDensitiesFallsFreely) {
-  constexpr const char* block_case = R"(
-title = "block of two soils falling through air"
-[mesh]
-cells = [40, 60]
-lower = [0.0, 0.0]
-upper = [0.2, 0.3]
-[time]
-end = 0.12
-dt = 1e-4
-courant = 0.25
-[physics]
-gravity = [0.0, -9.81]
-[air]
-density = 1.0
-viscosity = 1.8e-5
-[soil]
-density = 1000.0
-yield_pressure = "face"
-strain_rate = "face"
-face_fraction = "face"
-[soil.rheology]
-model = "drucker_prager_bingham"
-friction_angle = 20.0
-cohesion = 1e4
-regularisation = "exponential"
-m = 1e5
-mu_min = 1e-3
-[[soil.materials]]
-name = "heavy"
-density = 2000.0
-[mixture]
-density = "linear"
-viscosity = "linear"
-[[initial.soil]]
-shape = "box"
-lower = [0.08, 0.23]
-upper = [0.12, 0.27]
-[[initial.soil]]
-shape = "box"
-lower = [0.08, 0.23]
-upper = [0.1, 0.27]
-material = "heavy"
-[boundary]
-west = { type = "wall" }
-south = { type = "wall" }
-east = { type = "wall" }
-north = { type = "atmosphere" }
-[numerics]
-convection = "blended"
-blending = 0.7
-outer_iterations = 2
-pressure_coupling = "coupled"
-[output]
-fields = false
-progress_seconds = 0
-)";
+  // test::falling_drop_case with a block of cohesive soil in place of the water drop.
+  const std::string soil = "soil={density = 1000.0, yield_pressure = \"face\", strain_rate = \"face\", "
+                           "face_fraction = \"face\", rheology = {model = \"drucker_prager_bingham\", friction_angle = 20.0, "
+                           "cohesion = 1e4, regularisation = \"exponential\", m = 1e5, mu_min = 1e-3}";
+  const std::string square = "{shape = \"box\", lower = [0.08, 0.23], upper = [0.12, 0.27]}";
   // The same block of one soil of their mean density: the same mass and shape, so the same drag.
   double one_density = 0.0;
   {
-    Simulation one(PETSC_COMM_WORLD, parse_case(block_case, {"soil.density=1500", "soil.materials=[]",
-        "initial.soil=[{shape = \"box\", lower = [0.08, 0.23], upper = [0.12, 0.27]}]"}), "");
+    Simulation one(PETSC_COMM_WORLD, parse_case(test::falling_drop_case, {soil + "}", "soil.density=1500",
+                                                                          "initial.soil=[" + square + "]"}), "");
     one.run();
     const auto c = gather_to_root(one.grid(), one.soil()->soil_fraction());
     const auto v = gather_to_root(one.grid(), one.flow().velocity(1));
@@ -220,7 +169,12 @@ progress_seconds = 0
     }
     one_density /= volume;
   }
-  Simulation sim(PETSC_COMM_WORLD, parse_case(block_case, {}), "");
+  Simulation sim(PETSC_COMM_WORLD,
+                 parse_case(test::falling_drop_case,
+                            {soil + ", materials = [{name = \"heavy\", density = 2000.0}]}",
+                             "initial.soil=[" + square + ", {shape = \"box\", lower = [0.08, 0.23], upper = [0.1, 0.27], "
+                             "material = \"heavy\"}]"}),
+                 "");
   const double g = 9.81, t = 0.12, rho_a = 1.0;
   auto halves = [&](std::vector<double>& mass, std::vector<double>& momentum, std::vector<double>& volume) {
     const auto c = gather_to_root(sim.grid(), sim.soil()->soil_fraction());

@@ -34,12 +34,9 @@ struct MaterialRun {
 // about (0.5, 0.5) (T = 1, one revolution).
 enum class Flow { reversing_vortex, rotation };
 
-// Axisymmetric: the same stream function as Stokes's (x = r), the disc the section of a torus.
-MaterialRun run_disc(int n, Flow flow, bool axisymmetric = false, double x_centre = 0.5, double cfl = 0.4) {
-  SerialVofField f(n, n, 1.0, 1.0);
-  f.set_boundary(VofBoundary::Empty);
-  f.set_axisymmetric(axisymmetric);
-  f.track_materials(2);
+// The disc on f's n x n cells (c and both materials' shares, ghosts filled); returns the first
+// material's q = c m per cell.
+std::vector<double> lay_out_disc(SerialVofField& f, int n, double x_centre) {
   const auto disc = [&](double x, double y) { return test::circle_inside(x, y, x_centre, 0.75, 0.15); };
   const auto first = [&](double x, double y) { return disc(x, y) && x < x_centre - 0.05; };
   const auto second = [&](double x, double y) { return disc(x, y) && x >= x_centre - 0.05 && y > 0.8; };
@@ -54,11 +51,26 @@ MaterialRun run_disc(int n, Flow flow, bool axisymmetric = false, double x_centr
       q0.push_back(c * f.material(0)(i, j));
     }
   f.fill_ghosts();
+  return q0;
+}
+
+// LeVeque's reversing vortex at its full strength (the caller scales it in time).
+void set_vortex(SerialVofField& f) {
+  f.set_velocity_from_stream_function([](double x, double y) {
+    const double sx = std::sin(kPi * x), sy = std::sin(kPi * y);
+    return sx * sx * sy * sy / kPi;
+  });
+}
+
+// Axisymmetric: the same stream function as Stokes's (x = r), the disc the section of a torus.
+MaterialRun run_disc(int n, Flow flow, bool axisymmetric = false, double x_centre = 0.5, double cfl = 0.4) {
+  SerialVofField f(n, n, 1.0, 1.0);
+  f.set_boundary(VofBoundary::Empty);
+  f.set_axisymmetric(axisymmetric);
+  f.track_materials(2);
+  const std::vector<double> q0 = lay_out_disc(f, n, x_centre);
   if (flow == Flow::reversing_vortex)
-    f.set_velocity_from_stream_function([](double x, double y) {
-      const double sx = std::sin(kPi * x), sy = std::sin(kPi * y);
-      return sx * sx * sy * sy / kPi;
-    });
+    set_vortex(f);
   else
     f.set_velocity_from_stream_function([](double x, double y) { return -kPi * ((x - 0.5) * (x - 0.5) + (y - 0.5) * (y - 0.5)); });
   GhostedArray2 ux0(n, n, 2), uy0(n, n, 2);
@@ -182,22 +194,8 @@ TEST(MaterialTransport, FacesCarryTheMassOfTheSoilsTheyMove) {
   f.set_boundary(VofBoundary::Empty);
   f.track_materials(2);
   f.set_material_densities({density[0], density[1], density[2]});
-  const auto disc = [&](double x, double y) { return test::circle_inside(x, y, 0.5, 0.75, 0.15); };
-  const auto first = [&](double x, double y) { return disc(x, y) && x < 0.45; };
-  const auto second = [&](double x, double y) { return disc(x, y) && x >= 0.45 && y > 0.8; };
-  for (int j = 0; j < n; ++j)
-    for (int i = 0; i < n; ++i) {
-      const double x0 = f.x_face(i), x1 = f.x_face(i + 1), y0 = f.y_face(j), y1 = f.y_face(j + 1);
-      const double c = test::sampled_fraction(x0, x1, y0, y1, disc);
-      f.c()(i, j) = c;
-      f.material(0)(i, j) = c > 0.0 ? test::sampled_fraction(x0, x1, y0, y1, first) / c : 0.0;
-      f.material(1)(i, j) = c > 0.0 ? test::sampled_fraction(x0, x1, y0, y1, second) / c : 0.0;
-    }
-  f.fill_ghosts();
-  f.set_velocity_from_stream_function([](double x, double y) {
-    const double sx = std::sin(kPi * x), sy = std::sin(kPi * y);
-    return sx * sx * sy * sy / kPi;
-  });
+  lay_out_disc(f, n, 0.5);
+  set_vortex(f);
   const double dt = 0.4 / f.max_courant(1.0), h = 1.0 / n;
   auto mass = [&](int i, int j) {  // per unit volume
     const double c = f.c()(i, j), q1 = c * f.material(0)(i, j), q2 = c * f.material(1)(i, j);
