@@ -15,6 +15,7 @@
 #include <sstream>
 
 #include "io/case_error.hpp"
+#include "io/points_file.hpp"
 #include "io/table_reader.hpp"
 #include "models/rheology/parameters.hpp"
 
@@ -744,6 +745,34 @@ std::string shortest_floats(std::string_view toml) {
   return out;
 }
 
+// Polygons whose outline is a file (`points_file`, io/points_file.hpp): the points are read into the
+// tree as the shape's `points`, so that the case as run (granflow_case.toml) holds them and every
+// reader after sees one kind of polygon. A relative path is taken from the case file's directory.
+void read_points_files(toml::table& root, const std::filesystem::path& source) {
+  auto read_array = [&](toml::array* shapes, const std::string& path) {
+    if (!shapes) return;
+    for (size_t k = 0; k < shapes->size(); ++k) {
+      toml::table* shape = shapes->get(k)->as_table();
+      if (!shape || !shape->contains("points_file")) continue;
+      const std::string key = fmt::format("{}[{}].points_file", path, k);
+      const auto name = shape->get("points_file")->value<std::string>();
+      if (!name || name->empty()) throw CaseError(key + ": expected the name of a file of points (a string)");
+      const auto kind = shape->contains("shape") ? shape->get("shape")->value<std::string>() : std::nullopt;
+      if (kind != "polygon") throw CaseError(key + ": used only with shape = \"polygon\"");
+      if (shape->contains("points"))
+        throw CaseError(fmt::format("{}[{}]: give the polygon's points or its points_file, not both", path, k));
+      std::filesystem::path file(*name);
+      if (file.is_relative() && !source.parent_path().empty()) file = source.parent_path() / file;
+      toml::array points;
+      for (const auto& [x, y] : read_points_file(file, key)) points.push_back(toml::array{x, y});
+      shape->erase("points_file");
+      shape->insert("points", std::move(points));
+    }
+  };
+  if (toml::table* initial = root["initial"].as_table()) read_array((*initial)["soil"].as_array(), "initial.soil");
+  read_array(root["obstacle"].as_array(), "obstacle");
+}
+
 CaseConfig parse_case_here(std::string_view text, const std::vector<std::string>& overrides,
                            const std::filesystem::path& source) {
   toml::table root;
@@ -754,6 +783,7 @@ CaseConfig parse_case_here(std::string_view text, const std::vector<std::string>
     throw CaseError(fmt::format("{}:{}:{}: {}", source.string(), where.line, where.column, e.description()));
   }
   for (const auto& o : overrides) apply_override(root, o);
+  read_points_files(root, source);
   CaseConfig c = read_case(root, source);
   c.overrides = overrides;
   std::ostringstream as_run;

@@ -1,7 +1,13 @@
 // Case files: every key is checked; bad input gets one message naming the key.
 #include <gtest/gtest.h>
 
+#include <array>
+#include <filesystem>
+#include <fstream>
 #include <string>
+#include <variant>
+
+#include <unistd.h>
 
 #include "io/case_error.hpp"
 #include "io/case_file.hpp"
@@ -199,6 +205,54 @@ TEST(CaseFile, SoilMaterialsAreNamedValidatedAndUsed) {
   EXPECT_NE(empty.find("initial.soil[0].material: empty"), std::string::npos) << empty;
   const std::string no_materials = error_of(two_phase, {phi, shapes});
   EXPECT_NE(no_materials.find("the case has no [[soil.materials]]"), std::string::npos) << no_materials;
+}
+
+// A polygon's outline from a file (points_file), relative to the case file's directory: comment lines
+// and a header skipped, commas or blanks between x and y; the case as run holds the points. A file
+// that is missing, a line that is not two numbers (named by its line), both keys, or a shape other
+// than a polygon is refused.
+TEST(CaseFile, PolygonPointsFromAFile) {
+  namespace fs = std::filesystem;
+  const fs::path dir = fs::temp_directory_path() / ("granflow_points_" + std::to_string(::getpid()));
+  fs::create_directories(dir / "terrain");
+  {
+    std::ofstream(dir / "terrain" / "ground.csv") << "# surveyed ground, m\nx,y\n-1, -1\n2 -1\n\n2,0.3\n-1,0.1\n";
+    std::ofstream(dir / "terrain" / "bad.csv") << "x,y\n0,0\n1,0\n1,zero\n";
+  }
+  const fs::path source = dir / "case.toml";
+  auto obstacle = [](const std::string& keys) { return "obstacle=[{shape = \"polygon\", " + keys + "}]"; };
+  const std::string phi = "soil.rheology.friction_angle=30", coupled = "numerics.pressure_coupling=coupled";
+  const CaseConfig c = parse_case(two_phase, {phi, coupled, obstacle("points_file = \"terrain/ground.csv\"")}, source);
+  ASSERT_EQ(c.obstacles.size(), 1u);
+  const auto& v = std::get<interface::Polygon>(c.obstacles[0]).vertices;
+  ASSERT_EQ(v.size(), 4u);
+  EXPECT_EQ(v[0], (std::array<double, 2>{-1.0, -1.0}));
+  EXPECT_EQ(v[1], (std::array<double, 2>{2.0, -1.0}));
+  EXPECT_EQ(v[2], (std::array<double, 2>{2.0, 0.3}));
+  EXPECT_EQ(v[3], (std::array<double, 2>{-1.0, 0.1}));
+  EXPECT_NE(c.as_run.find("points = [ [ -1.0, -1.0 ]"), std::string::npos) << c.as_run;
+  EXPECT_EQ(c.as_run.find("points_file"), std::string::npos) << c.as_run;
+  // The same file as an initial soil shape, by an absolute path.
+  const std::string soil = "initial.soil=[{shape = \"polygon\", points_file = \"" + (dir / "terrain" / "ground.csv").string() + "\"}]";
+  EXPECT_EQ(std::get<interface::Polygon>(parse_case(two_phase, {phi, soil}).soil->initial_soil[0]).vertices, v);
+  auto error = [&](const std::string& override) {
+    try {
+      parse_case(two_phase, {phi, coupled, override}, source);
+    } catch (const CaseError& e) {
+      return std::string(e.what());
+    }
+    return std::string();
+  };
+  const std::string missing = error(obstacle("points_file = \"terrain/none.csv\""));
+  EXPECT_NE(missing.find("obstacle[0].points_file: cannot open"), std::string::npos) << missing;
+  EXPECT_NE(missing.find("none.csv"), std::string::npos) << missing;
+  const std::string bad = error(obstacle("points_file = \"terrain/bad.csv\""));
+  EXPECT_NE(bad.find("bad.csv:4: expected two numbers"), std::string::npos) << bad;
+  const std::string both = error(obstacle("points_file = \"terrain/ground.csv\", points = [[0, 0], [1, 0], [1, 1]]"));
+  EXPECT_NE(both.find("not both"), std::string::npos) << both;
+  const std::string box = error("obstacle=[{shape = \"box\", points_file = \"terrain/ground.csv\"}]");
+  EXPECT_NE(box.find("obstacle[0].points_file: used only with shape = \"polygon\""), std::string::npos) << box;
+  fs::remove_all(dir);
 }
 
 // A rheology constant that the chosen model, friction or regularisation does not read is refused,
