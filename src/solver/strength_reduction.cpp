@@ -34,8 +34,9 @@ CaseConfig reduced_strength(const CaseConfig& config, double factor) {
   if (!config.soil->materials.empty()) {  // every soil material's strength too, the array written whole
     std::string materials;
     for (const auto& m : config.soil->materials)
-      materials += fmt::format("{}{{name = \"{}\", friction_angle = {}, cohesion = {}}}", materials.empty() ? "" : ", ",
-                               m.name, reduced_friction(m.strength.friction_angle_deg), m.strength.cohesion / factor);
+      materials += fmt::format("{}{{name = \"{}\", friction_angle = {}, cohesion = {}, density = {}}}",
+                               materials.empty() ? "" : ", ", m.name, reduced_friction(m.strength.friction_angle_deg),
+                               m.strength.cohesion / factor, m.density);
     keys.push_back("soil.materials=[" + materials + "]");
   }
   CaseConfig reduced = parse_case(config.as_run, keys, config.source);

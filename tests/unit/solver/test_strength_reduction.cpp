@@ -63,9 +63,10 @@ TEST(StrengthReduction, DividesCohesionAndTheTangentOfFriction) {
   EXPECT_EQ(reduced_strength(tight, 1.2).flow.numerics.outer_tolerance, 1e-8);
 }
 
-// Every soil material's strength is divided too, and the trial keeps each shape's material.
+// Every soil material's strength is divided too, and the trial keeps each shape's material and each
+// material's density.
 TEST(StrengthReduction, DividesEverySoilMaterialsStrength) {
-  const CaseConfig c = parse_case(slope, {"soil.materials=[{name = \"clay\", friction_angle = 0.0, cohesion = 8000.0}, "
+  const CaseConfig c = parse_case(slope, {"soil.materials=[{name = \"clay\", friction_angle = 0.0, cohesion = 8000.0, density = 1800.5}, "
                                           "{name = \"sand\", friction_angle = 35.0, cohesion = 0.0}]",
                                           "initial.soil=[{shape = \"box\", lower = [0, 0], upper = [2, 0.2], material = \"clay\"}, "
                                           "{shape = \"box\", lower = [0, 0.2], upper = [1, 0.4], material = \"sand\"}, "
@@ -79,6 +80,8 @@ TEST(StrengthReduction, DividesEverySoilMaterialsStrength) {
   EXPECT_EQ(r.soil->materials[1].strength.cohesion, 0.0);
   EXPECT_NEAR(r.soil->rheology->cohesion, 5000.0 / 1.6, 1e-12 * 5000.0);
   EXPECT_EQ(r.soil->initial_material, (std::vector<int>{1, 2, 0}));
+  EXPECT_EQ(r.soil->materials[0].density, 1800.5);
+  EXPECT_EQ(r.soil->materials[1].density, c.soil->soil_density);
 }
 
 TEST(StrengthReduction, RefusesWhatHasNoStrengthToReduce) {
