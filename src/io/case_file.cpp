@@ -218,8 +218,12 @@ SoilMaterial read_material(TableReader r, const std::optional<rheology::Rheology
   if (!plain)
     throw CaseError(fmt::format("{}: '{}' is not a plain name (letters, digits, '_' and '-'; it names an output field)",
                                 r.key_path("name"), m.name));
+  // The yield surface: the rheology's unless given. A model other than Drucker-Prager-Bingham takes
+  // no cohesion, so there the rheology's is not inherited.
+  if (r.has("model")) m.strength.model = read_enum(r, "model", rheology->model, parse_model, model_names);
+  const Model model = m.strength.model.value_or(rheology->model);
   m.strength.friction_angle_deg = r.number("friction_angle", rheology->friction_angle_deg);
-  m.strength.cohesion = r.number("cohesion", rheology->cohesion);
+  m.strength.cohesion = r.number("cohesion", model == Model::drucker_prager_bingham ? rheology->cohesion : 0.0);
   m.density = r.number("density", soil_density);
   r.require_range("density", m.density, 1e-300, inf, "positive");
   r.finish();

@@ -50,6 +50,7 @@ std::string Simulation::physics() const {
   for (const auto& m : s.materials) {
     text += fmt::format("; {}: phi {:.9g} deg, cohesion {:.9g} Pa", m.name, m.strength.friction_angle_deg, m.strength.cohesion);
     if (m.density != s.soil_density) text += fmt::format(", {:.9g} kg/m^3", m.density);
+    if (m.strength.model && *m.strength.model != r.model) text += fmt::format(", {}", rheology::to_string(*m.strength.model));
   }
   return text;
 }

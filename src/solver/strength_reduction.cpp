@@ -34,9 +34,10 @@ CaseConfig reduced_strength(const CaseConfig& config, double factor) {
   if (!config.soil->materials.empty()) {  // every soil material's strength too, the array written whole
     std::string materials;
     for (const auto& m : config.soil->materials)
-      materials += fmt::format("{}{{name = \"{}\", friction_angle = {}, cohesion = {}, density = {}}}",
+      materials += fmt::format("{}{{name = \"{}\", friction_angle = {}, cohesion = {}, density = {}{}}}",
                                materials.empty() ? "" : ", ", m.name, reduced_friction(m.strength.friction_angle_deg),
-                               m.strength.cohesion / factor, m.density);
+                               m.strength.cohesion / factor, m.density,
+                               m.strength.model ? fmt::format(", model = \"{}\"", rheology::to_string(*m.strength.model)) : "");
     keys.push_back("soil.materials=[" + materials + "]");
   }
   CaseConfig reduced = parse_case(config.as_run, keys, config.source);

@@ -92,6 +92,24 @@ TEST(SoilMaterials, TwoLayersOfOneStrengthCollapseAsOneSoil) {
   EXPECT_LT(two.lower_height, two.upper_height);  // the layers keep their order
 }
 
+// A block wholly of a material with its own yield surface (Drucker-Prager, [YS] Eq. 24, in the
+// Drucker-Prager-Bingham case) collapses as the case of that rheology does; and not as the base's.
+TEST(SoilMaterials, ABlockOfAnotherYieldSurfaceCollapsesAsThatSoil) {
+  const Layers base = run({"mesh.cells=[60,20]", "time.end=0.3", "output.progress_seconds=0", "output.fields=false"});
+  const Layers own = run({"mesh.cells=[60,20]", "time.end=0.3", "output.progress_seconds=0", "output.fields=false",
+                          "soil.rheology.model=drucker_prager"});
+  const Layers material = run({"mesh.cells=[60,20]", "time.end=0.3", "output.progress_seconds=0", "output.fields=false",
+                               "soil.materials=[{name = \"dp\", model = \"drucker_prager\"}]",
+                               "initial.soil=[{shape = \"box\", lower = [0, 0], upper = [0.2, 0.1], material = \"dp\"}]"});
+  if (!test::is_root()) return;
+  const double du = std::max(test::max_difference(own.u, material.u), test::max_difference(own.v, material.v));
+  const double apart = std::max(test::max_difference(own.u, base.u), test::max_difference(own.v, base.v));
+  std::printf("a block of material 'dp' against the Drucker-Prager case: max |du| %.2e m/s (the Drucker-Prager-Bingham "
+              "case %.2e m/s apart)\n", du, apart);
+  EXPECT_LT(du, 1e-10);
+  EXPECT_GT(apart, 1e-3);
+}
+
 // A weak lower layer (phi = 10 deg against 19.8): the block slides out on it, further than the
 // uniform block, and each layer's volume is conserved as the soil moves.
 TEST(SoilMaterials, AWeakLowerLayerCarriesTheBlockFurther) {

@@ -10,6 +10,7 @@ RheologyParameters with_strength(const RheologyParameters& base, const MaterialS
   RheologyParameters p = base;
   p.friction_angle_deg = strength.friction_angle_deg;
   p.cohesion = strength.cohesion;
+  if (strength.model) p.model = *strength.model;
   return p;
 }
 
@@ -23,6 +24,7 @@ SoilMaterials::SoilMaterials(const RheologyParameters& base, const std::vector<M
     if (auto error = validate(p)) throw std::invalid_argument(fmt::format("soil material {}: {}", k + 1, *error));
     materials_.emplace_back(p);
   }
+  for (const auto& m : materials_) needs_lode_angle_ = needs_lode_angle_ || m.needs_lode_angle();
 }
 
 }  // namespace granflow::rheology

@@ -1,10 +1,11 @@
-// Several soils of one rheology: the model, friction law and regularisation are shared, the strength
-// (friction angle phi and cohesion C) is each soil's own. Where soils share a cell or a face, the
+// Several soils of one rheology: the friction law and regularisation are shared, the strength (the
+// yield surface's model, friction angle phi and cohesion C) is each soil's own. Where soils share a cell or a face, the
 // yield stress is the mean of theirs weighted by their shares of the soil there, regularised once
 // ([VoF] Eq. 12): a mixture is as strong as its parts in proportion.
 #pragma once
 
 #include <array>
+#include <optional>
 #include <vector>
 
 #include "models/rheology/granular_rheology.hpp"
@@ -15,6 +16,7 @@ namespace granflow::rheology {
 struct MaterialStrength {
   double friction_angle_deg = 0.0;  // phi, degrees
   double cohesion = 0.0;            // C, Pa
+  std::optional<Model> model;       // the yield surface, the base's unless given
 };
 
 // The base's parameters with another strength.
@@ -57,7 +59,7 @@ class SoilMaterials {
     double rate = norm(dev);
     if (std::isnan(rate)) rate = 0.0;
     const GranularRheology& base = materials_[0];
-    const double sin3 = base.needs_lode_angle() ? sin_three_lode_angle(dev, rate) : 0.0;
+    const double sin3 = needs_lode_angle_ ? sin_three_lode_angle(dev, rate) : 0.0;
     double rest = 1.0, tau = 0.0;
     for (int k = 1; k < count(); ++k) {
       const double share = std::clamp(shares[k - 1], 0.0, 1.0);
@@ -71,6 +73,7 @@ class SoilMaterials {
 
  private:
   std::vector<GranularRheology> materials_;
+  bool needs_lode_angle_ = false;  // some material's surface depends on the Lode angle
 };
 
 }  // namespace granflow::rheology

@@ -70,6 +70,30 @@ TEST(SoilMaterials, StressRatioIsTheSharesMeanOfTheMaterials) {
   EXPECT_DOUBLE_EQ(soils.stress_ratio_to_drucker_prager(compression, 1e3, shares.data()), 0.5 * (loose + dense));
 }
 
+// A material of its own yield surface: a Matsuoka-Nakai sand (phi = 30 deg) in a case of
+// Drucker-Prager-Bingham clay. Alone it is its own rheology, Lode angle and all, even where the base's
+// surface needs none; half and half, the mean of the two yield stresses regularised once.
+TEST(SoilMaterials, AMaterialMayHaveItsOwnYieldSurface) {
+  MaterialStrength sand{30.0, 0.0, Model::matsuoka_nakai};
+  const SoilMaterials soils(clay(), {sand});
+  const StrainRate compression{-1.0, 0.5, 0.5, 0.0, 0.0, 0.0};  // triaxial: Matsuoka-Nakai is not Drucker-Prager here
+  const double pressure = 5e4;
+  const GranularRheology own(with_strength(clay(), sand));
+  ASSERT_EQ(own.parameters().model, Model::matsuoka_nakai);
+  RheologyParameters drucker_prager = with_strength(clay(), sand);
+  drucker_prager.model = Model::drucker_prager;
+  const double tau = own.evaluate(compression, pressure).yield_stress;
+  ASSERT_GT(std::abs(tau / GranularRheology(drucker_prager).evaluate(compression, pressure).yield_stress - 1.0), 0.05);
+  SoilMaterials::Shares shares{};
+  shares[0] = 1.0;
+  EXPECT_DOUBLE_EQ(soils.dynamic_viscosity(compression, pressure, shares.data()), own.dynamic_viscosity(compression, pressure));
+  shares[0] = 0.5;
+  const double d = norm(deviatoric(compression));
+  const double mean = 0.5 * (tau + 2e4);
+  const double expected = 1e-3 + mean * (1.0 - std::exp(-2e5 * d)) / (2.0 * d);
+  EXPECT_NEAR(soils.dynamic_viscosity(compression, pressure, shares.data()), expected, 1e-12 * expected);
+}
+
 TEST(SoilMaterials, RefusesAnUnusableMaterialNamingIt) {
   try {
     SoilMaterials(clay(), {{0.0, 1e4}, {0.0, 0.0}});  // phi = 0 and no cohesion: no strength at all

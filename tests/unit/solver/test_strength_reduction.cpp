@@ -67,7 +67,7 @@ TEST(StrengthReduction, DividesCohesionAndTheTangentOfFriction) {
 // material's density.
 TEST(StrengthReduction, DividesEverySoilMaterialsStrength) {
   const CaseConfig c = parse_case(slope, {"soil.materials=[{name = \"clay\", friction_angle = 0.0, cohesion = 8000.0, density = 1800.5}, "
-                                          "{name = \"sand\", friction_angle = 35.0, cohesion = 0.0}]",
+                                          "{name = \"sand\", friction_angle = 35.0, cohesion = 0.0, model = \"matsuoka_nakai\"}]",
                                           "initial.soil=[{shape = \"box\", lower = [0, 0], upper = [2, 0.2], material = \"clay\"}, "
                                           "{shape = \"box\", lower = [0, 0.2], upper = [1, 0.4], material = \"sand\"}, "
                                           "{shape = \"box\", lower = [0, 0.4], upper = [0.5, 0.5]}]"});
@@ -82,6 +82,8 @@ TEST(StrengthReduction, DividesEverySoilMaterialsStrength) {
   EXPECT_EQ(r.soil->initial_material, (std::vector<int>{1, 2, 0}));
   EXPECT_EQ(r.soil->materials[0].density, 1800.5);
   EXPECT_EQ(r.soil->materials[1].density, c.soil->soil_density);
+  EXPECT_FALSE(r.soil->materials[0].strength.model.has_value());
+  EXPECT_EQ(r.soil->materials[1].strength.model, rheology::Model::matsuoka_nakai);
 }
 
 TEST(StrengthReduction, RefusesWhatHasNoStrengthToReduce) {
