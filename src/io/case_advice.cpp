@@ -28,12 +28,13 @@ std::vector<std::string> case_advice(const CaseConfig& config) {
                                  config.soil->soil_density, config.soil->air_density));
   for (size_t k = 0; k < config.soil->materials.size(); ++k) {
     const auto& m = config.soil->materials[k];
-    if (m.density == config.soil->soil_density) continue;  // said above, if at all
-    if (m.density < 100.0)
-      advice.push_back(fmt::format("soil.materials[{}].density = {} kg/m^3 ('{}') is lighter than any soil", k, m.density, m.name));
-    else if (m.density <= config.soil->air_density)
+    const double density = m.rheology.density;
+    if (density == config.soil->soil_density) continue;  // said above, if at all
+    if (density < 100.0)
+      advice.push_back(fmt::format("soil.materials[{}].density = {} kg/m^3 ('{}') is lighter than any soil", k, density, m.name));
+    else if (density <= config.soil->air_density)
       advice.push_back(fmt::format("soil.materials[{}].density = {} kg/m^3 ('{}') is not heavier than air.density = {} kg/m^3",
-                                   k, m.density, m.name, config.soil->air_density));
+                                   k, density, m.name, config.soil->air_density));
   }
   const auto& r = *config.soil->rheology;
   if (r.friction != rheology::FrictionSource::mu_of_I && r.friction_angle_deg > 0.0 && r.friction_angle_deg < 1.0)

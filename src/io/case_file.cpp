@@ -127,13 +127,20 @@ Enum read_enum(TableReader& r, std::string_view key, Enum fallback, Parse parse,
   throw CaseError(fmt::format("{}: '{}' is not one of: {}", r.key_path(key), text, list));
 }
 
-rheology::RheologyParameters read_rheology(TableReader r, double soil_density) {
+// The keys of a rheology table over `p`, which holds their defaults. A soil material's (material)
+// shares the rheology's regularisation, whose keys are refused there, and a model of it that takes no
+// cohesion does not inherit the rheology's.
+void read_rheology_keys(TableReader& r, rheology::RheologyParameters& p, bool material) {
   using namespace rheology;
-  RheologyParameters p;
-  p.density = soil_density;
   p.model = read_enum(r, "model", p.model, parse_model, model_names);
   p.friction = read_enum(r, "friction", p.friction, parse_friction_source, friction_source_names);
-  p.regularisation = read_enum(r, "regularisation", p.regularisation, parse_regularisation, regularisation_names);
+  if (material) {
+    for (std::string_view k : {"regularisation", "m", "mu_min", "nu_min", "nu_max"})
+      if (r.has(k))
+        throw CaseError(fmt::format("{}: the soils share the regularisation of [soil.rheology]; set it there", r.key_path(k)));
+  } else {
+    p.regularisation = read_enum(r, "regularisation", p.regularisation, parse_regularisation, regularisation_names);
+  }
   p.matsuoka_nakai_fit =
       read_enum(r, "matsuoka_nakai_fit", p.matsuoka_nakai_fit, parse_matsuoka_nakai_fit, matsuoka_nakai_fit_names);
   // Constants the chosen model, friction or regularisation does not read are refused, naming what
@@ -144,22 +151,32 @@ rheology::RheologyParameters read_rheology(TableReader r, double soil_density) {
       if (r.has(k)) throw CaseError(fmt::format("{}: used only with {}; this case does not use it", r.key_path(k), what));
   };
   const bool exponential = p.regularisation == Regularisation::exponential;
-  only_with({"m", "mu_min"}, exponential, "regularisation = \"exponential\" (the default)");
-  only_with({"nu_min", "nu_max"}, !exponential, "regularisation = \"clip\"");
+  if (!material) {
+    only_with({"m", "mu_min"}, exponential, "regularisation = \"exponential\" (the default)");
+    only_with({"nu_min", "nu_max"}, !exponential, "regularisation = \"clip\"");
+  }
   only_with({"grain_diameter", "mu_s", "mu_2", "I_0"}, p.friction == FrictionSource::mu_of_I, "friction = \"mu_of_I\"");
   only_with({"friction_angle"}, p.friction == FrictionSource::constant,
             "friction = \"constant\" (the default; under mu_of_I, mu_s, mu_2 and I_0 give the friction)");
   only_with({"matsuoka_nakai_fit"}, p.model == Model::matsuoka_nakai, "model = \"matsuoka_nakai\"");
   p.friction_angle_deg = r.number("friction_angle", p.friction_angle_deg);
-  p.cohesion = r.number("cohesion", p.cohesion);
-  p.regularisation_time = r.number("m", p.regularisation_time);
-  p.min_dynamic_viscosity = r.number("mu_min", p.min_dynamic_viscosity);
-  p.min_kinematic_viscosity = r.number("nu_min", p.min_kinematic_viscosity);
-  p.max_kinematic_viscosity = r.number("nu_max", p.max_kinematic_viscosity);
+  p.cohesion = r.number("cohesion", material && p.model != Model::drucker_prager_bingham ? 0.0 : p.cohesion);
+  if (!material) {
+    p.regularisation_time = r.number("m", p.regularisation_time);
+    p.min_dynamic_viscosity = r.number("mu_min", p.min_dynamic_viscosity);
+    p.min_kinematic_viscosity = r.number("nu_min", p.min_kinematic_viscosity);
+    p.max_kinematic_viscosity = r.number("nu_max", p.max_kinematic_viscosity);
+  }
   p.grain_diameter = r.number("grain_diameter", p.grain_diameter);
   p.static_friction = r.number("mu_s", p.static_friction);
   p.limiting_friction = r.number("mu_2", p.limiting_friction);
   p.reference_inertial_number = r.number("I_0", p.reference_inertial_number);
+}
+
+rheology::RheologyParameters read_rheology(TableReader r, double soil_density) {
+  rheology::RheologyParameters p;
+  p.density = soil_density;
+  read_rheology_keys(r, p, false);
   r.finish();
   if (auto err = validate(p)) throw CaseError(fmt::format("{}: {}", r.path(), *err));
   return p;
@@ -202,14 +219,13 @@ interface::Shape read_shape(TableReader r, std::string* material = nullptr) {
   return out;
 }
 
-// One of [[soil.materials]]: a soil of the rheology's model with its own strength and density.
+// One of [[soil.materials]]: a soil of the rheology's regularisation with its own rheology otherwise
+// (each key the rheology's unless given) and density.
 SoilMaterial read_material(TableReader r, const std::optional<rheology::RheologyParameters>& rheology,
                            double soil_density) {
   using namespace rheology;
   if (!rheology)
-    throw CaseError(r.path() + ": soil materials need a granular soil ([soil.rheology]), whose model they share");
-  if (rheology->friction != FrictionSource::constant)
-    throw CaseError(r.path() + ": soil materials have their own friction angle, which needs soil.rheology.friction = \"constant\"");
+    throw CaseError(r.path() + ": soil materials need a granular soil ([soil.rheology]), whose regularisation they share");
   SoilMaterial m;
   m.name = r.required_string("name");
   const bool plain = !m.name.empty() && std::all_of(m.name.begin(), m.name.end(), [](char ch) {
@@ -218,16 +234,18 @@ SoilMaterial read_material(TableReader r, const std::optional<rheology::Rheology
   if (!plain)
     throw CaseError(fmt::format("{}: '{}' is not a plain name (letters, digits, '_' and '-'; it names an output field)",
                                 r.key_path("name"), m.name));
-  // The yield surface: the rheology's unless given. A model other than Drucker-Prager-Bingham takes
-  // no cohesion, so there the rheology's is not inherited.
-  if (r.has("model")) m.strength.model = read_enum(r, "model", rheology->model, parse_model, model_names);
-  const Model model = m.strength.model.value_or(rheology->model);
-  m.strength.friction_angle_deg = r.number("friction_angle", rheology->friction_angle_deg);
-  m.strength.cohesion = r.number("cohesion", model == Model::drucker_prager_bingham ? rheology->cohesion : 0.0);
-  m.density = r.number("density", soil_density);
-  r.require_range("density", m.density, 1e-300, inf, "positive");
+  m.rheology = *rheology;
+  m.rheology.density = r.number("density", soil_density);
+  r.require_range("density", m.rheology.density, 1e-300, inf, "positive");
+  read_rheology_keys(r, m.rheology, true);
+  // Under mu(I) the angle is not read (nor may it be given): the rheology's own, of a constant friction,
+  // is not this soil's, and is put back to the unread default a mu(I) [soil.rheology] holds.
+  if (m.rheology.friction == FrictionSource::mu_of_I) m.rheology.friction_angle_deg = RheologyParameters{}.friction_angle_deg;
+  if (m.rheology.friction == FrictionSource::constant && rheology->friction != FrictionSource::constant &&
+      !r.has("friction_angle"))
+    throw CaseError(r.key_path("friction_angle") + ": required: the rheology's friction is mu(I), which has no angle to take");
   r.finish();
-  if (auto err = validate(with_strength(*rheology, m.strength))) throw CaseError(fmt::format("{}: {}", r.path(), *err));
+  if (auto err = validate(m.rheology)) throw CaseError(fmt::format("{}: {}", r.path(), *err));
   return m;
 }
 

@@ -32,6 +32,19 @@ std::string Simulation::domain() const {
   return text + obstacles_;
 }
 
+namespace {
+
+// A soil's rheology as the checkpoint's record of the physics gives it.
+std::string rheology_record(const rheology::RheologyParameters& r) {
+  if (r.friction == rheology::FrictionSource::mu_of_I)
+    return fmt::format("{} with mu(I) friction, mu_s {:.9g}, mu_2 {:.9g}, I_0 {:.9g}, d {:.9g} m", rheology::to_string(r.model),
+                       r.static_friction, r.limiting_friction, r.reference_inertial_number, r.grain_diameter);
+  return fmt::format("{} with {} friction, phi {:.9g} deg, cohesion {:.9g} Pa", rheology::to_string(r.model),
+                     rheology::to_string(r.friction), r.friction_angle_deg, r.cohesion);
+}
+
+}  // namespace
+
 // The materials and gravity, as a checkpoint records them: a restart with others is most likely
 // the wrong case file, though a deliberate change is allowed.
 std::string Simulation::physics() const {
@@ -41,16 +54,14 @@ std::string Simulation::physics() const {
   text += fmt::format("; air {:.9g} kg/m^3, {:.9g} Pa s; soil {:.9g} kg/m^3", s.air_density, s.air_viscosity, s.soil_density);
   if (!s.rheology) return text + fmt::format(", {:.9g} Pa s", s.soil_viscosity);
   const auto& r = *s.rheology;
-  if (r.friction == rheology::FrictionSource::mu_of_I)
-    return text + fmt::format(", {} with mu(I) friction, mu_s {:.9g}, mu_2 {:.9g}, I_0 {:.9g}, d {:.9g} m",
-                              rheology::to_string(r.model), r.static_friction, r.limiting_friction,
-                              r.reference_inertial_number, r.grain_diameter);
-  text += fmt::format(", {} with {} friction, phi {:.9g} deg, cohesion {:.9g} Pa", rheology::to_string(r.model),
-                      rheology::to_string(r.friction), r.friction_angle_deg, r.cohesion);
+  text += ", " + rheology_record(r);
   for (const auto& m : s.materials) {
-    text += fmt::format("; {}: phi {:.9g} deg, cohesion {:.9g} Pa", m.name, m.strength.friction_angle_deg, m.strength.cohesion);
-    if (m.density != s.soil_density) text += fmt::format(", {:.9g} kg/m^3", m.density);
-    if (m.strength.model && *m.strength.model != r.model) text += fmt::format(", {}", rheology::to_string(*m.strength.model));
+    const auto& q = m.rheology;
+    if (q.model == r.model && q.friction == rheology::FrictionSource::constant)  // as records before materials had more
+      text += fmt::format("; {}: phi {:.9g} deg, cohesion {:.9g} Pa", m.name, q.friction_angle_deg, q.cohesion);
+    else
+      text += fmt::format("; {}: {}", m.name, rheology_record(q));
+    if (q.density != s.soil_density) text += fmt::format(", {:.9g} kg/m^3", q.density);
   }
   return text;
 }

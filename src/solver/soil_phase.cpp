@@ -31,9 +31,9 @@ SoilPhase::SoilPhase(const Grid& grid, const FlowSettings& flow, const SoilSetti
   if (settings.rheology) rheology_.emplace(*settings.rheology);
   auto make = [&] { return std::make_unique<Field>(grid); };
   if (!settings.materials.empty()) {
-    std::vector<rheology::MaterialStrength> strengths;
-    for (const auto& m : settings.materials) strengths.push_back(m.strength);
-    materials_.emplace(settings.rheology.value(), strengths);
+    std::vector<rheology::RheologyParameters> rheologies;
+    for (const auto& m : settings.materials) rheologies.push_back(m.rheology);
+    materials_.emplace(settings.rheology.value(), rheologies);
     for (size_t k = 0; k < settings.materials.size(); ++k) {
       for (auto* list : {&share_, &share_tmp_, &share_start_}) {
         list->push_back(make());
@@ -46,7 +46,7 @@ SoilPhase::SoilPhase(const Grid& grid, const FlowSettings& flow, const SoilSetti
     }
     if (settings.materials_differ_in_density()) {
       soil_densities_.push_back(settings.soil_density);
-      for (const auto& m : settings.materials) soil_densities_.push_back(m.density);
+      for (const auto& m : settings.materials) soil_densities_.push_back(m.rheology.density);
       for (int a = 0; a < 2; ++a) {
         face_soil_density_[a] = make();
         face_soil_density_[a]->set(0.0);

@@ -15,12 +15,12 @@ enum class YieldPressure { cell, face, lithostatic_floor };
 enum class StrainRateAt { cell, face };
 enum class FaceFraction { cells, face };
 
-// A soil beyond the rheology's own ([[soil.materials]]): the same model and regularisation, its own
-// strength and density.
+// A soil beyond the rheology's own ([[soil.materials]]): the rheology's regularisation, and its own
+// yield surface, friction law, strength and density (rheology.density, rho_s), each the rheology's
+// unless given.
 struct SoilMaterial {
   std::string name;
-  rheology::MaterialStrength strength;
-  double density = 0.0;  // rho_s of this soil, kg/m^3 (the case's soil.density unless given)
+  rheology::RheologyParameters rheology;
 };
 
 struct SoilSettings {
@@ -40,7 +40,7 @@ struct SoilSettings {
   // cells' shares (otherwise the one-density forms run, to the bit).
   bool materials_differ_in_density() const {
     for (const auto& m : materials)
-      if (m.density != soil_density) return true;
+      if (m.rheology.density != soil_density) return true;
     return false;
   }
   double interface_courant = 0.45;  // largest Courant number of one VoF sweep (< 0.5 for boundedness)

@@ -3,14 +3,42 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <numbers>
+#include <string>
+
+#include <toml++/toml.h>
 
 #include "io/case_error.hpp"
 #include "solver/simulation.hpp"
 
 namespace granflow {
+
+namespace {
+
+// soil.materials as the case gives them, each with the friction angle and cohesion given: an override
+// that replaces the array whole (--set cannot address one element), every other key of a material kept.
+std::string materials_with(const CaseConfig& config, const std::vector<std::array<double, 2>>& strengths) {
+  const toml::table root = toml::parse(config.as_run);
+  const toml::array* given = root["soil"]["materials"].as_array();
+  std::string out;
+  for (size_t k = 0; k < strengths.size(); ++k) {
+    std::string entry = fmt::format("friction_angle = {}, cohesion = {}", strengths[k][0], strengths[k][1]);
+    for (const auto& [key, value] : *given->get(k)->as_table()) {
+      if (key == "friction_angle" || key == "cohesion") continue;
+      if (const auto text = value.value_exact<std::string>())
+        entry += fmt::format(", {} = \"{}\"", key.str(), *text);  // names and choices: plain words
+      else if (const auto number = value.value<double>())
+        entry += fmt::format(", {} = {}", key.str(), *number);
+    }
+    out += fmt::format("{}{{{}}}", out.empty() ? "" : ", ", entry);
+  }
+  return "soil.materials=[" + out + "]";
+}
+
+}  // namespace
 
 CaseConfig reduced_strength(const CaseConfig& config, double factor) {
   if (!(factor > 0.0 && std::isfinite(factor)))
@@ -31,14 +59,15 @@ CaseConfig reduced_strength(const CaseConfig& config, double factor) {
                                 fmt::format("numerics.outer_iterations={}", std::max(num.outer_iterations, 10)),
                                 fmt::format("numerics.outer_tolerance={}", std::min(num.outer_tolerance, 1e-6)),
                                 "soil.displacement=true"};
-  if (!config.soil->materials.empty()) {  // every soil material's strength too, the array written whole
-    std::string materials;
-    for (const auto& m : config.soil->materials)
-      materials += fmt::format("{}{{name = \"{}\", friction_angle = {}, cohesion = {}, density = {}{}}}",
-                               materials.empty() ? "" : ", ", m.name, reduced_friction(m.strength.friction_angle_deg),
-                               m.strength.cohesion / factor, m.density,
-                               m.strength.model ? fmt::format(", model = \"{}\"", rheology::to_string(*m.strength.model)) : "");
-    keys.push_back("soil.materials=[" + materials + "]");
+  if (!config.soil->materials.empty()) {  // every soil material's strength too
+    std::vector<std::array<double, 2>> strengths;
+    for (const auto& m : config.soil->materials) {
+      if (m.rheology.friction != rheology::FrictionSource::constant)
+        throw CaseError(fmt::format("{}: strength reduction divides a constant friction angle; the soil material '{}' "
+                                    "has mu(I) friction, which has none", config.source.string(), m.name));
+      strengths.push_back({reduced_friction(m.rheology.friction_angle_deg), m.rheology.cohesion / factor});
+    }
+    keys.push_back(materials_with(config, strengths));
   }
   CaseConfig reduced = parse_case(config.as_run, keys, config.source);
   reduced.overrides.insert(reduced.overrides.begin(), config.overrides.begin(), config.overrides.end());

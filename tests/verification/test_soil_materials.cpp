@@ -110,6 +110,26 @@ TEST(SoilMaterials, ABlockOfAnotherYieldSurfaceCollapsesAsThatSoil) {
   EXPECT_GT(apart, 1e-3);
 }
 
+// The same with a friction law of its own: a block wholly of a mu(I) material ([YS] Eq. 25, the
+// constants of cases/bui2008_experiment_mu_of_i.toml) in the shipped case collapses as that case does.
+TEST(SoilMaterials, ABlockOfMuOfIGrainsCollapsesAsTheMuOfICase) {
+  const std::vector<std::string> short_run{"mesh.cells=[60,20]", "time.end=0.3", "output.progress_seconds=0",
+                                           "output.fields=false"};
+  Simulation mu_of_i(PETSC_COMM_WORLD, load_case(test::repo_path("cases/bui2008_experiment_mu_of_i.toml"), short_run), "");
+  mu_of_i.run();
+  std::vector<std::string> grains = short_run;
+  grains.push_back("soil.materials=[{name = \"grains\", model = \"drucker_prager\", friction = \"mu_of_I\", mu_s = 0.3387, "
+                   "mu_2 = 0.5987, I_0 = 0.279, grain_diameter = 1.25e-3}]");
+  grains.push_back("initial.soil=[{shape = \"box\", lower = [0, 0], upper = [0.2, 0.1], material = \"grains\"}]");
+  const Layers material = run(grains);
+  const auto u = gather_to_root(mu_of_i.grid(), mu_of_i.flow().velocity(0));
+  const auto v = gather_to_root(mu_of_i.grid(), mu_of_i.flow().velocity(1));
+  if (!test::is_root()) return;
+  const double du = std::max(test::max_difference(u, material.u), test::max_difference(v, material.v));
+  std::printf("a block of mu(I) material 'grains' against the mu(I) case: max |du| %.2e m/s\n", du);
+  EXPECT_LT(du, 1e-10);
+}
+
 // A weak lower layer (phi = 10 deg against 19.8): the block slides out on it, further than the
 // uniform block, and each layer's volume is conserved as the soil moves.
 TEST(SoilMaterials, AWeakLowerLayerCarriesTheBlockFurther) {

@@ -1,11 +1,10 @@
-// Several soils of one rheology: the friction law and regularisation are shared, the strength (the
-// yield surface's model, friction angle phi and cohesion C) is each soil's own. Where soils share a cell or a face, the
-// yield stress is the mean of theirs weighted by their shares of the soil there, regularised once
-// ([VoF] Eq. 12): a mixture is as strong as its parts in proportion.
+// Several soils of one regularisation, each with its own rheology otherwise: yield surface, friction
+// law, strength and density. Where soils share a cell or a face, the yield stress is the mean of
+// theirs weighted by their shares of the soil there, regularised once ([VoF] Eq. 12): a mixture is as
+// strong as its parts in proportion.
 #pragma once
 
 #include <array>
-#include <optional>
 #include <vector>
 
 #include "models/rheology/granular_rheology.hpp"
@@ -13,24 +12,15 @@
 
 namespace granflow::rheology {
 
-struct MaterialStrength {
-  double friction_angle_deg = 0.0;  // phi, degrees
-  double cohesion = 0.0;            // C, Pa
-  std::optional<Model> model;       // the yield surface, the base's unless given
-};
-
-// The base's parameters with another strength.
-RheologyParameters with_strength(const RheologyParameters& base, const MaterialStrength& strength);
-
 class SoilMaterials {
  public:
   static constexpr int max_count = 16;  // materials, the base included
   // Shares of the soil at a point held by materials 1 .. count() - 1; material 0 (the base) holds the rest.
   using Shares = std::array<double, max_count - 1>;
 
-  // Throws std::invalid_argument naming the material whose parameters are unusable, or for more than
-  // max_count materials.
-  SoilMaterials(const RheologyParameters& base, const std::vector<MaterialStrength>& others);
+  // Throws std::invalid_argument naming the material whose parameters are unusable or whose
+  // regularisation is not the base's, or for more than max_count materials.
+  SoilMaterials(const RheologyParameters& base, const std::vector<RheologyParameters>& others);
 
   [[nodiscard]] int count() const noexcept { return int(materials_.size()); }
   [[nodiscard]] const GranularRheology& material(int k) const noexcept { return materials_[k]; }

@@ -168,27 +168,27 @@ TEST(CaseFile, SoilMaterialsAreNamedValidatedAndUsed) {
   const CaseConfig c = parse_case(two_phase, {phi, clay, shapes});
   ASSERT_EQ(c.soil->materials.size(), 1u);
   EXPECT_EQ(c.soil->materials[0].name, "clay");
-  EXPECT_EQ(c.soil->materials[0].strength.cohesion, 2e4);
+  EXPECT_EQ(c.soil->materials[0].rheology.cohesion, 2e4);
   EXPECT_EQ(c.soil->initial_material, (std::vector<int>{1, 0}));
   // A material's density is the soil's unless given; given, it must be positive.
-  EXPECT_EQ(c.soil->materials[0].density, c.soil->soil_density);
+  EXPECT_EQ(c.soil->materials[0].rheology.density, c.soil->soil_density);
   EXPECT_FALSE(c.soil->materials_differ_in_density());
   const CaseConfig heavy = parse_case(two_phase, {phi, "soil.materials=[{name = \"clay\", density = 1800.0}]", shapes});
-  EXPECT_EQ(heavy.soil->materials[0].density, 1800.0);
+  EXPECT_EQ(heavy.soil->materials[0].rheology.density, 1800.0);
   EXPECT_TRUE(heavy.soil->materials_differ_in_density());
   const std::string density = error_of(two_phase, {phi, "soil.materials=[{name = \"clay\", density = -1800.0}]", shapes});
   EXPECT_NE(density.find("soil.materials[0].density"), std::string::npos) << density;
   EXPECT_NE(density.find("positive"), std::string::npos) << density;
   // A material's yield surface is the rheology's unless given; a model that takes no cohesion does
   // not inherit the rheology's, and refuses one given.
-  EXPECT_FALSE(c.soil->materials[0].strength.model.has_value());
+  EXPECT_EQ(c.soil->materials[0].rheology.model, c.soil->rheology->model);
   const std::string cohesive = "soil.rheology.cohesion=5000";
   const CaseConfig mc = parse_case(two_phase, {phi, cohesive, "soil.materials=[{name = \"clay\", model = \"mohr_coulomb\"}]", shapes});
-  EXPECT_EQ(mc.soil->materials[0].strength.model, rheology::Model::mohr_coulomb);
-  EXPECT_EQ(mc.soil->materials[0].strength.cohesion, 0.0);
-  EXPECT_EQ(mc.soil->materials[0].strength.friction_angle_deg, 30.0);
+  EXPECT_EQ(mc.soil->materials[0].rheology.model, rheology::Model::mohr_coulomb);
+  EXPECT_EQ(mc.soil->materials[0].rheology.cohesion, 0.0);
+  EXPECT_EQ(mc.soil->materials[0].rheology.friction_angle_deg, 30.0);
   const CaseConfig dpb = parse_case(two_phase, {phi, cohesive, "soil.materials=[{name = \"clay\", friction_angle = 25.0}]", shapes});
-  EXPECT_EQ(dpb.soil->materials[0].strength.cohesion, 5000.0);
+  EXPECT_EQ(dpb.soil->materials[0].rheology.cohesion, 5000.0);
   const std::string mc_cohesion = error_of(two_phase, {phi, "soil.materials=[{name = \"clay\", model = \"mohr_coulomb\", cohesion = 1e3}]", shapes});
   EXPECT_NE(mc_cohesion.find("soil.materials[0]"), std::string::npos) << mc_cohesion;
   EXPECT_NE(mc_cohesion.find("cohesion"), std::string::npos) << mc_cohesion;
@@ -212,10 +212,23 @@ TEST(CaseFile, SoilMaterialsAreNamedValidatedAndUsed) {
   const std::string unused = error_of(two_phase, {phi, clay});
   EXPECT_NE(unused.find("soil.materials[0]"), std::string::npos) << unused;
   EXPECT_NE(unused.find("no initial.soil shape"), std::string::npos) << unused;
-  // Materials share the rheology's constant friction.
-  const std::string mu = error_of(two_phase, {"soil.rheology={model = \"drucker_prager\", friction = \"mu_of_I\"}", clay, shapes});
-  EXPECT_NE(mu.find("soil.materials[0]"), std::string::npos) << mu;
-  EXPECT_NE(mu.find("constant"), std::string::npos) << mu;
+  // A material's friction law is its own: a clay of constant friction beside a mu(I) sand gives its
+  // angle; a mu(I) material takes the rheology's constants unless given. The regularisation is shared.
+  const std::string sand = "soil.rheology={model = \"drucker_prager\", friction = \"mu_of_I\", mu_s = 0.4}";
+  const CaseConfig beside = parse_case(two_phase, {sand, "soil.materials=[{name = \"clay\", model = \"drucker_prager_bingham\", "
+                                                         "friction = \"constant\", friction_angle = 0.0, cohesion = 2e4}]", shapes});
+  EXPECT_EQ(beside.soil->materials[0].rheology.friction, rheology::FrictionSource::constant);
+  EXPECT_EQ(beside.soil->materials[0].rheology.cohesion, 2e4);
+  const std::string angle = error_of(two_phase, {sand, "soil.materials=[{name = \"clay\", friction = \"constant\"}]", shapes});
+  EXPECT_NE(angle.find("soil.materials[0].friction_angle: required"), std::string::npos) << angle;
+  const CaseConfig grains = parse_case(two_phase, {"soil.rheology.friction_angle=0", "soil.rheology.cohesion=2e4",
+                                                   "soil.materials=[{name = \"clay\", model = \"drucker_prager\", "
+                                                   "friction = \"mu_of_I\", mu_2 = 0.7}]", shapes});
+  EXPECT_EQ(grains.soil->materials[0].rheology.friction, rheology::FrictionSource::mu_of_I);
+  EXPECT_EQ(grains.soil->materials[0].rheology.limiting_friction, 0.7);
+  EXPECT_EQ(grains.soil->materials[0].rheology.static_friction, rheology::RheologyParameters{}.static_friction);
+  const std::string shared = error_of(two_phase, {phi, "soil.materials=[{name = \"clay\", m = 10.0}]", shapes});
+  EXPECT_NE(shared.find("soil.materials[0].m: the soils share the regularisation"), std::string::npos) << shared;
   const std::string empty = error_of(two_phase, {phi, clay, "initial.soil=[{shape = \"box\", lower = [0, 0], upper = [1, 0.2], material = \"\"}]"});
   EXPECT_NE(empty.find("initial.soil[0].material: empty"), std::string::npos) << empty;
   const std::string no_materials = error_of(two_phase, {phi, shapes});

@@ -74,16 +74,16 @@ TEST(StrengthReduction, DividesEverySoilMaterialsStrength) {
   const CaseConfig r = reduced_strength(c, 1.6);
   ASSERT_EQ(r.soil->materials.size(), 2u);
   EXPECT_EQ(r.soil->materials[0].name, "clay");
-  EXPECT_EQ(r.soil->materials[0].strength.friction_angle_deg, 0.0);
-  EXPECT_NEAR(r.soil->materials[0].strength.cohesion, 5000.0, 1e-12 * 5000.0);
-  EXPECT_NEAR(tan_deg(r.soil->materials[1].strength.friction_angle_deg), tan_deg(35.0) / 1.6, 1e-14);
-  EXPECT_EQ(r.soil->materials[1].strength.cohesion, 0.0);
+  EXPECT_EQ(r.soil->materials[0].rheology.friction_angle_deg, 0.0);
+  EXPECT_NEAR(r.soil->materials[0].rheology.cohesion, 5000.0, 1e-12 * 5000.0);
+  EXPECT_NEAR(tan_deg(r.soil->materials[1].rheology.friction_angle_deg), tan_deg(35.0) / 1.6, 1e-14);
+  EXPECT_EQ(r.soil->materials[1].rheology.cohesion, 0.0);
   EXPECT_NEAR(r.soil->rheology->cohesion, 5000.0 / 1.6, 1e-12 * 5000.0);
   EXPECT_EQ(r.soil->initial_material, (std::vector<int>{1, 2, 0}));
-  EXPECT_EQ(r.soil->materials[0].density, 1800.5);
-  EXPECT_EQ(r.soil->materials[1].density, c.soil->soil_density);
-  EXPECT_FALSE(r.soil->materials[0].strength.model.has_value());
-  EXPECT_EQ(r.soil->materials[1].strength.model, rheology::Model::matsuoka_nakai);
+  EXPECT_EQ(r.soil->materials[0].rheology.density, 1800.5);
+  EXPECT_EQ(r.soil->materials[1].rheology.density, c.soil->soil_density);
+  EXPECT_EQ(r.soil->materials[0].rheology.model, c.soil->rheology->model);
+  EXPECT_EQ(r.soil->materials[1].rheology.model, rheology::Model::matsuoka_nakai);
 }
 
 TEST(StrengthReduction, RefusesWhatHasNoStrengthToReduce) {
