@@ -100,6 +100,9 @@ TEST(StrengthReduction, RefusesWhatHasNoStrengthToReduce) {
   EXPECT_NE(refusal(c, -1.0).find("not a positive number"), std::string::npos);
   const CaseConfig mu_of_i = parse_case(slope, {"soil.rheology={model = \"drucker_prager\", friction = \"mu_of_I\"}"});
   EXPECT_NE(refusal(mu_of_i, 1.0).find("mu(I) friction has none"), std::string::npos) << refusal(mu_of_i, 1.0);
+  const CaseConfig grains = parse_case(slope, {"soil.materials=[{name = \"grains\", model = \"drucker_prager\", friction = \"mu_of_I\"}]",
+                                               "initial.soil=[{shape = \"box\", lower = [0, 0], upper = [1, 0.5], material = \"grains\"}]"});
+  EXPECT_NE(refusal(grains, 1.0).find("the soil material 'grains' has mu(I) friction"), std::string::npos) << refusal(grains, 1.0);
   std::string without(slope);
   without.erase(without.find("[soil.rheology]"), std::string("[soil.rheology]\nfriction_angle = 30.0\ncohesion = 5000.0\n").size());
   const CaseConfig newtonian = parse_case(without, {"soil.viscosity=1e-3"});  // a Newtonian dense phase
