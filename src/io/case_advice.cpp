@@ -36,10 +36,16 @@ std::vector<std::string> case_advice(const CaseConfig& config) {
       advice.push_back(fmt::format("soil.materials[{}].density = {} kg/m^3 ('{}') is not heavier than air.density = {} kg/m^3",
                                    k, density, m.name, config.soil->air_density));
   }
+  auto radians = [&](const rheology::RheologyParameters& r, const std::string& key) {
+    if (r.friction != rheology::FrictionSource::mu_of_I && r.friction_angle_deg > 0.0 && r.friction_angle_deg < 1.0)
+      advice.push_back(fmt::format("{} = {} is in degrees: {} rad would be {:.3g} deg", key, r.friction_angle_deg,
+                                   r.friction_angle_deg, r.friction_angle_deg * 57.29577951308232));
+  };
   const auto& r = *config.soil->rheology;
-  if (r.friction != rheology::FrictionSource::mu_of_I && r.friction_angle_deg > 0.0 && r.friction_angle_deg < 1.0)
-    advice.push_back(fmt::format("soil.rheology.friction_angle = {} is in degrees: {} rad would be {:.3g} deg",
-                                 r.friction_angle_deg, r.friction_angle_deg, r.friction_angle_deg * 57.29577951308232));
+  radians(r, "soil.rheology.friction_angle");
+  for (size_t k = 0; k < config.soil->materials.size(); ++k)
+    if (config.soil->materials[k].rheology.friction_angle_deg != r.friction_angle_deg)  // said above, if at all
+      radians(config.soil->materials[k].rheology, fmt::format("soil.materials[{}].friction_angle", k));
   // The exponential regularisation ([VoF] Eq. 12) puts the soil at rest at up to m (3 alpha_phi p + k_c),
   // some 1e8 Pa s. Only the coupled solve with the face's own soil fraction holds such a pile next to
   // air (docs/method.md, "Known limitations"; docs/validation.md).

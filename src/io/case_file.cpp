@@ -182,6 +182,20 @@ rheology::RheologyParameters read_rheology(TableReader r, double soil_density) {
   return p;
 }
 
+// A polygon from its listed vertices. A point repeated next to itself, or the first point repeated at
+// the end to close the outline, adds an edge of no length; it is dropped. `where` names the vertices'
+// source in errors.
+interface::Polygon polygon_of(std::vector<std::array<double, 2>> points, const std::string& where) {
+  interface::Polygon polygon{std::move(points)};
+  auto& v = polygon.vertices;
+  v.erase(std::unique(v.begin(), v.end()), v.end());
+  while (v.size() > 1 && v.back() == v.front()) v.pop_back();
+  if (v.size() < 3) throw CaseError(fmt::format("{}: the polygon needs at least 3 distinct points", where));
+  if (interface::self_intersecting(polygon))
+    throw CaseError(fmt::format("{}: the polygon crosses itself (two of its edges meet)", where));
+  return polygon;
+}
+
 // material: where given, the shape's `material` key is read into it ("" when absent); elsewhere the key
 // is unknown.
 interface::Shape read_shape(TableReader r, std::string* material = nullptr) {
@@ -203,17 +217,7 @@ interface::Shape read_shape(TableReader r, std::string* material = nullptr) {
     r.require_range("radius", c.radius, 1e-300, 1e300, "positive");
     out = c;
   } else {
-    interface::Polygon polygon{r.pairs("points", 3)};
-    // A point repeated next to itself, or the first point repeated at the end to close the outline,
-    // adds an edge of no length; it is dropped.
-    auto& v = polygon.vertices;
-    v.erase(std::unique(v.begin(), v.end()), v.end());
-    while (v.size() > 1 && v.back() == v.front()) v.pop_back();
-    if (v.size() < 3)
-      throw CaseError(fmt::format("{}.points: the polygon needs at least 3 distinct points", r.path()));
-    if (interface::self_intersecting(polygon))
-      throw CaseError(fmt::format("{}.points: the polygon crosses itself (two of its edges meet)", r.path()));
-    out = polygon;
+    out = polygon_of(r.pairs("points", 3), r.key_path("points"));
   }
   r.finish();
   return out;
@@ -785,8 +789,10 @@ void read_points_files(toml::table& root, const std::filesystem::path& source) {
         throw CaseError(fmt::format("{}[{}]: give the polygon's points or its points_file, not both", path, k));
       std::filesystem::path file(*name);
       if (file.is_relative() && !source.parent_path().empty()) file = source.parent_path() / file;
+      const auto vertices = read_points_file(file, key);
+      polygon_of(vertices, fmt::format("{} ('{}')", key, file.string()));  // its errors name the file
       toml::array points;
-      for (const auto& [x, y] : read_points_file(file, key)) points.push_back(toml::array{x, y});
+      for (const auto& [x, y] : vertices) points.push_back(toml::array{x, y});
       shape->erase("points_file");
       shape->insert("points", std::move(points));
     }

@@ -15,9 +15,12 @@ namespace granflow {
 
 namespace {
 
-// The numbers of a line, fields separated by commas and blanks; false where a field is not a number.
-bool parse_numbers(std::string_view line, std::vector<double>& out) {
+// The numbers of a line, fields separated by commas, semicolons and blanks; false where a field is
+// not a number. `any` tells whether some field is one.
+bool parse_numbers(std::string_view line, std::vector<double>& out, bool& any) {
   out.clear();
+  any = false;
+  bool all = true;
   size_t k = 0;
   auto separator = [](char ch) { return ch == ',' || ch == ' ' || ch == '\t' || ch == '\r' || ch == ';'; };
   while (k < line.size()) {
@@ -29,11 +32,14 @@ bool parse_numbers(std::string_view line, std::vector<double>& out) {
     double value = 0.0;
     const char* first = field.data() + (field.front() == '+' ? 1 : 0);
     const auto [ptr, ec] = std::from_chars(first, field.data() + field.size(), value);
-    if (ec != std::errc() || ptr != field.data() + field.size()) return false;
+    if (ec != std::errc() || ptr != field.data() + field.size())
+      all = false;
+    else
+      any = true;
     out.push_back(value);
     k = end;
   }
-  return true;
+  return all;
 }
 
 }  // namespace
@@ -50,10 +56,14 @@ std::vector<std::array<double, 2>> read_points_file(const std::filesystem::path&
   long number = 0;
   for (std::string line; std::getline(in, line);) {
     ++number;
-    const auto start = line.find_first_not_of(" \t\r");
+    if (number == 1 && line.starts_with("\xEF\xBB\xBF")) line.erase(0, 3);  // a UTF-8 byte-order mark
+    while (!line.empty() && (line.back() == '\r' || line.back() == ' ' || line.back() == '\t')) line.pop_back();
+    const auto start = line.find_first_not_of(" \t");
     if (start == std::string::npos || line[start] == '#') continue;
-    const bool parsed = parse_numbers(line, numbers);
-    const bool header = first && !parsed;
+    bool any = false;
+    const bool parsed = parse_numbers(line, numbers, any);
+    // A header names its columns: not one of its fields is a number ("x,y"; "0.1,O.2" is a typo).
+    const bool header = first && !any;
     first = false;
     if (header) continue;
     if (!parsed || numbers.size() != 2 || !std::isfinite(numbers[0]) || !std::isfinite(numbers[1]))

@@ -1,8 +1,8 @@
 #pragma once
 // A polygon's vertices from a text file (`points_file` of a shape): one point per line, x and y
-// separated by a comma or blanks, as a terrain profile or a surveyed outline is exported. Lines that
-// are empty or start with '#' are skipped, and so is a first line that is not two numbers (a header
-// such as "x,y").
+// separated by a comma, a semicolon or blanks, as a terrain profile or a surveyed outline is exported.
+// Lines that are empty or start with '#' are skipped, and so is a first line of which no field is a
+// number (a header such as "x,y"); a UTF-8 byte-order mark is ignored.
 #include <array>
 #include <filesystem>
 #include <string>

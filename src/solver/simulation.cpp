@@ -34,16 +34,19 @@ CaseError no_initial_soil(const CaseConfig& config, const Grid& g, bool obstacle
 }
 
 // Each soil material holds some soil once the shapes are laid out: one whose shapes all lie under
-// shapes listed after it (the last listed holds a point), or in blocked cells, would be a material
-// of no effect.
+// shapes listed after it (the last listed holds a point), in blocked cells, or between the sample
+// points that give each cell its shares (a seam thinner than a sixteenth of a cell), would be a
+// material of no effect.
 void check_materials_hold_soil(const CaseConfig& config, const std::vector<double>& volumes) {
   for (size_t k = 1; k < volumes.size(); ++k)
     if (!(volumes[k] > 0.0)) {
       const std::string& name = config.soil->materials[k - 1].name;
-      throw case_error(config, fmt::format("soil.materials[{}]: '{}' holds no soil once the shapes are laid out: where "
-                                           "shapes overlap, the last listed holds the point, and the shapes of '{}' "
-                                           "lie under later ones{}", k - 1, name, name,
-                                           config.obstacles.empty() ? "" : " or in the obstacles' blocked cells"));
+      throw case_error(config, fmt::format("soil.materials[{}]: '{}' holds no soil once the shapes are laid out: its "
+                                           "shapes lie under shapes listed after them (where shapes overlap, the last "
+                                           "listed holds the point){}, or are thinner than a sixteenth of a cell, "
+                                           "between the 16 x 16 points that give each cell its shares (thicken them "
+                                           "or refine the mesh)", k - 1, name,
+                                           config.obstacles.empty() ? "" : ", in the obstacles' blocked cells"));
     }
 }
 

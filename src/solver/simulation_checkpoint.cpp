@@ -43,6 +43,14 @@ std::string rheology_record(const rheology::RheologyParameters& r) {
                      rheology::to_string(r.friction), r.friction_angle_deg, r.cohesion);
 }
 
+// ... with, for a material of its own Matsuoka-Nakai surface, the fit of its k_MN.
+std::string material_record(const rheology::RheologyParameters& r) {
+  std::string text = rheology_record(r);
+  if (r.model == rheology::Model::matsuoka_nakai)
+    text += fmt::format(", {} fit", rheology::to_string(r.matsuoka_nakai_fit));
+  return text;
+}
+
 }  // namespace
 
 // The materials and gravity, as a checkpoint records them: a restart with others is most likely
@@ -57,10 +65,11 @@ std::string Simulation::physics() const {
   text += ", " + rheology_record(r);
   for (const auto& m : s.materials) {
     const auto& q = m.rheology;
-    if (q.model == r.model && q.friction == rheology::FrictionSource::constant)  // as records before materials had more
+    if (q.model == r.model && q.friction == rheology::FrictionSource::constant &&
+        q.matsuoka_nakai_fit == r.matsuoka_nakai_fit)  // as records before materials had more
       text += fmt::format("; {}: phi {:.9g} deg, cohesion {:.9g} Pa", m.name, q.friction_angle_deg, q.cohesion);
     else
-      text += fmt::format("; {}: {}", m.name, rheology_record(q));
+      text += fmt::format("; {}: {}", m.name, material_record(q));
     if (q.density != s.soil_density) text += fmt::format(", {:.9g} kg/m^3", q.density);
   }
   return text;

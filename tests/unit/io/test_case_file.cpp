@@ -246,6 +246,10 @@ TEST(CaseFile, PolygonPointsFromAFile) {
   {
     std::ofstream(dir / "terrain" / "ground.csv") << "# surveyed ground, m\nx,y\n-1, -1\n2 -1\n\n2,0.3\n-1,0.1\n";
     std::ofstream(dir / "terrain" / "bad.csv") << "x,y\n0,0\n1,0\n1,zero\n";
+    // A spreadsheet's export: a byte-order mark, CRLF line ends, semicolons.
+    std::ofstream(dir / "terrain" / "exported.csv") << "\xEF\xBB\xBF-1;-1\r\n2;-1\r\n2;0.3\r\n-1;0.1\r\n";
+    std::ofstream(dir / "terrain" / "typo.csv") << "-1,-1x\n2,-1\n2,0.3\n-1,0.1\n";  // a first line with a typo is no header
+    std::ofstream(dir / "terrain" / "two.csv") << "x,y\n0,0\n1,0\n";
   }
   const fs::path source = dir / "case.toml";
   auto obstacle = [](const std::string& keys) { return "obstacle=[{shape = \"polygon\", " + keys + "}]"; };
@@ -271,6 +275,15 @@ TEST(CaseFile, PolygonPointsFromAFile) {
     }
     return std::string();
   };
+  EXPECT_EQ(std::get<interface::Polygon>(
+                parse_case(two_phase, {phi, coupled, obstacle("points_file = \"terrain/exported.csv\"")}, source).obstacles[0])
+                .vertices,
+            v);
+  const std::string typo = error(obstacle("points_file = \"terrain/typo.csv\""));
+  EXPECT_NE(typo.find("typo.csv:1: expected two numbers, x and y in m, found '-1,-1x'"), std::string::npos) << typo;
+  const std::string two = error(obstacle("points_file = \"terrain/two.csv\""));
+  EXPECT_NE(two.find("obstacle[0].points_file ('"), std::string::npos) << two;
+  EXPECT_NE(two.find("two.csv'): the polygon needs at least 3 distinct points"), std::string::npos) << two;
   const std::string missing = error(obstacle("points_file = \"terrain/none.csv\""));
   EXPECT_NE(missing.find("obstacle[0].points_file: cannot open"), std::string::npos) << missing;
   EXPECT_NE(missing.find("none.csv"), std::string::npos) << missing;
