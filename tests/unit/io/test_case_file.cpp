@@ -31,10 +31,11 @@ south = { type = "wall" }
 north = { type = "wall", velocity = [1.0, 0.0] }
 )";
 
-// The message of the CaseError thrown for `text` with `overrides`, or "" if none.
-std::string error_of(const std::string& text, const std::vector<std::string>& overrides = {}) {
+// The message of the CaseError thrown for `text` with `overrides` (read as the file `source`), or "" if none.
+std::string error_of(const std::string& text, const std::vector<std::string>& overrides = {},
+                     const std::filesystem::path& source = "<string>") {
   try {
-    parse_case(text, overrides);
+    parse_case(text, overrides, source);
   } catch (const CaseError& e) {
     return e.what();
   }
@@ -267,14 +268,7 @@ TEST(CaseFile, PolygonPointsFromAFile) {
   // The same file as an initial soil shape, by an absolute path.
   const std::string soil = "initial.soil=[{shape = \"polygon\", points_file = \"" + (dir / "terrain" / "ground.csv").string() + "\"}]";
   EXPECT_EQ(std::get<interface::Polygon>(parse_case(two_phase, {phi, soil}).soil->initial_soil[0]).vertices, v);
-  auto error = [&](const std::string& override) {
-    try {
-      parse_case(two_phase, {phi, coupled, override}, source);
-    } catch (const CaseError& e) {
-      return std::string(e.what());
-    }
-    return std::string();
-  };
+  auto error = [&](const std::string& override) { return error_of(two_phase, {phi, coupled, override}, source); };
   EXPECT_EQ(std::get<interface::Polygon>(
                 parse_case(two_phase, {phi, coupled, obstacle("points_file = \"terrain/exported.csv\"")}, source).obstacles[0])
                 .vertices,
