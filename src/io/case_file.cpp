@@ -92,6 +92,17 @@ BoundaryCondition read_boundary(TableReader r, bool& is_axis, std::vector<std::s
   } else if (type == "wall") {
     bc.kind = BoundaryKind::wall;
     bc.wall_velocity = r.pair("velocity", {0.0, 0.0});
+    if (r.has("friction_angle") || r.has("adhesion")) {  // a wall of its own friction against the soil
+      for (const char* key : {"friction_angle", "adhesion"})
+        if (r.has(key)) two_phase_keys.push_back(r.key_path(key));
+      const double adhesion = r.number("adhesion", 0.0);
+      r.require_range("adhesion", adhesion, 0.0, std::numeric_limits<double>::infinity(), "zero or positive");
+      const double delta = r.number("friction_angle", 0.0);
+      if (!(delta >= 0.0 && delta < 90.0) || (delta == 0.0 && adhesion == 0.0))
+        throw CaseError(fmt::format("{}: {} is outside (0, 90) degrees ([0, 90) with an adhesion above zero); "
+                                    "a wall without friction is type = \"slip\"", r.key_path("friction_angle"), delta));
+      bc.friction = rheology::WallFriction::from_angle(delta, adhesion);
+    }
   } else if (type == "slip" || type == "symmetry") {
     bc.kind = BoundaryKind::slip;  // a symmetry plane is a slip wall: no normal velocity, no shear
   } else {
@@ -642,6 +653,10 @@ void require_consistent(const CaseConfig& c) {
                                     c.mesh.upper[0], c.mesh.lower[1], c.mesh.upper[1]));
     }
   }
+  for (Side s : all_sides)
+    if (boundary(c.flow.boundaries, s).friction && c.soil && !c.soil->rheology)
+      throw CaseError(fmt::format("boundary.{}.friction_angle: a wall's friction acts on a granular soil, and this "
+                                  "case's soil is Newtonian (no [soil.rheology])", side_name(s)));
   for (size_t k = 0; k < c.obstacles.size(); ++k) {
     const auto [lo, hi] = interface::bounding_box(c.obstacles[k]);
     if (!interface::overlaps(c.obstacles[k], c.mesh.lower, c.mesh.upper))

@@ -2,8 +2,10 @@
 // Boundary conditions of the flow, one per side of the box.
 #include <algorithm>
 #include <array>
+#include <optional>
 
 #include "mesh/grid.hpp"
+#include "models/rheology/wall_friction.hpp"
 
 namespace granflow {
 
@@ -16,6 +18,9 @@ enum class BoundaryKind {
 struct BoundaryCondition {
   BoundaryKind kind = BoundaryKind::wall;
   std::array<double, 2> wall_velocity{0.0, 0.0};  // tangential part is used; normal part must be zero
+  // A wall of its own Coulomb friction against the soil (models/rheology/wall_friction.hpp); without
+  // it the soil's own strength is what holds it at the wall.
+  std::optional<rheology::WallFriction> friction;
   double pressure = 0.0;                          // atmosphere: total pressure p0
   bool total_pressure = true;                     // false: p0 is the static pressure also for inflow
   // Soil fraction carried in by inflow through an atmosphere boundary.

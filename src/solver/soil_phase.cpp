@@ -272,6 +272,19 @@ double SoilPhase::mixture_viscosity(double c, double pressure, const rheology::S
   return s.viscosity_mixing(c, s.air_viscosity, mu_soil);
 }
 
+// ... on the face of a wall: where the wall has a friction of its own, the soil there is no stronger
+// than the wall lets it be, the wall's strength at the wall's pressure regularised at the soil's
+// shear against the wall, wall_rate.xy (models/rheology/wall_friction.hpp).
+double SoilPhase::wall_mixture_viscosity(double c, double pressure, const rheology::StrainRate& rate,
+                                         const double* shares, const BoundaryCondition& wall,
+                                         const rheology::StrainRate& wall_rate) const {
+  if (!wall.friction || !rheology_ || !(c > 0.0)) return mixture_viscosity(c, pressure, rate, shares);
+  const double p = pressure - ambient_pressure_;
+  const double own = shares ? materials_->dynamic_viscosity(rate, p, shares) : rheology_->dynamic_viscosity(rate, p);
+  const double slide = rheology_->regularise(wall.friction->shear_strength(p), std::abs(wall_rate.xy));
+  return settings_.viscosity_mixing(c, settings_.air_viscosity, std::min(own, slide));
+}
+
 // The pressure a cell's yield stress takes: its own, or under soil.yield_pressure = "lithostatic_floor"
 // at least the weight of the soil above it (overburden: that field's array, null otherwise).
 double SoilPhase::cell_yield_pressure(double cell_pressure, const ConstFieldArray* overburden, int i, int j) const {
@@ -365,21 +378,27 @@ void SoilPhase::update_face_viscosity(FlowSolver& flow) const {
         const double half = 0.5 * sign * (axis == 0 ? grid_.dx(i) : grid_.dy(j));
         const double pressure = p[j][i] + rho[j][i] * g[axis] * half;
         if (materials_) cell_shares(m, i, j, own);
-        if (at_face) {  // the face between the ghost and the cell, the ghost's velocity encoding the wall
-          const int il = sign < 0 ? i - (axis == 0) : i, jl = sign < 0 ? j - (axis == 1) : j;
+        const auto& bc = obstacle ? obstacle_wall : boundary(flow_settings_.boundaries, side_of(axis, sign));
+        // The face between the ghost and the cell, the ghost's velocity encoding the wall.
+        const int il = sign < 0 ? i - (axis == 0) : i, jl = sign < 0 ? j - (axis == 1) : j;
+        auto wall_rate = [&] {
+          return quadratic_wall && bc.kind != BoundaryKind::atmosphere
+                     ? quadratic_wall_strain_rate(grid_, u.data(), v.data(), axis, i, j, sign, bc.wall_velocity,
+                                                  bc.kind == BoundaryKind::slip)
+                     : face_strain_rate(grid_, u.data(), v.data(), axis, il, jl);
+        };
+        if (at_face) {
           // The face's own soil fraction: how much of it the cell's soil covers. A film on the floor
           // covers all of the floor under it, so the floor rubs on soil, not on the air mixture.
           const double cf = face_fraction ? interface::wetted_side_fraction(c.data(), grid_.dx_data(), grid_.dy_data(),
                                                                             i, j, axis, sign, grid_.radius_centre_data())
                                           : c[j][i];
-          const auto& bc = obstacle ? obstacle_wall : boundary(flow_settings_.boundaries, side_of(axis, sign));
-          const auto rate = quadratic_wall && bc.kind != BoundaryKind::atmosphere
-                                ? quadratic_wall_strain_rate(grid_, u.data(), v.data(), axis, i, j, sign,
-                                                             bc.wall_velocity, bc.kind == BoundaryKind::slip)
-                                : face_strain_rate(grid_, u.data(), v.data(), axis, il, jl);
-          return mixture_viscosity(cf, pressure, rate, own_shares);
+          const auto rate = wall_rate();
+          return wall_mixture_viscosity(cf, pressure, rate, own_shares, bc, rate);
         }
-        return mixture_viscosity(c[j][i], pressure, cell_strain_rate(grid_, u.data(), v.data(), i, j), own_shares);
+        const auto cell_rate = cell_strain_rate(grid_, u.data(), v.data(), i, j);
+        if (!bc.friction) return mixture_viscosity(c[j][i], pressure, cell_rate, own_shares);
+        return wall_mixture_viscosity(c[j][i], pressure, cell_rate, own_shares, bc, wall_rate());
       },
       BlockedView(grid_, blocked_).data());
 }

@@ -117,6 +117,8 @@ class SoilPhase {
   double compute_dissipation(const FlowSolver& flow);
   double mixture_viscosity(double c, double pressure, const rheology::StrainRate& rate,
                            const double* shares = nullptr) const;
+  double wall_mixture_viscosity(double c, double pressure, const rheology::StrainRate& rate, const double* shares,
+                                const BoundaryCondition& wall, const rheology::StrainRate& wall_rate) const;
   // The shares of the materials in cell (i, j) (arrays of share_).
   using Shares = rheology::SoilMaterials::Shares;
   void cell_shares(const std::deque<ConstFieldArray>& m, int i, int j, Shares& out) const;
