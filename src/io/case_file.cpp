@@ -653,10 +653,15 @@ void require_consistent(const CaseConfig& c) {
                                     c.mesh.upper[0], c.mesh.lower[1], c.mesh.upper[1]));
     }
   }
-  for (Side s : all_sides)
-    if (boundary(c.flow.boundaries, s).friction && c.soil && !c.soil->rheology)
-      throw CaseError(fmt::format("boundary.{}.friction_angle: a wall's friction acts on a granular soil, and this "
+  for (Side s : all_sides) {
+    if (!boundary(c.flow.boundaries, s).friction || !c.soil) continue;
+    if (!c.soil->rheology)
+      throw CaseError(fmt::format("boundary.{}: a wall's friction (friction_angle, adhesion) acts on a granular soil, and this "
                                   "case's soil is Newtonian (no [soil.rheology])", side_name(s)));
+    if (c.soil->yield_pressure != YieldPressure::face)  // SoilPhase::update_face_viscosity sets the wall's faces
+      throw CaseError(fmt::format("boundary.{}: a wall's friction (friction_angle, adhesion) needs soil.yield_pressure = \"face\" "
+                                  "(the viscosity is then taken on faces, the wall's among them)", side_name(s)));
+  }
   for (size_t k = 0; k < c.obstacles.size(); ++k) {
     const auto [lo, hi] = interface::bounding_box(c.obstacles[k]);
     if (!interface::overlaps(c.obstacles[k], c.mesh.lower, c.mesh.upper))

@@ -69,6 +69,12 @@ CaseConfig reduced_strength(const CaseConfig& config, double factor) {
     }
     keys.push_back(materials_with(config, strengths));
   }
+  for (Side side : all_sides)  // and a wall's friction against the soil: the interface is as weak in the same measure
+    if (const auto& friction = boundary(config.flow.boundaries, side).friction) {
+      keys.push_back(fmt::format("boundary.{}.friction_angle={}", side_name(side),
+                                 std::atan(friction->friction_coefficient / factor) / deg));
+      keys.push_back(fmt::format("boundary.{}.adhesion={}", side_name(side), friction->adhesion / factor));
+    }
   CaseConfig reduced = parse_case(config.as_run, keys, config.source);
   reduced.overrides.insert(reduced.overrides.begin(), config.overrides.begin(), config.overrides.end());
   return reduced;

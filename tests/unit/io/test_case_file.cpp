@@ -2,8 +2,10 @@
 #include <gtest/gtest.h>
 
 #include <array>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <numbers>
 #include <string>
 #include <variant>
 
@@ -362,6 +364,51 @@ TEST(CaseFile, TwoPhaseKeysRefusedWithoutSoil) {
     EXPECT_NE(e.find("applies to cases with soil only"), std::string::npos) << key << ": " << e;
   }
   EXPECT_EQ(error_of(two_phase, {"soil.rheology.friction_angle=30", "time.interface_substeps=3"}), "");
+}
+
+// A wall of its own friction: the angle and adhesion checked, and the soil it acts on granular with its
+// viscosity taken on faces.
+TEST(CaseFile, WallFrictionIsValidatedAndNeedsAGranularSoilOnFaces) {
+  const std::vector<std::string> granular = {"soil.rheology.friction_angle=30", "soil.yield_pressure=face"};
+  auto with = [&](std::vector<std::string> keys) {
+    keys.insert(keys.begin(), granular.begin(), granular.end());
+    return keys;
+  };
+  const CaseConfig c = parse_case(two_phase, with({"boundary.south={type = \"wall\", friction_angle = 12.0}",
+                                                   "boundary.west={type = \"wall\", adhesion = 50.0}"}));
+  const auto& south = c.flow.boundaries[int(Side::south)].friction;
+  ASSERT_TRUE(south);
+  EXPECT_NEAR(south->friction_coefficient, std::tan(12.0 * std::numbers::pi / 180.0), 1e-15);
+  EXPECT_EQ(south->adhesion, 0.0);
+  EXPECT_EQ(c.flow.boundaries[int(Side::west)].friction->friction_coefficient, 0.0);
+  EXPECT_EQ(c.flow.boundaries[int(Side::west)].friction->adhesion, 50.0);
+  EXPECT_FALSE(c.flow.boundaries[int(Side::east)].friction);
+  // The wall's strength at its pressure: a + tan(delta) p, nothing at a pressure below zero.
+  EXPECT_NEAR(south->shear_strength(1000.0), 1000.0 * std::tan(12.0 * std::numbers::pi / 180.0), 1e-12);
+  EXPECT_EQ(south->shear_strength(-1000.0), 0.0);
+  EXPECT_EQ(c.flow.boundaries[int(Side::west)].friction->shear_strength(-1.0), 50.0);
+  struct Bad {
+    std::vector<std::string> keys;
+    const char* names;
+  };
+  for (const Bad& b : {Bad{with({"boundary.south={type = \"wall\", friction_angle = 90.0}"}), "boundary.south.friction_angle: 90 is outside (0, 90)"},
+                       Bad{with({"boundary.south={type = \"wall\", friction_angle = 0.0}"}), "a wall without friction is type = \"slip\""},
+                       Bad{with({"boundary.south={type = \"wall\", friction_angle = -5.0, adhesion = 10.0}"}), "boundary.south.friction_angle: -5"},
+                       Bad{with({"boundary.south={type = \"wall\", adhesion = -1.0}"}), "boundary.south.adhesion"},
+                       Bad{with({"boundary.north={type = \"atmosphere\", friction_angle = 10.0}"}), "boundary.north.friction_angle"},
+                       Bad{with({"boundary.east={type = \"slip\", friction_angle = 10.0}"}), "boundary.east.friction_angle"},
+                       Bad{{"soil.rheology.friction_angle=30", "boundary.south={type = \"wall\", friction_angle = 10.0}"},
+                           "boundary.south: a wall's friction (friction_angle, adhesion) needs soil.yield_pressure = \"face\""}}) {
+    const std::string e = error_of(two_phase, b.keys);
+    EXPECT_NE(e.find(b.names), std::string::npos) << b.keys.back() << ": " << e;
+  }
+  // Soil only, and granular soil.
+  const std::string fluid = error_of(minimal, {"boundary.south={type = \"wall\", friction_angle = 10.0}"});
+  EXPECT_NE(fluid.find("boundary.south.friction_angle: applies to cases with soil only"), std::string::npos) << fluid;
+  std::string newtonian(two_phase);
+  newtonian.erase(newtonian.find("[soil.rheology]"), std::string("[soil.rheology]\nmodel = \"drucker_prager_bingham\"\nfriction_angle = 95.0\n").size());
+  const std::string e = error_of(newtonian, {"soil.viscosity=1.0", "boundary.south={type = \"wall\", friction_angle = 10.0}"});
+  EXPECT_NE(e.find("boundary.south: a wall's friction (friction_angle, adhesion) acts on a granular soil"), std::string::npos) << e;
 }
 
 TEST(CaseFile, AirBandNeedsTheCoupledSolveAndSoil) {

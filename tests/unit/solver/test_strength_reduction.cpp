@@ -86,6 +86,21 @@ TEST(StrengthReduction, DividesEverySoilMaterialsStrength) {
   EXPECT_EQ(r.soil->materials[1].rheology.model, rheology::Model::matsuoka_nakai);
 }
 
+// A wall of its own friction is an interface of the soil's: its tan(delta) and adhesion are divided too.
+TEST(StrengthReduction, DividesAWallsFrictionAndAdhesion) {
+  const CaseConfig c = parse_case(slope, {"soil.yield_pressure=face", "boundary.south={type = \"wall\", friction_angle = 25.0, adhesion = 300.0}",
+                                          "boundary.west={type = \"wall\", adhesion = 800.0}"});
+  const CaseConfig r = reduced_strength(c, 1.6);
+  const auto& south = r.flow.boundaries[static_cast<int>(Side::south)].friction;
+  const auto& west = r.flow.boundaries[static_cast<int>(Side::west)].friction;
+  ASSERT_TRUE(south && west);
+  EXPECT_NEAR(south->friction_coefficient, tan_deg(25.0) / 1.6, 1e-14);
+  EXPECT_NEAR(south->adhesion, 300.0 / 1.6, 1e-12);
+  EXPECT_EQ(west->friction_coefficient, 0.0);
+  EXPECT_NEAR(west->adhesion, 500.0, 1e-12);
+  EXPECT_FALSE(r.flow.boundaries[static_cast<int>(Side::east)].friction);
+}
+
 TEST(StrengthReduction, RefusesWhatHasNoStrengthToReduce) {
   auto refusal = [](const CaseConfig& c, double factor) -> std::string {
     try {
