@@ -2,6 +2,8 @@
 
 #include <fmt/format.h>
 
+#include <cmath>
+
 namespace granflow {
 
 std::vector<std::string> case_advice(const CaseConfig& config) {
@@ -46,6 +48,13 @@ std::vector<std::string> case_advice(const CaseConfig& config) {
   for (size_t k = 0; k < config.soil->materials.size(); ++k)
     if (config.soil->materials[k].rheology.friction_angle_deg != r.friction_angle_deg)  // said above, if at all
       radians(config.soil->materials[k].rheology, fmt::format("soil.materials[{}].friction_angle", k));
+  for (Side side : all_sides)
+    if (const auto& friction = boundary(config.flow.boundaries, side).friction) {
+      const double delta = std::atan(friction->friction_coefficient) * 57.29577951308232;
+      if (delta > 0.0 && delta < 1.0)
+        advice.push_back(fmt::format("boundary.{}.friction_angle = {:.6g} is in degrees: {:.6g} rad would be {:.3g} deg",
+                                     side_name(side), delta, delta, delta * 57.29577951308232));
+    }
   // The exponential regularisation ([VoF] Eq. 12) puts the soil at rest at up to m (3 alpha_phi p + k_c),
   // some 1e8 Pa s. Only the coupled solve with the face's own soil fraction holds such a pile next to
   // air (docs/method.md, "Known limitations"; docs/validation.md).

@@ -85,6 +85,9 @@ std::string Simulation::boundaries() const {
     switch (bc.kind) {
       case BoundaryKind::wall:
         text += fmt::format("wall [{:.9g}, {:.9g}] m/s", bc.wall_velocity[0], bc.wall_velocity[1]);
+        if (bc.friction)  // a wall without friction reads as before its friction could be given
+          text += fmt::format(", friction {:.9g}, adhesion {:.9g} Pa", bc.friction->friction_coefficient,
+                              bc.friction->adhesion);
         break;
       case BoundaryKind::slip: text += "slip"; break;
       case BoundaryKind::atmosphere:

@@ -51,6 +51,8 @@ TEST(CaseAdvice, LikelySlipsOfUnitsAndSignsAreNamed) {
       {"physics.gravity=[0.0, 9.81]", "points up (+y)"},
       {"soil.density=2.65", "soil.density = 2.65 kg/m^3 is lighter than any soil"},
       {"soil.rheology.friction_angle=0.35", "friction_angle = 0.35 is in degrees: 0.35 rad would be 20.1 deg"},
+      {"boundary.south={type = \"wall\", friction_angle = 0.2}",
+       "boundary.south.friction_angle = 0.2 is in degrees: 0.2 rad would be 11.5 deg"},
   };
   for (const auto& slip : slips) {
     const auto advice = case_advice(load_case(bui, {slip.set, "numerics.air_band=0"}));
@@ -58,6 +60,7 @@ TEST(CaseAdvice, LikelySlipsOfUnitsAndSignsAreNamed) {
     EXPECT_NE(advice[0].find(slip.says), std::string::npos) << advice[0];
   }
   EXPECT_TRUE(case_advice(load_case(bui, {"physics.gravity=[4.1, -8.9]", "numerics.air_band=0"})).empty());  // a tilted bed
+  EXPECT_TRUE(case_advice(load_case(bui, {"boundary.south={type = \"wall\", friction_angle = 12.0}"})).empty());
   // A Newtonian pair of fluids may be driven by its walls, without gravity, and be light.
   const auto water = std::string(GRANFLOW_SOURCE_DIR) + "/cases/water_dam_break.toml";
   EXPECT_TRUE(case_advice(load_case(water, {"physics.gravity=[0.0, 0.0]", "soil.density=1.0"})).empty());
