@@ -82,6 +82,21 @@ LinearSolverSettings read_linear_solver(TableReader r, LinearSolverSettings d) {
   return d;
 }
 
+// A wall's own friction against the soil (a side of type "wall", an obstacle), if it gives one; its keys
+// go to two_phase_keys, which collects the keys given that only a case with soil uses.
+std::optional<rheology::WallFriction> read_wall_friction(TableReader& r, std::vector<std::string>& two_phase_keys) {
+  if (!r.has("friction_angle") && !r.has("adhesion")) return std::nullopt;
+  for (const char* key : {"friction_angle", "adhesion"})
+    if (r.has(key)) two_phase_keys.push_back(r.key_path(key));
+  const double adhesion = r.number("adhesion", 0.0);
+  r.require_range("adhesion", adhesion, 0.0, std::numeric_limits<double>::infinity(), "zero or positive");
+  const double delta = r.number("friction_angle", 0.0);
+  if (!(delta >= 0.0 && delta < 90.0) || (delta == 0.0 && adhesion == 0.0))
+    throw CaseError(fmt::format("{}: {} is outside (0, 90) degrees ([0, 90) with an adhesion above zero); a wall "
+                                "without friction is type = \"slip\"", r.key_path("friction_angle"), delta));
+  return rheology::WallFriction::from_angle(delta, adhesion);
+}
+
 // two_phase_keys: collects the keys given that only a case with soil uses.
 BoundaryCondition read_boundary(TableReader r, bool& is_axis, std::vector<std::string>& two_phase_keys) {
   BoundaryCondition bc;
@@ -92,17 +107,7 @@ BoundaryCondition read_boundary(TableReader r, bool& is_axis, std::vector<std::s
   } else if (type == "wall") {
     bc.kind = BoundaryKind::wall;
     bc.wall_velocity = r.pair("velocity", {0.0, 0.0});
-    if (r.has("friction_angle") || r.has("adhesion")) {  // a wall of its own friction against the soil
-      for (const char* key : {"friction_angle", "adhesion"})
-        if (r.has(key)) two_phase_keys.push_back(r.key_path(key));
-      const double adhesion = r.number("adhesion", 0.0);
-      r.require_range("adhesion", adhesion, 0.0, std::numeric_limits<double>::infinity(), "zero or positive");
-      const double delta = r.number("friction_angle", 0.0);
-      if (!(delta >= 0.0 && delta < 90.0) || (delta == 0.0 && adhesion == 0.0))
-        throw CaseError(fmt::format("{}: {} is outside (0, 90) degrees ([0, 90) with an adhesion above zero); "
-                                    "a wall without friction is type = \"slip\"", r.key_path("friction_angle"), delta));
-      bc.friction = rheology::WallFriction::from_angle(delta, adhesion);
-    }
+    bc.friction = read_wall_friction(r, two_phase_keys);
   } else if (type == "slip" || type == "symmetry") {
     bc.kind = BoundaryKind::slip;  // a symmetry plane is a slip wall: no normal velocity, no shear
   } else {
@@ -653,15 +658,19 @@ void require_consistent(const CaseConfig& c) {
                                     c.mesh.upper[0], c.mesh.lower[1], c.mesh.upper[1]));
     }
   }
-  for (Side s : all_sides) {
-    if (!boundary(c.flow.boundaries, s).friction || !c.soil) continue;
+  auto frictional_wall = [&](const std::string& wall) {
+    if (!c.soil) return;
     if (!c.soil->rheology)
-      throw CaseError(fmt::format("boundary.{}: a wall's friction (friction_angle, adhesion) acts on a granular soil, and this "
-                                  "case's soil is Newtonian (no [soil.rheology])", side_name(s)));
+      throw CaseError(fmt::format("{}: a wall's friction (friction_angle, adhesion) acts on a granular soil, and this "
+                                  "case's soil is Newtonian (no [soil.rheology])", wall));
     if (c.soil->yield_pressure != YieldPressure::face)  // SoilPhase::update_face_viscosity sets the wall's faces
-      throw CaseError(fmt::format("boundary.{}: a wall's friction (friction_angle, adhesion) needs soil.yield_pressure = \"face\" "
-                                  "(the viscosity is then taken on faces, the wall's among them)", side_name(s)));
-  }
+      throw CaseError(fmt::format("{}: a wall's friction (friction_angle, adhesion) needs soil.yield_pressure = \"face\" "
+                                  "(the viscosity is then taken on faces, the wall's among them)", wall));
+  };
+  for (Side s : all_sides)
+    if (boundary(c.flow.boundaries, s).friction) frictional_wall(fmt::format("boundary.{}", side_name(s)));
+  for (size_t k = 0; k < c.obstacle_friction.size(); ++k)
+    if (c.obstacle_friction[k]) frictional_wall(fmt::format("obstacle[{}]", k));
   for (size_t k = 0; k < c.obstacles.size(); ++k) {
     const auto [lo, hi] = interface::bounding_box(c.obstacles[k]);
     if (!interface::overlaps(c.obstacles[k], c.mesh.lower, c.mesh.upper))
@@ -721,7 +730,10 @@ CaseConfig read_case(const toml::table& root, const std::filesystem::path& sourc
   c.flow.numerics = read_numerics(top, c.keys_without_effect);
   read_solvers(top, c.flow);
   c.output = read_output(top, c.mesh, c.time.end);
-  for (TableReader obstacle : top.tables("obstacle")) c.obstacles.push_back(read_shape(obstacle));
+  for (TableReader obstacle : top.tables("obstacle")) {
+    c.obstacle_friction.push_back(read_wall_friction(obstacle, two_phase_keys));
+    c.obstacles.push_back(read_shape(obstacle));
+  }
   top.finish();
   for (auto& bc : c.flow.boundaries)
     if (bc.kind == BoundaryKind::atmosphere)

@@ -62,6 +62,9 @@ struct CaseConfig {
   // Obstacles and terrain ([[obstacle]]): a cell whose centre lies in any of these shapes is blocked,
   // and its faces to open cells are no-slip walls (mesh/obstacles.hpp).
   std::vector<interface::Shape> obstacles;
+  // Each obstacle's own friction against the soil (friction_angle, adhesion), or none: its faces then
+  // hold the soil as its own strength does, as the domain's walls (solver/boundary.hpp).
+  std::vector<std::optional<rheology::WallFriction>> obstacle_friction;
   // Keys the case gives that its other choices make of no effect, each "KEY: why" (a warning, not an
   // error: a key kept for switching numerics with --set is legitimate; case_advice prints them).
   std::vector<std::string> keys_without_effect;

@@ -30,6 +30,26 @@ long mark_blocked_cells(const Grid& g, const interface::ShapeUnion& shapes, Fiel
   return total;
 }
 
+void mark_obstacle_index(const Grid& g, const interface::ShapeUnion& shapes, Field& index) {
+  {
+    FieldArray m(g.field_dm(), index.global());
+    const auto& b = g.owned();
+    for (int j = b.ys; j < b.ye(); ++j)
+      for (int i = b.xs; i < b.xe(); ++i) {
+        m[j][i] = 0.0;
+        for (size_t k = 0; k < shapes.size(); ++k)
+          if (shapes.shape_contains(k, g.xc(i), g.yc(j))) m[j][i] = double(k + 1);
+      }
+  }
+  index.scatter_to_local();
+  FieldArray m = local_array(g, index);  // ghosts outside the domain belong to no obstacle
+  const auto& b = g.owned();
+  const int gw = Grid::ghost_width;
+  for (int j = b.ys - gw; j < b.ye() + gw; ++j)
+    for (int i = b.xs - gw; i < b.xe() + gw; ++i)
+      if (i < 0 || i >= g.nx() || j < 0 || j >= g.ny()) m[j][i] = 0.0;
+}
+
 void zero_blocked_cells(const Grid& g, const Field* mask, Field& f) {
   if (!mask) return;
   const BlockedView m(g, mask);

@@ -189,6 +189,11 @@ Simulation::Simulation(MPI_Comm comm, const CaseConfig& config, std::filesystem:
   if (config.soil) {
     soil_ = std::make_unique<SoilPhase>(*grid_, flow_->settings(), *config.soil);
     soil_->set_blocked(blocked_.get());
+    if (std::any_of(config.obstacle_friction.begin(), config.obstacle_friction.end(), [](const auto& f) { return f.has_value(); })) {
+      obstacle_index_ = std::make_unique<Field>(*grid_);
+      mark_obstacle_index(*grid_, interface::ShapeUnion(config.obstacles), *obstacle_index_);
+      soil_->set_obstacle_friction(obstacle_index_.get(), config.obstacle_friction);
+    }
     soil_->initialise();
     soil_->refresh(*flow_);
     if (config.flow.numerics.conservative_momentum) flow_->enable_mass_transport();

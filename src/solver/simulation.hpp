@@ -92,6 +92,7 @@ class Simulation {
   std::filesystem::path out_;
   std::unique_ptr<Grid> grid_;
   std::unique_ptr<Field> blocked_;  // the obstacles' cells (mesh/obstacles.hpp); null without obstacles
+  std::unique_ptr<Field> obstacle_index_;  // each blocked cell's obstacle, with obstacles of their own friction
   int wall_column_ = 0;             // the first column with an open cell: the history's wall height (rank 0)
   std::string obstacles_;           // the blocked cells as domain() records them ("" without obstacles)
   std::vector<double> blocked_on_root_;  // the mask gathered to rank 0 (empty elsewhere, and without obstacles)

@@ -96,6 +96,9 @@ std::string Simulation::boundaries() const {
         break;
     }
   }
+  for (size_t k = 0; k < config_.obstacle_friction.size(); ++k)  // none without an obstacle's own friction
+    if (const auto& f = config_.obstacle_friction[k])
+      text += fmt::format("; obstacle[{}] friction {:.9g}, adhesion {:.9g} Pa", k, f->friction_coefficient, f->adhesion);
   return text;
 }
 

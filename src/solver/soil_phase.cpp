@@ -272,6 +272,13 @@ double SoilPhase::mixture_viscosity(double c, double pressure, const rheology::S
   return s.viscosity_mixing(c, s.air_viscosity, mu_soil);
 }
 
+void SoilPhase::set_obstacle_friction(const Field* obstacle_index,
+                                      const std::vector<std::optional<rheology::WallFriction>>& friction) {
+  obstacle_index_ = obstacle_index;
+  obstacle_walls_.assign(friction.size(), obstacle_wall);
+  for (size_t k = 0; k < friction.size(); ++k) obstacle_walls_[k].friction = friction[k];
+}
+
 // ... on the face of a wall: where the wall has a friction of its own, the soil there is no stronger
 // than the wall lets it be, the wall's strength at the wall's pressure regularised at the soil's
 // shear against the wall, wall_rate.xy (models/rheology/wall_friction.hpp).
@@ -331,6 +338,8 @@ void SoilPhase::update_face_viscosity(FlowSolver& flow) const {
   ConstFieldArray p = local_read(grid_, flow.pressure()), rho = local_read(grid_, flow.density());
   // With soil materials: the shares of a cell (own, other) and of a face (both), null without.
   const auto m = share_arrays(true);
+  std::optional<ConstFieldArray> obstacle_of;  // which obstacle a blocked cell belongs to
+  if (obstacle_index_) obstacle_of.emplace(grid_.field_dm(), obstacle_index_->local());
   Shares own{}, other{};
   const double* own_shares = materials_ ? own.data() : nullptr;
   const double* other_shares = materials_ ? other.data() : nullptr;
@@ -378,7 +387,10 @@ void SoilPhase::update_face_viscosity(FlowSolver& flow) const {
         const double half = 0.5 * sign * (axis == 0 ? grid_.dx(i) : grid_.dy(j));
         const double pressure = p[j][i] + rho[j][i] * g[axis] * half;
         if (materials_) cell_shares(m, i, j, own);
-        const auto& bc = obstacle ? obstacle_wall : boundary(flow_settings_.boundaries, side_of(axis, sign));
+        const int obstacle_index = obstacle && obstacle_of ? int((*obstacle_of)[jn][in]) : 0;
+        const auto& bc = !obstacle            ? boundary(flow_settings_.boundaries, side_of(axis, sign))
+                         : obstacle_index > 0 ? obstacle_walls_[size_t(obstacle_index - 1)]
+                                              : obstacle_wall;
         // The face between the ghost and the cell, the ghost's velocity encoding the wall.
         const int il = sign < 0 ? i - (axis == 0) : i, jl = sign < 0 ? j - (axis == 1) : j;
         auto wall_rate = [&] {

@@ -37,6 +37,10 @@ class SoilPhase {
   // Obstacles and terrain (mesh/obstacles.hpp): the mask of blocked cells, kept by the caller; set
   // before initialise(). A blocked cell holds no soil; its faces to open cells are walls.
   void set_blocked(const Field* mask) { blocked_ = mask; }
+  // Obstacles of their own friction against the soil: each blocked cell's obstacle, one plus its index
+  // (mark_obstacle_index, kept by the caller), and each obstacle's friction (none: its faces hold the
+  // soil as its own strength does).
+  void set_obstacle_friction(const Field* obstacle_index, const std::vector<std::optional<rheology::WallFriction>>& friction);
   // Soil fraction from the initial shapes (none in blocked cells).
   void initialise();
   // Properties for the flow solver: density and viscosity of the mixture ([VoF] Eq. 1 or App. A),
@@ -178,6 +182,8 @@ class SoilPhase {
   void compute_overburden(const std::array<double, 2>& gravity);
   int sweep_parity_ = 0;
   const Field* blocked_ = nullptr;
+  const Field* obstacle_index_ = nullptr;       // with obstacles of their own friction
+  std::vector<BoundaryCondition> obstacle_walls_;  // each obstacle's faces as a wall, by index
 };
 
 }  // namespace granflow

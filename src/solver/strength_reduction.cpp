@@ -7,6 +7,7 @@
 #include <chrono>
 #include <cmath>
 #include <numbers>
+#include <sstream>
 #include <string>
 
 #include <toml++/toml.h>
@@ -36,6 +37,23 @@ std::string materials_with(const CaseConfig& config, const std::vector<std::arra
     out += fmt::format("{}{{{}}}", out.empty() ? "" : ", ", entry);
   }
   return "soil.materials=[" + out + "]";
+}
+
+// The case's text with each obstacle's own friction divided by the factor: --set cannot address one
+// element of the obstacle array, so the array is rewritten in the text, every other key kept.
+std::string obstacles_reduced(const CaseConfig& config, double factor) {
+  toml::table root = toml::parse(config.as_run);
+  toml::array* obstacles = root["obstacle"].as_array();
+  const double deg = std::numbers::pi / 180.0;
+  for (size_t k = 0; k < config.obstacle_friction.size(); ++k)
+    if (const auto& friction = config.obstacle_friction[k]) {
+      toml::table& obstacle = *obstacles->get(k)->as_table();
+      obstacle.insert_or_assign("friction_angle", std::atan(friction->friction_coefficient / factor) / deg);
+      obstacle.insert_or_assign("adhesion", friction->adhesion / factor);
+    }
+  std::ostringstream text;
+  text << root;
+  return text.str();
 }
 
 }  // namespace
@@ -75,7 +93,9 @@ CaseConfig reduced_strength(const CaseConfig& config, double factor) {
                                  std::atan(friction->friction_coefficient / factor) / deg));
       keys.push_back(fmt::format("boundary.{}.adhesion={}", side_name(side), friction->adhesion / factor));
     }
-  CaseConfig reduced = parse_case(config.as_run, keys, config.source);
+  const bool obstacle_friction = std::any_of(config.obstacle_friction.begin(), config.obstacle_friction.end(),
+                                             [](const auto& f) { return f.has_value(); });
+  CaseConfig reduced = parse_case(obstacle_friction ? obstacles_reduced(config, factor) : config.as_run, keys, config.source);
   reduced.overrides.insert(reduced.overrides.begin(), config.overrides.begin(), config.overrides.end());
   return reduced;
 }

@@ -212,5 +212,37 @@ TEST(SlidingLayer, OnABedOfItsOwnFrictionSlidesAsAPlugAtThatFriction) {
   }
 }
 
+// The same bed as an obstacle of its own friction (`[[obstacle]] friction_angle`, terrain that is
+// smoother than the soil): the rows below the layer blocked, the layer on them. It slides as on the
+// domain's wall of that friction, and the obstacle's shear over its normal force is tan(delta). A
+// second obstacle, without friction and away from the soil, comes first in the list, so the bed's
+// friction is found by its own index. Measured: 0.255355 m/s against 0.255356 on the wall at t = 0.1 s;
+// the obstacle's shear / normal force 0.1761. With the first obstacle's (none), 0.12 m/s.
+TEST(SlidingLayer, OnAnObstacleOfItsOwnFrictionSlidesAsOnAWallOfIt) {
+  const double g = 9.81, theta = 25.0 * std::numbers::pi / 180.0, delta = 10.0 * std::numbers::pi / 180.0;
+  const std::vector<std::string> overrides = {
+      "mesh.cells=[100, 12]", "mesh.upper=[0.4, 0.048]", "time.end=0.1",
+      "obstacle=[{shape = \"box\", lower = [-1.0, 0.04], upper = [0.02, 1.0]}, "
+      "{shape = \"box\", lower = [-1.0, -1.0], upper = [1.0, 0.008], friction_angle = 10.0}]",
+      "initial.soil=[{shape = \"box\", lower = [0.0, 0.008], upper = [0.4, 0.018]}]",
+      "boundary.west={type = \"atmosphere\"}", "boundary.east={type = \"atmosphere\"}",
+      fmt::format("physics.gravity=[{:.17g}, {:.17g}]", g * std::sin(theta), -g * std::cos(theta)),
+      "numerics.air_band=0", "numerics.outer_iterations=10", "numerics.outer_tolerance=1e-6",
+      "output.progress_seconds=0"};
+  Simulation sim(PETSC_COMM_WORLD, load_case(test::repo_path("cases/bui2008_experiment.toml"), overrides), "");
+  sim.run();
+  const auto c = gather_to_root(sim.grid(), sim.soil()->soil_fraction());
+  const auto u = gather_to_root(sim.grid(), sim.flow().velocity(0));
+  const auto force = sim.flow().obstacle_force();
+  const InclineResult wall = slide_on_incline(theta, 0.1, "{type = \"wall\", friction_angle = 10.0}", 0.004);
+  if (!test::is_root()) return;
+  const double on_obstacle = mean_soil_velocity(sim.grid(), c, u, 0.16, 0.24);
+  std::printf("layer at 25 deg on an obstacle of 10 deg: %.6f m/s at t = %.3f s, on a wall of 10 deg %.6f m/s; the "
+              "obstacle's shear / normal force %.4f (tan delta %.4f)\n",
+              on_obstacle, sim.time(), wall.mean_velocity, -force[0] / force[1], std::tan(delta));
+  EXPECT_NEAR(on_obstacle / wall.mean_velocity, 1.0, 1e-3);
+  EXPECT_NEAR(-force[0] / force[1] / std::tan(delta), 1.0, 0.01);
+}
+
 }  // namespace
 }  // namespace granflow

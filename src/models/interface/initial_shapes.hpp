@@ -41,6 +41,7 @@ class ShapeUnion {
   bool contains(double x, double y) const;
   // Whether shape k alone contains the point.
   bool shape_contains(std::size_t k, double x, double y) const;
+  std::size_t size() const { return shapes_.size(); }
   // Fraction of the cell [x0,x1] x [y0,y1] inside the union, by samples x samples midpoint sampling
   // (error O(1/samples) only in cells the boundary crosses). Axisymmetric (x = r >= 0): the fraction
   // of the cell's volume, each sample weighted by its radius, so that a cut cell near the axis is not

@@ -1,5 +1,6 @@
 // Case files: every key is checked; bad input gets one message naming the key.
 #include <gtest/gtest.h>
+#include <fmt/format.h>
 
 #include <array>
 #include <cmath>
@@ -402,6 +403,22 @@ TEST(CaseFile, WallFrictionIsValidatedAndNeedsAGranularSoilOnFaces) {
     const std::string e = error_of(two_phase, b.keys);
     EXPECT_NE(e.find(b.names), std::string::npos) << b.keys.back() << ": " << e;
   }
+  // An obstacle of its own friction, checked alike; the others hold the soil by its own strength.
+  const char* box = "{shape = \"box\", lower = [0.6, 0.0], upper = [1.0, 0.3]}";
+  auto obstacles = [&](const std::string& keys) {
+    return fmt::format("obstacle=[{}, {{shape = \"box\", lower = [0.8, 0.5], upper = [1.0, 1.0]{}}}]", box, keys);
+  };
+  const CaseConfig o = parse_case(two_phase, with({"numerics.pressure_coupling=coupled", obstacles(", friction_angle = 15.0")}));
+  ASSERT_EQ(o.obstacle_friction.size(), 2u);
+  EXPECT_FALSE(o.obstacle_friction[0]);
+  ASSERT_TRUE(o.obstacle_friction[1]);
+  EXPECT_NEAR(o.obstacle_friction[1]->friction_coefficient, std::tan(15.0 * std::numbers::pi / 180.0), 1e-15);
+  const std::string steep = error_of(two_phase, with({"numerics.pressure_coupling=coupled", obstacles(", friction_angle = 95.0")}));
+  EXPECT_NE(steep.find("obstacle[1].friction_angle: 95 is outside (0, 90)"), std::string::npos) << steep;
+  const std::string cells = error_of(two_phase, {"soil.rheology.friction_angle=30", "numerics.pressure_coupling=coupled",
+                                                 obstacles(", adhesion = 10.0")});
+  EXPECT_NE(cells.find("obstacle[1]: a wall's friction (friction_angle, adhesion) needs soil.yield_pressure = \"face\""),
+            std::string::npos) << cells;
   // Soil only, and granular soil.
   const std::string fluid = error_of(minimal, {"boundary.south={type = \"wall\", friction_angle = 10.0}"});
   EXPECT_NE(fluid.find("boundary.south.friction_angle: applies to cases with soil only"), std::string::npos) << fluid;

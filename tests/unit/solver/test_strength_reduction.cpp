@@ -7,6 +7,7 @@
 #include <cmath>
 #include <numbers>
 #include <string>
+#include <variant>
 #include <vector>
 
 #include "io/case_error.hpp"
@@ -99,6 +100,27 @@ TEST(StrengthReduction, DividesAWallsFrictionAndAdhesion) {
   EXPECT_EQ(west->friction_coefficient, 0.0);
   EXPECT_NEAR(west->adhesion, 500.0, 1e-12);
   EXPECT_FALSE(r.flow.boundaries[static_cast<int>(Side::east)].friction);
+}
+
+// ... and an obstacle's, each its own, its other keys kept (the array is rewritten in the case's text).
+TEST(StrengthReduction, DividesEachObstaclesFriction) {
+  const CaseConfig c = parse_case(
+      slope, {"soil.yield_pressure=face", "numerics.pressure_coupling=coupled",
+              "obstacle=[{shape = \"box\", lower = [1.8, 0.0], upper = [2.0, 0.3]}, "
+              "{shape = \"polygon\", points = [[1.5, 0.0], [2.0, 0.0], [2.0, 0.1]], friction_angle = 20.0, adhesion = 40.0}]"});
+  const CaseConfig r = reduced_strength(c, 2.0);
+  ASSERT_EQ(r.obstacle_friction.size(), 2u);
+  EXPECT_FALSE(r.obstacle_friction[0]);
+  ASSERT_TRUE(r.obstacle_friction[1]);
+  EXPECT_NEAR(r.obstacle_friction[1]->friction_coefficient, tan_deg(20.0) / 2.0, 1e-14);
+  EXPECT_NEAR(r.obstacle_friction[1]->adhesion, 20.0, 1e-12);
+  ASSERT_EQ(r.obstacles.size(), 2u);
+  EXPECT_TRUE(std::holds_alternative<interface::Box>(r.obstacles[0]));
+  ASSERT_TRUE(std::holds_alternative<interface::Polygon>(r.obstacles[1]));
+  EXPECT_EQ(std::get<interface::Polygon>(r.obstacles[1]).vertices.size(), 3u);
+  EXPECT_NEAR(r.soil->rheology->cohesion, 2500.0, 1e-12);
+  // The trial's case as run holds the reduced friction, which a restart from it would read.
+  EXPECT_NEAR(parse_case(r.as_run).obstacle_friction[1]->friction_coefficient, tan_deg(20.0) / 2.0, 1e-14);
 }
 
 TEST(StrengthReduction, RefusesWhatHasNoStrengthToReduce) {
