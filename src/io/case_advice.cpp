@@ -48,13 +48,17 @@ std::vector<std::string> case_advice(const CaseConfig& config) {
   for (size_t k = 0; k < config.soil->materials.size(); ++k)
     if (config.soil->materials[k].rheology.friction_angle_deg != r.friction_angle_deg)  // said above, if at all
       radians(config.soil->materials[k].rheology, fmt::format("soil.materials[{}].friction_angle", k));
+  auto wall_radians = [&](const std::optional<rheology::WallFriction>& friction, const std::string& wall) {
+    if (!friction) return;
+    const double delta = std::atan(friction->friction_coefficient) * 57.29577951308232;
+    if (delta > 0.0 && delta < 1.0)
+      advice.push_back(fmt::format("{}.friction_angle = {:.6g} is in degrees: {:.6g} rad would be {:.3g} deg", wall, delta,
+                                   delta, delta * 57.29577951308232));
+  };
   for (Side side : all_sides)
-    if (const auto& friction = boundary(config.flow.boundaries, side).friction) {
-      const double delta = std::atan(friction->friction_coefficient) * 57.29577951308232;
-      if (delta > 0.0 && delta < 1.0)
-        advice.push_back(fmt::format("boundary.{}.friction_angle = {:.6g} is in degrees: {:.6g} rad would be {:.3g} deg",
-                                     side_name(side), delta, delta, delta * 57.29577951308232));
-    }
+    wall_radians(boundary(config.flow.boundaries, side).friction, fmt::format("boundary.{}", side_name(side)));
+  for (size_t k = 0; k < config.obstacle_friction.size(); ++k)
+    wall_radians(config.obstacle_friction[k], fmt::format("obstacle[{}]", k));
   // The exponential regularisation ([VoF] Eq. 12) puts the soil at rest at up to m (3 alpha_phi p + k_c),
   // some 1e8 Pa s. Only the coupled solve with the face's own soil fraction holds such a pile next to
   // air (docs/method.md, "Known limitations"; docs/validation.md).

@@ -90,6 +90,9 @@ std::optional<rheology::WallFriction> read_wall_friction(TableReader& r, std::ve
     if (r.has(key)) two_phase_keys.push_back(r.key_path(key));
   const double adhesion = r.number("adhesion", 0.0);
   r.require_range("adhesion", adhesion, 0.0, std::numeric_limits<double>::infinity(), "zero or positive");
+  if (!r.has("friction_angle") && adhesion == 0.0)
+    throw CaseError(fmt::format("{}: 0 without a friction_angle leaves the wall no strength; a wall without friction "
+                                "is type = \"slip\"", r.key_path("adhesion")));
   const double delta = r.number("friction_angle", 0.0);
   if (!(delta >= 0.0 && delta < 90.0) || (delta == 0.0 && adhesion == 0.0))
     throw CaseError(fmt::format("{}: {} is outside (0, 90) degrees ([0, 90) with an adhesion above zero); a wall "

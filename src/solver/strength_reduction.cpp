@@ -97,6 +97,13 @@ CaseConfig reduced_strength(const CaseConfig& config, double factor) {
                                              [](const auto& f) { return f.has_value(); });
   CaseConfig reduced = parse_case(obstacle_friction ? obstacles_reduced(config, factor) : config.as_run, keys, config.source);
   reduced.overrides.insert(reduced.overrides.begin(), config.overrides.begin(), config.overrides.end());
+  // The record of the trial's case (granflow_case.toml) lists its overrides; the obstacles' friction,
+  // rewritten in the text, is listed as what it is, an element no --set can address.
+  for (size_t k = 0; k < config.obstacle_friction.size(); ++k)
+    if (const auto& friction = config.obstacle_friction[k])
+      reduced.overrides.push_back(fmt::format("obstacle[{}].friction_angle={}, adhesion={} (in the text below)", k,
+                                              std::atan(friction->friction_coefficient / factor) / deg,
+                                              friction->adhesion / factor));
   return reduced;
 }
 

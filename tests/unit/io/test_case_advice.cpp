@@ -61,6 +61,10 @@ TEST(CaseAdvice, LikelySlipsOfUnitsAndSignsAreNamed) {
   }
   EXPECT_TRUE(case_advice(load_case(bui, {"physics.gravity=[4.1, -8.9]", "numerics.air_band=0"})).empty());  // a tilted bed
   EXPECT_TRUE(case_advice(load_case(bui, {"boundary.south={type = \"wall\", friction_angle = 12.0}"})).empty());
+  const auto obstacle = case_advice(load_case(bui, {"obstacle=[{shape = \"box\", lower = [0.5, 0.0], upper = [0.6, 0.02], "
+                                                    "friction_angle = 0.3}]"}));
+  ASSERT_EQ(obstacle.size(), 1u);
+  EXPECT_NE(obstacle[0].find("obstacle[0].friction_angle = 0.3 is in degrees"), std::string::npos) << obstacle[0];
   // A Newtonian pair of fluids may be driven by its walls, without gravity, and be light.
   const auto water = std::string(GRANFLOW_SOURCE_DIR) + "/cases/water_dam_break.toml";
   EXPECT_TRUE(case_advice(load_case(water, {"physics.gravity=[0.0, 0.0]", "soil.density=1.0"})).empty());

@@ -396,6 +396,8 @@ TEST(CaseFile, WallFrictionIsValidatedAndNeedsAGranularSoilOnFaces) {
                        Bad{with({"boundary.south={type = \"wall\", friction_angle = 0.0}"}), "a wall without friction is type = \"slip\""},
                        Bad{with({"boundary.south={type = \"wall\", friction_angle = -5.0, adhesion = 10.0}"}), "boundary.south.friction_angle: -5"},
                        Bad{with({"boundary.south={type = \"wall\", adhesion = -1.0}"}), "boundary.south.adhesion"},
+                       Bad{with({"boundary.south={type = \"wall\", adhesion = 0.0}"}),
+                           "boundary.south.adhesion: 0 without a friction_angle leaves the wall no strength"},
                        Bad{with({"boundary.north={type = \"atmosphere\", friction_angle = 10.0}"}), "boundary.north.friction_angle"},
                        Bad{with({"boundary.east={type = \"slip\", friction_angle = 10.0}"}), "boundary.east.friction_angle"},
                        Bad{{"soil.rheology.friction_angle=30", "boundary.south={type = \"wall\", friction_angle = 10.0}"},

@@ -49,5 +49,23 @@ TEST(ObstacleMirrors, EachBlockedCellMirrorsAcrossItsNearestWall) {
   EXPECT_EQ(a[0][5], -cell(8, 0));
 }
 
+// Which obstacle a cell belongs to (mark_obstacle_index): one plus the index of the last shape that
+// holds its centre, 0 in open cells and in the ghosts outside the domain.
+TEST(ObstacleIndex, EachCellTakesTheLastObstacleHoldingItsCentre) {
+  GridSpec spec;
+  spec.cells = {10, 10};  // unit square, cells of 0.1
+  const Grid g(PETSC_COMM_SELF, spec);
+  Field index(g);
+  const interface::ShapeUnion shapes({interface::Box{{0.0, 0.0}, {0.6, 0.3}}, interface::Box{{0.4, 0.0}, {1.0, 0.5}}});
+  mark_obstacle_index(g, shapes, index);
+  ConstFieldArray a(g.field_dm(), index.local());
+  EXPECT_EQ(a[0][0], 1.0);  // the first alone
+  EXPECT_EQ(a[2][4], 2.0);  // in both: the second, listed last
+  EXPECT_EQ(a[4][9], 2.0);  // the second alone
+  EXPECT_EQ(a[4][2], 0.0);  // open
+  EXPECT_EQ(a[0][-1], 0.0);  // ghosts beyond the sides
+  EXPECT_EQ(a[-1][5], 0.0);
+}
+
 }  // namespace
 }  // namespace granflow

@@ -119,7 +119,9 @@ TEST(StrengthReduction, DividesEachObstaclesFriction) {
   ASSERT_TRUE(std::holds_alternative<interface::Polygon>(r.obstacles[1]));
   EXPECT_EQ(std::get<interface::Polygon>(r.obstacles[1]).vertices.size(), 3u);
   EXPECT_NEAR(r.soil->rheology->cohesion, 2500.0, 1e-12);
-  // The trial's case as run holds the reduced friction, which a restart from it would read.
+  // Its record lists what was divided; the case as run holds it, which a run of that file reads.
+  ASSERT_FALSE(r.overrides.empty());
+  EXPECT_NE(r.overrides.back().find("obstacle[1].friction_angle=10"), std::string::npos) << r.overrides.back();
   EXPECT_NEAR(parse_case(r.as_run).obstacle_friction[1]->friction_coefficient, tan_deg(20.0) / 2.0, 1e-14);
 }
 
