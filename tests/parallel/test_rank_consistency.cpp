@@ -125,6 +125,18 @@ TEST(RankConsistency, CollapseAgainstABarrierOneAndTwoRanksAgree) {
                           1e-9);
 }
 
+// The same barrier and floor of their own friction: each blocked cell's obstacle, read behind the wall
+// faces from both ranks' ghosts, gives the barrier's faces its friction (a second obstacle, without
+// friction, comes first), and the floor's faces take the floor's.
+TEST(RankConsistency, CollapseOnASmoothFloorAgainstASmoothBarrierOneAndTwoRanksAgree) {
+  expect_rank_independent("cases/barrier_collapse.toml",
+                          {"mesh.cells=[50,20]", "time.end=0.4", "output.progress_seconds=0",
+                           "boundary.south={type = \"wall\", friction_angle = 12.0}",
+                           "obstacle=[{shape = \"box\", lower = [0.5, 0.0], upper = [0.6, 0.04]}, "
+                           "{shape = \"box\", lower = [0.28, 0.0], upper = [0.325, 0.028], friction_angle = 8.0}]"},
+                          1e-9);
+}
+
 // The same across the other axis: the mesh is taller than wide, so the ranks split it across y (rows
 // 0-14 and 15-29, at y = 0.15 m), and the barrier's top row (15) lies on the upper rank, the rows
 // below it on the lower. The blocked cells behind its sides and under its top, mirrored on each rank
