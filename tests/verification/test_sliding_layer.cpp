@@ -113,9 +113,9 @@ struct InclineResult {
 };
 // bed: the south side's condition (a wall of the soil's friction, or of its own); cell: the cells' size.
 InclineResult slide_on_incline(double theta, double end, const std::string& bed = "{type = \"wall\"}",
-                               double cell = 0.002) {
+                               double cell = 0.002, const std::vector<std::string>& more = {}) {
   const double g = 9.81;
-  const std::vector<std::string> overrides = {
+  std::vector<std::string> overrides = {
       fmt::format("mesh.cells=[{}, {}]", std::lround(0.4 / cell), std::lround(0.04 / cell)), "mesh.upper=[0.4, 0.04]",
       fmt::format("time.end={}", end), "boundary.south=" + bed,
       "initial.soil=[{shape = \"box\", lower = [0.0, 0.0], upper = [0.4, 0.01]}]",
@@ -124,6 +124,7 @@ InclineResult slide_on_incline(double theta, double end, const std::string& bed 
       "numerics.air_band=0",  // the band holds the air beyond it hydrostatic along y
       "numerics.outer_iterations=10", "numerics.outer_tolerance=1e-6",
       "output.progress_seconds=0"};
+  overrides.insert(overrides.end(), more.begin(), more.end());
   Simulation sim(PETSC_COMM_WORLD, load_case(test::repo_path("cases/bui2008_experiment.toml"), overrides), "");
   sim.run();
   const Grid& grid = sim.grid();
@@ -210,6 +211,26 @@ TEST(SlidingLayer, OnABedOfItsOwnFrictionSlidesAsAPlugAtThatFriction) {
     EXPECT_NEAR(measured / acceleration, 1.0, tan_delta < mu ? 0.025 : 0.05) << t.theta_deg << " on " << t.delta_deg;
     if (tan_delta < mu) EXPECT_NEAR(bed_ratio / tan_delta, 1.0, 0.01) << t.theta_deg << " on " << t.delta_deg;
   }
+}
+
+// A bed of adhesion a alone (`adhesion = 40.0`, no friction angle: an undrained clay's interface):
+// its shear stress is a wherever the layer slides, so the bed carries a times the length it touches,
+// and the plug accelerates at g sin(theta) - a / (rho_s h) (with the linear density the layer's mass
+// is rho_s h per area; the arctan mixture's partly filled top cell would add a fifth). Measured at 15
+// deg to t = 0.1 s: 1.0050 against 1.0296 m/s^2, short as the plugs above; the bed's shear 15.81 N/m
+// against 40 Pa times the 0.395 m still on it, 15.79.
+TEST(SlidingLayer, OnABedOfAdhesionSlidesAtThatShearStress) {
+  const double g = 9.81, theta = 15.0 * std::numbers::pi / 180.0, adhesion = 40.0, rho = 2650.0, h = 0.01;
+  const InclineResult r = slide_on_incline(theta, 0.1, fmt::format("{{type = \"wall\", adhesion = {}}}", adhesion), 0.004,
+                                           {"mixture.density=\"linear\""});
+  if (!test::is_root()) return;
+  const double acceleration = g * std::sin(theta) - adhesion / (rho * h);
+  const double displaced = 0.5 * acceleration * r.time * r.time;  // the length that has left the bed, about
+  const double shear = adhesion * (0.4 - displaced);
+  std::printf("layer at 15 deg on a bed of adhesion %g Pa: mean acceleration %.5g m/s^2 against %.5g; the bed's "
+              "shear %.4f N/m against %.4f\n", adhesion, r.mean_velocity / r.time, acceleration, r.bed_force[0], shear);
+  EXPECT_NEAR(r.mean_velocity / r.time / acceleration, 1.0, 0.04);
+  EXPECT_NEAR(r.bed_force[0] / shear, 1.0, 0.01);
 }
 
 // The same bed as an obstacle of its own friction (`[[obstacle]] friction_angle`, terrain that is
