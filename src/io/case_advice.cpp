@@ -38,10 +38,13 @@ std::vector<std::string> case_advice(const CaseConfig& config) {
       advice.push_back(fmt::format("soil.materials[{}].density = {} kg/m^3 ('{}') is not heavier than air.density = {} kg/m^3",
                                    k, density, m.name, config.soil->air_density));
   }
+  auto radians_hint = [&](double degrees, const std::string& key) {
+    if (degrees > 0.0 && degrees < 1.0)
+      advice.push_back(fmt::format("{} = {:.6g} is in degrees: {:.6g} rad would be {:.3g} deg", key, degrees, degrees,
+                                   degrees * 57.29577951308232));
+  };
   auto radians = [&](const rheology::RheologyParameters& r, const std::string& key) {
-    if (r.friction != rheology::FrictionSource::mu_of_I && r.friction_angle_deg > 0.0 && r.friction_angle_deg < 1.0)
-      advice.push_back(fmt::format("{} = {} is in degrees: {} rad would be {:.3g} deg", key, r.friction_angle_deg,
-                                   r.friction_angle_deg, r.friction_angle_deg * 57.29577951308232));
+    if (r.friction != rheology::FrictionSource::mu_of_I) radians_hint(r.friction_angle_deg, key);
   };
   const auto& r = *config.soil->rheology;
   radians(r, "soil.rheology.friction_angle");
@@ -49,11 +52,7 @@ std::vector<std::string> case_advice(const CaseConfig& config) {
     if (config.soil->materials[k].rheology.friction_angle_deg != r.friction_angle_deg)  // said above, if at all
       radians(config.soil->materials[k].rheology, fmt::format("soil.materials[{}].friction_angle", k));
   auto wall_radians = [&](const std::optional<rheology::WallFriction>& friction, const std::string& wall) {
-    if (!friction) return;
-    const double delta = std::atan(friction->friction_coefficient) * 57.29577951308232;
-    if (delta > 0.0 && delta < 1.0)
-      advice.push_back(fmt::format("{}.friction_angle = {:.6g} is in degrees: {:.6g} rad would be {:.3g} deg", wall, delta,
-                                   delta, delta * 57.29577951308232));
+    if (friction) radians_hint(std::atan(friction->friction_coefficient) * 57.29577951308232, wall + ".friction_angle");
   };
   for (Side side : all_sides)
     wall_radians(boundary(config.flow.boundaries, side).friction, fmt::format("boundary.{}", side_name(side)));

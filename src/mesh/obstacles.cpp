@@ -4,6 +4,19 @@
 
 namespace granflow {
 
+namespace {
+// The owned values to the local vector, and 0 in the ghosts beyond the domain's sides.
+void scatter_with_no_obstacle_outside(const Grid& g, Field& f) {
+  f.scatter_to_local();
+  FieldArray m = local_array(g, f);
+  const auto& b = g.owned();
+  const int gw = Grid::ghost_width;
+  for (int j = b.ys - gw; j < b.ye() + gw; ++j)
+    for (int i = b.xs - gw; i < b.xe() + gw; ++i)
+      if (i < 0 || i >= g.nx() || j < 0 || j >= g.ny()) m[j][i] = 0.0;
+}
+}  // namespace
+
 long mark_blocked_cells(const Grid& g, const interface::ShapeUnion& shapes, Field& mask) {
   long count = 0;
   {
@@ -15,16 +28,7 @@ long mark_blocked_cells(const Grid& g, const interface::ShapeUnion& shapes, Fiel
         count += m[j][i] > 0.5;
       }
   }
-  mask.scatter_to_local();
-  {
-    // Ghosts outside the domain are not blocked.
-    FieldArray m = local_array(g, mask);
-    const auto& b = g.owned();
-    const int gw = Grid::ghost_width;
-    for (int j = b.ys - gw; j < b.ye() + gw; ++j)
-      for (int i = b.xs - gw; i < b.xe() + gw; ++i)
-        if (i < 0 || i >= g.nx() || j < 0 || j >= g.ny()) m[j][i] = 0.0;
-  }
+  scatter_with_no_obstacle_outside(g, mask);  // ghosts outside the domain are not blocked
   long total = 0;
   MPI_Allreduce(&count, &total, 1, MPI_LONG, MPI_SUM, g.comm());
   return total;
@@ -41,13 +45,7 @@ void mark_obstacle_index(const Grid& g, const interface::ShapeUnion& shapes, Fie
           if (shapes.shape_contains(k, g.xc(i), g.yc(j))) m[j][i] = double(k + 1);
       }
   }
-  index.scatter_to_local();
-  FieldArray m = local_array(g, index);  // ghosts outside the domain belong to no obstacle
-  const auto& b = g.owned();
-  const int gw = Grid::ghost_width;
-  for (int j = b.ys - gw; j < b.ye() + gw; ++j)
-    for (int i = b.xs - gw; i < b.xe() + gw; ++i)
-      if (i < 0 || i >= g.nx() || j < 0 || j >= g.ny()) m[j][i] = 0.0;
+  scatter_with_no_obstacle_outside(g, index);  // ghosts outside the domain belong to no obstacle
 }
 
 void zero_blocked_cells(const Grid& g, const Field* mask, Field& f) {

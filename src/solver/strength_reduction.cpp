@@ -39,16 +39,20 @@ std::string materials_with(const CaseConfig& config, const std::vector<std::arra
   return "soil.materials=[" + out + "]";
 }
 
+// The friction angle of a wall (or obstacle) whose tan(delta) is divided by the factor, degrees.
+double reduced_wall_angle(const rheology::WallFriction& friction, double factor) {
+  return std::atan(friction.friction_coefficient / factor) / (std::numbers::pi / 180.0);
+}
+
 // The case's text with each obstacle's own friction divided by the factor: --set cannot address one
 // element of the obstacle array, so the array is rewritten in the text, every other key kept.
 std::string obstacles_reduced(const CaseConfig& config, double factor) {
   toml::table root = toml::parse(config.as_run);
   toml::array* obstacles = root["obstacle"].as_array();
-  const double deg = std::numbers::pi / 180.0;
   for (size_t k = 0; k < config.obstacle_friction.size(); ++k)
     if (const auto& friction = config.obstacle_friction[k]) {
       toml::table& obstacle = *obstacles->get(k)->as_table();
-      obstacle.insert_or_assign("friction_angle", std::atan(friction->friction_coefficient / factor) / deg);
+      obstacle.insert_or_assign("friction_angle", reduced_wall_angle(*friction, factor));
       obstacle.insert_or_assign("adhesion", friction->adhesion / factor);
     }
   std::ostringstream text;
@@ -89,8 +93,7 @@ CaseConfig reduced_strength(const CaseConfig& config, double factor) {
   }
   for (Side side : all_sides)  // and a wall's friction against the soil: the interface is as weak in the same measure
     if (const auto& friction = boundary(config.flow.boundaries, side).friction) {
-      keys.push_back(fmt::format("boundary.{}.friction_angle={}", side_name(side),
-                                 std::atan(friction->friction_coefficient / factor) / deg));
+      keys.push_back(fmt::format("boundary.{}.friction_angle={}", side_name(side), reduced_wall_angle(*friction, factor)));
       keys.push_back(fmt::format("boundary.{}.adhesion={}", side_name(side), friction->adhesion / factor));
     }
   const bool obstacle_friction = std::any_of(config.obstacle_friction.begin(), config.obstacle_friction.end(),
@@ -102,8 +105,7 @@ CaseConfig reduced_strength(const CaseConfig& config, double factor) {
   for (size_t k = 0; k < config.obstacle_friction.size(); ++k)
     if (const auto& friction = config.obstacle_friction[k])
       reduced.overrides.push_back(fmt::format("obstacle[{}].friction_angle={}, adhesion={} (in the text below)", k,
-                                              std::atan(friction->friction_coefficient / factor) / deg,
-                                              friction->adhesion / factor));
+                                              reduced_wall_angle(*friction, factor), friction->adhesion / factor));
   return reduced;
 }
 
