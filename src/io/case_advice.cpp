@@ -2,8 +2,6 @@
 
 #include <fmt/format.h>
 
-#include <cmath>
-
 namespace granflow {
 
 std::vector<std::string> case_advice(const CaseConfig& config) {
@@ -40,7 +38,7 @@ std::vector<std::string> case_advice(const CaseConfig& config) {
   }
   auto radians_hint = [&](double degrees, const std::string& key) {
     if (degrees > 0.0 && degrees < 1.0)
-      advice.push_back(fmt::format("{} = {:.6g} is in degrees: {:.6g} rad would be {:.3g} deg", key, degrees, degrees,
+      advice.push_back(fmt::format("{} = {} is in degrees: {} rad would be {:.3g} deg", key, degrees, degrees,
                                    degrees * 57.29577951308232));
   };
   auto radians = [&](const rheology::RheologyParameters& r, const std::string& key) {
@@ -52,7 +50,7 @@ std::vector<std::string> case_advice(const CaseConfig& config) {
     if (config.soil->materials[k].rheology.friction_angle_deg != r.friction_angle_deg)  // said above, if at all
       radians(config.soil->materials[k].rheology, fmt::format("soil.materials[{}].friction_angle", k));
   auto wall_radians = [&](const std::optional<rheology::WallFriction>& friction, const std::string& wall) {
-    if (friction) radians_hint(std::atan(friction->friction_coefficient) * 57.29577951308232, wall + ".friction_angle");
+    if (friction) radians_hint(friction->friction_angle_degrees, wall + ".friction_angle");
   };
   for (Side side : all_sides)
     wall_radians(boundary(config.flow.boundaries, side).friction, fmt::format("boundary.{}", side_name(side)));

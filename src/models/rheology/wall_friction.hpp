@@ -16,11 +16,12 @@
 namespace granflow::rheology {
 
 struct WallFriction {
-  double friction_coefficient = 0.0;  // tan(delta)
-  double adhesion = 0.0;              // a, Pa
+  double friction_coefficient = 0.0;   // tan(delta)
+  double adhesion = 0.0;               // a, Pa
+  double friction_angle_degrees = 0.0;  // delta as the case gives it, for messages
 
   static WallFriction from_angle(double friction_angle_degrees, double adhesion) noexcept {
-    return {std::tan(friction_angle_degrees * std::numbers::pi / 180.0), adhesion};
+    return {std::tan(friction_angle_degrees * std::numbers::pi / 180.0), adhesion, friction_angle_degrees};
   }
 
   // tau_w at the soil's pressure p at the wall (Pa); p below zero (or NaN) counts as zero.
