@@ -103,9 +103,11 @@ std::optional<rheology::WallFriction> read_wall_friction(TableReader& r, std::ve
 // two_phase_keys: collects the keys given that only a case with soil uses.
 BoundaryCondition read_boundary(TableReader r, bool& is_axis, std::vector<std::string>& two_phase_keys) {
   BoundaryCondition bc;
-  const std::string type = r.choice("type", "", {"wall", "slip", "symmetry", "atmosphere", "axis"});
+  const std::string type = r.choice("type", "", {"wall", "slip", "symmetry", "atmosphere", "axis", "periodic"});
   is_axis = type == "axis";
-  if (type == "axis") {
+  if (type == "periodic") {
+    bc.kind = BoundaryKind::periodic;  // joined to the opposite side; read_boundaries checks the pair
+  } else if (type == "axis") {
     bc.kind = BoundaryKind::slip;  // symmetry: u_r = 0, no shear; the face at r = 0 has no area
   } else if (type == "wall") {
     bc.kind = BoundaryKind::wall;
@@ -466,6 +468,17 @@ BoundarySet read_boundaries(TableReader& top, const GridSpec& mesh, std::vector<
       throw CaseError("boundary.west.type: an axisymmetric mesh starting at r = 0 needs type = \"axis\" there");
   }
   b.finish();
+  // Periodic sides come in the west-east pair: flow leaving through one enters through the other.
+  for (Side s : all_sides) {
+    if (boundaries[int(s)].kind != BoundaryKind::periodic) continue;
+    if (normal_axis(s) == 1)
+      throw CaseError(fmt::format("boundary.{}.type: only the west and east sides can be periodic (joined along x)",
+                                  side_name(s)));
+    const Side other = s == Side::west ? Side::east : Side::west;
+    if (boundaries[int(other)].kind != BoundaryKind::periodic)
+      throw CaseError(fmt::format("boundary.{}.type: a periodic side needs the opposite side periodic too "
+                                  "(boundary.{} = {{ type = \"periodic\" }})", side_name(s), side_name(other)));
+  }
   for (Side s : all_sides) {
     const auto& bc = boundaries[int(s)];
     if (bc.kind == BoundaryKind::wall && bc.wall_velocity[normal_axis(s)] != 0.0)
@@ -688,6 +701,19 @@ void require_consistent(const CaseConfig& c) {
                       "know blocked cells)");
     if (c.mesh.axisymmetric) throw CaseError("obstacle: planar meshes only (this case has mesh.geometry = \"axisymmetric\")");
   }
+  if (c.mesh.periodic_x) {
+    if (c.mesh.axisymmetric)
+      throw CaseError("boundary.west.type: periodic sides need a planar mesh (this case has mesh.geometry = \"axisymmetric\")");
+    if (c.mesh.grading[0] != 1.0)
+      throw CaseError(fmt::format("mesh.grading: periodic west and east sides need cells of one width along x, so "
+                                  "that the two ends meet (grading {} along x; give 1.0)", c.mesh.grading[0]));
+    if (c.mesh.cells[0] < 3)
+      throw CaseError(fmt::format("mesh.cells: periodic west and east sides need at least 3 cells along x, got {}",
+                                  c.mesh.cells[0]));
+    if (c.flow.numerics.air_band > 0)
+      throw CaseError("numerics.air_band: the air band's region does not reach across periodic sides; set "
+                      "numerics.air_band = 0 (the whole domain is solved)");
+  }
   if (c.flow.numerics.air_band > 0) {
     // The air beyond the band is held at rest under the pressure of the air column above it.
     if (c.flow.numerics.pressure_coupling != PressureCoupling::coupled)
@@ -730,6 +756,9 @@ CaseConfig read_case(const toml::table& root, const std::filesystem::path& sourc
     c.fluid = read_fluid(top);
   }
   c.flow.boundaries = read_boundaries(top, c.mesh, two_phase_keys);
+  c.mesh.periodic_x = boundary(c.flow.boundaries, Side::west).kind == BoundaryKind::periodic;
+  // Air at rest on a periodic slope: its weight along x is carried as by its hydrostatic pressure.
+  if (c.mesh.periodic_x && c.soil) c.flow.periodic_ambient_density = c.soil->air_density;
   c.flow.numerics = read_numerics(top, c.keys_without_effect);
   read_solvers(top, c.flow);
   c.output = read_output(top, c.mesh, c.time.end);

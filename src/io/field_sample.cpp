@@ -16,6 +16,7 @@ SideRules velocity_side_rules(const BoundarySet& boundaries, int axis) {
       case BoundaryKind::wall: r = {SideRule::Kind::value, normal ? 0.0 : bc.wall_velocity[axis]}; break;
       case BoundaryKind::slip: r = normal ? SideRule{SideRule::Kind::value, 0.0} : SideRule{}; break;
       case BoundaryKind::atmosphere: r = SideRule{}; break;
+      case BoundaryKind::periodic: r = SideRule{}; break;  // the nearest cell's (the ends are neighbours)
     }
   }
   return rules;

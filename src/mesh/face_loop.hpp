@@ -2,7 +2,8 @@
 // Visits every face of the owned cells of a face field, in the layout of FlowSolver's face fields:
 // [j][i] of axis 0 is the face between cells (i, j) and (i+1, j), [j][-1] and [j][nx-1] the west and
 // east boundary faces; axis 1 likewise in j. Faces shared with the ghost column or row on the low
-// side are visited too, so that a stencil over the owned cells needs no exchange.
+// side are visited too, so that a stencil over the owned cells needs no exchange. With periodic x the
+// end faces are interior faces between a cell and a ghost of the other end.
 #include <algorithm>
 
 #include "mesh/field.hpp"
@@ -30,10 +31,11 @@ void fill_owned_faces(const Grid& g, Field& x_faces, Field& y_faces, Interior in
     if (high) return boundary(axis, i, j, 1);
     return interior(axis, i, j);
   };
+  const bool periodic = g.periodic_x();  // the x faces at the ends join a cell to a ghost of the other end
   for (int j = b.ys; j < b.ye(); ++j) {
-    if (b.xs == 0) fx[j][-1] = boundary(0, 0, j, -1);
-    for (int i = std::max(b.xs - 1, 0); i < b.xe(); ++i)
-      fx[j][i] = i + 1 == nx ? boundary(0, i, j, 1) : inner(0, i, j);
+    if (b.xs == 0 && !periodic) fx[j][-1] = boundary(0, 0, j, -1);
+    for (int i = periodic ? b.xs - 1 : std::max(b.xs - 1, 0); i < b.xe(); ++i)
+      fx[j][i] = i + 1 == nx && !periodic ? boundary(0, i, j, 1) : inner(0, i, j);
   }
   for (int i = b.xs; i < b.xe(); ++i) {
     if (b.ys == 0) fy[-1][i] = boundary(1, i, 0, -1);

@@ -21,7 +21,8 @@ const char* side_name(Side s) {
 namespace {
 // Cell widths of a geometric progression whose last/first ratio is `grading`; ghosts mirror the
 // boundary cells so that ghost centres sit at mirror images of the first interior centres.
-void axis_geometry(int n, double lo, double hi, double grading, std::vector<double>& width,
+// With `periodic` the ghosts are the other end's cells, shifted by the domain's length.
+void axis_geometry(int n, double lo, double hi, double grading, bool periodic, std::vector<double>& width,
                    std::vector<double>& centre) {
   const int g = Grid::ghost_width;
   width.assign(n + 2 * g, 0.0);
@@ -35,6 +36,15 @@ void axis_geometry(int n, double lo, double hi, double grading, std::vector<doub
     width[i + g] = first * std::pow(r, i);
     centre[i + g] = x + 0.5 * width[i + g];
     x += width[i + g];
+  }
+  if (periodic) {
+    for (int k = 1; k <= g; ++k) {
+      width[g - k] = width[g + n - k];
+      centre[g - k] = centre[g + n - k] - (hi - lo);
+      width[g + n - 1 + k] = width[g + k - 1];
+      centre[g + n - 1 + k] = centre[g + k - 1] + (hi - lo);
+    }
+    return;
   }
   for (int k = 1; k <= g; ++k) {
     width[g - k] = width[g + k - 1];
@@ -69,7 +79,8 @@ void check_ranks_can_share(MPI_Comm comm, std::array<int, 2> cells) {
 Grid::Grid(MPI_Comm comm, const GridSpec& spec) : comm_(comm), spec_(spec) {
   if (spec.cells[0] < 1 || spec.cells[1] < 1) throw std::invalid_argument("grid needs at least one cell per axis");
   check_ranks_can_share(comm, spec.cells);
-  PetscCallAbort(comm, DMDACreate2d(comm, DM_BOUNDARY_GHOSTED, DM_BOUNDARY_GHOSTED, DMDA_STENCIL_BOX,
+  const DMBoundaryType x_sides = spec.periodic_x ? DM_BOUNDARY_PERIODIC : DM_BOUNDARY_GHOSTED;
+  PetscCallAbort(comm, DMDACreate2d(comm, x_sides, DM_BOUNDARY_GHOSTED, DMDA_STENCIL_BOX,
                                     spec.cells[0], spec.cells[1], PETSC_DECIDE, PETSC_DECIDE, 1,
                                     ghost_width, nullptr, nullptr, &field_dm_));
   PetscCallAbort(comm, DMSetUp(field_dm_));
@@ -78,14 +89,15 @@ Grid::Grid(MPI_Comm comm, const GridSpec& spec) : comm_(comm), spec_(spec) {
   PetscCallAbort(comm, DMDAGetInfo(field_dm_, nullptr, nullptr, nullptr, nullptr, &m, &n, nullptr, nullptr,
                                    nullptr, nullptr, nullptr, nullptr, nullptr));
   PetscCallAbort(comm, DMDAGetOwnershipRanges(field_dm_, &lx, &ly, nullptr));
-  PetscCallAbort(comm, DMDACreate2d(comm, DM_BOUNDARY_NONE, DM_BOUNDARY_NONE, DMDA_STENCIL_STAR,
+  PetscCallAbort(comm, DMDACreate2d(comm, matrix_x_sides(), DM_BOUNDARY_NONE, DMDA_STENCIL_STAR,
                                     spec.cells[0], spec.cells[1], m, n, 1, 1, lx, ly, &matrix_dm_));
   PetscCallAbort(comm, DMSetUp(matrix_dm_));
   PetscInt xs, ys, xm, ym;
   PetscCallAbort(comm, DMDAGetCorners(field_dm_, &xs, &ys, nullptr, &xm, &ym, nullptr));
   owned_ = CellBox{int(xs), int(ys), int(xm), int(ym)};
   for (int a = 0; a < 2; ++a)
-    axis_geometry(spec.cells[a], spec.lower[a], spec.upper[a], spec.grading[a], width_[a], centre_[a]);
+    axis_geometry(spec.cells[a], spec.lower[a], spec.upper[a], spec.grading[a], a == 0 && spec.periodic_x, width_[a],
+                  centre_[a]);
   radius_face_.resize(width_[0].size());
   for (size_t k = 0; k < width_[0].size(); ++k) radius_face_[k] = centre_[0][k] + 0.5 * width_[0][k];
 }

@@ -3,7 +3,9 @@
 //
 // Every field lives on one DMDA with DM_BOUNDARY_GHOSTED sides and a box stencil of width 2, so local
 // arrays carry two layers of ghost cells also outside the physical domain (indices -2, -1 and n, n+1);
-// boundary conditions fill those. Matrices use a second DMDA with the same parallel layout and a
+// boundary conditions fill those. With periodic x (GridSpec::periodic_x) the x sides are
+// DM_BOUNDARY_PERIODIC: the exchange fills those ghosts with the other end's cells, and the
+// matrices' stencils wrap. Matrices use a second DMDA with the same parallel layout and a
 // 5-point star stencil, so they are preallocated for exactly the pattern the operators use.
 //
 // Coordinates are held per axis (cell widths and centres, ghosts included), so graded spacing is a
@@ -31,6 +33,9 @@ struct GridSpec {
   // Axisymmetric (r-z): x is the radius r >= 0, y the axial coordinate z. Areas and volumes are per
   // radian: a face at radius r has area r dz, a cell volume r_c dr dz.
   bool axisymmetric = false;
+  // The west and east sides joined (an infinite strip, e.g. a uniform flow down a slope): the cell
+  // beyond the east side is the first cell, and ghosts along x are the other end's cells.
+  bool periodic_x = false;
 };
 
 // The mesh cannot be laid out as asked (too many ranks for its cells); thrown on every rank alike.
@@ -50,6 +55,8 @@ class Grid {
   MPI_Comm comm() const { return comm_; }
   DM field_dm() const { return field_dm_; }    // ghosted, box stencil width 2
   DM matrix_dm() const { return matrix_dm_; }  // star stencil width 1, same layout
+  // The x sides of a matrix's DMDA: periodic ones wrap its stencil, others end it.
+  DMBoundaryType matrix_x_sides() const { return spec_.periodic_x ? DM_BOUNDARY_PERIODIC : DM_BOUNDARY_NONE; }
   int nx() const { return spec_.cells[0]; }
   int ny() const { return spec_.cells[1]; }
   long cell_count() const { return long(nx()) * ny(); }
@@ -82,6 +89,25 @@ class Grid {
   const double* radius_centre_data() const { return spec_.axisymmetric ? centre_[0].data() + ghost_width : nullptr; }
   double min_spacing() const;
   bool on_boundary(Side s, int i, int j) const;
+  bool periodic_x() const { return spec_.periodic_x; }
+  // Whether side s is a boundary of the domain (not joined to the opposite side).
+  bool bounded(Side s) const { return !(spec_.periodic_x && (s == Side::west || s == Side::east)); }
+  // Whether (i, j) lies beyond a boundary: a ghost that a boundary condition fills. A ghost across a
+  // periodic side is a cell of the other end, not outside.
+  bool outside(int i, int j) const {
+    return j < 0 || j >= ny() || (!spec_.periodic_x && (i < 0 || i >= nx()));
+  }
+  // Whether this rank's cells touch side s and it is a boundary: its ghosts beyond s are the rank's to fill.
+  bool owns_boundary(Side s) const {
+    if (!bounded(s)) return false;
+    switch (s) {
+      case Side::west: return owned_.xs == 0;
+      case Side::east: return owned_.xe() == nx();
+      case Side::south: return owned_.ys == 0;
+      case Side::north: return owned_.ye() == ny();
+    }
+    return false;
+  }
 
  private:
   MPI_Comm comm_;

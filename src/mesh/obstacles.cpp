@@ -5,7 +5,7 @@
 namespace granflow {
 
 namespace {
-// The owned values to the local vector, and 0 in the ghosts beyond the domain's sides.
+// The owned values to the local vector, and 0 in the ghosts beyond the domain's boundaries.
 void scatter_with_no_obstacle_outside(const Grid& g, Field& f) {
   f.scatter_to_local();
   FieldArray m = local_array(g, f);
@@ -13,7 +13,7 @@ void scatter_with_no_obstacle_outside(const Grid& g, Field& f) {
   const int gw = Grid::ghost_width;
   for (int j = b.ys - gw; j < b.ye() + gw; ++j)
     for (int i = b.xs - gw; i < b.xe() + gw; ++i)
-      if (i < 0 || i >= g.nx() || j < 0 || j >= g.ny()) m[j][i] = 0.0;
+      if (g.outside(i, j)) m[j][i] = 0.0;  // beyond a periodic side: the other end's cells
 }
 }  // namespace
 
@@ -64,8 +64,7 @@ void mirror_into_blocked(const Grid& g, const double* const* mask, double** a, d
   const int gw = Grid::ghost_width;
   const int i_lo = b.xs - gw, i_hi = b.xe() + gw, j_lo = b.ys - gw, j_hi = b.ye() + gw;  // the local array
   auto open = [&](int i, int j) {
-    return i >= i_lo && i < i_hi && j >= j_lo && j < j_hi && i >= 0 && i < g.nx() && j >= 0 && j < g.ny() &&
-           mask[j][i] <= 0.5;
+    return i >= i_lo && i < i_hi && j >= j_lo && j < j_hi && !g.outside(i, j) && mask[j][i] <= 0.5;
   };
   // The mirror of blocked cell (i, j) across the wall `depth` cells away along (di, dj), if that is
   // where the nearest open cell lies: the open cell depth - 1 beyond the wall (or the first one, if

@@ -13,6 +13,7 @@ enum class BoundaryKind {
   wall,        // no-slip; a non-zero wall velocity makes it a moving (sliding) wall
   slip,        // impermeable, free of shear
   atmosphere,  // fixed total pressure: outflow at the static pressure, inflow at p0 - rho|u|^2/2
+  periodic,    // west and east joined (GridSpec::periodic_x): no boundary there
 };
 
 struct BoundaryCondition {

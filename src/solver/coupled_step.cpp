@@ -24,7 +24,7 @@ void FlowSolver::create_coupled_system() {
   DMDAGetInfo(grid_.field_dm(), nullptr, nullptr, nullptr, nullptr, &m, &n, nullptr, nullptr, nullptr, nullptr,
               nullptr, nullptr, nullptr);
   DMDAGetOwnershipRanges(grid_.field_dm(), &lx, &ly, nullptr);
-  PetscCallAbort(comm, DMDACreate2d(comm, DM_BOUNDARY_NONE, DM_BOUNDARY_NONE, DMDA_STENCIL_STAR, grid_.nx(),
+  PetscCallAbort(comm, DMDACreate2d(comm, grid_.matrix_x_sides(), DM_BOUNDARY_NONE, DMDA_STENCIL_STAR, grid_.nx(),
                                     grid_.ny(), m, n, 3, 1, lx, ly, &coupled_dm_));
   PetscCallAbort(comm, DMSetUp(coupled_dm_));
   PetscCallAbort(comm, DMCreateGlobalVector(coupled_dm_, &coupled_solution_));
@@ -132,7 +132,7 @@ void FlowSolver::fill_coupled_rows() {
     // no coupling; the cell itself has no unknowns (outside the region, or held at rest).
     const BlockedView mask(grid_, blocked_);
     auto open_neighbour = [&](int in, int jn) {
-      return in >= 0 && in < nx && jn >= 0 && jn < ny && !is_blocked(mask.data(), in, jn);
+      return !grid_.outside(in, jn) && !is_blocked(mask.data(), in, jn);
     };
     auto fill_rows = [&](auto&& wanted, auto&& emit) {
       for (int j = b.ys; j < b.ye(); ++j)
@@ -170,7 +170,7 @@ void FlowSolver::fill_coupled_rows() {
               const int s = side == 0 ? 1 : -1;
               const int in = i + (c == 0 ? s : 0), jn = j + (c == 1 ? s : 0);
               if (is_blocked(mask.data(), in, jn)) continue;  // an obstacle's wall carries no face force
-              if (in < 0 || in >= nx || jn < 0 || jn >= ny) {
+              if (grid_.outside(in, jn)) {
                 const double d = 0.5 * (c == 0 ? grid_.dx(i) : grid_.dy(j));
                 double pb;
                 if (!boundary_pressure(c, s, i, j, pb)) continue;  // walls carry no face force
@@ -186,7 +186,7 @@ void FlowSolver::fill_coupled_rows() {
               cols[n] = MatStencil{0, jn, in, P};
               vals[n++] = s * w;
               p_centre += -s * w;
-              r += 0.5 * Vol * rhoP * g[c];
+              r += 0.5 * Vol * rhoP * (g[c] - ambient_weight(c) / rho_f);
             }
             cols[n] = MatStencil{0, j, i, P};
             vals[n++] = p_centre;
@@ -205,7 +205,7 @@ void FlowSolver::fill_coupled_rows() {
               const int in = i + (axis == 0 ? s : 0), jn = j + (axis == 1 ? s : 0);
               const double area = grid_.face_area(axis, i, j, s);
               if (is_blocked(mask.data(), in, jn)) continue;  // no flux through an obstacle's wall
-              if (in < 0 || in >= nx || jn < 0 || jn >= ny) {
+              if (grid_.outside(in, jn)) {
                 const double d = 0.5 * (axis == 0 ? grid_.dx(i) : grid_.dy(j));
                 double pb;
                 if (!boundary_pressure(axis, s, i, j, pb)) continue;
@@ -224,7 +224,8 @@ void FlowSolver::fill_coupled_rows() {
               p_centre += m * area / d;
               cols[n] = MatStencil{0, jn, in, P};
               vals[n++] = -m * area / d;
-              r += -s * area * m * rho_f * g[axis] + s * area * m * 0.5 * (fcell[axis][j][i] + fcell[axis][jn][in]);
+              r += -s * area * m * rho_f * g[axis] + s * area * m * ambient_weight(axis) +
+                   s * area * m * 0.5 * (fcell[axis][j][i] + fcell[axis][jn][in]);
             }
             cols[n] = MatStencil{0, j, i, U};
             vals[n++] = u_centre[0];
@@ -351,7 +352,7 @@ void FlowSolver::update_coupled_face_velocities() {
         const double sign = outward_normal(side, c);
         const auto& solved = solved_boundary_pressure_[static_cast<int>(side)];
         const bool low = sign < 0;
-        if (c == 0 && (low ? b.xs == 0 : b.xe() == nx))
+        if (c == 0 && grid_.owns_boundary(side))
           for (int j = b.ys; j < b.ye(); ++j) {
             const int i = low ? 0 : nx - 1;
             if (!std::isnan(solved[j]))
@@ -379,7 +380,7 @@ void FlowSolver::update_coupled_face_velocities() {
           fxv[j][i] = 0.0;  // an obstacle's wall
           continue;
         }
-        if (i == -1 || i == nx - 1) {
+        if (grid_.outside(i, j) || grid_.outside(i + 1, j)) {
           const Side s = i == -1 ? Side::west : Side::east;
           const int ic = i == -1 ? 0 : i;
           fxv[j][i] = boundary(settings_.boundaries, s).kind == BoundaryKind::atmosphere

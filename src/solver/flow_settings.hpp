@@ -54,6 +54,12 @@ struct NumericsSettings {
 
 struct FlowSettings {
   std::array<double, 2> gravity{0.0, 0.0};
+  // With periodic x and gravity along x (a slope), the density of the ambient fluid whose weight along
+  // x a mean pressure gradient carries, as the atmosphere's own hydrostatic pressure does on a real
+  // slope: a periodic pressure cannot, and the air would otherwise fall along the slope without end.
+  // The face force along x is then -dp/dx + (rho_f - ambient) g_x; 0 for a single fluid, which the
+  // slope drives.
+  double periodic_ambient_density = 0.0;
   BoundarySet boundaries{};
   NumericsSettings numerics{};
   LinearSolverSettings momentum_solver{"bcgs", "bjacobi", 1e-8, 1e-14, 1000};

@@ -146,8 +146,8 @@ void FlowSolver::fill_scalar_ghosts(Field& f) {
   const int nx = grid_.nx(), ny = grid_.ny();
   for (int k = 1; k <= Grid::ghost_width; ++k) {
     for (int j = b.ys - Grid::ghost_width; j < b.ye() + Grid::ghost_width; ++j) {
-      if (b.xs == 0) a[j][-k] = a[j][0];
-      if (b.xe() == nx) a[j][nx - 1 + k] = a[j][nx - 1];
+      if (grid_.owns_boundary(Side::west)) a[j][-k] = a[j][0];
+      if (grid_.owns_boundary(Side::east)) a[j][nx - 1 + k] = a[j][nx - 1];
     }
   }
   for (int k = 1; k <= Grid::ghost_width; ++k) {
@@ -174,6 +174,7 @@ void FlowSolver::fill_velocity_ghosts() {
       case BoundaryKind::wall: return 2.0 * bc.wall_velocity[axis] - inner;
       case BoundaryKind::slip: return axis == normal ? -inner : inner;
       case BoundaryKind::atmosphere: return first;
+      case BoundaryKind::periodic: break;  // no ghost of its own: the exchange filled it
     }
     return inner;
   };
@@ -181,8 +182,9 @@ void FlowSolver::fill_velocity_ghosts() {
     double** f = comp[a];
     for (int k = 1; k <= Grid::ghost_width; ++k) {
       for (int j = b.ys - Grid::ghost_width; j < b.ye() + Grid::ghost_width; ++j) {
-        if (b.xs == 0) f[j][-k] = ghost(boundary(settings_.boundaries, Side::west), a, 0, f[j][k - 1], f[j][0]);
-        if (b.xe() == nx)
+        if (grid_.owns_boundary(Side::west))
+          f[j][-k] = ghost(boundary(settings_.boundaries, Side::west), a, 0, f[j][k - 1], f[j][0]);
+        if (grid_.owns_boundary(Side::east))
           f[j][nx - 1 + k] = ghost(boundary(settings_.boundaries, Side::east), a, 0, f[j][nx - k], f[j][nx - 1]);
       }
     }
@@ -231,7 +233,7 @@ void FlowSolver::sync_velocity_from_cells() {
   const BlockedView mask(grid_, blocked_);
   for (int j = b.ys - 1; j < b.ye(); ++j)
     for (int i = b.xs - 1; i < b.xe(); ++i) {
-      const bool x_boundary = (i == -1 || i == grid_.nx() - 1) || is_blocked(mask.data(), i, j) ||
+      const bool x_boundary = grid_.outside(i, j) || grid_.outside(i + 1, j) || is_blocked(mask.data(), i, j) ||
                               is_blocked(mask.data(), i + 1, j);
       const bool y_boundary = (j == -1 || j == grid_.ny() - 1) || is_blocked(mask.data(), i, j) ||
                               is_blocked(mask.data(), i, j + 1);
@@ -328,7 +330,7 @@ double FlowSolver::atmosphere_face_pressure(Side s, int i, int j, const double* 
 
 void FlowSolver::compute_face_forces() {
   const auto& b = grid_.owned();
-  const int nx = grid_.nx(), ny = grid_.ny();
+  const int ny = grid_.ny();
   const auto& g = settings_.gravity;
   ConstFieldArray p = local_read(grid_, *p_), rho = local_read(grid_, *rho_);
   ConstFieldArray u = local_read(grid_, *vel_[0]), v = local_read(grid_, *vel_[1]);
@@ -344,16 +346,17 @@ void FlowSolver::compute_face_forces() {
   };
   for (int j = b.ys; j < b.ye(); ++j)
     for (int i = b.xs - 1; i < b.xe(); ++i) {
-      if (i == -1) {
+      if (grid_.outside(i, j)) {
         if (boundary(settings_.boundaries, Side::west).kind == BoundaryKind::atmosphere)
           fx[j][i] = is_blocked(mask.data(), 0, j) ? 0.0 : boundary_force(Side::west, 0, j);
-      } else if (i == nx - 1) {
+      } else if (grid_.outside(i + 1, j)) {
         if (boundary(settings_.boundaries, Side::east).kind == BoundaryKind::atmosphere)
           fx[j][i] = is_blocked(mask.data(), i, j) ? 0.0 : boundary_force(Side::east, i, j);
       } else if (is_blocked(mask.data(), i, j) || is_blocked(mask.data(), i + 1, j)) {
         fx[j][i] = 0.0;  // an obstacle's wall
       } else {
-        fx[j][i] = -(p[j][i + 1] - p[j][i]) / (grid_.xc(i + 1) - grid_.xc(i)) + 0.5 * (rho[j][i] + rho[j][i + 1]) * g[0];
+        fx[j][i] = -(p[j][i + 1] - p[j][i]) / (grid_.xc(i + 1) - grid_.xc(i)) + 0.5 * (rho[j][i] + rho[j][i + 1]) * g[0] -
+                   ambient_weight(0);
       }
     }
   for (int j = b.ys - 1; j < b.ye(); ++j)

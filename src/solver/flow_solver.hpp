@@ -175,6 +175,9 @@ class FlowSolver {
   void update_coupled_face_velocities();
   double coupled_mobility(const double* const* rau, int i, int j, int in, int jn) const;
   double pressure_at_rest(double rho, int j) const;  // air outside the solve region
+  // The ambient's weight per unit volume along `axis` that its mean pressure gradient carries along a
+  // periodic x (FlowSettings::periodic_ambient_density), taken off every face's weight rho_f g; 0 otherwise.
+  double ambient_weight(int axis) const { return axis == 0 ? settings_.periodic_ambient_density * settings_.gravity[0] : 0.0; }
   double cell_force(int axis, int i, int j, const double* const* ff, const double* const* rho) const;
   // Segregated pressure step (segregated_pressure.cpp).
   double local_min_viscosity(const double* const* mu, int i, int j) const;

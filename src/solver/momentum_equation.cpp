@@ -17,7 +17,6 @@ namespace granflow {
 
 void FlowSolver::assemble_momentum(double dt) {
   const auto& b = grid_.owned();
-  const int nx = grid_.nx(), ny = grid_.ny();
   const auto& num = settings_.numerics;
   ConstFieldArray u = local_read(grid_, *vel_[0]), v = local_read(grid_, *vel_[1]);
   ConstFieldArray u0 = local_read(grid_, *vel_old_[0]), v0 = local_read(grid_, *vel_old_[1]);
@@ -63,7 +62,7 @@ void FlowSolver::assemble_momentum(double dt) {
         const int in = i + fg.di, jn = j + fg.dj;
         const double area = grid_.face_area(fg.axis, i, j, fg.sign);
         const bool is_obstacle = is_blocked(mask.data(), in, jn);
-        const bool is_boundary = in < 0 || in >= nx || jn < 0 || jn >= ny || is_obstacle;
+        const bool is_boundary = grid_.outside(in, jn) || is_obstacle;
         const double mu_face = on_face(fmx.data(), fmy.data(), i, j, fg);
         // Full viscous stress div(mu (grad v + grad v^T)), split as in Jasak & Weller (2000): the
         // implicit part is 2 mu grad(v_c) on every face, and the lagged remainder on faces tangential
@@ -144,7 +143,7 @@ void FlowSolver::assemble_momentum(double dt) {
 
 int FlowSolver::solve_momentum() {
   const auto& b = grid_.owned();
-  const int nx = grid_.nx(), ny = grid_.ny();
+  const int ny = grid_.ny();
   // The momentum matrices from assemble_momentum's coefficients (the coupled solve has its own).
   for (int c = 0; c < (shared_momentum_matrix_ ? 1 : 2); ++c) {
     Mat A = momentum_matrix_[c];
@@ -157,8 +156,9 @@ int FlowSolver::solve_momentum() {
         int n = 0;
         cols[n] = row;
         vals[n++] = a_centre_[c][k];
-        if (i + 1 < nx) { cols[n] = MatStencil{0, j, i + 1, 0}; vals[n++] = -a_east_[k]; }
-        if (i - 1 >= 0) { cols[n] = MatStencil{0, j, i - 1, 0}; vals[n++] = -a_west_[k]; }
+        // Beyond a periodic side the stencil wraps (the matrix's DMDA maps the index).
+        if (!grid_.outside(i + 1, j)) { cols[n] = MatStencil{0, j, i + 1, 0}; vals[n++] = -a_east_[k]; }
+        if (!grid_.outside(i - 1, j)) { cols[n] = MatStencil{0, j, i - 1, 0}; vals[n++] = -a_west_[k]; }
         if (j + 1 < ny) { cols[n] = MatStencil{0, j + 1, i, 0}; vals[n++] = -a_north_[k]; }
         if (j - 1 >= 0) { cols[n] = MatStencil{0, j - 1, i, 0}; vals[n++] = -a_south_[k]; }
         MatSetValuesStencil(A, 1, &row, n, cols, vals, INSERT_VALUES);
@@ -212,13 +212,13 @@ void FlowSolver::compute_hbya() {
     FieldArray h(grid_.field_dm(), hbya_[c]->global());
     FieldArray r(grid_.field_dm(), rau_[c]->global());
     FieldArray w(grid_.field_dm(), time_weight_[c]->global());
-    const int nx = grid_.nx(), ny = grid_.ny();
+    const int ny = grid_.ny();
     for (int j = b.ys; j < b.ye(); ++j)
       for (int i = b.xs; i < b.xe(); ++i) {
         const size_t k = size_t(j - b.ys) * b.xm + (i - b.xs);
         double H = source_[c][k];
-        if (i + 1 < nx) H += a_east_[k] * q[j][i + 1];
-        if (i > 0) H += a_west_[k] * q[j][i - 1];
+        if (!grid_.outside(i + 1, j)) H += a_east_[k] * q[j][i + 1];
+        if (!grid_.outside(i - 1, j)) H += a_west_[k] * q[j][i - 1];
         if (j + 1 < ny) H += a_north_[k] * q[j + 1][i];
         if (j > 0) H += a_south_[k] * q[j - 1][i];
         const double V = grid_.volume(i, j);

@@ -32,7 +32,6 @@ double FlowSolver::local_min_viscosity(const double* const* mu, int i, int j) co
 // Pressure equation ([VoF] Eqs. 28-30): sum_f K_f (p_P - p_N) = -sum_f (predicted outward flux).
 void FlowSolver::assemble_pressure_matrix() {
   const auto& b = grid_.owned();
-  const int nx = grid_.nx(), ny = grid_.ny();
   ConstFieldArray rx = local_read(grid_, *rau_[0]), ry = local_read(grid_, *rau_[1]);
   ConstFieldArray rho = local_read(grid_, *rho_);
   for (int j = b.ys; j < b.ye(); ++j)
@@ -47,7 +46,7 @@ void FlowSolver::assemble_pressure_matrix() {
         const int in = i + fg.di, jn = j + fg.dj;
         const double area = grid_.face_area(fg.axis, i, j, fg.sign);
         const double* const* r = fg.axis == 0 ? rx.data() : ry.data();
-        if (in < 0 || in >= nx || jn < 0 || jn >= ny) {
+        if (grid_.outside(in, jn)) {
           if (boundary(settings_.boundaries, fg.side).kind == BoundaryKind::atmosphere) {
             const double d_half = 0.5 * (fg.axis == 0 ? grid_.dx(i) : grid_.dy(j));
             diag += r[j][i] * area / d_half;
@@ -70,7 +69,6 @@ void FlowSolver::assemble_pressure_matrix() {
 
 int FlowSolver::solve_pressure() {
   const auto& b = grid_.owned();
-  const int nx = grid_.nx(), ny = grid_.ny();
   const auto& g = settings_.gravity;
   int iterations = 0;
   // Predicted face velocity (Rhie-Chow) along `axis` between P=(i,j) and N=(i+di, j+dj): interpolated
@@ -100,7 +98,7 @@ int FlowSolver::solve_pressure() {
           const double area = grid_.face_area(fg.axis, i, j, fg.sign);
           const double* const* h = fg.axis == 0 ? hx.data() : hy.data();
           const double* const* ra = fg.axis == 0 ? rx.data() : ry.data();
-          if (in < 0 || in >= nx || jn < 0 || jn >= ny) {
+          if (grid_.outside(in, jn)) {
             const auto& bc = boundary(settings_.boundaries, fg.side);
             if (bc.kind != BoundaryKind::atmosphere) continue;  // walls: no flux
             const double d_half = 0.5 * (fg.axis == 0 ? grid_.dx(i) : grid_.dy(j));
@@ -118,7 +116,7 @@ int FlowSolver::solve_pressure() {
           const double ustar = predicted(i, j, in, jn, h, w, q0, face_old);
           const double rA = face_coefficient(ra, rho.data(), i, j, in, jn);
           const double rho_f = 0.5 * (rho[j][i] + rho[jn][in]);
-          rhs -= fg.sign * (ustar + rA * rho_f * g[fg.axis]) * area;
+          rhs -= fg.sign * (ustar + rA * rho_f * g[fg.axis] - rA * ambient_weight(fg.axis)) * area;
           outflow += fg.sign * 0.5 * (fg.axis == 0 ? u[j][i] + u[jn][in] : v[j][i] + v[jn][in]) * area;
         }
         r[j][i] = rhs;

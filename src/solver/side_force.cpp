@@ -76,8 +76,8 @@ std::array<double, 10> FlowSolver::wall_forces() const {
   };
   auto on_side = [&](Side s) { return &force[2 * static_cast<int>(s)]; };
   for (int j = b.ys; j < b.ye(); ++j) {
-    if (b.xs == 0) add_face(Side::west, 0, j, boundary(settings_.boundaries, Side::west), on_side(Side::west));
-    if (b.xe() == nx) add_face(Side::east, nx - 1, j, boundary(settings_.boundaries, Side::east), on_side(Side::east));
+    if (grid_.owns_boundary(Side::west)) add_face(Side::west, 0, j, boundary(settings_.boundaries, Side::west), on_side(Side::west));
+    if (grid_.owns_boundary(Side::east)) add_face(Side::east, nx - 1, j, boundary(settings_.boundaries, Side::east), on_side(Side::east));
   }
   for (int i = b.xs; i < b.xe(); ++i) {
     if (b.ys == 0) add_face(Side::south, i, 0, boundary(settings_.boundaries, Side::south), on_side(Side::south));

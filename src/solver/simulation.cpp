@@ -59,7 +59,11 @@ std::string check_blocked_cells(const Grid& g, const CaseConfig& config, const s
                                 std::uint64_t& hash) {
   const int nx = g.nx(), ny = g.ny();
   auto blocked = [&](int i, int j) { return m[size_t(j) * nx + i] > 0.5; };
-  auto open = [&](int i, int j) { return i >= 0 && i < nx && j >= 0 && j < ny && !blocked(i, j); };
+  auto wrap = [&](int i) { return g.periodic_x() ? (i + nx) % nx : i; };  // beyond a periodic side: the other end
+  auto open = [&](int i, int j) {
+    i = wrap(i);
+    return i >= 0 && i < nx && j >= 0 && j < ny && !blocked(i, j);
+  };
   hash = 1469598103934665603ULL;  // FNV-1a over the blocked cells' indices
   for (int j = 0; j < ny; ++j)
     for (int i = 0; i < nx; ++i)
@@ -93,9 +97,9 @@ std::string check_blocked_cells(const Grid& g, const CaseConfig& config, const s
         stack.pop_back();
         if (open_side(ci, cj)) reaches_open_side[r] = true;
         for (const auto& [di, dj] : {std::array<int, 2>{1, 0}, {-1, 0}, {0, 1}, {0, -1}})
-          if (open(ci + di, cj + dj) && region[size_t(cj + dj) * nx + ci + di] < 0) {
-            region[size_t(cj + dj) * nx + ci + di] = r;
-            stack.push_back({ci + di, cj + dj});
+          if (const int ni = wrap(ci + di); open(ni, cj + dj) && region[size_t(cj + dj) * nx + ni] < 0) {
+            region[size_t(cj + dj) * nx + ni] = r;
+            stack.push_back({ni, cj + dj});
           }
       }
     }

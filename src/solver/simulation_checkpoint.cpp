@@ -90,6 +90,7 @@ std::string Simulation::boundaries() const {
                               bc.friction->adhesion);
         break;
       case BoundaryKind::slip: text += "slip"; break;
+      case BoundaryKind::periodic: text += "periodic"; break;
       case BoundaryKind::atmosphere:
         text += fmt::format("atmosphere {:.9g} Pa {}, inflow c {:.9g}", bc.pressure,
                             bc.total_pressure ? "total" : "static", bc.inflow_soil_fraction);

@@ -66,7 +66,7 @@ void SoilPhase::compute_diagnostics(const FlowSolver& flow) {
 // rank's sum.
 double SoilPhase::compute_dissipation(const FlowSolver& flow) {
   const auto& b = grid_.owned();
-  const int nx = grid_.nx(), ny = grid_.ny();
+  const int ny = grid_.ny();
   ConstFieldArray u = local_read(grid_, flow.velocity(0)), v = local_read(grid_, flow.velocity(1));
   ConstFieldArray mu = local_read(grid_, flow.viscosity());
   ConstFieldArray fmx = local_read(grid_, flow.face_viscosity(0)), fmy = local_read(grid_, flow.face_viscosity(1));
@@ -122,7 +122,7 @@ double SoilPhase::compute_dissipation(const FlowSolver& flow) {
   for (int j = b.ys; j < b.ye(); ++j)
     for (int i = b.xs; i < b.xe(); ++i) {
       const bool here = blocked(i, j);
-      if (i + 1 < nx) {
+      if (!grid_.outside(i + 1, j)) {  // beyond a periodic side: the first cell, through the ghost
         if (!here && !blocked(i + 1, j)) {
           const double w = 0.5 * east_face(i, j);
           out[j][i] += w;
@@ -135,9 +135,9 @@ double SoilPhase::compute_dissipation(const FlowSolver& flow) {
       } else if (!here) {
         out[j][i] += wall_face(side(Side::east), Side::east, i, j, grid_.face_area(0, i, j, 1.0));
       }
-      if (i == 0) {
+      if (i == 0 && grid_.bounded(Side::west)) {
         if (!here) out[j][i] += wall_face(side(Side::west), Side::west, i, j, grid_.face_area(0, i, j, -1.0));
-      } else if (i == b.xs && !here) {  // the face shared with the rank to the west
+      } else if (i == b.xs && !here) {  // the face shared with the rank to the west (or the east end)
         if (!blocked(i - 1, j)) out[j][i] += 0.5 * east_face(i - 1, j);
         else out[j][i] += wall_face(obstacle_wall, Side::west, i, j, grid_.face_area(0, i, j, -1.0));
       }

@@ -192,8 +192,8 @@ void SoilPhase::fill_share_ghosts(Field& f) const {
   auto open = [&](Side side) { return boundary(flow_settings_.boundaries, side).kind == BoundaryKind::atmosphere; };
   for (int k = 1; k <= gw; ++k)
     for (int j = b.ys - gw; j < b.ye() + gw; ++j) {
-      if (b.xs == 0 && open(Side::west)) a[j][-k] = 0.0;
-      if (b.xe() == nx && open(Side::east)) a[j][nx - 1 + k] = 0.0;
+      if (grid_.owns_boundary(Side::west) && open(Side::west)) a[j][-k] = 0.0;
+      if (grid_.owns_boundary(Side::east) && open(Side::east)) a[j][nx - 1 + k] = 0.0;
     }
   for (int k = 1; k <= gw; ++k)
     for (int i = b.xs - gw; i < b.xe() + gw; ++i) {
@@ -211,8 +211,8 @@ void SoilPhase::fill_copied_ghosts(Field& f) const {
   const int nx = grid_.nx(), ny = grid_.ny(), gw = Grid::ghost_width;
   for (int k = 1; k <= gw; ++k)
     for (int j = b.ys - gw; j < b.ye() + gw; ++j) {
-      if (b.xs == 0) a[j][-k] = a[j][0];
-      if (b.xe() == nx) a[j][nx - 1 + k] = a[j][nx - 1];
+      if (grid_.owns_boundary(Side::west)) a[j][-k] = a[j][0];
+      if (grid_.owns_boundary(Side::east)) a[j][nx - 1 + k] = a[j][nx - 1];
     }
   for (int k = 1; k <= gw; ++k)
     for (int i = b.xs - gw; i < b.xe() + gw; ++i) {
@@ -247,8 +247,8 @@ void SoilPhase::fill_fraction_ghosts(Field& f) const {
   };
   for (int k = 1; k <= gw; ++k)
     for (int j = b.ys - gw; j < b.ye() + gw; ++j) {
-      if (b.xs == 0) a[j][-k] = value(Side::west, a[j][k - 1]);
-      if (b.xe() == nx) a[j][nx - 1 + k] = value(Side::east, a[j][nx - k]);
+      if (grid_.owns_boundary(Side::west)) a[j][-k] = value(Side::west, a[j][k - 1]);
+      if (grid_.owns_boundary(Side::east)) a[j][nx - 1 + k] = value(Side::east, a[j][nx - k]);
     }
   for (int k = 1; k <= gw; ++k)
     for (int i = b.xs - gw; i < b.xe() + gw; ++i) {
@@ -383,7 +383,7 @@ void SoilPhase::update_face_viscosity(FlowSolver& flow) const {
       },
       [&](int axis, int i, int j, int sign) {  // the cell's pressure carried hydrostatically to the wall
         const int in = i + (axis == 0 ? sign : 0), jn = j + (axis == 1 ? sign : 0);
-        const bool obstacle = in >= 0 && in < grid_.nx() && jn >= 0 && jn < grid_.ny();  // a blocked neighbour
+        const bool obstacle = !grid_.outside(in, jn);  // a blocked neighbour
         const double half = 0.5 * sign * (axis == 0 ? grid_.dx(i) : grid_.dy(j));
         const double pressure = p[j][i] + rho[j][i] * g[axis] * half;
         if (materials_) cell_shares(m, i, j, own);
@@ -463,11 +463,11 @@ const Field& SoilPhase::soil_region(int reach, double floor) const {
     FieldArray a(grid_.field_dm(), region_[1]->local());
     const BlockedView mask(grid_, blocked_);
     const auto& b = grid_.owned();
-    const int gw = Grid::ghost_width, nx = grid_.nx(), ny = grid_.ny();
+    const int gw = Grid::ghost_width, ny = grid_.ny();
     auto open_side = [&](Side side) { return boundary(flow_settings_.boundaries, side).kind == BoundaryKind::atmosphere; };
     for (int j = b.ys - gw; j < b.ye() + gw; ++j)
       for (int i = b.xs - gw; i < b.xe() + gw; ++i) {
-        const bool outside = i < 0 || i >= nx || j < 0 || j >= ny;
+        const bool outside = grid_.outside(i, j);
         const Side side = j < 0 ? Side::south : j >= ny ? Side::north : i < 0 ? Side::west : Side::east;
         if (is_blocked(mask.data(), i, j) || (outside && !open_side(side))) a[j][i] = 0.0;
       }
@@ -487,7 +487,7 @@ const Field& SoilPhase::soil_region(int reach, double floor) const {
       const int gw = Grid::ghost_width;
       for (int j = b.ys - gw; j < b.ye() + gw; ++j)
         for (int i = b.xs - gw; i < b.xe() + gw; ++i)
-          if (i < 0 || i >= grid_.nx() || j < 0 || j >= grid_.ny()) a[j][i] = 0.0;
+          if (grid_.outside(i, j)) a[j][i] = 0.0;
     }
     in = &out;
   }
@@ -608,14 +608,14 @@ void SoilPhase::sweep(int axis, double dt, const Field& from, Field& to, bool fr
     FieldArray c_new(grid_.field_dm(), to.global());
     if (!materials_) {
       interface::vof_sweep(axis, dt, c.data(), face_velocity, cc.data(), grid_.dx_data(), grid_.dy_data(), b, c_new.data(),
-                           radial, soil_through, {grid_.nx(), grid_.ny()});
+                           radial, soil_through, domain_cells());
     } else {
       // The sweep's own face fluxes, which carry the materials' shares, then add up in soil_through.
       FieldArray through(grid_.field_dm(), face_soil_[axis]->local());
       for (int j = b.ys - 1; j < b.ye(); ++j)
         for (int i = b.xs - 1; i < b.xe(); ++i) through[j][i] = 0.0;
       interface::vof_sweep(axis, dt, c.data(), face_velocity, cc.data(), grid_.dx_data(), grid_.dy_data(), b, c_new.data(),
-                           radial, through.data(), {grid_.nx(), grid_.ny()});
+                           radial, through.data(), domain_cells());
       const auto& in = from_shares ? share_ : share_tmp_;
       auto& out = from_shares ? share_tmp_ : share_;
       std::deque<ConstFieldArray> m, m0;
@@ -643,8 +643,9 @@ void SoilPhase::sweep(int axis, double dt, const Field& from, Field& to, bool fr
           }
       }
     }
-    outflow_ += interface::boundary_outflow(axis, dt, c.data(), face_velocity, grid_.dx_data(), grid_.dy_data(), b,
-                                            grid_.nx(), grid_.ny(), radial);
+    if (axis == 1 || grid_.bounded(Side::west))  // no soil leaves through a periodic side
+      outflow_ += interface::boundary_outflow(axis, dt, c.data(), face_velocity, grid_.dx_data(), grid_.dy_data(), b,
+                                              grid_.nx(), grid_.ny(), radial);
   }
   fill_fraction_ghosts(to);
   if (materials_)
@@ -654,14 +655,13 @@ void SoilPhase::sweep(int axis, double dt, const Field& from, Field& to, bool fr
 void SoilPhase::transport_displacement(const FlowSolver& flow, double dt) {
   if (!settings_.displacement) return;
   const auto& b = grid_.owned();
-  const int nx = grid_.nx(), ny = grid_.ny();
   ConstFieldArray c(grid_.field_dm(), c_->local());
   ConstFieldArray fx = local_read(grid_, flow.face_velocity(0)), fy = local_read(grid_, flow.face_velocity(1));
   ConstFieldArray u = local_read(grid_, flow.velocity(0)), v = local_read(grid_, flow.velocity(1));
   const double* const* vel[2] = {u.data(), v.data()};
   // Soil flux (c v . n A)_f of a face of (i, j) ([VoF] Eq. 20), outward.
   auto soil_flux = [&](int i, int j, double face_vel, int in, int jn, double area, double sign) {
-    const bool outside = in < 0 || in >= nx || jn < 0 || jn >= ny;
+    const bool outside = grid_.outside(in, jn);
     const double cf = outside ? c[j][i] : 0.5 * (c[j][i] + c[jn][in]);
     return sign * face_vel * area * cf;
   };

@@ -118,6 +118,8 @@ class SoilPhase {
   void sweep(int axis, double dt, const Field& from, Field& to, bool from_shares, double** soil_through,
              double** soil_mass_through, const double* const* face_velocity);
   interface::RadialWeights radial_weights() const { return {grid_.radius_face_data(), grid_.radius_centre_data()}; }
+  // The domain's cells for the sweeps: the ghosts beyond a boundary are boundary ghosts.
+  interface::DomainCells domain_cells() const { return {grid_.nx(), grid_.ny(), grid_.periodic_x()}; }
   double compute_dissipation(const FlowSolver& flow);
   double mixture_viscosity(double c, double pressure, const rheology::StrainRate& rate,
                            const double* shares = nullptr) const;

@@ -33,14 +33,17 @@ inline double swept_fraction(const double* const* c, const double* dx, const dou
   // Pure cells (the vast majority) need no reconstruction, and give exact 0/1 fluxes.
   if (cu <= 0.0) return 0.0;
   if (cu >= 1.0) return 1.0;
-  auto outside = [&](int ii, int jj) { return ii < 0 || ii >= domain.nx || jj < 0 || jj >= domain.ny; };
+  auto outside = [&](int ii, int jj) {
+    return jj < 0 || jj >= domain.ny || (!domain.periodic_x && (ii < 0 || ii >= domain.nx));
+  };
   if (domain.nx > 0 && outside(i, j)) return cu;  // a boundary ghost: the mixture coming in, uniform
   Block3x3 block = gather_block(c, dx, dy, i, j);
   if (domain.nx > 0) {
     for (int r = 0; r < 3; ++r)
       for (int q = 0; q < 3; ++q)
         if (outside(i - 1 + q, j - 1 + r))
-          block.c[r][q] = c[std::clamp(j - 1 + r, 0, domain.ny - 1)][std::clamp(i - 1 + q, 0, domain.nx - 1)];
+          block.c[r][q] = c[std::clamp(j - 1 + r, 0, domain.ny - 1)]
+                           [domain.periodic_x ? i - 1 + q : std::clamp(i - 1 + q, 0, domain.nx - 1)];
   }
   // A flat neighbourhood has no orientation (a line would amplify round-off to O(1) within one
   // sweep), so take the line parallel to the flow (donor cell).

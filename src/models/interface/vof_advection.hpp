@@ -42,9 +42,11 @@ struct RadialWeights {
 // in through a side is a plain donor at the ghost's value (an atmosphere's inflow fraction), with no
 // interface line fitted across the side, and a cell next to a side fits its line as if the soil went
 // on unchanged beyond it (so a layer leaves through an open side as it is). nx = 0: the ghosts are
-// read as cells (a periodic or reference driver's).
+// read as cells (a periodic or reference driver's). periodic_x: the ghosts beyond the west and east
+// sides are the other end's cells (read as cells), those beyond south and north boundary ghosts.
 struct DomainCells {
   int nx = 0, ny = 0;
+  bool periodic_x = false;
 };
 
 // One directional sweep (axis 0 = x, 1 = y) of Weymouth & Yue's scheme:
