@@ -181,6 +181,20 @@ TEST(RankConsistency, LayeredCollapseSplitAcrossItsLayersOneAndTwoRanksAgree) {
 // momentum transport: the mesh is taller than wide, so the two ranks split it across y (rows 0-14 and
 // 15-29, at y = 0.15 m), and the face mass fluxes of the rows on either side of that boundary, which
 // the VoF's y sweep fills on each rank, enter the momentum of both.
+// A periodic strip (cases/bagnold_chute.toml, 32 x 8 cells split 16 | 16 along x): a mound on the
+// layer at the east end flows down the slope through the joined sides, from the second rank's cells
+// to the first's (by t = 0.25 s the layer at the west end has grown from 3.0 to 3.6 mm); on one rank
+// the same join is the ghosts' wrap within the rank.
+TEST(RankConsistency, FlowThroughPeriodicSidesOneAndTwoRanksAgree) {
+  expect_rank_independent("cases/bagnold_chute.toml",
+                          {"mesh.cells=[32,8]", "mesh.upper=[0.032,0.008]", "time.end=0.25", "output.progress_seconds=0",
+                           "numerics.outer_iterations=6",  // no onset lag: the mound moves 2 cm
+                           "output.line=[]",
+                           "initial.soil=[{shape = \"box\", lower = [0.0, 0.0], upper = [0.032, 0.003]}, "
+                           "{shape = \"box\", lower = [0.024, 0.0], upper = [0.032, 0.006]}]"},
+                          1e-9);  // m/s; measured 2.3e-15
+}
+
 TEST(RankConsistency, DropThroughTheRanksBoundaryOneAndTwoRanksAgree) {
   // The drop of test::falling_drop_case, larger and lower so that it starts across the boundary.
   expect_rank_independent("a falling drop",

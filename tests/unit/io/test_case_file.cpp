@@ -369,6 +369,46 @@ TEST(CaseFile, TwoPhaseKeysRefusedWithoutSoil) {
 
 // A wall of its own friction: the angle and adhesion checked, and the soil it acts on granular with its
 // viscosity taken on faces.
+// Periodic sides join west and east: both or neither, a planar mesh of one cell width along x, no air
+// band; the air's weight along the slope is then carried by a mean pressure gradient.
+TEST(CaseFile, PeriodicSidesComeInTheWestEastPair) {
+  const std::vector<std::string> joined = {"soil.rheology.friction_angle=30", "boundary.west={type = \"periodic\"}",
+                                           "boundary.east={type = \"periodic\"}"};
+  auto with = [&](std::vector<std::string> keys) {
+    keys.insert(keys.begin(), joined.begin(), joined.end());
+    return keys;
+  };
+  const CaseConfig c = parse_case(two_phase, with({}));
+  EXPECT_TRUE(c.mesh.periodic_x);
+  EXPECT_EQ(c.flow.boundaries[int(Side::west)].kind, BoundaryKind::periodic);
+  EXPECT_EQ(c.flow.periodic_ambient_density, 1.0);  // the air's
+  const CaseConfig walls = parse_case(two_phase, {"soil.rheology.friction_angle=30"});
+  EXPECT_FALSE(walls.mesh.periodic_x);
+  EXPECT_EQ(walls.flow.periodic_ambient_density, 0.0);
+  const CaseConfig fluid = parse_case(minimal, {"boundary.west={type = \"periodic\"}", "boundary.east={type = \"periodic\"}"});
+  EXPECT_TRUE(fluid.mesh.periodic_x);
+  EXPECT_EQ(fluid.flow.periodic_ambient_density, 0.0);  // a single fluid: the slope drives it
+  struct Bad {
+    std::vector<std::string> keys;
+    const char* names;
+  };
+  for (const Bad& b :
+       {Bad{{"soil.rheology.friction_angle=30", "boundary.west={type = \"periodic\"}"},
+            "boundary.west.type: a periodic side needs the opposite side periodic too (boundary.east = { type = \"periodic\" })"},
+        Bad{{"soil.rheology.friction_angle=30", "boundary.east={type = \"periodic\"}"}, "boundary.east.type: a periodic side"},
+        Bad{with({"boundary.north={type = \"periodic\"}"}), "boundary.north.type: only the west and east sides can be periodic"},
+        Bad{with({"mesh.grading=[2.0, 1.0]"}), "mesh.grading: periodic west and east sides need cells of one width along x"},
+        Bad{with({"mesh.cells=[2, 8]"}), "mesh.cells: periodic west and east sides need at least 3 cells along x, got 2"},
+        Bad{with({"numerics.pressure_coupling=\"coupled\"", "numerics.air_band=4"}),
+            "numerics.air_band: the air band's region does not reach across periodic sides"}}) {
+    const std::string e = error_of(two_phase, b.keys);
+    EXPECT_NE(e.find(b.names), std::string::npos) << b.keys.back() << ": " << e;
+  }
+  const std::string axis =
+      error_of(two_phase, with({"mesh.geometry=\"axisymmetric\"", "mesh.lower=[0.25, 0.0]", "mesh.upper=[1.25, 1.0]"}));
+  EXPECT_NE(axis.find("periodic"), std::string::npos) << axis;
+}
+
 TEST(CaseFile, WallFrictionIsValidatedAndNeedsAGranularSoilOnFaces) {
   const std::vector<std::string> granular = {"soil.rheology.friction_angle=30", "soil.yield_pressure=face"};
   auto with = [&](std::vector<std::string> keys) {

@@ -1,0 +1,136 @@
+#!/usr/bin/python3
+"""Compare a granflow run of cases/bagnold_chute.toml with the steady profile of mu(I) flow down a chute.
+
+Usage: compare_bagnold.py RUN_DIR [--png FILE] [--also DIR=LABEL ...]
+
+Reads the latest line sample RUN_DIR/profile.csv and the case as the run took it
+(RUN_DIR/granflow_case.toml: the slope from the gravity vector, the densities, the mu(I) constants,
+the grain size and the viscosity floor mu_min, the layer's depth from its initial box). It prints, at
+each sample point in the layer, the computed velocity against two profiles, each relative to the
+model's surface velocity:
+  - Bagnold's: tau / p = tan(theta) at every depth, so I = I_0 (tan theta - mu_s) / (mu_2 - tan theta)
+    and u(z) = (2/3) (I / d) sqrt(g cos theta) (h^1.5 - (h - z)^1.5);
+  - the model's own steady profile: tau = mu(I) p + mu_min gamma_dot (the regularised viscosity in
+    simple shear), the shear stress carrying the weight along the slope less the air's (which a mean
+    pressure gradient carries on a periodic slope), the pressure the soil's weight plus the air's
+    column above the surface.
+With --png the profiles are drawn with the computed one; --also adds the profiles of further runs
+(e.g. another mesh).
+"""
+import argparse
+import math
+import os
+import tomllib
+
+import numpy as np
+
+from granflow_files import InputError, main_with_errors, read_csv, require_columns
+
+
+def read_case(run_dir):
+    path = os.path.join(run_dir, "granflow_case.toml")
+    try:
+        with open(path, "rb") as f:
+            case = tomllib.load(f)
+    except OSError as e:
+        raise InputError(f"cannot read {path}: {e.strerror}")
+    except tomllib.TOMLDecodeError as e:
+        raise InputError(f"{path}: {e}")
+    try:
+        rheology = case["soil"]["rheology"]
+        if rheology.get("friction") != "mu_of_I":
+            raise InputError(f"{path}: the soil's friction is not mu_of_I (a run of another case?)")
+        gx, gy = case["physics"]["gravity"]
+        box = case["initial"]["soil"][0]
+        return {
+            "theta": math.atan2(gx, -gy), "g": math.hypot(gx, gy),
+            "rho_s": case["soil"]["density"], "rho_a": case["air"]["density"],
+            "depth": box["upper"][1] - box["lower"][1], "height": case["mesh"]["upper"][1] - case["mesh"]["lower"][1],
+            "d": rheology["grain_diameter"], "mu_s": rheology["mu_s"], "mu_2": rheology["mu_2"],
+            "I_0": rheology["I_0"], "mu_min": rheology.get("mu_min", 1e-3),
+        }
+    except (KeyError, IndexError, TypeError, ValueError) as e:
+        raise InputError(f"{path}: not a chute case of a mu(I) soil layer on a tilted floor ({e!r} missing)")
+
+
+def steady_profile(m, z, model):
+    """u at heights z: Bagnold's (model=False) or the model's own steady profile (model=True)."""
+    levels = 20000
+    level = np.linspace(0.0, m["depth"], levels + 1)
+    below = m["depth"] - level
+    buoyancy = m["rho_a"] if model else 0.0
+    column = m["rho_a"] * m["g"] * math.cos(m["theta"]) * (m["height"] - m["depth"]) if model else 0.0
+    tau = (m["rho_s"] - buoyancy) * m["g"] * math.sin(m["theta"]) * below
+    p = m["rho_s"] * m["g"] * math.cos(m["theta"]) * below + column
+    floor = m["mu_min"] if model else 0.0
+    flowing = (p > 0) & (tau > m["mu_s"] * p)
+    p_safe = np.where(p > 0, p, 1.0)
+    lo, hi = np.zeros_like(level), np.full_like(level, 1e4)
+    for _ in range(200):
+        mid = 0.5 * (lo + hi)
+        inertial = np.maximum(mid * m["d"] * np.sqrt(m["rho_s"] / p_safe), 1e-300)
+        stress = (m["mu_s"] + (m["mu_2"] - m["mu_s"]) / (m["I_0"] / inertial + 1.0)) * p + floor * mid
+        low = stress < tau
+        lo, hi = np.where(low, mid, lo), np.where(low, hi, mid)
+    rate = np.where(flowing, 0.5 * (lo + hi), 0.0)
+    u = np.concatenate([[0.0], np.cumsum(0.5 * (rate[1:] + rate[:-1]) * np.diff(level))])
+    return np.interp(z, level, u)
+
+
+def read_profile(run_dir):
+    path = os.path.join(run_dir, "profile.csv")
+    table = read_csv(path)
+    require_columns(table, path, ["y", "u"])
+    with open(path) as f:
+        first = f.readline().strip()
+    return table, first
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("run_dir")
+    ap.add_argument("--png")
+    ap.add_argument("--also", action="append", default=[], metavar="DIR=LABEL")
+    args = ap.parse_args()
+    m = read_case(args.run_dir)
+    table, when = read_profile(args.run_dir)
+    inside = table["y"] < m["depth"]
+    z, u = table["y"][inside], table["u"][inside]
+    surface = float(steady_profile(m, np.array([m["depth"]]), True)[0])
+    bagnold, own = steady_profile(m, z, False), steady_profile(m, z, True)
+    inertial = m["I_0"] * (math.tan(m["theta"]) - m["mu_s"]) / (m["mu_2"] - math.tan(m["theta"]))
+    print(f"{when[2:] if when.startswith('#') else when}; slope {math.degrees(m['theta']):.4g} deg, "
+          f"I = {inertial:.4f}, layer {m['depth']:.4g} m")
+    print("z_m,u_computed,u_model,u_bagnold,diff_model_rel,diff_bagnold_rel")
+    for k in range(len(z)):
+        print(f"{z[k]:.6g},{u[k]:.6f},{own[k]:.6f},{bagnold[k]:.6f},{(u[k] - own[k]) / surface:+.5f},"
+              f"{(u[k] - bagnold[k]) / surface:+.5f}")
+    print(f"surface_velocity_model_m_s = {surface:.5f}")
+    print(f"largest_difference_from_model = {np.max(np.abs(u - own)) / surface:.5f}")
+    print(f"largest_difference_from_bagnold = {np.max(np.abs(u - bagnold)) / surface:.5f}")
+    if args.png:
+        import matplotlib
+        matplotlib.use("Agg")
+        import matplotlib.pyplot as plt
+        fine = np.linspace(0.0, m["depth"], 200)
+        fig, ax = plt.subplots(figsize=(5, 4.5))
+        ax.plot(steady_profile(m, fine, False), 1e3 * fine, "k-", lw=1, label="Bagnold: tau / p = tan(theta)")
+        ax.plot(steady_profile(m, fine, True), 1e3 * fine, "k--", lw=1, label="model: + mu_min, air")
+        ax.plot(u, 1e3 * z, "o", ms=4, mfc="none", label=f"computed, {args.run_dir.rstrip('/').split('/')[-1]}")
+        for item in args.also:
+            run, _, label = item.partition("=")
+            t, _ = read_profile(run)
+            keep = t["y"] < m["depth"]
+            ax.plot(t["u"][keep], 1e3 * t["y"][keep], "x", ms=4, label=label or run)
+        ax.set_xlabel("u (m/s)")
+        ax.set_ylabel("z (mm)")
+        ax.set_title(f"mu(I) flow down a chute at {math.degrees(m['theta']):.0f} deg")
+        ax.legend(fontsize=8, loc="upper left")
+        ax.grid(alpha=0.3)
+        fig.tight_layout()
+        fig.savefig(args.png, dpi=120)
+        print(f"wrote {args.png}")
+
+
+if __name__ == "__main__":
+    main_with_errors(main)
