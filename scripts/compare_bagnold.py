@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """Compare a granflow run of cases/bagnold_chute.toml with the steady profile of mu(I) flow down a chute.
 
-Usage: compare_bagnold.py RUN_DIR [--png FILE] [--also DIR=LABEL ...]
+Usage: compare_bagnold.py RUN_DIR [--png FILE] [--label LABEL] [--also DIR=LABEL ...]
 
 Reads the latest line sample RUN_DIR/profile.csv and the case as the run took it
 (RUN_DIR/granflow_case.toml: the slope from the gravity vector, the densities, the mu(I) constants,
@@ -91,6 +91,7 @@ def main():
     ap.add_argument("run_dir")
     ap.add_argument("--png")
     ap.add_argument("--also", action="append", default=[], metavar="DIR=LABEL")
+    ap.add_argument("--label", help="the run's label in the figure (default: its directory's name)")
     args = ap.parse_args()
     m = read_case(args.run_dir)
     table, when = read_profile(args.run_dir)
@@ -116,7 +117,7 @@ def main():
         fig, ax = plt.subplots(figsize=(5, 4.5))
         ax.plot(steady_profile(m, fine, False), 1e3 * fine, "k-", lw=1, label="Bagnold: tau / p = tan(theta)")
         ax.plot(steady_profile(m, fine, True), 1e3 * fine, "k--", lw=1, label="model: + mu_min, air")
-        ax.plot(u, 1e3 * z, "o", ms=4, mfc="none", label=f"computed, {args.run_dir.rstrip('/').split('/')[-1]}")
+        ax.plot(u, 1e3 * z, "o", ms=4, mfc="none", label=args.label or f"computed, {args.run_dir.rstrip('/').split('/')[-1]}")
         for item in args.also:
             run, _, label = item.partition("=")
             t, _ = read_profile(run)

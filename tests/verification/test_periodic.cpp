@@ -137,8 +137,8 @@ std::vector<double> steady_profile(const ChuteModel& m, const std::vector<double
 }
 
 // The shipped case to its end (t = 5 s). Measured (0.5 mm cells, 20 across the layer): largest
-// difference from the model's steady profile 0.21 % of the surface velocity (0.36 % with 10 cells
-// across, 0.095 % with 40); from Bagnold's own profile (no viscosity floor, no air) 0.81 %, the
+// difference from the model's steady profile 0.22 % of the surface velocity (0.36 % with 10 cells
+// across, 0.14 % with 40); from Bagnold's own profile (no viscosity floor, no air) 0.81 %, the
 // floor's mu_min gamma_dot and the air's buoyancy slowing the layer by that much; the bed's shear
 // over its normal force 0.445018 against 0.444977 (+9e-5); every column the same to 3e-10 m/s; the
 // soil volume to round-off.
