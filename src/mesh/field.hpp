@@ -29,10 +29,18 @@ class Field {
     PetscCallAbort(PETSC_COMM_WORLD, DMGlobalToLocalBegin(dm_, global_, INSERT_VALUES, local_));
     PetscCallAbort(PETSC_COMM_WORLD, DMGlobalToLocalEnd(dm_, global_, INSERT_VALUES, local_));
   }
-  // Local owned values -> global.
+  // Local owned values -> global. Copied block by block: PETSc's DMLocalToGlobal with INSERT_VALUES
+  // refuses a periodic axis that one rank holds whole.
   void gather_from_local() {
-    PetscCallAbort(PETSC_COMM_WORLD, DMLocalToGlobalBegin(dm_, local_, INSERT_VALUES, global_));
-    PetscCallAbort(PETSC_COMM_WORLD, DMLocalToGlobalEnd(dm_, local_, INSERT_VALUES, global_));
+    PetscInt xs, ys, xm, ym;
+    PetscCallAbort(PETSC_COMM_WORLD, DMDAGetCorners(dm_, &xs, &ys, nullptr, &xm, &ym, nullptr));
+    double **g, **l;
+    PetscCallAbort(PETSC_COMM_WORLD, DMDAVecGetArray(dm_, global_, &g));
+    PetscCallAbort(PETSC_COMM_WORLD, DMDAVecGetArray(dm_, local_, &l));
+    for (PetscInt j = ys; j < ys + ym; ++j)
+      for (PetscInt i = xs; i < xs + xm; ++i) g[j][i] = l[j][i];
+    PetscCallAbort(PETSC_COMM_WORLD, DMDAVecRestoreArray(dm_, local_, &l));
+    PetscCallAbort(PETSC_COMM_WORLD, DMDAVecRestoreArray(dm_, global_, &g));
   }
   void set(double value) {
     VecSet(global_, value);
