@@ -114,14 +114,4 @@ double Grid::min_spacing() const {
   return h;
 }
 
-bool Grid::on_boundary(Side s, int i, int j) const {
-  switch (s) {
-    case Side::west: return i == 0;
-    case Side::east: return i == nx() - 1;
-    case Side::south: return j == 0;
-    case Side::north: return j == ny() - 1;
-  }
-  return false;
-}
-
 }  // namespace granflow

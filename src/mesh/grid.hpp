@@ -88,7 +88,6 @@ class Grid {
   const double* radius_face_data() const { return spec_.axisymmetric ? radius_face_.data() + ghost_width : nullptr; }
   const double* radius_centre_data() const { return spec_.axisymmetric ? centre_[0].data() + ghost_width : nullptr; }
   double min_spacing() const;
-  bool on_boundary(Side s, int i, int j) const;
   bool periodic_x() const { return spec_.periodic_x; }
   // Whether side s is a boundary of the domain (not joined to the opposite side).
   bool bounded(Side s) const { return !(spec_.periodic_x && (s == Side::west || s == Side::east)); }
