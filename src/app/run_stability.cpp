@@ -34,10 +34,10 @@ std::vector<std::filesystem::path> earlier_analysis(const std::filesystem::path&
 
 void write_table(const std::filesystem::path& path, const StrengthReductionResult& r) {
   write_file_atomically(path, [&](std::ostream& out) {
-    out << "factor,fails,diverged,largest_displacement_m,time_s,steps,wall_seconds,directory\n";
+    out << "factor,fails,diverged,largest_displacement_m,time_s,steps,unconverged_steps,wall_seconds,directory\n";
     for (const auto& t : r.trials)
-      out << fmt::format("{},{},{},{:.6g},{:.6g},{},{:.3f},{}\n", t.factor, int(t.fails), int(t.diverged),
-                         t.largest_displacement, t.time, t.steps, t.wall_seconds,
+      out << fmt::format("{},{},{},{:.6g},{:.6g},{},{},{:.3f},{}\n", t.factor, int(t.fails), int(t.diverged),
+                         t.largest_displacement, t.time, t.steps, t.unconverged_steps, t.wall_seconds,
                          trial_directory(".", t.factor).filename().string());
   });
 }
@@ -77,9 +77,11 @@ int run_stability(const std::string& case_file, const std::vector<std::string>& 
   const StrengthReductionResult r = factor_of_safety(
       PETSC_COMM_WORLD, config, out_dir, settings, [&](const StrengthTrial& t) {
         if (rank != 0) return;
-        fmt::print("F = {}: {} (largest displacement {:.3g} m at t = {:.4g} s; {} steps, {:.1f} s)\n", t.factor,
+        fmt::print("F = {}: {} (largest displacement {:.3g} m at t = {:.4g} s; {} steps{}, {:.1f} s)\n", t.factor,
                    t.diverged ? "fails (diverged)" : t.fails ? "fails" : "stands", t.largest_displacement, t.time,
-                   t.steps, t.wall_seconds);
+                   t.steps,
+                   t.unconverged_steps > 0 ? fmt::format(", {} of them unconverged", t.unconverged_steps) : std::string(),
+                   t.wall_seconds);
         std::fflush(stdout);
       });
   if (rank == 0) write_table(std::filesystem::path(out_dir) / table_name, r);
@@ -96,9 +98,20 @@ int run_stability(const std::string& case_file, const std::vector<std::string>& 
     }
     return 1;
   }
-  if (rank == 0)
+  if (rank == 0) {
     fmt::print("factor of safety: {:.3f} (stands at F = {}, fails at F = {}; trials in {})\n",
                0.5 * (r.stands_at + r.fails_at), r.stands_at, r.fails_at, out_dir);
+    // The two trials that make the bracket decide the factor: a viscosity that lags behind the flow
+    // there holds a soil at its limit a little longer.
+    for (const auto& t : r.trials)
+      if ((t.factor == r.stands_at || t.factor == r.fails_at) && t.unconverged_steps > 0) {
+        fmt::print("note: the bracket's trials took steps whose outer iterations stopped at numerics.outer_iterations = "
+                   "{} before numerics.outer_tolerance; near its limit a soil converges slowly, and more iterations "
+                   "can lower the factor a little (docs/validation.md, \"An infinite slope\")\n",
+                   config.flow.numerics.outer_iterations < 10 ? 10 : config.flow.numerics.outer_iterations);
+        break;
+      }
+  }
   return 0;
 }
 

@@ -390,6 +390,7 @@ RunSummary Simulation::run(const StepObserver& after_step) {
     if (soil_) record_history(step_dt);
     ++summary.steps;
     ++steps_;
+    last_step_ = r;
     summary.outer_iterations += r.outer_iterations;
     if (!(r.velocity_change < config_.flow.numerics.outer_tolerance)) ++summary.steps_outer_unconverged;
     summary.momentum_iterations += r.momentum_iterations;

@@ -57,6 +57,7 @@ class Simulation {
   SoilPhase* soil() { return soil_.get(); }
   const CaseConfig& config() const { return config_; }
   double time() const { return time_; }
+  const StepReport& last_step() const { return last_step_; }  // the flow step last taken
 
   // Writes the field series entry and the line samples for the current state.
   void write_output();
@@ -109,6 +110,7 @@ class Simulation {
   bool restarted_ = false;
   double restart_time_ = 0.0;  // the checkpoint's time, after restart()
   bool solve_region_laid_ = false;  // numerics.air_band: a region has been laid (or restored)
+  StepReport last_step_;
   long steps_ = 0;  // steps of the whole run, over restarts (time.max_steps counts these)
   int output_index_ = 0;
   bool run_recorded_ = false;  // the record of the run's line samples is written (io/run_directory.hpp)

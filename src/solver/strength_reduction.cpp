@@ -144,6 +144,7 @@ StrengthTrial strength_trial(MPI_Comm comm, const CaseConfig& config, const std:
   try {
     sim.run([&](Simulation& running, double) {
       ++trial.steps;
+      if (!(running.last_step().velocity_change < running.config().flow.numerics.outer_tolerance)) ++trial.unconverged_steps;
       if (largest_displacement(running) > limit) throw Moved{};
     });
   } catch (const Moved&) {

@@ -29,6 +29,9 @@ struct StrengthTrial {
   double largest_displacement = 0.0;  // m, of the soil (cells with c >= 0.5) when the trial ended
   double time = 0.0;                  // s, when it ended: time.end, or earlier once the soil moved past the limit
   long steps = 0;
+  // Steps whose outer iterations stopped at numerics.outer_iterations before outer_tolerance. Near its
+  // limit a soil converges slowly, and a viscosity that lags makes it stand a little longer.
+  long unconverged_steps = 0;
   double wall_seconds = 0.0;
 };
 
