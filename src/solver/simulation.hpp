@@ -58,6 +58,7 @@ class Simulation {
   const CaseConfig& config() const { return config_; }
   double time() const { return time_; }
   const StepReport& last_step() const { return last_step_; }  // the flow step last taken
+  double dissipated_energy() const { return dissipated_energy_; }  // J per metre depth (or radian), so far
 
   // Writes the field series entry and the line samples for the current state.
   void write_output();

@@ -223,6 +223,12 @@ SoilBudget SoilPhase::budget(const FlowSolver& flow) {
   const auto m = share_arrays(false);
   double s[7] = {0, 0, 0, 0, compute_dissipation(flow), 0, outflow_};
   const BlockedView mask(grid_, blocked_);
+  // Periodic sides: the weight along x is the soil's in excess of the air's, (rho_s - rho_a) c g_x (the
+  // air's own is carried by the mean pressure gradient, FlowSettings::periodic_ambient_density), and
+  // the soil's first moment along x runs on through the join: what crossed it counts where it would
+  // lie had the strip gone on (join_moment_). Its work is then the drop of this energy.
+  const bool periodic = !grid_.bounded(Side::west);
+  if (periodic) s[3] -= g[0] * join_moment_;
   for (int j = b.ys; j < b.ye(); ++j)
     for (int i = b.xs; i < b.xe(); ++i) {
       if (is_blocked(mask.data(), i, j)) continue;  // solid, not the flow's
@@ -231,7 +237,10 @@ SoilBudget SoilPhase::budget(const FlowSolver& flow) {
       s[0] += c[j][i] * V;
       s[1] += (1.0 - c[j][i]) * V;
       s[2] += 0.5 * phase_density * (u[j][i] * u[j][i] + v[j][i] * v[j][i]) * V;
-      s[3] -= phase_density * (g[0] * grid_.xc(i) + g[1] * grid_.yc(j)) * V;
+      if (periodic)
+        s[3] -= ((phase_density - rho_a) * g[0] * grid_.xc(i) + phase_density * g[1] * grid_.yc(j)) * V;
+      else
+        s[3] -= phase_density * (g[0] * grid_.xc(i) + g[1] * grid_.yc(j)) * V;
       s[5] += rho[j][i] * V;
     }
   double t[7];

@@ -92,20 +92,25 @@ void SoilPhase::save_state() {
   saved_.save(state_fields());
   saved_parity_ = sweep_parity_;
   saved_outflow_ = outflow_;
+  saved_join_moment_ = join_moment_;
 }
 
 CheckpointScalars SoilPhase::checkpoint_scalars() const {
   CheckpointScalars v{{double(sweep_parity_)}, {outflow_}};
   v.summed.insert(v.summed.end(), lode_energy_.values().begin(), lode_energy_.values().end());
+  v.summed.push_back(join_moment_);
   return v;
 }
 
 void SoilPhase::restore_scalars(std::span<const double> shared, std::span<const double> summed) {
-  if (shared.size() != 1 || summed.size() != 1 + lode_energy_.values().size())
+  const size_t bins = lode_energy_.values().size();
+  // Checkpoints written before the join's moment was kept end after the Lode bins.
+  if (shared.size() != 1 || (summed.size() != 2 + bins && summed.size() != 1 + bins))
     throw std::runtime_error("the checkpoint's soil state does not match this case");
   sweep_parity_ = int(shared[0]);
   outflow_ = summed[0];
-  std::copy(summed.begin() + 1, summed.end(), lode_energy_.values().begin());
+  std::copy(summed.begin() + 1, summed.begin() + 1 + long(bins), lode_energy_.values().begin());
+  join_moment_ = summed.size() == 2 + bins ? summed[1 + bins] : 0.0;
 }
 
 void SoilPhase::clear_blocked_cells() {
@@ -120,6 +125,7 @@ void SoilPhase::restore_state() {
   clear_blocked_cells();
   sweep_parity_ = saved_parity_;
   outflow_ = saved_outflow_;
+  join_moment_ = saved_join_moment_;
 }
 
 void SoilPhase::initialise() {
@@ -646,6 +652,19 @@ void SoilPhase::sweep(int axis, double dt, const Field& from, Field& to, bool fr
     if (axis == 1 || grid_.bounded(Side::west))  // no soil leaves through a periodic side
       outflow_ += interface::boundary_outflow(axis, dt, c.data(), face_velocity, grid_.dx_data(), grid_.dy_data(), b,
                                               grid_.nx(), grid_.ny(), radial);
+    else if (b.xe() == grid_.nx()) {  // the rank that holds the last column, east of which is the join
+      std::deque<ConstFieldArray> m;  // the shares the sweep starts from, with the first column's as ghosts
+      if (densities_differ())
+        for (const auto& f : from_shares ? share_ : share_tmp_) m.emplace_back(grid_.field_dm(), f->local());
+      const int i = grid_.nx() - 1;
+      const double length = grid_.spec().upper[0] - grid_.spec().lower[0];
+      for (int j = b.ys; j < b.ye(); ++j) {
+        const double moved = interface::face_soil_volume_x(i, j, dt, c.data(), face_velocity, grid_.dx_data(),
+                                                           grid_.dy_data(), domain_cells());
+        if (moved != 0.0)  // the donor's soil: cell i + 1 is the first column's ghost
+          join_moment_ += (cell_soil_density(m, moved > 0.0 ? i : i + 1, j) - settings_.air_density) * length * moved;
+      }
+    }
   }
   fill_fraction_ghosts(to);
   if (materials_)

@@ -167,6 +167,10 @@ class SoilPhase {
   FieldSnapshot saved_;
   int saved_parity_ = 0;
   double outflow_ = 0.0, saved_outflow_ = 0.0;  // this rank's soil volume carried out of the domain
+  // Periodic x: this rank's share of (rho_s - rho_a) L V summed over the soil volumes V carried east
+  // through the join (L the strip's length), which the soil's first moment along x loses as the soil
+  // comes in at the other end; budget() adds it back, so the potential energy of a slope runs on.
+  double join_moment_ = 0.0, saved_join_moment_ = 0.0;
   std::optional<rheology::GranularRheology> rheology_;
   std::optional<rheology::SoilMaterials> materials_;  // with [[soil.materials]]
   std::vector<std::unique_ptr<Field>> share_, share_tmp_, share_start_;

@@ -169,6 +169,11 @@ double boundary_outflow(int axis, double dt, const double* const* c, const doubl
   return out;
 }
 
+double face_soil_volume_x(int i, int j, double dt, const double* const* c, const double* const* u, const double* dx,
+                          const double* dy, DomainCells domain) {
+  return face_flux_x(c, u[j][i], dt, dx, dy, i, j, domain, {}).f * dy[j];
+}
+
 void dilatation_indicator(const double* const* c, CellBox o, double** cc) {
   for (int j = o.ys; j < o.ys + o.ym; ++j)
     for (int i = o.xs; i < o.xs + o.xm; ++i) cc[j][i] = c[j][i] > 0.5 ? 1.0 : 0.0;

@@ -73,6 +73,11 @@ void vof_sweep(int axis, double dt, const double* const* c, const double* const*
 double boundary_outflow(int axis, double dt, const double* const* c, const double* const* face_velocity,
                         const double* dx, const double* dy, CellBox owned, int nx, int ny, RadialWeights radial = {});
 
+// Soil volume (per unit depth) that the x sweep carries through face (i, j), between cells i and i + 1,
+// positive along x: the F vof_sweep takes there, times the face's height.
+double face_soil_volume_x(int i, int j, double dt, const double* const* c, const double* const* face_velocity,
+                          const double* dx, const double* dy, DomainCells domain);
+
 // cc = 1 where c > 0.5, else 0, on owned cells. Evaluate once per time step, before the first
 // sweep. Any cc array holding 0/1 values works (cc > 0.5 selects the correction).
 void dilatation_indicator(const double* const* c, CellBox owned, double** cc);
