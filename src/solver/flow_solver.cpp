@@ -391,8 +391,9 @@ void FlowSolver::compute_face_forces() {
 
 double FlowSolver::cell_force(int axis, int i, int j, const double* const* ff, const double* const* rho) const {
   const int di = axis == 0 ? 1 : 0, dj = 1 - di;
-  const double rho_hi = (axis == 0 ? i + 1 < grid_.nx() : j + 1 < grid_.ny()) ? 0.5 * (rho[j][i] + rho[j + dj][i + di]) : rho[j][i];
-  const double rho_lo = (axis == 0 ? i > 0 : j > 0) ? 0.5 * (rho[j][i] + rho[j - dj][i - di]) : rho[j][i];
+  // A boundary face takes the cell's density; the join of a periodic strip is an interior face.
+  const double rho_hi = grid_.outside(i + di, j + dj) ? rho[j][i] : 0.5 * (rho[j][i] + rho[j + dj][i + di]);
+  const double rho_lo = grid_.outside(i - di, j - dj) ? rho[j][i] : 0.5 * (rho[j][i] + rho[j - dj][i - di]);
   return rho[j][i] * 0.5 * (ff[j][i] / rho_hi + ff[j - dj][i - di] / rho_lo);
 }
 

@@ -22,10 +22,10 @@ double FlowSolver::face_coefficient(const double* const* rau, const double* cons
 // side, and multiplying it by the stiff viscosity would overshoot by the contrast.
 double FlowSolver::local_min_viscosity(const double* const* mu, int i, int j) const {
   double m = mu[j][i];
-  if (i > 0) m = std::min(m, mu[j][i - 1]);
-  if (i + 1 < grid_.nx()) m = std::min(m, mu[j][i + 1]);
-  if (j > 0) m = std::min(m, mu[j - 1][i]);
-  if (j + 1 < grid_.ny()) m = std::min(m, mu[j + 1][i]);
+  if (!grid_.outside(i - 1, j)) m = std::min(m, mu[j][i - 1]);
+  if (!grid_.outside(i + 1, j)) m = std::min(m, mu[j][i + 1]);
+  if (!grid_.outside(i, j - 1)) m = std::min(m, mu[j - 1][i]);
+  if (!grid_.outside(i, j + 1)) m = std::min(m, mu[j + 1][i]);
   return m;
 }
 
