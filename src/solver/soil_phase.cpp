@@ -651,7 +651,7 @@ void SoilPhase::sweep(int axis, double dt, const Field& from, Field& to, bool fr
     }
     if (axis == 1 || grid_.bounded(Side::west))  // no soil leaves through a periodic side
       outflow_ += interface::boundary_outflow(axis, dt, c.data(), face_velocity, grid_.dx_data(), grid_.dy_data(), b,
-                                              grid_.nx(), grid_.ny(), radial);
+                                              domain_cells(), radial);
     else if (b.xe() == grid_.nx()) {  // the rank that holds the last column, east of which is the join
       std::deque<ConstFieldArray> m;  // the shares the sweep starts from, with the first column's as ghosts
       if (densities_differ())

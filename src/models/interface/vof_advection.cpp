@@ -148,11 +148,12 @@ void vof_sweep(int axis, double dt, const double* const* c, const double* const*
 }
 
 double boundary_outflow(int axis, double dt, const double* const* c, const double* const* u, const double* dx,
-                        const double* dy, CellBox o, int nx, int ny, RadialWeights radial) {
-  const DomainCells domain{nx, ny};
+                        const double* dy, CellBox o, DomainCells domain, RadialWeights radial) {
+  const int nx = domain.nx, ny = domain.ny;
   double out = 0.0;
   const int i_end = o.xs + o.xm, j_end = o.ys + o.ym;
   if (axis == 0) {
+    if (domain.periodic_x) return 0.0;
     const bool weighted = radial.face != nullptr;
     for (int j = o.ys; j < j_end; ++j) {
       if (o.xs == 0) out -= (weighted ? radial.face[-1] : 1.0) * face_flux_x(c, u[j][-1], dt, dx, dy, -1, j, domain, radial).f * dy[j];

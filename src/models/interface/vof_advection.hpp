@@ -67,11 +67,11 @@ void vof_sweep(int axis, double dt, const double* const* c, const double* const*
                DomainCells domain = {});
 
 // Soil volume (per unit depth, per radian with radial weights) that the sweep of `axis` carries out
-// of the domain of nx x ny cells through the boundary faces of the owned cells; negative for inflow.
-// The same face fluxes as vof_sweep given DomainCells{nx, ny} (the sides' ghosts as boundary ghosts),
-// so that the soil in the domain plus the outflow of such sweeps is conserved.
+// of the domain through the boundary faces of the owned cells; negative for inflow. The same face
+// fluxes as vof_sweep given the same `domain`, so that the soil in the domain plus the outflow of such
+// sweeps is conserved. Along a periodic x there are no boundary faces: only the y sweep's count.
 double boundary_outflow(int axis, double dt, const double* const* c, const double* const* face_velocity,
-                        const double* dx, const double* dy, CellBox owned, int nx, int ny, RadialWeights radial = {});
+                        const double* dx, const double* dy, CellBox owned, DomainCells domain, RadialWeights radial = {});
 
 // Soil volume (per unit depth) that the x sweep carries through face (i, j), between cells i and i + 1,
 // positive along x: the F vof_sweep takes there, times the face's height.
