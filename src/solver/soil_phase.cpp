@@ -1,5 +1,6 @@
 #include "solver/soil_phase.hpp"
 
+#include "io/checkpoint.hpp"
 #include "mesh/face_loop.hpp"
 #include "mesh/gather.hpp"
 #include "mesh/obstacles.hpp"
@@ -106,7 +107,7 @@ void SoilPhase::restore_scalars(std::span<const double> shared, std::span<const 
   const size_t bins = lode_energy_.values().size();
   // Checkpoints written before the join's moment was kept end after the Lode bins.
   if (shared.size() != 1 || (summed.size() != 2 + bins && summed.size() != 1 + bins))
-    throw std::runtime_error("the checkpoint's soil state does not match this case");
+    throw CheckpointError("the checkpoint's state does not match this case's model");
   sweep_parity_ = int(shared[0]);
   outflow_ = summed[0];
   std::copy(summed.begin() + 1, summed.begin() + 1 + long(bins), lode_energy_.values().begin());

@@ -105,6 +105,7 @@ class SoilPhase {
   std::vector<Field*> checkpoint_fields() { return state_fields(); }
   std::string checkpoint_field_names() const;  // of checkpoint_fields()
   CheckpointScalars checkpoint_scalars() const;
+  // Throws CheckpointError where the numbers are not this soil's.
   void restore_scalars(std::span<const double> shared, std::span<const double> summed);
  private:
   void fill_displacement_ghosts();

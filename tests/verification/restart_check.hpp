@@ -7,6 +7,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -58,9 +59,11 @@ inline void run_and_kill(MPI_Comm comm, const CaseConfig& config, const std::fil
 }
 
 // On all ranks of PETSC_COMM_WORLD: runs the case whole into one directory; into another, kills it
-// after `stop_after` steps and runs it again from the checkpoint. Returns the checkpoint's time.
+// after `stop_after` steps and runs it again from the checkpoint, which `before_restart` (if given)
+// may change first, on the first rank. Returns the checkpoint's time.
 inline double expect_restart_reproduces(const std::string& case_file, std::vector<std::string> overrides,
-                                        long stop_after, bool has_history) {
+                                        long stop_after, bool has_history,
+                                        const std::function<void(const std::filesystem::path&)>& before_restart = {}) {
   const auto whole_dir = scratch("restart_whole"), split_dir = scratch("restart_split");
   remove_scratch(whole_dir);
   remove_scratch(split_dir);
@@ -72,6 +75,10 @@ inline double expect_restart_reproduces(const std::string& case_file, std::vecto
     whole = end_state(sim, s.steps);
   }
   run_and_kill(PETSC_COMM_WORLD, config, split_dir, stop_after);
+  if (before_restart) {
+    if (is_root()) before_restart(split_dir / "checkpoint");
+    MPI_Barrier(PETSC_COMM_WORLD);
+  }
   double checkpoint_time = 0.0;
   EndState resumed;
   {

@@ -40,6 +40,42 @@ TEST(Restart, LayeredCollapseContinuesExactlyFromItsLastCheckpoint) {
   std::printf("layered collapse restarted from its checkpoint at t = %.3g s\n", t);
 }
 
+// A checkpoint written before the periodic join's moment was kept (docs/method.md, "The potential
+// energy along the strip") ends its numbers after the Lode bins: it is read, with the moment at 0,
+// and a non-periodic run goes on exactly as before. (Before, a restart refused it: the simulation
+// asked for as many numbers as it writes.)
+TEST(Restart, CollapseContinuesFromACheckpointOfBeforeTheJoinsMoment) {
+  const double t = expect_restart_reproduces(
+      "cases/bui2008_experiment.toml",
+      {"mesh.cells=[60,20]", "time.end=0.3", "output.interval=0.1", "output.progress_seconds=0"}, 45, true,
+      [](const std::filesystem::path& checkpoint) {
+        // fields.bin: a header of the magic and seven counts (nx, ny, ghosts, fields, ranks, shared,
+        // summed), the fields, then each rank's row of its shared and summed numbers.
+        const auto path = checkpoint / "fields.bin";
+        std::fstream f(path, std::ios::in | std::ios::out | std::ios::binary);
+        std::uint64_t magic = 0;
+        std::int64_t counts[7];
+        f.read(reinterpret_cast<char*>(&magic), sizeof magic);
+        f.read(reinterpret_cast<char*>(counts), sizeof counts);
+        const std::int64_t ranks = counts[4], width = counts[5] + counts[6];
+        const auto rows_at = std::streamoff(std::filesystem::file_size(path)) - std::streamoff(sizeof(double) * ranks * width);
+        std::vector<double> rows(size_t(ranks * width)), kept;
+        f.seekg(rows_at);
+        f.read(reinterpret_cast<char*>(rows.data()), std::streamsize(rows.size() * sizeof(double)));
+        for (std::int64_t r = 0; r < ranks; ++r)
+          kept.insert(kept.end(), rows.begin() + r * width, rows.begin() + (r + 1) * width - 1);
+        counts[6] -= 1;
+        f.seekp(sizeof magic);
+        f.write(reinterpret_cast<const char*>(counts), sizeof counts);
+        f.seekp(rows_at);
+        f.write(reinterpret_cast<const char*>(kept.data()), std::streamsize(kept.size() * sizeof(double)));
+        ASSERT_TRUE(f.good());
+        f.close();
+        std::filesystem::resize_file(path, std::uintmax_t(rows_at) + kept.size() * sizeof(double));
+      });
+  std::printf("collapse restarted from a checkpoint without the join's moment at t = %.3g s\n", t);
+}
+
 TEST(Restart, CavityContinuesExactlyFromItsLastCheckpoint) {
   const double t = expect_restart_reproduces(
       "cases/lid_driven_cavity_re100.toml",
