@@ -55,6 +55,8 @@ bool FlowSolver::solve_region_covers(const Field& cells) const {
   return !solve_region_ || solve_region_->covers(cells);
 }
 
+bool FlowSolver::solve_region_laid() const { return solve_region_ && solve_region_->laid(); }
+
 void FlowSolver::set_solve_region(const Field& cells) {
   if (solve_region_) solve_region_->assign(cells);
 }

@@ -116,6 +116,7 @@ class FlowSolver {
   // numerics.air_band > 0: the coupled solve covers only the cells of its region (SolveRegion); the
   // air beyond is held at rest at its hydrostatic pressure. Without an air band both are no-ops.
   bool solve_region_covers(const Field& cells) const;
+  bool solve_region_laid() const;  // false also without an air band
   void set_solve_region(const Field& cells);
   // Linear solves so far that stopped at their max_iterations before their rtol (LinearSolver).
   long solves_at_iteration_limit() const;

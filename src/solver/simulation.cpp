@@ -294,13 +294,13 @@ void Simulation::update_solve_region() {
   // its edge would cross faces that no continuity row balances, and its volume be lost. Soil in the
   // region's outermost ring (the soil widened by one cell not covered) stops the run before that.
   // The case file's rule on the band's width keeps adaptive steps within it; a fixed step may not be.
-  if ((solve_region_laid_ || restarted_) && !flow_->solve_region_covers(soil_->soil_region(1, trace_fraction)))
+  // Before a region is laid (the first step, and that step taken again) no solve has moved the soil.
+  if (flow_->solve_region_laid() && !flow_->solve_region_covers(soil_->soil_region(1, trace_fraction)))
     throw DivergenceError(fmt::format("at t = {:.6g} s the soil reached the edge of the region of the coupled solve "
                                       "in one step (numerics.air_band = {}): shorten the step (time.dt, "
                                       "time.max_dt) or widen the band", time_, band));
   if (flow_->solve_region_covers(soil_->soil_region(band - band / 2, trace_fraction))) return;
   flow_->set_solve_region(soil_->soil_region(band, trace_fraction));
-  solve_region_laid_ = true;
 }
 
 double Simulation::courant_after(double dt) const {

@@ -110,7 +110,6 @@ class Simulation {
   double restart_dt_ = 0.0;  // the step to continue with after restart()
   bool restarted_ = false;
   double restart_time_ = 0.0;  // the checkpoint's time, after restart()
-  bool solve_region_laid_ = false;  // numerics.air_band: a region has been laid (or restored)
   StepReport last_step_;
   long steps_ = 0;  // steps of the whole run, over restarts (time.max_steps counts these)
   int output_index_ = 0;

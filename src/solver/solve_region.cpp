@@ -42,6 +42,12 @@ bool SolveRegion::covers(const Field& needed) const {
   return any == 0;
 }
 
+bool SolveRegion::laid() const {
+  double most = 0.0;
+  VecMax(cells_.global(), nullptr, &most);
+  return most > 0.0;
+}
+
 void SolveRegion::assign(const Field& wanted) {
   const auto& b = grid_.owned();
   {

@@ -35,6 +35,9 @@ class SolveRegion {
   const Field& cells() const { return cells_; }
   // Whether every cell where `needed` is non-zero lies in the region (on every rank).
   bool covers(const Field& needed) const;
+  // Whether the region holds any cell (on any rank): none before the first is laid, also where a
+  // step taken again or a restart restored the state of then.
+  bool laid() const;
   // The region becomes the cells where `wanted` is non-zero, less the blocked ones.
   void assign(const Field& wanted);
   // Cells no region holds: an obstacle's (mesh/obstacles.hpp), whose local mask is kept by the caller.

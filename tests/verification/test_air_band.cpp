@@ -159,6 +159,25 @@ TEST(AirBand, SoilLeavingTheRegionInOneStepStopsTheRun) {
   EXPECT_NEAR(b.soil_volume, column, 1e-12 * column);
 }
 
+// A first step taken again with a smaller step (its velocities came out far above the Courant limit
+// it was sized for) starts from the state before any region was laid, and is no step that moved soil
+// out of one. Before, the run stopped at t = 0 with the message of the test above.
+TEST(AirBand, FirstStepTakenAgainIsNoSoilLeavingTheRegion) {
+  const CaseConfig config = load_case(
+      test::repo_path("cases/water_dam_break.toml"),
+      {"mesh.cells=[49,21]", "numerics.pressure_coupling=coupled", "numerics.air_band=6", "time.dt=0.01",
+       "time.max_dt=0.01", "time.courant=0.01", "time.end=0.02", "output.progress_seconds=0"});
+  Simulation sim(PETSC_COMM_WORLD, config, "");
+  const RunSummary s = sim.run();
+  const SoilBudget b = sim.soil()->budget(sim.flow());
+  const double column = 2 * 0.05715 * 0.05715;  // a x 2a
+  std::printf("%ld steps, %ld taken again; soil volume %.12g m^2 (a x 2a = %.12g)\n", s.steps, s.retried_steps,
+              b.soil_volume, column);
+  EXPECT_NEAR(sim.time(), 0.02, 1e-12);
+  EXPECT_GE(s.retried_steps, 1);  // the first step was taken again
+  EXPECT_NEAR(b.soil_volume, column, 1e-12 * column);
+}
+
 // Solves that stop at max_iterations are counted over every region the band lays, not from the
 // last one: here every solve stops there (one GMRES iteration to a relative tolerance of 1e-30).
 TEST(AirBand, SolvesAtTheIterationLimitAreCountedOverEveryRegion) {
