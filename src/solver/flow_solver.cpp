@@ -31,6 +31,7 @@ FlowSolver::FlowSolver(const Grid& grid, const FlowSettings& settings) : grid_(g
   for (int a = 0; a < 2; ++a) {
     vel_[a] = make_field(grid);
     vel_old_[a] = make_field(grid);
+    outer_start_[a] = make_field(grid);
     face_[a] = make_field(grid);
     face_old_[a] = make_field(grid);
     face_force_[a] = make_field(grid);
@@ -505,10 +506,8 @@ StepReport FlowSolver::step(double dt) {
     face_old_[a]->copy_from(*face_[a]);
   }
   const auto& num = settings_.numerics;
-  Vec u_start[2];
-  for (int a = 0; a < 2; ++a) VecDuplicate(vel_[a]->global(), &u_start[a]);
   for (int outer = 0; outer < num.outer_iterations; ++outer) {
-    for (int a = 0; a < 2; ++a) VecCopy(vel_[a]->global(), u_start[a]);
+    for (int a = 0; a < 2; ++a) VecCopy(vel_[a]->global(), outer_start_[a]->global());
     if (outer == 0 && look_ahead) update_properties_ahead();
     else if (outer > 0 && num.mean_viscosity_pressure) update_properties_at_mean_pressure();
     else update_properties();
@@ -538,16 +537,16 @@ StepReport FlowSolver::step(double dt) {
     for (int a = 0; a < 2; ++a) {
       double nv;
       VecNorm(vel_[a]->global(), NORM_INFINITY, &nv);
-      VecAXPY(u_start[a], -1.0, vel_[a]->global());
+      const Vec start = outer_start_[a]->global();
+      VecAXPY(start, -1.0, vel_[a]->global());
       double nd;
-      VecNorm(u_start[a], NORM_INFINITY, &nd);
+      VecNorm(start, NORM_INFINITY, &nd);
       change = std::max(change, nd);
       scale = std::max(scale, nv);
     }
     report.velocity_change = scale > 0.0 ? change / scale : change;
     if (report.velocity_change < num.outer_tolerance) break;
   }
-  for (int a = 0; a < 2; ++a) VecDestroy(&u_start[a]);
   return report;
 }
 

@@ -193,6 +193,7 @@ class FlowSolver {
   PropertyUpdate face_viscosity_update_;
 
   std::unique_ptr<Field> vel_[2], vel_old_[2], face_[2], face_old_[2], face_force_[2];
+  std::unique_ptr<Field> outer_start_[2];  // the velocity an outer iteration starts from, for its change
   // first_viscosity = look_ahead: the extrapolated velocity, and the viscosities at u^n it is weighed against
   std::unique_ptr<Field> vel_ahead_[2], mu_now_, face_mu_now_[2];
   // viscosity_pressure = mean_of_last_two: the pressure the last iteration started from, and the mean
