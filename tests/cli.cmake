@@ -63,6 +63,16 @@ add_test(NAME cli_restart_damaged_clock
                  $<TARGET_FILE:granflow> ${CMAKE_CURRENT_BINARY_DIR}/restart_clock ${CMAKE_SOURCE_DIR}/cases/bui2008_experiment.toml
                  ${GRANFLOW_SHORT_RUN})
 set_tests_properties(cli_restart_damaged_clock PROPERTIES LABELS cli PASS_REGULAR_EXPRESSION "checkpoint is damaged: .*run.txt: the clock \\(time nan")
+# A checkpoint that the file system does not take whole (a full disk, made here by failing every write
+# of the MPI-IO layer, which Open MPI 4.1 reports as a success) stops the run with a message, and the
+# checkpoint before it stays as it was.
+find_program(GRANFLOW_STRACE strace REQUIRED)
+add_test(NAME cli_checkpoint_on_a_full_disk_is_named
+         COMMAND sh -c "g=$0; s=$1; d=$2; c=$3; shift 3; rm -rf \"$d\" \"$d.kept\"; \"$g\" run \"$c\" -o \"$d\" \"$@\" > /dev/null || exit 1; cp \"$d/checkpoint/fields.bin\" \"$d.kept\"; out=$(\"$s\" -f -o /dev/null -e inject=pwrite64,pwritev:error=ENOSPC \"$g\" run \"$c\" -o \"$d\" --restart \"$@\" --set time.end=0.04 2>&1); status=$?; echo \"$out\" | grep '^error'; test $status -eq 1 && cmp -s \"$d/checkpoint/fields.bin\" \"$d.kept\" && echo earlier checkpoint kept"
+                 $<TARGET_FILE:granflow> ${GRANFLOW_STRACE} ${CMAKE_CURRENT_BINARY_DIR}/full_disk
+                 ${CMAKE_SOURCE_DIR}/cases/bui2008_experiment.toml ${GRANFLOW_SHORT_RUN})
+set_tests_properties(cli_checkpoint_on_a_full_disk_is_named PROPERTIES LABELS cli PASS_REGULAR_EXPRESSION
+  "^error: cannot write [^\n]*checkpoint.partial/fields.bin: what it holds is not what was written [(]is the disk full[?][)]\nearlier checkpoint kept\n$")
 # A run out of steps says so; a restart must raise time.max_steps, which counts the whole run's.
 add_test(NAME cli_max_steps_said
          COMMAND sh -c "g=$0; d=$1; c=$2; shift 2; rm -rf \"$d\"; \"$g\" run \"$c\" -o \"$d\" \"$@\" --set time.max_steps=3 2>&1 || exit 1; \"$g\" run \"$c\" -o \"$d\" --restart \"$@\" --set time.max_steps=3 2>&1"
