@@ -413,3 +413,12 @@ add_test(NAME cli_stability_stands_at_every_factor_and_keeps_its_analysis
                  $<TARGET_FILE:granflow> ${CMAKE_CURRENT_BINARY_DIR}/stability_stands ${CMAKE_SOURCE_DIR}/cases/bui2008_experiment.toml
                  --set "mesh.cells=[30,10]" --set time.end=0.02 --set soil.rheology.cohesion=1e5 --set output.progress_seconds=0 --set output.fields=false)
 set_tests_properties(cli_stability_stands_at_every_factor_and_keeps_its_analysis PROPERTIES LABELS cli)
+# --overwrite keeps the earlier analysis while the new one fails before its first trial has ended: on an
+# option PETSc refuses (read before the directory is touched), and where the first trial cannot make
+# its directory (a file named F_3 stands there); then it replaces it.
+add_test(NAME cli_stability_overwrite_keeps_the_analysis_until_the_first_trial_ends
+         COMMAND sh -c "g=$0; d=$1; c=$2; shift 2; rm -rf \"$d\" \"$d.kept\"; \"$g\" stability \"$c\" -o \"$d\" \"$@\" > /dev/null 2>&1; test $? -eq 1 || exit 1; cp \"$d/stability.csv\" \"$d.kept\"; \"$g\" stability \"$c\" -o \"$d\" --overwrite \"$@\" '--petsc=-coupled_ksp_type bogus' > /dev/null 2>&1 && exit 1; cmp -s \"$d/stability.csv\" \"$d.kept\" && test -f \"$d/F_64/granflow_case.toml\" || exit 1; touch \"$d/F_3\"; \"$g\" stability \"$c\" -o \"$d\" --overwrite --first 3 \"$@\" 2>&1; cmp -s \"$d/stability.csv\" \"$d.kept\" && test -f \"$d/F_64/granflow_case.toml\" && test ! -e \"$d/.replaced_run\" && echo kept; rm \"$d/F_3\"; \"$g\" stability \"$c\" -o \"$d\" --overwrite --first 2 \"$@\" > /dev/null 2>&1; test $? -eq 1 && test ! -e \"$d/F_1\" && test -f \"$d/F_2/granflow_case.toml\" && test ! -e \"$d/.replaced_run\" && echo replaced"
+                 $<TARGET_FILE:granflow> ${CMAKE_CURRENT_BINARY_DIR}/stability_overwrite ${CMAKE_SOURCE_DIR}/cases/bui2008_experiment.toml
+                 --set "mesh.cells=[30,10]" --set time.end=0.02 --set soil.rheology.cohesion=1e5 --set output.progress_seconds=0 --set output.fields=false)
+set_tests_properties(cli_stability_overwrite_keeps_the_analysis_until_the_first_trial_ends PROPERTIES LABELS cli
+  PASS_REGULAR_EXPRESSION "^granflow: factor of safety [^\n]*\nerror: -o [^\n]*stability_overwrite/F_3: cannot make the output directory: Not a directory\nkept\nreplaced\n$")

@@ -11,6 +11,8 @@
 #include "io/case_error.hpp"
 #include "io/collective_failure.hpp"
 #include "io/run_directory.hpp"
+#include "io/run_lock.hpp"
+#include "solver/simulation.hpp"
 
 namespace granflow {
 
@@ -18,7 +20,8 @@ namespace {
 
 constexpr const char* table_name = "stability.csv";
 
-// The earlier analysis in dir: its table and its trials' directories (F_<factor> holding a case record).
+// The earlier analysis in dir: its table and its trials' directories (F_<factor> holding any of a
+// run's files, io/run_directory.hpp).
 std::vector<std::filesystem::path> earlier_analysis(const std::filesystem::path& dir) {
   namespace fs = std::filesystem;
   std::vector<fs::path> found;
@@ -26,7 +29,7 @@ std::vector<std::filesystem::path> earlier_analysis(const std::filesystem::path&
   if (!fs::is_directory(dir, ec)) return found;
   for (const auto& entry : fs::directory_iterator(dir, ec)) {
     const std::string name = entry.path().filename().string();
-    if (name == table_name || (name.starts_with("F_") && fs::exists(entry.path() / case_record_name, ec)))
+    if (name == table_name || (name.starts_with("F_") && !run_files_in(entry.path(), {}).empty()))
       found.push_back(entry.path());
   }
   return found;
@@ -48,23 +51,39 @@ int run_stability(const std::string& case_file, const std::vector<std::string>& 
                   bool overwrite, const StrengthReductionSettings& settings) {
   const CaseConfig config = load_case(case_file, overrides);
   check_solver_methods(config);
-  reduced_strength(config, settings.first_factor);  // a case with nothing to reduce, before any directory is made
+  // A case with nothing to reduce, and the first trial's simulation, made and dropped before the
+  // directory is touched: it checks what the case file alone cannot, and PETSc, which refuses an
+  // option it does not know by ending the process, reads the solvers' options there (as a run's does).
+  Simulation(PETSC_COMM_WORLD, reduced_strength(config, settings.first_factor), "");
   if (out_dir.empty())
     out_dir = (std::filesystem::path("out") / (std::filesystem::path(case_file).stem().string() + "_stability")).string();
   int rank;
   MPI_Comm_rank(PETSC_COMM_WORLD, &rank);
+  // One analysis (or run) at a time in the directory, held by rank 0 for the whole analysis
+  // (io/run_lock.hpp). An earlier analysis replaced with --overwrite is set aside until the first trial
+  // has ended, and put back if the analysis fails before (io/run_directory.hpp).
+  RunLock lock;
   std::string problem;
+  bool set_aside = false;
   if (rank == 0) {
     std::error_code ec;
     if (std::filesystem::exists(out_dir, ec) && !std::filesystem::is_directory(out_dir, ec))
       problem = fmt::format("-o {}: not a directory", out_dir);
+    else if (std::filesystem::create_directories(out_dir, ec); ec)
+      problem = fmt::format("-o {}: cannot make the directory: {}", out_dir, ec.message());
+    else if (problem = lock.take(out_dir); !problem.empty()) {
+    } else if (const auto aside = set_aside_run_in(out_dir); !aside.empty())
+      problem = fmt::format("{} holds {}, the files of an earlier analysis that an analysis with --overwrite set "
+                            "aside and was stopped before its first trial ended: move them back into {} (or remove "
+                            "{}), then run again",
+                            out_dir, aside.string(), out_dir, aside.string());
     else if (const auto earlier = earlier_analysis(out_dir); !earlier.empty()) {
       if (!overwrite)
         problem = fmt::format("{} holds an earlier analysis ({}): replace it with --overwrite, or choose another "
                               "directory with -o",
                               out_dir, earlier.front().string());
-      else
-        for (const auto& p : earlier) std::filesystem::remove_all(p, ec);
+      else if (problem = set_aside_run(out_dir, earlier); problem.empty())
+        set_aside = true;
     }
   }
   if (auto text = first_failure(PETSC_COMM_WORLD, problem); !text.empty()) throw CaseError(text);
@@ -74,9 +93,15 @@ int run_stability(const std::string& case_file, const std::vector<std::string>& 
                config.title, config.time.end, out_dir);
     std::fflush(stdout);
   }
-  const StrengthReductionResult r = factor_of_safety(
-      PETSC_COMM_WORLD, config, out_dir, settings, [&](const StrengthTrial& t) {
+  auto under_way = [&] {
+    if (set_aside) discard_set_aside_run(out_dir);
+    set_aside = false;
+  };
+  StrengthReductionResult r;
+  try {
+    r = factor_of_safety(PETSC_COMM_WORLD, config, out_dir, settings, [&](const StrengthTrial& t) {
         if (rank != 0) return;
+        under_way();
         fmt::print("F = {}: {} (largest displacement {:.3g} m at t = {:.4g} s; {} steps{}, {:.1f} s)\n", t.factor,
                    t.diverged ? "fails (diverged)" : t.fails ? "fails" : "stands", t.largest_displacement, t.time,
                    t.steps,
@@ -84,6 +109,15 @@ int run_stability(const std::string& case_file, const std::vector<std::string>& 
                    t.wall_seconds);
         std::fflush(stdout);
       });
+  } catch (...) {
+    if (set_aside) {  // the new analysis's trials go, and the earlier one comes back
+      std::error_code ec;
+      for (const auto& p : earlier_analysis(out_dir)) std::filesystem::remove_all(p, ec);
+      restore_set_aside_run(out_dir, {});
+    }
+    throw;
+  }
+  under_way();  // a search of no trial
   if (rank == 0) write_table(std::filesystem::path(out_dir) / table_name, r);
   if (!r.bracketed()) {
     if (rank == 0) {
