@@ -413,6 +413,16 @@ add_test(NAME cli_stability_stands_at_every_factor_and_keeps_its_analysis
                  $<TARGET_FILE:granflow> ${CMAKE_CURRENT_BINARY_DIR}/stability_stands ${CMAKE_SOURCE_DIR}/cases/bui2008_experiment.toml
                  --set "mesh.cells=[30,10]" --set time.end=0.02 --set soil.rheology.cohesion=1e5 --set output.progress_seconds=0 --set output.fields=false)
 set_tests_properties(cli_stability_stands_at_every_factor_and_keeps_its_analysis PROPERTIES LABELS cli)
+# The command line's numbers are finite and in range: "nan" passes no comparison, and was taken.
+add_test(NAME cli_stability_displacement_nan_refused
+         COMMAND granflow stability ${CMAKE_SOURCE_DIR}/cases/bui2008_experiment.toml --displacement nan)
+set_tests_properties(cli_stability_displacement_nan_refused PROPERTIES LABELS cli WILL_FAIL TRUE)
+add_test(NAME cli_element_test_phi_message COMMAND granflow element-test --phi 0)
+set_tests_properties(cli_element_test_phi_message PROPERTIES LABELS cli
+                     PASS_REGULAR_EXPRESSION "^--phi: '0' is not an angle from 0.001 to 89.999 degrees\n")
+add_test(NAME cli_stability_first_nan_message COMMAND granflow stability ${CMAKE_SOURCE_DIR}/cases/bui2008_experiment.toml --first nan)
+set_tests_properties(cli_stability_first_nan_message PROPERTIES LABELS cli
+                     PASS_REGULAR_EXPRESSION "^--first: 'nan' is not a number from 0.01 to 100\n")
 # --overwrite keeps the earlier analysis while the new one fails before its first trial has ended: on an
 # option PETSc refuses (read before the directory is touched), and where the first trial cannot make
 # its directory (a file named F_3 stands there); then it replaces it.

@@ -6,6 +6,7 @@
 #include <unistd.h>
 
 #include <cerrno>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <sstream>
@@ -38,6 +39,20 @@ int report_shared_error(const std::exception& e, const std::string& case_file, i
   if (dynamic_cast<const granflow::CheckpointError*>(&e)) return report(e.what(), 1);
   if (dynamic_cast<const granflow::DivergenceError*>(&e)) return report(e.what(), 3);
   return 0;
+}
+
+// A number within [low, high] (a finite one: CLI11's ranges let "nan" through, as no comparison
+// with it fails), with a message that says so in the range's own terms.
+CLI::Validator finite_in(double low, double high, const std::string& what) {
+  return CLI::Validator(
+      [=](std::string& text) -> std::string {
+        char* end = nullptr;
+        const double value = std::strtod(text.c_str(), &end);
+        if (end == text.c_str() || *end != '\0' || !std::isfinite(value) || value < low || value > high)
+          return fmt::format("'{}' is not {}", text, what);
+        return {};
+      },
+      what, "");
 }
 
 }  // namespace
@@ -83,12 +98,12 @@ int main(int argc, char** argv) {
   stability->add_option("--set", overrides, "override a case key: KEY=VALUE (repeatable)")->allow_extra_args(false);
   stability->add_option("--petsc", petsc_options, "options passed to PETSc")->allow_extra_args(false);
   stability->add_option("--first", strength.first_factor, "the first factor tried (default 1)")
-      ->check(CLI::Range(0.01, 100.0));
+      ->check(finite_in(0.01, 100.0, "a number from 0.01 to 100"));
   stability->add_option("--tolerance", strength.tolerance, "bisect until the factors that stand and fail are this close (default 0.01)")
-      ->check(CLI::Range(1e-4, 10.0));
+      ->check(finite_in(1e-4, 10.0, "a number from 0.0001 to 10"));
   stability->add_option("--displacement", strength.displacement_limit,
                         "the soil fails when it moves further than this, m (default: a tenth of a cell)")
-      ->check(CLI::PositiveNumber);
+      ->check(finite_in(1e-12, 1e12, "a length from 1e-12 to 1e12 m"));
   stability->add_flag("--overwrite", overwrite, "replace an earlier analysis in the output directory");
 
   auto* check = app.add_subcommand("check", "validate a case file without running it");
@@ -103,7 +118,7 @@ int main(int argc, char** argv) {
   bool csv = false;
   auto* element = app.add_subcommand("element-test",
                                      "print the element test of the yield-surface viscosities (Table 1 of Rauter et al. 2020)");
-  element->add_option("--phi", phi_deg, "friction angle in degrees")->check(CLI::Range(0.001, 89.999));
+  element->add_option("--phi", phi_deg, "friction angle in degrees")->check(finite_in(0.001, 89.999, "an angle from 0.001 to 89.999 degrees"));
   element->add_flag("--csv", csv, "print CSV instead of a table");
 
   // CLI11 would say only that a subcommand is required.
