@@ -416,7 +416,8 @@ set_tests_properties(cli_stability_stands_at_every_factor_and_keeps_its_analysis
 # The command line's numbers are finite and in range: "nan" passes no comparison, and was taken.
 add_test(NAME cli_stability_displacement_nan_refused
          COMMAND granflow stability ${CMAKE_SOURCE_DIR}/cases/bui2008_experiment.toml --displacement nan)
-set_tests_properties(cli_stability_displacement_nan_refused PROPERTIES LABELS cli WILL_FAIL TRUE)
+set_tests_properties(cli_stability_displacement_nan_refused PROPERTIES LABELS cli
+                     PASS_REGULAR_EXPRESSION "^--displacement: 'nan' is not a length from 1e-12 to 1e12 m\n")
 add_test(NAME cli_element_test_phi_message COMMAND granflow element-test --phi 0)
 set_tests_properties(cli_element_test_phi_message PROPERTIES LABELS cli
                      PASS_REGULAR_EXPRESSION "^--phi: '0' is not an angle from 0.001 to 89.999 degrees\n")
