@@ -13,6 +13,7 @@
 #include <fstream>
 #include <limits>
 #include <sstream>
+#include <string_view>
 
 #include "io/case_error.hpp"
 #include "io/points_file.hpp"
@@ -42,8 +43,14 @@ void apply_override(toml::table& root, const std::string& assignment) {
   toml::table parsed;
   try {
     parsed = toml::parse("v = " + value);
-  } catch (const toml::parse_error&) {
-    parsed = toml::table{{"v", value}};  // a bare word is a string
+  } catch (const toml::parse_error& e) {
+    // A bare word is a string (--set soil.yield_pressure=face); a value that starts as a number, a
+    // string, an array or a table but does not parse is a mistake to name, not a string.
+    const auto start = value.find_first_not_of(" \t");
+    const char first = start == std::string::npos ? '\0' : value[start];
+    if (std::string_view("\"'[{+-.").find(first) != std::string_view::npos || std::isdigit(static_cast<unsigned char>(first)))
+      throw CaseError(fmt::format("--set '{}': the value is not valid TOML: {}", assignment, e.description()));
+    parsed = toml::table{{"v", value}};
   }
   if (parsed.size() != 1)  // "0.02\nmesh.cells = [1, 1]": more keys on further lines, which would be dropped
     throw CaseError(fmt::format("--set '{}': the value holds more than one key; give one KEY=VALUE per --set",

@@ -598,6 +598,16 @@ TEST(CaseFile, SetRefusesArrayElementsAndValuesOverSeveralLines) {
   EXPECT_EQ(parse_case(minimal, {"mesh.cells=[16,\n 8]"}).mesh.cells[1], 8);
 }
 
+// A bare word is a string; a value that starts as a number, a string, an array or a table and does not
+// parse is named as such (it became a string, and the message named the wrong problem, or none).
+TEST(CaseFile, SetNamesAValueThatIsNotToml) {
+  for (const char* bad : {"mesh.cells=[16,8", "time.end=1e400", "title=\"abc", "time={end=1.0, end=2.0}"}) {
+    const std::string message = error_of(minimal, {bad});
+    EXPECT_NE(message.find(fmt::format("--set '{}': the value is not valid TOML: ", bad)), std::string::npos) << message;
+  }
+  EXPECT_EQ(parse_case(minimal, {"title=a title of words"}).title, "a title of words");
+}
+
 // A key the case's other choices make of no effect is accepted (a case may keep it for switching
 // numerics with --set) and listed, for `check` and `run` to warn of.
 TEST(CaseFile, KeysWithoutEffectAreListed) {
