@@ -17,6 +17,19 @@ add_test(NAME cli_run_missing_file
          COMMAND sh -c "out=$(\"$0\" run \"$1\" 2>&1); test $? -eq 2 && echo \"$out\" | grep -q 'no_such_case.toml: cannot open the case file'"
                  $<TARGET_FILE:granflow> ${CMAKE_CURRENT_BINARY_DIR}/no_such_case.toml)
 set_tests_properties(cli_run_missing_file PROPERTIES LABELS cli)
+# A file read is a whole file: a read error is named (it was taken for the end of the file, and a case
+# cut short ran with defaults), and a device that never ends is not read until memory runs out.
+add_test(NAME cli_check_unreadable_case COMMAND granflow check /proc/self/mem)
+set_tests_properties(cli_check_unreadable_case PROPERTIES LABELS cli
+                     PASS_REGULAR_EXPRESSION "^error: /proc/self/mem: cannot read the case file: Input/output error\n$")
+add_test(NAME cli_check_endless_case COMMAND granflow check /dev/zero)
+set_tests_properties(cli_check_endless_case PROPERTIES LABELS cli TIMEOUT 60
+                     PASS_REGULAR_EXPRESSION "^error: /dev/zero: longer than 64 MiB, not a case file")
+add_test(NAME cli_check_endless_points_file
+         COMMAND granflow check ${CMAKE_SOURCE_DIR}/cases/bui2008_experiment.toml
+                 --set "initial.soil=[{shape = \"polygon\", points_file = \"/dev/zero\"}]")
+set_tests_properties(cli_check_endless_points_file PROPERTIES LABELS cli TIMEOUT 60
+                     PASS_REGULAR_EXPRESSION "'/dev/zero' is longer than 256 MiB, not a file of points")
 add_test(NAME cli_restart_without_checkpoint
          COMMAND granflow run ${CMAKE_SOURCE_DIR}/cases/lid_driven_cavity_re100.toml
                  -o ${CMAKE_CURRENT_BINARY_DIR}/no_such_run --restart)

@@ -18,6 +18,7 @@
 #include "io/case_error.hpp"
 #include "io/points_file.hpp"
 #include "io/table_reader.hpp"
+#include "io/text_file.hpp"
 #include "models/rheology/parameters.hpp"
 
 namespace granflow {
@@ -25,6 +26,9 @@ namespace granflow {
 namespace {
 
 constexpr double inf = std::numeric_limits<double>::infinity();
+// A case file is text of some kilobytes; a shape of a million points is some 30 MiB (and belongs in a
+// points_file).
+constexpr std::size_t case_file_limit = std::size_t(64) << 20;
 
 void apply_override(toml::table& root, const std::string& assignment) {
   const auto eq = assignment.find('=');
@@ -934,11 +938,18 @@ CaseConfig load_case(const std::filesystem::path& file, const std::vector<std::s
   std::error_code ec;
   if (std::filesystem::is_directory(file, ec))
     throw CaseError(fmt::format("{}: is a directory, not a case file", file.string()));
-  std::ifstream in(file);
-  if (!in) throw CaseError(fmt::format("{}: cannot open the case file: {}", file.string(), std::strerror(errno)));
-  std::stringstream ss;
-  ss << in.rdbuf();
-  const std::string text = ss.str();
+  const TextFile read = read_text_file(file, case_file_limit);
+  switch (read.status) {
+    case TextFile::Status::read: break;
+    case TextFile::Status::cannot_open:
+      throw CaseError(fmt::format("{}: cannot open the case file: {}", file.string(), read.reason));
+    case TextFile::Status::cannot_read:
+      throw CaseError(fmt::format("{}: cannot read the case file: {}", file.string(), read.reason));
+    case TextFile::Status::too_long:
+      throw CaseError(fmt::format("{}: longer than {} MiB, not a case file (a shape of many points reads them from a "
+                                  "points_file)", file.string(), case_file_limit >> 20));
+  }
+  const std::string& text = read.text;
   if (text.find_first_not_of(" \t\r\n") == std::string::npos)
     throw CaseError(fmt::format("{}: the case file is empty", file.string()));
   try {

@@ -2,14 +2,13 @@
 
 #include <fmt/format.h>
 
-#include <cerrno>
 #include <charconv>
 #include <cmath>
-#include <cstring>
-#include <fstream>
+#include <sstream>
 #include <string_view>
 
 #include "io/case_error.hpp"
+#include "io/text_file.hpp"
 
 namespace granflow {
 
@@ -48,8 +47,20 @@ std::vector<std::array<double, 2>> read_points_file(const std::filesystem::path&
   std::error_code ec;
   if (std::filesystem::is_directory(file, ec))
     throw CaseError(fmt::format("{}: '{}' is a directory, not a file of points", key_path, file.string()));
-  std::ifstream in(file);
-  if (!in) throw CaseError(fmt::format("{}: cannot open '{}': {}", key_path, file.string(), std::strerror(errno)));
+  // Some 30 bytes a point: room for eight million of them.
+  constexpr std::size_t limit = std::size_t(256) << 20;
+  const TextFile read = read_text_file(file, limit);
+  switch (read.status) {
+    case TextFile::Status::read: break;
+    case TextFile::Status::cannot_open:
+      throw CaseError(fmt::format("{}: cannot open '{}': {}", key_path, file.string(), read.reason));
+    case TextFile::Status::cannot_read:
+      throw CaseError(fmt::format("{}: cannot read '{}': {}", key_path, file.string(), read.reason));
+    case TextFile::Status::too_long:
+      throw CaseError(fmt::format("{}: '{}' is longer than {} MiB, not a file of points", key_path, file.string(),
+                                  limit >> 20));
+  }
+  std::istringstream in(read.text);
   std::vector<std::array<double, 2>> points;
   std::vector<double> numbers;
   bool first = true;
@@ -71,7 +82,6 @@ std::vector<std::array<double, 2>> read_points_file(const std::filesystem::path&
                                   number, line));
     points.push_back({numbers[0], numbers[1]});
   }
-  if (in.bad()) throw CaseError(fmt::format("{}: cannot read '{}'", key_path, file.string()));
   return points;
 }
 

@@ -1,0 +1,21 @@
+#pragma once
+// A text file read whole, for the case file and the files it names.
+#include <cstddef>
+#include <filesystem>
+#include <string>
+
+namespace granflow {
+
+struct TextFile {
+  enum class Status { read, cannot_open, cannot_read, too_long };
+  Status status = Status::read;
+  std::string text;    // the file's whole text, if read
+  std::string reason;  // the system's reason it could not be opened or read
+};
+
+// Reads `file` in pieces. A read error is reported rather than taken for the end of the file, and a
+// file longer than `limit` bytes is refused rather than read into memory (a device that never ends,
+// /dev/zero, would otherwise be read until memory runs out).
+TextFile read_text_file(const std::filesystem::path& file, std::size_t limit);
+
+}  // namespace granflow
