@@ -9,7 +9,9 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <iostream>
 #include <sstream>
+#include <string_view>
 #include <string>
 #include <vector>
 
@@ -39,6 +41,14 @@ int report_shared_error(const std::exception& e, const std::string& case_file, i
   if (dynamic_cast<const granflow::CheckpointError*>(&e)) return report(e.what(), 1);
   if (dynamic_cast<const granflow::DivergenceError*>(&e)) return report(e.what(), 3);
   return 0;
+}
+
+// Whether this process is the first (or only) one of its launch, from the launcher's environment:
+// the command line is checked before MPI starts, so under mpirun every rank would say the same.
+bool first_of_launch() {
+  for (const char* name : {"OMPI_COMM_WORLD_RANK", "PMIX_RANK", "PMI_RANK"})
+    if (const char* rank = std::getenv(name)) return std::string_view(rank) == "0";
+  return true;
 }
 
 // A number within [low, high] (a finite one: CLI11's ranges let "nan" through, as no comparison
@@ -121,31 +131,32 @@ int main(int argc, char** argv) {
   element->add_option("--phi", phi_deg, "friction angle in degrees")->check(finite_in(0.001, 89.999, "an angle from 0.001 to 89.999 degrees"));
   element->add_flag("--csv", csv, "print CSV instead of a table");
 
+  // Errors of the command line, said by the first process of a launch alone.
+  const bool first = first_of_launch();
+  std::ostream silent(nullptr);
+  auto refuse = [&](const std::string& text) {
+    if (first) fmt::print(stderr, "error: {}\n", text);
+    return 2;
+  };
   // CLI11 would say only that a subcommand is required.
   if (argc > 1 && argv[1][0] != '-') {
     const std::string command = argv[1];
-    if (command != "run" && command != "check" && command != "stability" && command != "element-test") {
-      fmt::print(stderr, "error: unknown command '{}' (the commands are run, check, stability and element-test; see "
-                         "granflow --help)\n",
-                 command);
-      return 2;
-    }
+    if (command != "run" && command != "check" && command != "stability" && command != "element-test")
+      return refuse(fmt::format("unknown command '{}' (the commands are run, check, stability and element-test; see "
+                                "granflow --help)",
+                                command));
   }
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
     // CLI11's message (or the help, status 0); a command line it refuses is status 2, as a case is.
-    return app.exit(e) == 0 ? 0 : 2;
+    return app.exit(e, first ? std::cout : silent, first ? std::cerr : silent) == 0 ? 0 : 2;
   }
-  if ((run->count("--output") || stability->count("--output")) && out_dir.empty()) {
-    fmt::print(stderr, "error: -o/--output: the output directory is empty\n");
-    return 2;
-  }
+  if ((run->count("--output") || stability->count("--output")) && out_dir.empty())
+    return refuse("-o/--output: the output directory is empty");
   for (const auto& o : petsc_options)
-    if (o.empty() || o[0] != '-') {
-      fmt::print(stderr, "error: --petsc '{}': PETSc options start with '-', e.g. --petsc=\"-coupled_ksp_monitor\"\n", o);
-      return 2;
-    }
+    if (o.empty() || o[0] != '-')
+      return refuse(fmt::format("--petsc '{}': PETSc options start with '-', e.g. --petsc=\"-coupled_ksp_monitor\"", o));
 
   if (*element) {
     try {
@@ -200,6 +211,17 @@ int main(int argc, char** argv) {
   if (const char* trace = std::getenv("GRANFLOW_PETSC_TRACE"); !trace || std::string_view(trace) != "1")
     PetscPushErrorHandler(granflow::one_line_petsc_error, nullptr);
 
+  // Errors met by every rank alike (the case, the checkpoint's agreed verdict, the global speed):
+  // rank 0 reports them and all ranks stop in order. Any other error may be one rank's alone while the
+  // others wait in a collective call: that rank reports it (once, if every rank meets it, as a full
+  // disk under every rank's checkpoint file) and stops them all.
+  auto fail = [&](const std::exception& e) {
+    if (const int shared = report_shared_error(e, case_file, rank); shared != 0) return shared;
+    granflow::say_error_once(e.what());
+    if (size > 1) MPI_Abort(PETSC_COMM_WORLD, 1);
+    return 1;
+  };
+
   if (*check) {
     int status = 0;
     try {
@@ -223,30 +245,20 @@ int main(int argc, char** argv) {
         for (const auto& line : granflow::case_advice(c)) fmt::print(stderr, "warning: {}\n", line);
       }
     } catch (const std::exception& e) {
-      status = report_shared_error(e, case_file, rank);
-      if (status == 0) throw;
+      status = fail(e);
     }
     PetscFinalize();
     MPI_Finalize();
     return status;
   }
 
-  // These errors are met by every rank alike (the case, the checkpoint's agreed verdict, the global
-  // speed), so rank 0 reports them and all ranks stop in order. Any other error may be one rank's
-  // alone while the others wait in a collective call: that rank reports it and stops them all.
   int status = 0;
   try {
     status = *stability ? granflow::run_stability(case_file, overrides, out_dir, overwrite, strength)
                         : granflow::run_case(case_file, overrides, out_dir, restart, overwrite);
     granflow::warn_unused_petsc_options(rank);
   } catch (const std::exception& e) {
-    status = report_shared_error(e, case_file, rank);
-    if (status == 0) {
-      // As for PETSc's errors: one every rank may meet (a full disk under every rank's checkpoint file).
-      granflow::say_error_once(e.what());
-      if (size > 1) MPI_Abort(PETSC_COMM_WORLD, 1);
-      status = 1;
-    }
+    status = fail(e);
   }
   PetscFinalize();
   MPI_Finalize();
