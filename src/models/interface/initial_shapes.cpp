@@ -208,13 +208,44 @@ bool ShapeUnion::contains(double x, double y) const {
   return false;
 }
 
+// Whether an edge of polygon k passes through the open rectangle (x0, x1) x (y0, y1): the part of
+// the segment inside the rectangle's slab along each axis (Liang & Barsky), of non-zero length.
+bool ShapeUnion::polygon_edge_through(std::size_t k, double x0, double x1, double y0, double y1) const {
+  const auto& v = std::get<Polygon>(shapes_[k]).vertices;
+  const std::size_t n = v.size();
+  const EdgeBins& bins = bins_[k];
+  for (int b = bins.bin(y0); b <= bins.bin(y1); ++b)
+    for (unsigned q = bins.first[std::size_t(b)]; q < bins.first[std::size_t(b) + 1]; ++q) {
+      const Point& p = v[bins.edges[q]];
+      const Point& r = v[(bins.edges[q] + 1) % n];
+      double enter = 0.0, leave = 1.0;
+      const double lower[2] = {x0, y0}, upper[2] = {x1, y1};
+      for (int a = 0; a < 2 && enter < leave; ++a) {
+        const double d = r[a] - p[a];
+        if (d == 0.0) {
+          if (!(p[a] > lower[a] && p[a] < upper[a])) leave = enter;  // along the slab's side or outside it
+          continue;
+        }
+        const double t0 = (lower[a] - p[a]) / d, t1 = (upper[a] - p[a]) / d;
+        enter = std::max(enter, std::min(t0, t1));
+        leave = std::min(leave, std::max(t0, t1));
+      }
+      if (enter < leave) return true;
+    }
+  return false;
+}
+
 double ShapeUnion::fraction(double x0, double x1, double y0, double y1, bool axisymmetric, int samples) const {
-  // Fast path: the four corners and the centre agree (cells are small against the shapes). Not for
-  // a shape narrower or lower than the cell that reaches into it, which could lie between the probes.
+  // Fast path: the four corners and the centre agree (cells are small against the shapes). Not where
+  // an outline could pass between the probes: a box or circle narrower or lower than the cell that
+  // reaches into it, or a polygon's edge through the cell (a notch or spike narrower than a cell).
   bool small_shape_here = false;
-  for (const auto& [lo, hi] : boxes_)
-    if (lo[0] < x1 && hi[0] > x0 && lo[1] < y1 && hi[1] > y0 && (hi[0] - lo[0] < x1 - x0 || hi[1] - lo[1] < y1 - y0))
-      small_shape_here = true;
+  for (std::size_t k = 0; k < shapes_.size() && !small_shape_here; ++k) {
+    const auto& [lo, hi] = boxes_[k];
+    if (!(lo[0] < x1 && hi[0] > x0 && lo[1] < y1 && hi[1] > y0)) continue;
+    small_shape_here = std::holds_alternative<Polygon>(shapes_[k]) ? polygon_edge_through(k, x0, x1, y0, y1)
+                                                                    : hi[0] - lo[0] < x1 - x0 || hi[1] - lo[1] < y1 - y0;
+  }
   const int probe = contains(x0, y0) + contains(x1, y0) + contains(x0, y1) + contains(x1, y1) +
                     contains(0.5 * (x0 + x1), 0.5 * (y0 + y1));
   if (probe == 0 && !small_shape_here) return 0.0;

@@ -59,6 +59,8 @@ class ShapeUnion {
   };
   bool polygon_contains(const Polygon& p, const EdgeBins& bins, double x, double y) const;
 
+  bool polygon_edge_through(std::size_t k, double x0, double x1, double y0, double y1) const;
+
   std::vector<Shape> shapes_;
   std::vector<std::array<Point, 2>> boxes_;
   std::vector<EdgeBins> bins_;  // empty for boxes and circles

@@ -162,6 +162,27 @@ TEST(InitialShapes, AShapeSmallerThanTheCellIsSampled) {
   EXPECT_EQ(ShapeUnion(small).fraction(0.32, 0.34, 0.1, 0.12), 0.0);  // the next cell: none
 }
 
+// A notch narrower than a cell in a large polygon passes between the five probes of every cell along
+// it: those cells are sampled as any other cut cell, to the same bit as the plain sampling (the fast
+// path took them as full: 1 where the samples give 0.85).
+TEST(InitialShapes, ANotchNarrowerThanTheCellIsSampled) {
+  // A 10 x 10 square with a slot 0.15 wide from its top down to y = 2, at x = 0.2 ... 0.35: between
+  // the probes of the cells at x = 0 ... 1 (their corners and centre).
+  const std::vector<Shape> notched{Polygon{{{0, 0}, {10, 0}, {10, 10}, {0.35, 10}, {0.35, 2}, {0.2, 2}, {0.2, 10}, {0, 10}}}};
+  const ShapeUnion prepared(notched);
+  int sampled_cells = 0;
+  for (int j = 0; j < 10; ++j) {
+    const double y0 = j, y1 = j + 1.0;
+    double expected = 0.0;
+    for (int a = 0; a < 32; ++a)
+      for (int b = 0; b < 32; ++b) expected += union_contains(notched, (a + 0.5) / 32, y0 + (b + 0.5) / 32);
+    ASSERT_EQ(prepared.fraction(0.0, 1.0, y0, y1), expected / 1024.0) << "row " << j;
+    sampled_cells += expected < 1024.0;
+  }
+  EXPECT_EQ(sampled_cells, 8);  // the slot's rows, y = 2 to 10
+  EXPECT_EQ(prepared.fraction(1.0, 2.0, 5.0, 6.0), 1.0);  // beside it: full
+}
+
 // Axisymmetric fractions are fractions of the cell's volume: a sphere of radius R on the axis (a
 // circle in the r-z plane) holds (2/3) R^3 per radian, which the cells' fractions times their volumes
 // r_c dr dz must give. Counted by area, the cut cells near the axis weigh too much (2.2e-3 over at
