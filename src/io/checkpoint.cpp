@@ -121,14 +121,9 @@ MPI_Offset field_offset(const FieldsHeader& h, std::int64_t k) {
   return MPI_Offset(sizeof h) + MPI_Offset(sizeof(double)) * (h.nx + 2 * h.ghosts) * (h.ny + 2 * h.ghosts) * k;
 }
 
-std::string verify_fields(MPI_Comm comm, const std::filesystem::path& path, const FieldsHeader& h,
-                          std::span<Field* const> fields, const std::vector<double>& row);
-
-std::string write_fields(MPI_Comm comm, const std::filesystem::path& path, const FieldsHeader& h,
-                         std::span<Field* const> fields, const CheckpointScalars& scalars) {
-  std::vector<double> row = scalars.shared;
-  row.insert(row.end(), scalars.summed.begin(), scalars.summed.end());
-  {
+// Writes the header, each rank's row of numbers and the fields.
+std::string send_fields(MPI_Comm comm, const std::filesystem::path& path, const FieldsHeader& h,
+                        std::span<Field* const> fields, const std::vector<double>& row) {
   int rank;
   MPI_Comm_rank(comm, &rank);
   MpiFile file(comm, path, MPI_MODE_WRONLY | MPI_MODE_CREATE);
@@ -151,9 +146,7 @@ std::string write_fields(MPI_Comm comm, const std::filesystem::path& path, const
       VecRestoreArrayRead(fields[k]->local(), &a);
     }
   }
-  if (!file.problem().empty()) return file.problem();
-  }  // closed: what it holds is on its way to the disk
-  return verify_fields(comm, path, h, fields, row);
+  return file.problem();
 }
 
 // Reads back what this rank wrote and compares it, to the bit. Open MPI's file layer (ompio, 4.1)
@@ -197,6 +190,14 @@ std::string verify_fields(MPI_Comm comm, const std::filesystem::path& path, cons
   MPI_Allreduce(&all_same, &agreed, 1, MPI_INT, MPI_MIN, comm);
   if (agreed) return {};
   return fmt::format("cannot write {}: what it holds is not what was written (is the disk full?)", path.string());
+}
+
+std::string write_fields(MPI_Comm comm, const std::filesystem::path& path, const FieldsHeader& h,
+                         std::span<Field* const> fields, const CheckpointScalars& scalars) {
+  std::vector<double> row = scalars.shared;
+  row.insert(row.end(), scalars.summed.begin(), scalars.summed.end());
+  if (auto problem = send_fields(comm, path, h, fields, row); !problem.empty()) return problem;
+  return verify_fields(comm, path, h, fields, row);  // the file closed: what it holds is on its way to the disk
 }
 
 // Reads the fields and this rank's scalars; returns an empty string or what is wrong (the same on
