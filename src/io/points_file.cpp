@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <sstream>
@@ -14,19 +15,31 @@ namespace granflow {
 
 namespace {
 
-// The numbers of a line, fields separated by commas, semicolons and blanks; false where a field is
-// not a number. `any` tells whether some field is one.
+// The numbers of a line: fields separated by blanks, by one comma or semicolon, or by both ("1, 2").
+// False where a field is not a number or is empty ("0.2,,0", a leading or trailing comma), as a column
+// left blank in a spreadsheet would shift the numbers that follow. `any` tells whether some field is one.
 bool parse_numbers(std::string_view line, std::vector<double>& out, bool& any) {
   out.clear();
   any = false;
   bool all = true;
   size_t k = 0;
-  auto separator = [](char ch) { return ch == ',' || ch == ' ' || ch == '\t' || ch == '\r' || ch == ';'; };
+  auto blank = [](char ch) { return ch == ' ' || ch == '\t' || ch == '\r'; };
+  auto delimiter = [](char ch) { return ch == ',' || ch == ';'; };
+  // Skips the separator after a field (or before the first): blanks, at most one delimiter, blanks.
+  // False where a delimiter has no field on one side of it.
+  auto skip_separator = [&](bool after_field) {
+    while (k < line.size() && blank(line[k])) ++k;
+    if (k < line.size() && delimiter(line[k])) {
+      ++k;
+      while (k < line.size() && blank(line[k])) ++k;
+      return after_field && k < line.size() && !delimiter(line[k]);
+    }
+    return true;
+  };
+  if (!skip_separator(false)) all = false;
   while (k < line.size()) {
-    while (k < line.size() && separator(line[k])) ++k;
-    if (k == line.size()) break;
     size_t end = k;
-    while (end < line.size() && !separator(line[end])) ++end;
+    while (end < line.size() && !blank(line[end]) && !delimiter(line[end])) ++end;
     const std::string_view field = line.substr(k, end - k);
     double value = 0.0;
     const char* first = field.data() + (field.front() == '+' ? 1 : 0);
@@ -37,8 +50,25 @@ bool parse_numbers(std::string_view line, std::vector<double>& out, bool& any) {
       any = true;
     out.push_back(value);
     k = end;
+    if (!skip_separator(true)) all = false;
   }
   return all;
+}
+
+// A line as a message shows it: its first 80 bytes, those that are not printable ASCII as \xNN, so
+// a binary file named by mistake does not fill the terminal with its bytes.
+std::string shown(std::string_view line) {
+  constexpr size_t most = 80;
+  std::string out;
+  for (size_t i = 0; i < std::min(line.size(), most); ++i) {
+    const auto byte = static_cast<unsigned char>(line[i]);
+    if (byte >= 0x20 && byte < 0x7f)
+      out += char(byte);
+    else
+      out += fmt::format("\\x{:02X}", byte);
+  }
+  if (line.size() > most) out += fmt::format("... ({} bytes)", line.size());
+  return out;
 }
 
 }  // namespace
@@ -79,7 +109,7 @@ std::vector<std::array<double, 2>> read_points_file(const std::filesystem::path&
     if (header) continue;
     if (!parsed || numbers.size() != 2 || !std::isfinite(numbers[0]) || !std::isfinite(numbers[1]))
       throw CaseError(fmt::format("{}: {}:{}: expected two numbers, x and y in m, found '{}'", key_path, file.string(),
-                                  number, line));
+                                  number, shown(line)));
     points.push_back({numbers[0], numbers[1]});
   }
   return points;

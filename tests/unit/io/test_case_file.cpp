@@ -241,8 +241,8 @@ TEST(CaseFile, SoilMaterialsAreNamedValidatedAndUsed) {
 
 // A polygon's outline from a file (points_file), relative to the case file's directory: comment lines
 // and a header skipped, commas or blanks between x and y; the case as run holds the points. A file
-// that is missing, a line that is not two numbers (named by its line), both keys, or a shape other
-// than a polygon is refused.
+// that is missing, a line that is not two numbers (named by its line, an empty field among them, its
+// bytes shown printable), both keys, or a shape other than a polygon is refused.
 TEST(CaseFile, PolygonPointsFromAFile) {
   namespace fs = std::filesystem;
   const fs::path dir = fs::temp_directory_path() / ("granflow_points_" + std::to_string(::getpid()));
@@ -254,6 +254,11 @@ TEST(CaseFile, PolygonPointsFromAFile) {
     std::ofstream(dir / "terrain" / "exported.csv") << "\xEF\xBB\xBF-1;-1\r\n2;-1\r\n2;0.3\r\n-1;0.1\r\n";
     std::ofstream(dir / "terrain" / "typo.csv") << "-1,-1x\n2,-1\n2,0.3\n-1,0.1\n";  // a first line with a typo is no header
     std::ofstream(dir / "terrain" / "two.csv") << "x,y\n0,0\n1,0\n";
+    // A column left empty would shift the numbers after it: "0.2,,0" is not the point (0.2, 0).
+    std::ofstream(dir / "terrain" / "gap.csv") << "-1,-1\n2,-1\n0.2 ,, 0\n-1,0.1\n";
+    std::ofstream(dir / "terrain" / "trailing.csv") << "-1,-1,\n2,-1,\n2,0.3,\n";
+    std::ofstream(dir / "terrain" / "leading.csv") << "x,y\n;-1;-1\n";
+    std::ofstream(dir / "terrain" / "binary.csv") << "x,y\n\x7F" "ELF\x02\x01\x01" + std::string(200, 'a') + "\n";
   }
   const fs::path source = dir / "case.toml";
   auto obstacle = [](const std::string& keys) { return "obstacle=[{shape = \"polygon\", " + keys + "}]"; };
@@ -286,6 +291,18 @@ TEST(CaseFile, PolygonPointsFromAFile) {
   EXPECT_NE(missing.find("none.csv"), std::string::npos) << missing;
   const std::string bad = error(obstacle("points_file = \"terrain/bad.csv\""));
   EXPECT_NE(bad.find("bad.csv:4: expected two numbers"), std::string::npos) << bad;
+  const std::string gap = error(obstacle("points_file = \"terrain/gap.csv\""));
+  EXPECT_NE(gap.find("gap.csv:3: expected two numbers, x and y in m, found '0.2 ,, 0'"), std::string::npos) << gap;
+  const std::string trailing = error(obstacle("points_file = \"terrain/trailing.csv\""));
+  EXPECT_NE(trailing.find("trailing.csv:1: expected two numbers"), std::string::npos) << trailing;
+  const std::string leading = error(obstacle("points_file = \"terrain/leading.csv\""));
+  EXPECT_NE(leading.find("leading.csv:2: expected two numbers"), std::string::npos) << leading;
+  const std::string binary = error(obstacle("points_file = \"terrain/binary.csv\""));
+  EXPECT_NE(binary.find("binary.csv:2: expected two numbers, x and y in m, found '\\x7FELF\\x02\\x01\\x01aaa"),
+            std::string::npos)
+      << binary;
+  EXPECT_NE(binary.find("aaa... (207 bytes)'"), std::string::npos) << binary;
+  EXPECT_LT(binary.size(), 400u) << binary;
   const std::string both = error(obstacle("points_file = \"terrain/ground.csv\", points = [[0, 0], [1, 0], [1, 1]]"));
   EXPECT_NE(both.find("not both"), std::string::npos) << both;
   const std::string box = error("obstacle=[{shape = \"box\", points_file = \"terrain/ground.csv\"}]");
