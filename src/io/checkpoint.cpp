@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 #include <fmt/ostream.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <cmath>
 #include <cstdint>
@@ -259,6 +260,33 @@ std::string read_fields(MPI_Comm comm, const std::filesystem::path& path, int nx
   return file.problem();
 }
 
+// The first value of this rank's cells or of the numbers that is NaN or infinite, named ("" if none).
+// No run writes one: a step that makes one fails and is taken again or ends the run first. So such a
+// value is damage done to the file after it was written, and a restart from it would fail later, in a
+// solve, where the cause no longer shows.
+std::string non_finite_value(std::span<Field* const> fields, const std::string& field_names,
+                             const CheckpointScalars& scalars) {
+  std::vector<std::string> names;
+  for (std::size_t k = 0, end; k < field_names.size(); k = end + 1) {
+    end = std::min(field_names.find(' ', k), field_names.size());
+    if (end > k) names.push_back(field_names.substr(k, end - k));
+  }
+  for (std::size_t k = 0; k < fields.size(); ++k) {
+    PetscInt xs, ys, xm, ym;
+    DMDAGetCorners(fields[k]->dm(), &xs, &ys, nullptr, &xm, &ym, nullptr);
+    const ConstFieldArray a(fields[k]->dm(), fields[k]->global());
+    for (PetscInt j = ys; j < ys + ym; ++j)
+      for (PetscInt i = xs; i < xs + xm; ++i)
+        if (!std::isfinite(a[j][i]))
+          return fmt::format("the checkpoint is damaged: its field {} holds {} in cell ({}, {})",
+                             names.size() == fields.size() ? names[k] : std::to_string(k), a[j][i], i, j);
+  }
+  for (const auto* numbers : {&scalars.shared, &scalars.summed})
+    for (const double x : *numbers)
+      if (!std::isfinite(x)) return fmt::format("the checkpoint is damaged: one of its numbers is {}", x);
+  return {};
+}
+
 void write_run(const std::filesystem::path& path, const RunCheckpoint& r) {
   write_file_atomically(path, [&](std::ostream& out) {
     fmt::print(out, "time {:a}\nnext_dt {:a}\noutput_index {}\ndissipated_energy {:a}\ninitial_soil_volume {:a}\n", r.time,
@@ -418,6 +446,7 @@ RunCheckpoint read_checkpoint(MPI_Comm comm, const std::filesystem::path& dir, i
   }
   agree(comm, problem);
   agree(comm, read_fields(comm, from / fields_file, nx, ny, fields, scalars));
+  agree(comm, non_finite_value(fields, field_names, scalars));
   double clock[6] = {run.time, run.next_dt, double(run.output_index), run.dissipated_energy, run.initial_soil_volume,
                      double(run.steps)};
   MPI_Bcast(clock, 6, MPI_DOUBLE, 0, comm);

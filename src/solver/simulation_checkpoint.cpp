@@ -17,7 +17,7 @@ std::vector<Field*> Simulation::checkpoint_fields() {
 
 std::string Simulation::checkpoint_field_names() {
   std::string names = flow_->checkpoint_field_names();
-  if (soil_) names += " " + soil_->checkpoint_field_names();
+  if (soil_) names.append(" ").append(soil_->checkpoint_field_names());
   return names;
 }
 
@@ -127,7 +127,10 @@ void Simulation::restart() {
   RunCheckpoint run = read_checkpoint(grid_->comm(), out_, grid_->nx(), grid_->ny(), domain(), checkpoint_field_names(),
                                       fields, scalars);
   flow_->clear_blocked_cells();  // the fields were read with their ghosts, the blocked cells' mirrors among them
-  if (soil_) soil_->clear_blocked_cells();
+  if (soil_) {
+    soil_->clear_blocked_cells();
+    soil_->check_restored_fraction();
+  }
   if (!(config_.time.end > run.time * (1 + 1e-12)))
     throw CheckpointError(fmt::format("time.end = {} s is not past the checkpoint's t = {:.9g} s: raise it to run on",
                                       config_.time.end, run.time));

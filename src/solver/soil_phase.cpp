@@ -1,6 +1,7 @@
 #include "solver/soil_phase.hpp"
 
 #include "io/checkpoint.hpp"
+#include "io/collective_failure.hpp"
 #include "mesh/face_loop.hpp"
 #include "mesh/gather.hpp"
 #include "mesh/obstacles.hpp"
@@ -112,6 +113,23 @@ void SoilPhase::restore_scalars(std::span<const double> shared, std::span<const 
   outflow_ = summed[0];
   std::copy(summed.begin() + 1, summed.begin() + 1 + long(bins), lode_energy_.values().begin());
   join_moment_ = summed.size() == 2 + bins ? summed[1 + bins] : 0.0;
+}
+
+void SoilPhase::check_restored_fraction() const {
+  // The sweeps keep c within [0, 1] to round-off (1e-15 in the advection tests); a checkpoint's c
+  // beyond this margin was damaged after it was written, and would run on with soil made or lost.
+  constexpr double margin = 1e-6;
+  std::string problem;
+  const ConstFieldArray c(grid_.field_dm(), c_->global());
+  const auto& b = grid_.owned();
+  for (int j = b.ys; j < b.ye() && problem.empty(); ++j)
+    for (int i = b.xs; i < b.xe(); ++i)
+      if (!(c[j][i] >= -margin && c[j][i] <= 1 + margin)) {
+        problem = fmt::format("the checkpoint is damaged: its soil fraction c is {} in cell ({}, {}), outside [0, 1]",
+                              c[j][i], i, j);
+        break;
+      }
+  if (auto text = first_failure(grid_.comm(), problem); !text.empty()) throw CheckpointError(text);
 }
 
 void SoilPhase::clear_blocked_cells() {

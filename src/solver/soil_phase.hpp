@@ -107,6 +107,9 @@ class SoilPhase {
   CheckpointScalars checkpoint_scalars() const;
   // Throws CheckpointError where the numbers are not this soil's.
   void restore_scalars(std::span<const double> shared, std::span<const double> summed);
+  // Throws CheckpointError, on every rank, where a restored soil fraction lies outside [0, 1] by more
+  // than the sweeps' round-off (collective).
+  void check_restored_fraction() const;
  private:
   void fill_displacement_ghosts();
   std::vector<Field*> state_fields();  // what a step changes: c, the displacement, the materials' shares

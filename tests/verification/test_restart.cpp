@@ -5,8 +5,12 @@
 // must come back; the cavity has no soil phase.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -219,6 +223,48 @@ TEST(Restart, RefusesAMissingOrForeignCheckpoint) {
     EXPECT_NE(format_2.find("written by an earlier version of granflow (checkpoint format 2"), std::string::npos)
         << format_2;
     std::filesystem::remove(checkpoint / "rank_0.bin");
+    std::filesystem::rename(kept, fields_bin);
+  }
+  // Values no run writes (NaN in a velocity, a soil fraction of 2) are damage done to the file after
+  // it was written: named, with the field and the cell, before the run goes on from them.
+  {
+    const auto fields_bin = dir / "checkpoint" / "fields.bin", kept = dir / "fields.bin.kept";
+    std::filesystem::copy_file(fields_bin, kept);
+    // The field named `name` at cell (i, j), as the header lays the fields out (checkpoint.cpp).
+    std::int64_t header[8];
+    std::ifstream(fields_bin, std::ios::binary).read(reinterpret_cast<char*>(header), sizeof header);
+    const std::int64_t nx = header[1], ny = header[2], ghosts = header[3];
+    const std::string run_txt = test::file_text(dir / "checkpoint" / "run.txt");
+    const size_t names_at = run_txt.find("\nfields ") + 8;
+    std::istringstream names(run_txt.substr(names_at, run_txt.find('\n', names_at) - names_at));
+    std::vector<std::string> order{std::istream_iterator<std::string>(names), std::istream_iterator<std::string>()};
+    auto poke = [&](const std::string& name, int i, int j, double value) {
+      const auto k = std::find(order.begin(), order.end(), name) - order.begin();
+      ASSERT_LT(size_t(k), order.size()) << name;
+      const std::int64_t at = std::int64_t(sizeof header) +
+                              8 * ((k * (ny + 2 * ghosts) + j + ghosts) * (nx + 2 * ghosts) + i + ghosts);
+      std::fstream file(fields_bin, std::ios::binary | std::ios::in | std::ios::out);
+      file.seekp(at);
+      file.write(reinterpret_cast<const char*>(&value), sizeof value);
+    };
+    poke("u", 7, 3, std::nan(""));
+    Simulation nan_u(PETSC_COMM_WORLD, load_case(test::repo_path("cases/bui2008_experiment.toml"), small), dir);
+    const std::string not_finite = refusal(nan_u);
+    EXPECT_NE(not_finite.find("the checkpoint is damaged: its field u holds nan in cell (7, 3)"), std::string::npos)
+        << not_finite;
+    std::filesystem::copy_file(kept, fields_bin, std::filesystem::copy_options::overwrite_existing);
+    poke("c", 2, 1, 2.0);
+    Simulation two(PETSC_COMM_WORLD, load_case(test::repo_path("cases/bui2008_experiment.toml"), small), dir);
+    const std::string outside = refusal(two);
+    EXPECT_NE(outside.find("the checkpoint is damaged: its soil fraction c is 2 in cell (2, 1), outside [0, 1]"),
+              std::string::npos)
+        << outside;
+    // Round-off beyond [0, 1] is what the sweeps leave, and is taken.
+    poke("c", 2, 1, 1 + 1e-13);
+    auto longer = small;
+    longer.push_back("time.end=0.1");
+    Simulation round_off(PETSC_COMM_WORLD, load_case(test::repo_path("cases/bui2008_experiment.toml"), longer), dir);
+    EXPECT_NO_THROW(round_off.restart());
     std::filesystem::rename(kept, fields_bin);
   }
   // A run of more steps than an int holds restarts (time.max_steps goes to 1e12).
