@@ -59,6 +59,14 @@ add_test(NAME cli_run_into_earlier_run_refused
                  $<TARGET_FILE:granflow> ${CMAKE_CURRENT_BINARY_DIR}/earlier_run ${CMAKE_SOURCE_DIR}/cases/bui2008_experiment.toml
                  ${GRANFLOW_SHORT_RUN})
 set_tests_properties(cli_run_into_earlier_run_refused PROPERTIES LABELS cli)
+# An output directory inside another run's checkpoint (which that run replaces whole at its next
+# output) is refused for a run and for a strength analysis, with status 2 and nothing made there.
+add_test(NAME cli_output_inside_a_runs_checkpoint_refused
+         COMMAND sh -c "g=$0; d=$1; c=$2; shift 2; rm -rf \"$d\"; \"$g\" run \"$c\" -o \"$d\" \"$@\" > /dev/null || exit 1; \"$g\" run \"$c\" -o \"$d/checkpoint/inner\" \"$@\" 2>&1; test $? -eq 2 || exit 1; \"$g\" stability \"$c\" -o \"$d/./checkpoint.old/s\" 2>&1; test $? -eq 2 || exit 1; test ! -e \"$d/checkpoint/inner\" && test ! -e \"$d/checkpoint.old\" && echo nothing made"
+                 $<TARGET_FILE:granflow> ${CMAKE_CURRENT_BINARY_DIR}/output_inside ${CMAKE_SOURCE_DIR}/cases/bui2008_experiment.toml
+                 ${GRANFLOW_SHORT_RUN})
+set_tests_properties(cli_output_inside_a_runs_checkpoint_refused PROPERTIES LABELS cli
+                     PASS_REGULAR_EXPRESSION "-o [^\n]*/checkpoint/inner: inside [^\n]*/output_inside/checkpoint, which the run in [^\n]*/output_inside replaces whole.*\n.*-o [^\n]*checkpoint.old/s: inside [^\n]*/output_inside/checkpoint.old, which the run .*nothing made")
 # A restart whose end is not past the checkpoint, and a damaged checkpoint, are named.
 add_test(NAME cli_restart_end_before_checkpoint
          COMMAND sh -c "g=$0; d=$1; c=$2; shift 2; rm -rf \"$d\"; \"$g\" run \"$c\" -o \"$d\" \"$@\" > /dev/null || exit 1; \"$g\" run \"$c\" -o \"$d\" --restart \"$@\" 2>&1"

@@ -56,6 +56,7 @@ int run_case(const std::string& case_file, const std::vector<std::string>& overr
     if (std::filesystem::exists(out_dir, ec) && !std::filesystem::is_directory(out_dir, ec))
       throw CaseError(fmt::format("-o {}: not a directory", out_dir));
   }
+  if (auto problem = inside_a_runs_own_directory(out_dir); !problem.empty()) throw CaseError(problem);
   // One run at a time in a directory (io/run_lock.hpp): taken here if the directory exists, so that
   // a second run is told so rather than that the directory holds an earlier run, and below where the
   // simulation has just made it. Rank 0 alone looks and holds it for the whole run; every rank takes

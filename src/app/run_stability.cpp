@@ -69,6 +69,8 @@ int run_stability(const std::string& case_file, const std::vector<std::string>& 
     std::error_code ec;
     if (std::filesystem::exists(out_dir, ec) && !std::filesystem::is_directory(out_dir, ec))
       problem = fmt::format("-o {}: not a directory", out_dir);
+    else if (problem = inside_a_runs_own_directory(out_dir); !problem.empty()) {
+    }
     else if (std::filesystem::create_directories(out_dir, ec); ec)
       problem = fmt::format("-o {}: cannot make the directory: {}", out_dir, ec.message());
     else if (problem = lock.take(out_dir); !problem.empty()) {

@@ -68,6 +68,23 @@ std::vector<std::filesystem::path> run_files_in(const std::filesystem::path& dir
   return files;
 }
 
+std::string inside_a_runs_own_directory(const std::filesystem::path& dir) {
+  std::error_code ec;
+  std::filesystem::path path = std::filesystem::weakly_canonical(std::filesystem::absolute(dir, ec), ec);
+  if (ec) return {};  // a path the system cannot resolve is refused where the directory is made
+  for (; path.has_relative_path(); path = path.parent_path()) {
+    const std::string name = path.filename().string();
+    const bool checkpoint = name == "checkpoint" || name == "checkpoint.old" || name == "checkpoint.partial";
+    if (!checkpoint && name != set_aside_name) continue;
+    // A checkpoint is a run's if the run's record is beside it or its clock is inside.
+    if (!checkpoint || std::filesystem::exists(path.parent_path() / run_record_name, ec) ||
+        std::filesystem::exists(path / "run.txt", ec))
+      return fmt::format("-o {}: inside {}, which the run in {} replaces whole; choose another directory", dir.string(),
+                         path.string(), path.parent_path().string());
+  }
+  return {};
+}
+
 void remove_left_over_files(const std::filesystem::path& dir, const std::vector<LineSample>& lines) {
   for (const auto& f : run_files_in(dir, lines))
     if (f.filename().string().starts_with(".")) {  // the run's own files do not start with a dot

@@ -22,6 +22,12 @@ inline constexpr const char* case_record_name = "granflow_case.toml";
 // names or `lines` (the new run's) holds. Empty if `dir` is not a directory.
 std::vector<std::filesystem::path> run_files_in(const std::filesystem::path& dir, const std::vector<LineSample>& lines);
 
+// Refuses an output directory `dir` (as -o gives it) that is or lies in a directory an earlier run
+// keeps to itself and replaces or removes whole: its checkpoint/, checkpoint.old/ or
+// checkpoint.partial/, or a set-aside run. Output there would be lost at that run's next output.
+// Returns the message naming both, or "".
+std::string inside_a_runs_own_directory(const std::filesystem::path& dir);
+
 // Removes the half-written files (.NAME.tmpPID, io/atomic_file.cpp) a killed run left in `dir`: a
 // restart, which holds the directory alone (io/run_lock.hpp), writes those files anew.
 void remove_left_over_files(const std::filesystem::path& dir, const std::vector<LineSample>& lines);
