@@ -224,6 +224,14 @@ add_test(NAME cli_petsc_missing_options_file
          COMMAND sh -c "out=$(\"$0\" run \"$1\" -o \"$2\" --overwrite \"--petsc=-options_file $2/no_such_file\" 2>&1); test $? -eq 2 && echo \"$out\" | grep -q 'error: --petsc -options_file: cannot read .*no_such_file' && ! echo \"$out\" | grep -q 'PETSC ERROR'"
                  $<TARGET_FILE:granflow> ${CMAKE_SOURCE_DIR}/cases/lid_driven_cavity_re100.toml ${CMAKE_CURRENT_BINARY_DIR}/options_file)
 set_tests_properties(cli_petsc_missing_options_file PROPERTIES LABELS cli)
+# Options files that include themselves (directly or through another; PETSc would recurse until its
+# stack ran out), a device that never ends, and a line PETSc cannot parse: each refused in one line,
+# status 2, without PETSc's trace.
+add_test(NAME cli_petsc_options_files_refused
+         COMMAND sh -c "g=$0; c=$1; d=$2; rm -rf \"$d\"; mkdir -p \"$d\" && cd \"$d\" || exit 1; echo '-options_file self.opts' > self.opts; echo '-options_file b.opts' > a.opts; printf '%s\\n' '-coupled_ksp_monitor' '-options_file a.opts # back' > b.opts; echo 'coupled_ksp_monitor' > bad.opts; for w in self.opts a.opts /dev/zero bad.opts; do out=$(\"$g\" check \"$c\" \"--petsc=-options_file $w\" 2>&1); s=$?; echo \"$out\"; test $s -eq 2 || exit 1; echo \"$out\" | grep -q 'PETSC ERROR' && exit 1; done; exit 0"
+                 $<TARGET_FILE:granflow> ${CMAKE_SOURCE_DIR}/cases/lid_driven_cavity_re100.toml ${CMAKE_CURRENT_BINARY_DIR}/options_files)
+set_tests_properties(cli_petsc_options_files_refused PROPERTIES LABELS cli TIMEOUT 60
+                     PASS_REGULAR_EXPRESSION "error: --petsc -options_file: self.opts includes itself \\([^)]*/self.opts -> [^)]*/self.opts\\)\nerror: --petsc -options_file: a.opts includes itself \\([^)]*/a.opts -> [^)]*/b.opts -> [^)]*/a.opts\\)\nerror: --petsc -options_file: /dev/zero is longer than 1 MiB, not an options file\nerror: PETSc could not start: Unknown first token in options file bad.opts line 1: coupled_ksp_monitor")
 # A -log_view file that cannot be written is refused before the run, not found at its end; the
 # output directory is not made.
 add_test(NAME cli_petsc_unwritable_log_view

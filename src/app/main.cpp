@@ -196,11 +196,18 @@ int main(int argc, char** argv) {
   petsc_argv.push_back(nullptr);
   int pargc = static_cast<int>(petsc_argv.size()) - 1;
   char** pargv = petsc_argv.data();
+  const bool petsc_trace = [] {
+    const char* trace = std::getenv("GRANFLOW_PETSC_TRACE");
+    return trace && std::string_view(trace) == "1";
+  }();
+  if (!petsc_trace) PetscPushErrorHandler(granflow::keep_startup_petsc_error, nullptr);
   if (PetscInitialize(&pargc, &pargv, nullptr, nullptr) != 0) {
     int world_rank = 0, world_size = 1;
     MPI_Comm_rank(MPI_COMM_WORLD, &world_rank);
     MPI_Comm_size(MPI_COMM_WORLD, &world_size);
-    if (world_rank == 0) fmt::print(stderr, "error: PETSc could not start (its message is above)\n");
+    const std::string& why = granflow::startup_petsc_error_text();
+    if (world_rank == 0)
+      fmt::print(stderr, "error: PETSc could not start{}\n", why.empty() ? " (its message is above)" : ": " + why);
     if (world_size > 1) MPI_Abort(MPI_COMM_WORLD, 2);  // PETSc may have failed on one rank alone
     MPI_Finalize();
     return 2;
@@ -208,8 +215,10 @@ int main(int argc, char** argv) {
   int rank = 0, size = 1;
   MPI_Comm_rank(PETSC_COMM_WORLD, &rank);
   MPI_Comm_size(PETSC_COMM_WORLD, &size);
-  if (const char* trace = std::getenv("GRANFLOW_PETSC_TRACE"); !trace || std::string_view(trace) != "1")
+  if (!petsc_trace) {
+    PetscPopErrorHandler();  // the start-up's
     PetscPushErrorHandler(granflow::one_line_petsc_error, nullptr);
+  }
 
   // Errors met by every rank alike (the case, the checkpoint's agreed verdict, the global speed):
   // rank 0 reports them and all ranks stop in order. Any other error may be one rank's alone while the

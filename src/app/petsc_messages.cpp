@@ -8,12 +8,13 @@
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
-#include <fstream>
+#include <sstream>
 #include <string>
 #include <string_view>
 #include <thread>
 #include <vector>
 
+#include "io/text_file.hpp"
 #include "solver/linear_solver.hpp"
 
 namespace granflow {
@@ -69,6 +70,62 @@ PetscErrorCode one_line_petsc_error(MPI_Comm, int line, const char* function, co
   return code;
 }
 
+namespace {
+std::string startup_error;
+}
+
+PetscErrorCode keep_startup_petsc_error(MPI_Comm, int, const char*, const char*, PetscErrorCode code,
+                                        PetscErrorType type, const char* message, void*) {
+  if (type == PETSC_ERROR_INITIAL && startup_error.empty()) {
+    const char* text = nullptr;
+    PetscErrorMessage(code, &text, nullptr);
+    startup_error = message && *message ? message : text ? text : "error";
+  }
+  return code;
+}
+
+const std::string& startup_petsc_error_text() { return startup_error; }
+
+namespace {
+
+// An options file as PETSc reads it while it starts, with the files it includes in turn: readable,
+// of a sane length, and not including itself (PETSc would recurse until its stack ran out). The lines'
+// own syntax is PETSc's to judge (keep_startup_petsc_error says what it found). `chain` holds the
+// files that include this one. Empty when every file can be used.
+std::string unusable_options_file(const std::string& option, const std::string& file, std::vector<std::string>& chain) {
+  std::error_code ec;
+  const std::string path = std::filesystem::weakly_canonical(file, ec).string();
+  if (std::find(chain.begin(), chain.end(), path) != chain.end()) {
+    std::string loop;
+    for (auto k = std::find(chain.begin(), chain.end(), path); k != chain.end(); ++k) loop += *k + " -> ";
+    return fmt::format("--petsc {}: {} includes itself ({}{})", option, file, loop, path);
+  }
+  constexpr std::size_t limit = std::size_t(1) << 20;
+  const TextFile read = std::filesystem::is_directory(file, ec)
+                            ? TextFile{TextFile::Status::cannot_open, {}, "a directory"}
+                            : read_text_file(file, limit);
+  switch (read.status) {
+    case TextFile::Status::read: break;
+    case TextFile::Status::cannot_open:
+    case TextFile::Status::cannot_read: return fmt::format("--petsc {}: cannot read {}: {}", option, file, read.reason);
+    case TextFile::Status::too_long:
+      return fmt::format("--petsc {}: {} is longer than {} MiB, not an options file", option, file, limit >> 20);
+  }
+  if (option != "-options_file") return {};
+  chain.push_back(path);
+  std::istringstream lines(read.text);
+  for (std::string line; std::getline(lines, line);) {
+    std::istringstream words(line.substr(0, line.find('#')));
+    std::string first, second;
+    if (words >> first >> second && first == "-options_file")
+      if (auto problem = unusable_options_file(option, second, chain); !problem.empty()) return problem;
+  }
+  chain.pop_back();
+  return {};
+}
+
+}  // namespace
+
 // PETSc stops inside PetscInitialize, with its error trace, on an options file it cannot read, and
 // finds a -log_view file it cannot write only at the end of the run: say which, in one line, before
 // anything runs. Empty when every such file among the --petsc words can be used.
@@ -93,10 +150,8 @@ std::string unusable_petsc_file(const std::vector<std::string>& words) {
     }
     if (words[k] != "-options_file" && words[k] != "-options_file_yaml") continue;
     if (k + 1 == words.size()) return fmt::format("--petsc {}: names no file", words[k]);
-    const std::string& file = words[k + 1];
-    std::error_code ec;
-    if (std::filesystem::is_directory(file, ec) || !std::ifstream(file).good())
-      return fmt::format("--petsc {}: cannot read {}", words[k], file);
+    std::vector<std::string> chain;
+    if (auto problem = unusable_options_file(words[k], words[k + 1], chain); !problem.empty()) return problem;
   }
   return {};
 }

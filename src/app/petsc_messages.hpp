@@ -21,6 +21,13 @@ void say_error_once(const std::string& what);
 PetscErrorCode one_line_petsc_error(MPI_Comm, int line, const char* function, const char* file, PetscErrorCode code,
                                     PetscErrorType type, const char* message, void*);
 
+// PETSc's first error while it starts (in an options file: a line it cannot parse), kept as one line
+// for the message that PETSc could not start, instead of PETSc's trace. Pushed with
+// PetscPushErrorHandler before PetscInitialize; `startup_petsc_error_text` returns what it kept.
+PetscErrorCode keep_startup_petsc_error(MPI_Comm, int line, const char* function, const char* file, PetscErrorCode code,
+                                        PetscErrorType type, const char* message, void*);
+const std::string& startup_petsc_error_text();
+
 // The first options file PETSc could not read, or -log_view file it could not write, among the
 // --petsc words, as a message; empty when every such file can be used.
 std::string unusable_petsc_file(const std::vector<std::string>& words);
