@@ -232,6 +232,14 @@ add_test(NAME cli_petsc_options_files_refused
                  $<TARGET_FILE:granflow> ${CMAKE_SOURCE_DIR}/cases/lid_driven_cavity_re100.toml ${CMAKE_CURRENT_BINARY_DIR}/options_files)
 set_tests_properties(cli_petsc_options_files_refused PROPERTIES LABELS cli TIMEOUT 60
                      PASS_REGULAR_EXPRESSION "error: --petsc -options_file: self.opts includes itself \\([^)]*/self.opts -> [^)]*/self.opts\\)\nerror: --petsc -options_file: a.opts includes itself \\([^)]*/a.opts -> [^)]*/b.opts -> [^)]*/a.opts\\)\nerror: --petsc -options_file: /dev/zero is longer than 1 MiB, not an options file\nerror: PETSc could not start: Unknown first token in options file bad.opts line 1: coupled_ksp_monitor")
+# A tolerance that PETSc's options set outside the case file's range (a relative tolerance of 2 stops
+# every solve before its first iteration, a negative iteration limit at once) is refused before the
+# run, with status 2 and no output directory made.
+add_test(NAME cli_petsc_tolerance_out_of_range
+         COMMAND sh -c "g=$0; c=$1; d=$2; rm -rf \"$d\"; for o in '-pressure_ksp_rtol 2' '-pressure_ksp_max_it -5' '-pressure_ksp_divtol -3'; do \"$g\" run \"$c\" -o \"$d\" --set time.end=0.01 \"--petsc=$o\" 2>&1; test $? -eq 2 || exit 1; test -e \"$d\" && exit 1; done; exit 0"
+                 $<TARGET_FILE:granflow> ${CMAKE_SOURCE_DIR}/cases/lid_driven_cavity_re100.toml ${CMAKE_CURRENT_BINARY_DIR}/tolerance_out_of_range)
+set_tests_properties(cli_petsc_tolerance_out_of_range PROPERTIES LABELS cli
+                     PASS_REGULAR_EXPRESSION "error: linear solver 'pressure': rtol = 2 \\(solver.pressure.rtol, or PETSc's -pressure_ksp_rtol\\) must be within \\[0, 1\\]\nerror: linear solver 'pressure': max_iterations = -5 \\(solver.pressure.max_iterations, or PETSc's -pressure_ksp_max_it\\) must be at least 1\nerror: linear solver 'pressure': PETSc's -pressure_ksp_divtol = -3 must be at least 1")
 # A -log_view file that cannot be written is refused before the run, not found at its end; the
 # output directory is not made.
 add_test(NAME cli_petsc_unwritable_log_view

@@ -3,11 +3,13 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <set>
 #include <stdexcept>
 
+#include "io/case_error.hpp"
 #include "solver/divergence_error.hpp"
 
 namespace granflow {
@@ -95,10 +97,31 @@ LinearSolver::LinearSolver(MPI_Comm comm, const std::string& prefix, const Linea
     set_default("P_max", "4");
   }
   PetscCallAbort(comm, KSPSetFromOptions(ksp_));
+  check_tolerances(prefix);
   // A direct solve (preonly) takes no initial guess; iterative ones start from the last solution.
   KSPType type;
   KSPGetType(ksp_, &type);
   if (std::string(type) == KSPPREONLY) KSPSetInitialGuessNonzero(ksp_, PETSC_FALSE);
+}
+
+// PETSc takes any tolerance its options give (-PREFIX_ksp_rtol 2 stops every solve before its first
+// iteration, a negative -PREFIX_ksp_max_it at once); the case file's ranges hold for them too.
+void LinearSolver::check_tolerances(const std::string& prefix) const {
+  PetscReal rtol, atol, divtol;
+  PetscInt max_it;
+  KSPGetTolerances(ksp_, &rtol, &atol, &divtol, &max_it);
+  const std::string table = solver_table_name(prefix);
+  auto refuse = [&](const char* key, const char* option, double value, const char* range) {
+    throw CaseError(fmt::format("linear solver '{}': {} = {} (solver.{}.{}, or PETSc's -{}_ksp_{}) must be {}", prefix,
+                                key, value, table, key, prefix, option, range));
+  };
+  if (!(rtol >= 0 && rtol <= 1)) refuse("rtol", "rtol", rtol, "within [0, 1]");
+  if (!(atol >= 0 && std::isfinite(atol))) refuse("atol", "atol", atol, "zero or positive");
+  if (max_it < 1) refuse("max_iterations", "max_it", double(max_it), "at least 1");
+  if (!(divtol >= 1)) {
+    throw CaseError(fmt::format("linear solver '{}': PETSc's -{}_ksp_divtol = {} must be at least 1 (a solve whose "
+                                "residual grows that many times is taken for diverged)", prefix, prefix, divtol));
+  }
 }
 
 LinearSolver::~LinearSolver() {

@@ -59,6 +59,8 @@ class LinearSolver {
   void continue_count(long solves_at_limit_before) { solves_at_limit_ = solves_at_limit_before; }
 
  private:
+  // Throws CaseError where a tolerance, as PETSc's options may have set it, is outside the case file's range.
+  void check_tolerances(const std::string& prefix) const;
   KSP ksp_ = nullptr;
   KSP reuse_ksp_ = nullptr;  // FGMRES on ksp_'s preconditioner (solve_by_last_factorisation)
   Vec residual_ = nullptr, correction_ = nullptr;
