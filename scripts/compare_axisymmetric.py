@@ -294,7 +294,7 @@ def main():
                 continue
             try:
                 m, cols = measure(run, case, t)
-            except (OSError, ValueError, IndexError, KeyError) as e:
+            except (InputError, OSError, ValueError, IndexError, KeyError) as e:
                 print(f"note: {run}: skipped ({type(e).__name__}: {e})")
                 continue
             runs[(case, model)], times[run] = run, t

@@ -6,14 +6,18 @@ Reads the last output of RUN_DIR (column_height_*.csv, surface_*.csv, failure_li
 run-out (toe of the c = 0.5 contour and of a one-cell-thick layer) against 0.442 m, the RMS height
 difference at the experiment's surface points, the mean distance of the experiment's failure
 points from the computed failure line, and the change of the soil volume (with what left the
-domain) from history.csv. A run with no output after its start, or of another block than the
-case's (by its initial soil volume), is refused.
+domain) and the energy budget (kinetic plus dissipated energy against the potential energy released)
+from history.csv. A run with no output after its start, or of another block than the case's (by its
+initial soil volume), is refused. A run without failure lines (soil.displacement = false) is compared
+without them. Warned of on stderr: a last output before the case's time.end (a run stopped early), and
+soil that left the domain (its run-out and surface are then of what stayed).
 """
 import argparse
 import glob
 import json
 import os
 import sys
+import tomllib
 
 import numpy as np
 
@@ -27,15 +31,31 @@ BLOCK_AREA = 0.2 * 0.1  # m^2 per metre of depth: the block of cases/bui2008_exp
 
 def last_output(run_dir):
     """The files of the last output, all of one output index: a run killed while writing one leaves
-    its column heights without its surface, and the output before is taken whole."""
+    its column heights without its surface, and the output before is taken whole. The failure line
+    is None where the run wrote none (soil.displacement = false)."""
+    if not os.path.isdir(run_dir):
+        raise InputError(f"{run_dir}: no such directory")
+    with_failure_lines = bool(glob.glob(os.path.join(glob.escape(run_dir), "failure_line_[0-9]*.csv")))
     stamps = sorted(os.path.basename(f)[len("column_height_"):-len(".csv")]
                     for f in glob.glob(os.path.join(glob.escape(run_dir), "column_height_[0-9]*.csv")))
     for stamp in reversed(stamps):
-        files = {name: os.path.join(run_dir, f"{name}_{stamp}.csv") for name in ("column_height", "surface", "failure_line")}
+        names = ("column_height", "surface") + (("failure_line",) if with_failure_lines else ())
+        files = {name: os.path.join(run_dir, f"{name}_{stamp}.csv") for name in names}
         if all(os.path.exists(f) for f in files.values()):
+            files.setdefault("failure_line", None)
             return files
-    raise InputError(f"{run_dir}: no output with its column_height_, surface_ and failure_line_ files "
+    raise InputError(f"{run_dir}: no output with its column_height_ and surface_ files "
                      "(not the output directory of a run of bui2008_experiment?)")
+
+
+def case_end_time(run_dir):
+    """time.end of the case as the run took it (granflow_case.toml), or None."""
+    path = os.path.join(run_dir, "granflow_case.toml")
+    try:
+        with open(path, "rb") as f:
+            return float(tomllib.load(f)["time"]["end"])
+    except (OSError, KeyError, TypeError, ValueError, tomllib.TOMLDecodeError):
+        return None
 
 
 def time_of(path):
@@ -51,17 +71,21 @@ def metrics(run_dir):
         raise InputError(f"{cols_path}: the run has no output after its start (t = {time:g} s)")
     history_path = os.path.join(run_dir, "history.csv")
     history = read_csv(history_path)
-    require_columns(history, history_path, ["soil_volume", "soil_outflow"])
+    require_columns(history, history_path, ["soil_volume", "soil_outflow", "kinetic_energy", "potential_energy",
+                                            "dissipated_energy"])
     require_initial_volume(history, history_path, BLOCK_AREA, "the bui2008_experiment block")
     cols = read_csv(cols_path)
     surf = read_csv(files["surface"])
-    fail = read_csv(files["failure_line"])
+    fail = read_csv(files["failure_line"]) if files["failure_line"] else {"x0": np.array([]), "y0": np.array([]),
+                                                                          "x1": np.array([]), "y1": np.array([])}
     exp_s = read_csv(os.path.join(REFDATA, "bui2008_al_bar_collapse_final_surface.csv"))
     exp_f = read_csv(os.path.join(REFDATA, "bui2008_al_bar_collapse_failure_line.csv"))
     x, h = cols["x"], cols["height"]
     toe_cell = one_cell_toe(cols, cols_path)
     toe_contour = max(surf["x0"].max(), surf["x1"].max()) if len(surf["x0"]) else 0.0
     ex, ey = exp_s["x_m"], exp_s["y_m"]
+    # Beyond the columns' centres the surface is the nearest column's (the first point lies within
+    # the first cell's half width of the wall).
     heights = np.interp(ex, x, h)
     rms = float(np.sqrt(np.mean((heights - ey) ** 2)))
     fx, fy = exp_f[list(exp_f)[0]], exp_f[list(exp_f)[1]]
@@ -76,6 +100,8 @@ def metrics(run_dir):
             closest = p0 + t[:, None] * seg
             d.append(np.sqrt(((closest - q) ** 2).sum(1)).min())
         mean_dist = float(np.mean(d))
+    released = history["potential_energy"][0] - history["potential_energy"][-1]
+    accounted = history["kinetic_energy"][-1] + history["dissipated_energy"][-1]
     return {
         "time": time,
         "runout_contour_m": float(toe_contour),
@@ -87,6 +113,10 @@ def metrics(run_dir):
         "failure_line_mean_distance_m": mean_dist,
         # what the domain holds and what left it, against the first step's
         "soil_volume_change": float((history["soil_volume"][-1] + history["soil_outflow"][-1]) / history["soil_volume"][0] - 1),
+        # the share of the soil that left through the open sides
+        "soil_outflow_fraction": float(history["soil_outflow"][-1] / history["soil_volume"][0]),
+        # (kinetic + dissipated) / potential energy released - 1: zero when the budget closes
+        "energy_budget_error": float(accounted / released - 1) if released > 0 else float("nan"),
     }, (x, h, surf, fail, exp_s, exp_f)
 
 
@@ -98,7 +128,21 @@ def main():
     a = ap.parse_args()
     m, (x, h, surf, fail, exp_s, exp_f) = metrics(a.run_dir)
     for k, v in m.items():
-        print(f"{k} = {v:.3g}" if k == "soil_volume_change" else f"{k} = {v:.4f}" if isinstance(v, float) else f"{k} = {v}")
+        if k in ("soil_volume_change", "soil_outflow_fraction"):
+            print(f"{k} = {v:.3g}")
+        elif k.endswith("_m") and k.startswith(("surface_rms", "failure_line")):  # to 0.01 mm, as the docs quote them
+            print(f"{k} = {v:.5f}")
+        else:
+            print(f"{k} = {v:.4f}" if isinstance(v, float) else f"{k} = {v}")
+    end = case_end_time(a.run_dir)
+    if end is not None and m["time"] < end * (1 - 1e-9):
+        print(f"warning: the last output is at t = {m['time']:.6g} s, before the case's time.end = {end:g} s: "
+              "the run stopped early, and this is not its final pile", file=sys.stderr)
+    if m["soil_outflow_fraction"] > 1e-10:
+        print(f"warning: {100 * m['soil_outflow_fraction']:.3g} % of the soil left the domain; the run-out and the "
+              "surface are of the soil that stayed (a longer domain is needed)", file=sys.stderr)
+    if np.isnan(m["failure_line_mean_distance_m"]):
+        print("note: no failure line to compare (none written, or no soil strained to 0.3)", file=sys.stderr)
     if a.json:  # a measure that cannot be taken (no failure line) is null, not NaN, which JSON lacks
         json.dump({k: None if isinstance(v, float) and np.isnan(v) else v for k, v in m.items()}, open(a.json, "w"), indent=1)
     if a.png:

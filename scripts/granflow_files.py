@@ -25,6 +25,9 @@ def read_csv(path):
     if not rows:
         raise InputError(f"{path}: no header line")
     header = rows[0].split(",")
+    for r in rows[1:]:
+        if r.count(",") != len(header) - 1:  # a short row would otherwise shift the rows after it
+            raise InputError(f"{path}: the row '{r[:80]}' has {r.count(',') + 1} fields, the header {len(header)}")
     try:
         data = np.array([[float(x) for x in r.split(",")] for r in rows[1:]]).reshape(-1, len(header))
     except ValueError:
