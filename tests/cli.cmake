@@ -240,6 +240,13 @@ add_test(NAME cli_petsc_tolerance_out_of_range
                  $<TARGET_FILE:granflow> ${CMAKE_SOURCE_DIR}/cases/lid_driven_cavity_re100.toml ${CMAKE_CURRENT_BINARY_DIR}/tolerance_out_of_range)
 set_tests_properties(cli_petsc_tolerance_out_of_range PROPERTIES LABELS cli
                      PASS_REGULAR_EXPRESSION "error: linear solver 'pressure': rtol = 2 \\(solver.pressure.rtol, or PETSc's -pressure_ksp_rtol\\) must be within \\[0, 1\\]\nerror: linear solver 'pressure': max_iterations = -5 \\(solver.pressure.max_iterations, or PETSc's -pressure_ksp_max_it\\) must be at least 1\nerror: linear solver 'pressure': PETSc's -pressure_ksp_divtol = -3 must be at least 1")
+# preonly with a preconditioner that does not factorise is an inexact solve nothing counts: warned
+# of once, naming the solver; with lu, not.
+add_test(NAME cli_preonly_without_factorisation_warned
+         COMMAND sh -c "g=$0; c=$1; d=$2; rm -rf \"$d\" \"$d.lu\"; \"$g\" run \"$c\" -o \"$d\" --set 'mesh.cells=[8,8]' --set time.end=0.01 --set output.fields=false --set solver.pressure.ksp_type=preonly --set solver.pressure.pc_type=jacobi 2>&1 >/dev/null; \"$g\" run \"$c\" -o \"$d.lu\" --set 'mesh.cells=[8,8]' --set time.end=0.01 --set output.fields=false --set solver.pressure.ksp_type=preonly --set solver.pressure.pc_type=lu 2>&1 >/dev/null"
+                 $<TARGET_FILE:granflow> ${CMAKE_SOURCE_DIR}/cases/lid_driven_cavity_re100.toml ${CMAKE_CURRENT_BINARY_DIR}/preonly_jacobi)
+set_tests_properties(cli_preonly_without_factorisation_warned PROPERTIES LABELS cli
+                     PASS_REGULAR_EXPRESSION "^warning: linear solver 'pressure' applies pc_type = jacobi once \\(ksp_type = preonly\\), which solves only with a factorisation \\(lu, cholesky\\)[^\n]*\n$")
 # A -log_view file that cannot be written is refused before the run, not found at its end; the
 # output directory is not made.
 add_test(NAME cli_petsc_unwritable_log_view

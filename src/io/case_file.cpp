@@ -351,7 +351,11 @@ SoilSettings read_soil(TableReader& top, std::vector<std::string>& without_effec
     for (const char* key : {"arctan_M", "arctan_N"})
       if (m.has(key) && !arctan) {
         without_effect.push_back(m.key_path(key) + ": used only with mixture.density or mixture.viscosity = \"arctan\"");
-        m.number(key, 0.0);  // read, so that it is not an unknown key
+        // Read, so that it is not an unknown key, and held to its range as where it is used.
+        if (std::string_view(key) == "arctan_M")
+          m.require_range(key, m.number(key, 0.0), -0.5, 0.5);
+        else
+          m.require_range(key, m.number(key, 1.0), 1e-6, 1e6);
       }
     m.finish();
   }

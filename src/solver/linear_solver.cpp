@@ -101,7 +101,31 @@ LinearSolver::LinearSolver(MPI_Comm comm, const std::string& prefix, const Linea
   // A direct solve (preonly) takes no initial guess; iterative ones start from the last solution.
   KSPType type;
   KSPGetType(ksp_, &type);
-  if (std::string(type) == KSPPREONLY) KSPSetInitialGuessNonzero(ksp_, PETSC_FALSE);
+  if (std::string(type) == KSPPREONLY) {
+    KSPSetInitialGuessNonzero(ksp_, PETSC_FALSE);
+    warn_if_inexact(comm, prefix);
+  }
+}
+
+// preonly applies the preconditioner once and reports success whatever the residual: a solve only
+// with a factorisation. With another preconditioner (jacobi, ilu, hypre) the solve is inexact and
+// nothing counts it (its continuity residual leaves the soil volume drifting); said once per solver.
+void LinearSolver::warn_if_inexact(MPI_Comm comm, const std::string& prefix) const {
+  PC pc;
+  KSPGetPC(ksp_, &pc);
+  PCType type;
+  PCGetType(pc, &type);
+  const std::string pc_type = type ? type : "";
+  static std::set<std::string> warned;
+  if (pc_type == PCLU || pc_type == PCCHOLESKY || pc_type == PCREDUNDANT || !warned.insert(prefix).second) return;
+  int rank;
+  MPI_Comm_rank(comm, &rank);
+  if (rank == 0)
+    fmt::print(stderr,
+               "warning: linear solver '{}' applies pc_type = {} once (ksp_type = preonly), which solves only with a "
+               "factorisation (lu, cholesky): its solves are inexact and not counted; use pc_type = lu, or a Krylov "
+               "method (solver.{}.ksp_type)\n",
+               prefix, pc_type, solver_table_name(prefix));
 }
 
 // PETSc takes any tolerance its options give (-PREFIX_ksp_rtol 2 stops every solve before its first

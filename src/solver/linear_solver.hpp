@@ -61,6 +61,8 @@ class LinearSolver {
  private:
   // Throws CaseError where a tolerance, as PETSc's options may have set it, is outside the case file's range.
   void check_tolerances(const std::string& prefix) const;
+  // Warns (once per solver, rank 0) where preonly applies a preconditioner that does not factorise.
+  void warn_if_inexact(MPI_Comm comm, const std::string& prefix) const;
   KSP ksp_ = nullptr;
   KSP reuse_ksp_ = nullptr;  // FGMRES on ksp_'s preconditioner (solve_by_last_factorisation)
   Vec residual_ = nullptr, correction_ = nullptr;

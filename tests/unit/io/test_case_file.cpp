@@ -688,6 +688,11 @@ TEST(CaseFile, KeysOfAnotherChoiceAndAMisspeltRheologyAreNamed) {
                                                "\"arctan\""), std::string::npos) << linear.keys_without_effect[0];
   EXPECT_TRUE(parse_case(two_phase, {"soil.rheology.friction_angle=30", "mixture.arctan_M=-0.45", "mixture.density=arctan"})
                   .keys_without_effect.empty());
+  // Unused, the constants are still held to their ranges, as an unused numerics.blending is.
+  const std::string shift = error_of(two_phase, {"soil.rheology.friction_angle=30", "mixture.arctan_M=5"});
+  EXPECT_NE(shift.find("mixture.arctan_M"), std::string::npos) << shift;
+  const std::string steepness = error_of(two_phase, {"soil.rheology.friction_angle=30", "mixture.arctan_N=-3"});
+  EXPECT_NE(steepness.find("mixture.arctan_N"), std::string::npos) << steepness;
 }
 
 TEST(CaseFile, ShippedCasesAreValid) {
