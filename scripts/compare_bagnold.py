@@ -14,12 +14,16 @@ model's surface velocity:
     simple shear), the shear stress carrying the weight along the slope less the air's (which a mean
     pressure gradient carries on a periodic slope), the pressure the soil's weight plus the air's
     column above the surface.
+The steadiness is the largest change of u in the layer between the last two samples (profile_NNNNN.csv),
+relative to the last sample's largest u; above 1 % the run is warned of as not yet steady.
 With --png the profiles are drawn with the computed one; --also adds the profiles of further runs
 (e.g. another mesh).
 """
 import argparse
+import glob
 import math
 import os
+import sys
 import tomllib
 
 import numpy as np
@@ -86,6 +90,29 @@ def read_profile(run_dir):
     return table, first
 
 
+def read_time(path):
+    with open(path) as f:
+        first = f.readline()
+    try:
+        return float(first.split(" at t = ")[1].split()[0])
+    except (IndexError, ValueError):
+        raise InputError(f"{path}: its first line does not give the sample's time")
+
+
+def last_change(run_dir, depth):
+    """(t_before, t_last, largest |u_last - u_before| in the layer) from the last two numbered samples."""
+    samples = sorted(glob.glob(os.path.join(run_dir, "profile_[0-9][0-9][0-9][0-9][0-9].csv")))
+    if len(samples) < 2:
+        return None
+    before, last = read_csv(samples[-2]), read_csv(samples[-1])
+    require_columns(before, samples[-2], ["y", "u"])
+    if len(before["y"]) != len(last["y"]):
+        raise InputError(f"{samples[-2]} and {samples[-1]} sample different points")
+    inside = last["y"] < depth
+    change = np.max(np.abs(last["u"] - before["u"])[inside]) / max(np.max(np.abs(last["u"][inside])), 1e-300)
+    return read_time(samples[-2]), read_time(samples[-1]), float(change)
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("run_dir")
@@ -109,6 +136,17 @@ def main():
     print(f"surface_velocity_model_m_s = {surface:.5f}")
     print(f"largest_difference_from_model = {np.max(np.abs(u - own)) / surface:.5f}")
     print(f"largest_difference_from_bagnold = {np.max(np.abs(u - bagnold)) / surface:.5f}")
+    change = last_change(args.run_dir, m["depth"])
+    if change is None:
+        print("steadiness = null (fewer than two samples)")
+        print("warning: one sample only: the run's steadiness is not known", file=sys.stderr)
+    else:
+        t0, t1, du = change
+        print(f"steadiness = {du:.5f} (largest change of u from t = {t0:.6g} to {t1:.6g} s, relative to the "
+              f"largest u at {t1:.6g} s)")
+        if du > 0.01:
+            print(f"warning: u changed by {100 * du:.3g} % of its largest value between the last two "
+                  f"samples (t = {t0:.6g} and {t1:.6g} s): the flow is not yet steady", file=sys.stderr)
     if args.png:
         import matplotlib
         matplotlib.use("Agg")

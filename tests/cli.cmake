@@ -492,3 +492,19 @@ add_test(NAME cli_stability_overwrite_keeps_the_analysis_until_the_first_trial_e
                  --set "mesh.cells=[30,10]" --set time.end=0.02 --set soil.rheology.cohesion=1e5 --set output.progress_seconds=0 --set output.fields=false)
 set_tests_properties(cli_stability_overwrite_keeps_the_analysis_until_the_first_trial_ends PROPERTIES LABELS cli
   PASS_REGULAR_EXPRESSION "^granflow: factor of safety [^\n]*\nerror: -o [^\n]*stability_overwrite/F_3: cannot make the output directory: Not a directory\nkept\nreplaced\n$")
+# A run that stops at its steady state marks its line samples so; the cavity comparison warns of a
+# sample that is not one (a run stopped at time.end), and the chute's of a profile still changing.
+add_test(NAME scripts_compare_cavity_steadiness
+         COMMAND sh -c "\"$0\" run \"$1\" -o \"$3/steady\" --overwrite --set 'mesh.cells=[16,16]' >/dev/null 2>&1 && head -1 \"$3/steady/u_vertical_centreline.csv\" && /usr/bin/python3 -u \"$2\" \"$3/steady\" 100 2>&1 && \"$0\" run \"$1\" -o \"$3/short\" --overwrite --set 'mesh.cells=[16,16]' --set time.end=0.5 >/dev/null 2>&1 && /usr/bin/python3 -u \"$2\" \"$3/short\" 100 2>&1"
+                 $<TARGET_FILE:granflow> ${CMAKE_SOURCE_DIR}/cases/lid_driven_cavity_re100.toml
+                 ${CMAKE_SOURCE_DIR}/scripts/compare_cavity.py ${CMAKE_CURRENT_BINARY_DIR}/cavity_steadiness)
+set_tests_properties(scripts_compare_cavity_steadiness PROPERTIES LABELS cli
+                     PASS_REGULAR_EXPRESSION "^# u_vertical_centreline at t = [0-9.]+ s, steady state reached\nRe 100: max [^\n]*\nwarning: [^\n]*short/u_vertical_centreline.csv is not a steady state [(]u_vertical_centreline at t = 0[.]5 s[)][^\n]*\nRe 100: max [^\n]*\n$"
+                     FAIL_REGULAR_EXPRESSION "Traceback;error:")
+add_test(NAME scripts_compare_bagnold_steadiness
+         COMMAND sh -c "\"$0\" run \"$1\" -o \"$3/short\" --overwrite --set time.end=1.5 >/dev/null 2>&1 && /usr/bin/python3 -u \"$2\" \"$3/short\" 2>&1 && \"$0\" run \"$1\" -o \"$3/full\" --overwrite >/dev/null 2>&1 && /usr/bin/python3 -u \"$2\" \"$3/full\" 2>&1 | sed 's/^/full: /'"
+                 $<TARGET_FILE:granflow> ${CMAKE_SOURCE_DIR}/cases/bagnold_chute.toml
+                 ${CMAKE_SOURCE_DIR}/scripts/compare_bagnold.py ${CMAKE_CURRENT_BINARY_DIR}/bagnold_steadiness)
+set_tests_properties(scripts_compare_bagnold_steadiness PROPERTIES LABELS cli
+                     PASS_REGULAR_EXPRESSION "\nsteadiness = 0[.][1-4][0-9]+ [(]largest change of u from t = 1 to 1[.]5 s[^\n]*\nwarning: u changed by [1-4][0-9][.]?[0-9]* % [^\n]*[(]t = 1 and 1[.]5 s[)]: the flow is not yet steady\n.*\nfull: steadiness = 0[.]000[0-9]+ [(]largest change of u from t = 4[.]5 to 5 s"
+                     FAIL_REGULAR_EXPRESSION "Traceback;error:;steadiness = null;full: warning")

@@ -410,13 +410,7 @@ RunSummary Simulation::run(const StepObserver& after_step) {
                                                      : std::string()));
     }
     if (after_step) after_step(*this, step_dt);  // an accepted step: one that did not diverge
-    const bool at_output = time_ >= t_out - 1e-12 * std::max(1.0, t_out);
-    if (at_output) {
-      if (std::abs(time_ - t_out) <= 1e-12 * std::max(1.0, t_out)) time_ = t_out;
-      write_output();
-    }
-    output_is_current = at_output;
-    checkpoint_is_current = false;
+    bool steady = false;  // max|dv/dt| / max|v| below time.steady_tolerance
     if (tc.steady_tolerance > 0.0) {
       double change = 0.0;
       for (int a = 0; a < 2; ++a) {
@@ -425,10 +419,18 @@ RunSummary Simulation::run(const StepObserver& after_step) {
         VecNorm(previous[a], NORM_INFINITY, &n);
         change = std::max(change, n);
       }
-      if (change / step_dt < tc.steady_tolerance * std::max(speed, 1e-300)) {
-        summary.reached_steady_state = true;
-        break;
-      }
+      steady = change / step_dt < tc.steady_tolerance * std::max(speed, 1e-300);
+    }
+    const bool at_output = time_ >= t_out - 1e-12 * std::max(1.0, t_out);
+    if (at_output && std::abs(time_ - t_out) <= 1e-12 * std::max(1.0, t_out)) time_ = t_out;
+    // The steady state is written where it is reached, its line samples marked as such.
+    steady_state_reached_ = steady;
+    if (at_output || steady) write_output();
+    output_is_current = at_output || steady;
+    checkpoint_is_current = false;
+    if (steady) {
+      summary.reached_steady_state = true;
+      break;
     }
     const auto now = clock::now();
     if (config_.output.progress_seconds > 0 &&
@@ -450,7 +452,7 @@ RunSummary Simulation::run(const StepObserver& after_step) {
   // A run that stops before time.end (steady, or out of steps) writes where it stopped, once, with a
   // checkpoint to go on from.
   if (summary.reached_steady_state || steps_ >= tc.max_steps) {
-    if (!output_is_current) write_output();
+    if (!output_is_current) write_output();  // out of steps
     if (!checkpoint_is_current) write_checkpoint(dt);
   }
   if (soil_ && initial_soil_volume_ > 0.0)

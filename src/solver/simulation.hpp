@@ -109,6 +109,7 @@ class Simulation {
   double time_ = 0.0;
   double restart_dt_ = 0.0;  // the step to continue with after restart()
   bool restarted_ = false;
+  bool steady_state_reached_ = false;  // the outputs written now are the run's steady state
   double restart_time_ = 0.0;  // the checkpoint's time, after restart()
   StepReport last_step_;
   long steps_ = 0;  // steps of the whole run, over restarts (time.max_steps counts these)

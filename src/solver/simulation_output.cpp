@@ -113,7 +113,7 @@ void Simulation::write_line_samples(const std::vector<double>& u, const std::vec
     for (auto& s : q) fill_obstacle_walls(g, blocked_on_root_, s.obstacle_wall, s.values);
   for (const auto& line : config_.output.lines) {
     auto body = [&](std::ostream& out) {
-      fmt::print(out, "# {} at t = {:.9g} s\nx,y", line.name, time_);
+      fmt::print(out, "# {} at t = {:.9g} s{}\nx,y", line.name, time_, steady_state_reached_ ? ", steady state reached" : "");
       for (const auto& s : q) fmt::print(out, ",{}", s.name);
       fmt::print(out, "\n");
       for (int k = 0; k < line.points; ++k) {
