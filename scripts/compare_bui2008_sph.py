@@ -9,7 +9,8 @@ for a visual comparison with the paper's figures, and prints per time:
 - run-out: the toe of the c = 0.5 contour, and the toe of the soil at least one cell thick (a film
   thinner than a cell runs ahead of the bulk, so both are given);
 - the soil height at the wall (column height sum c dy of the first column), and the mean slope of
-  the surface between 3/4 and 1/4 of that height;
+  the surface between 3/4 and 1/4 of that height (where the column heights cross them, linearly
+  between column centres);
 - the failure line: its bounding box, and the lowest and highest points and the length of its connected
   piece through the lowest point (the diagonal line from the floor shown in the paper's figures; the
   paper leaves out short pieces parallel to the surface).
@@ -122,14 +123,21 @@ def measure(run_dir, stamp, t):
     dx = x[1] - x[0]
     toe_contour = float(max(surf["x0"].max(), surf["x1"].max())) if len(surf["x0"]) else 0.0
     toe_cell = one_cell_toe(cols, os.path.join(run_dir, f"column_height_{stamp}.csv"))
-    # Mean slope of the surface between the columns 3/4 and 1/4 as high as the wall: a cohesionless
-    # pile at rest can stand no steeper than its yield surface allows (asin(3 alpha_phi) in plane strain).
+    # Mean slope of the surface between the points 3/4 and 1/4 as high as the wall, each where the
+    # column heights first cross it (linear between column centres): a cohesionless pile at rest can
+    # stand no steeper than its yield surface allows (asin(3 alpha_phi) in plane strain).
+    def crossing(f):
+        below = np.nonzero(h < f * h[0])[0]
+        if not len(below):
+            return None
+        k = below[0]  # >= 1, as h[0] >= f h[0]
+        return x[k - 1] + (h[k - 1] - f * h[0]) / (h[k - 1] - h[k]) * (x[k] - x[k - 1])
+
     slope = None
     if h[0] > 0:
-        above = lambda f: np.nonzero(h < f * h[0])[0]
-        hi, lo = above(0.75), above(0.25)
-        if len(hi) and len(lo) and x[lo[0]] > x[hi[0]]:
-            slope = float(np.degrees(np.arctan(0.5 * h[0] / (x[lo[0]] - x[hi[0]]))))
+        hi, lo = crossing(0.75), crossing(0.25)
+        if hi is not None and lo is not None and lo > hi:
+            slope = float(np.degrees(np.arctan(0.5 * h[0] / (lo - hi))))
     row = {
         "time_s": t,
         "output": stamp,
