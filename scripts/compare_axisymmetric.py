@@ -3,7 +3,8 @@
 
 Usage: /usr/bin/python3 scripts/compare_axisymmetric.py OUT [--json FILE]
 OUT holds one run per case and yield surface, OUT/<case>_<model>/ (as scripts/run_axisymmetric.sh
-writes them); missing runs are skipped with a note. x is the radius r (axis at r = 0), y the height z.
+writes them); missing runs, and runs whose initial soil volume is not their case's, are skipped
+with a note. x is the radius r (axis at r = 0), y the height z.
 Writes into OUT (PNG):
 - <case>_sections.png: the c = 0.5 surface at t = 0.1 (dotted), 0.2 (dash-dot), 0.5 s (dashed), one
   colour per model, the initial shape in grey; for the cylinders the final run-out r_inf of the law of
@@ -24,14 +25,17 @@ import sys
 
 import numpy as np
 
-from granflow_files import InputError, main_with_errors, one_cell_columns, one_cell_toe, read_csv, read_vtr
+from granflow_files import (InputError, main_with_errors, one_cell_columns, one_cell_toe, read_csv, read_vtr,
+                            require_initial_volume)
 
 MODELS = {"drucker_prager": ("Drucker-Prager", "C0", "-"), "mohr_coulomb": ("Mohr-Coulomb", "C3", "--"),
           "matsuoka_nakai": ("Matsuoka-Nakai", "C2", ":")}  # label, colour, line style (lode_dissipation.png)
-# h0, r0 of the cylinders (a = h0 / r0); the time of the Lode-angle and stress-ratio figures.
-CASES = {"lube2004_a05": dict(h0=0.1, r0=0.2, t_field=0.2, label="cylinder a = 0.5", colour="C0"),
-         "lube2004_a2": dict(h0=0.2, r0=0.1, t_field=0.1, label="cylinder a = 2", colour="C3"),
-         "ring_collapse": dict(h0=0.1, r0=None, t_field=0.2, label="ring", colour="C2")}
+# h0, r0 of the cylinders (a = h0 / r0); the soil's volume per radian (h0 r0^2 / 2; the ring's
+# h0 (0.35^2 - 0.25^2) / 2), which a run must start with; the time of the Lode-angle and stress-ratio
+# figures.
+CASES = {"lube2004_a05": dict(h0=0.1, r0=0.2, volume=0.002, t_field=0.2, label="cylinder a = 0.5", colour="C0"),
+         "lube2004_a2": dict(h0=0.2, r0=0.1, volume=0.001, t_field=0.1, label="cylinder a = 2", colour="C3"),
+         "ring_collapse": dict(h0=0.1, r0=None, volume=0.003, t_field=0.2, label="ring", colour="C2")}
 SECTION_TIMES = {0.1: ":", 0.2: "-.", 0.5: "--"}
 
 
@@ -112,7 +116,9 @@ def measure(run, case, times):
                  inner_front_one_cell_m=float(west[thick].min()) if thick.any() else None)
     else:
         m["central_height_m"] = float(h[0])
-    hist = read_csv(os.path.join(run, "history.csv"))
+    hist_path = os.path.join(run, "history.csv")
+    hist = read_csv(hist_path)
+    require_initial_volume(hist, hist_path, CASES[case]["volume"], f"the {CASES[case]['label']} of {case}.toml")
     m.update(soil_volume_change=float(hist["soil_volume"][-1] / hist["soil_volume"][0] - 1),
              kinetic_energy_end_J_per_rad=float(hist["kinetic_energy"][-1]),
              dissipated_energy_end_J_per_rad=float(hist["dissipated_energy"][-1]))

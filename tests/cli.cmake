@@ -508,3 +508,12 @@ add_test(NAME scripts_compare_bagnold_steadiness
 set_tests_properties(scripts_compare_bagnold_steadiness PROPERTIES LABELS cli
                      PASS_REGULAR_EXPRESSION "\nsteadiness = 0[.][1-4][0-9]+ [(]largest change of u from t = 1 to 1[.]5 s[^\n]*\nwarning: u changed by [1-4][0-9][.]?[0-9]* % [^\n]*[(]t = 1 and 1[.]5 s[)]: the flow is not yet steady\n.*\nfull: steadiness = 0[.]000[0-9]+ [(]largest change of u from t = 4[.]5 to 5 s"
                      FAIL_REGULAR_EXPRESSION "Traceback;error:;steadiness = null;full: warning")
+# The axisymmetric comparison scores each run it finds and skips, with a note, a run that did not
+# start with its case's soil (here a cylinder of half the radius under lube2004_a05's name).
+add_test(NAME scripts_compare_axisymmetric_skips_another_block
+         COMMAND sh -c "\"$0\" run \"$1/lube2004_a2.toml\" -o \"$3/lube2004_a2_drucker_prager\" --overwrite --set 'mesh.cells=[36,18]' --set time.end=0.1 >/dev/null 2>&1 && \"$0\" run \"$1/lube2004_a05.toml\" -o \"$3/lube2004_a05_mohr_coulomb\" --overwrite --set 'mesh.cells=[36,18]' --set time.end=0.1 --set 'initial.soil=[{shape=\"box\",lower=[0,0],upper=[0.1,0.1]}]' >/dev/null 2>&1 && /usr/bin/python3 -u \"$2\" \"$3\" 2>&1"
+                 $<TARGET_FILE:granflow> ${CMAKE_SOURCE_DIR}/cases ${CMAKE_SOURCE_DIR}/scripts/compare_axisymmetric.py
+                 ${CMAKE_CURRENT_BINARY_DIR}/axisymmetric_runs)
+set_tests_properties(scripts_compare_axisymmetric_skips_another_block PROPERTIES LABELS cli
+                     PASS_REGULAR_EXPRESSION "note: [^\n]*lube2004_a05_mohr_coulomb: skipped [(]InputError: [^\n]*the run's initial volume is 0[.]000498[0-9]*, not the 0[.]002 of the cylinder a = 0[.]5 of lube2004_a05[.]toml[^\n]*\n.*\nlube2004_a2 +drucker_prager +0[.]1 +0[.]12[0-9]+ "
+                     FAIL_REGULAR_EXPRESSION "Traceback;error:")
