@@ -232,6 +232,12 @@ add_test(NAME cli_petsc_options_files_refused
                  $<TARGET_FILE:granflow> ${CMAKE_SOURCE_DIR}/cases/lid_driven_cavity_re100.toml ${CMAKE_CURRENT_BINARY_DIR}/options_files)
 set_tests_properties(cli_petsc_options_files_refused PROPERTIES LABELS cli TIMEOUT 60
                      PASS_REGULAR_EXPRESSION "error: --petsc -options_file: self.opts includes itself \\([^)]*/self.opts -> [^)]*/self.opts\\)\nerror: --petsc -options_file: a.opts includes itself \\([^)]*/a.opts -> [^)]*/b.opts -> [^)]*/a.opts\\)\nerror: --petsc -options_file: /dev/zero is longer than 1 MiB, not an options file\nerror: PETSc could not start: Unknown first token in options file bad.opts line 1: coupled_ksp_monitor")
+# The same checks for the options PETSc reads from the environment's PETSC_OPTIONS, named so.
+add_test(NAME cli_petsc_environment_options_files_refused
+         COMMAND sh -c "g=$0; c=$1; d=$2; rm -rf \"$d\"; mkdir -p \"$d\" && cd \"$d\" || exit 1; echo '-options_file self.opts' > self.opts; for o in '-options_file self.opts' '-options_file missing.opts' '-log_view :no_such_dir/log.txt'; do out=$(PETSC_OPTIONS=\"$o\" \"$g\" run \"$c\" -o run --set 'mesh.cells=[8,8]' 2>&1); s=$?; echo \"$out\"; test $s -eq 2 || exit 1; test -e run && exit 1; echo \"$out\" | grep -q 'PETSC ERROR' && exit 1; done; exit 0"
+                 $<TARGET_FILE:granflow> ${CMAKE_SOURCE_DIR}/cases/lid_driven_cavity_re100.toml ${CMAKE_CURRENT_BINARY_DIR}/environment_options)
+set_tests_properties(cli_petsc_environment_options_files_refused PROPERTIES LABELS cli TIMEOUT 60
+                     PASS_REGULAR_EXPRESSION "^error: PETSC_OPTIONS -options_file: self.opts includes itself \\([^)]*/self.opts -> [^)]*/self.opts\\)\nerror: PETSC_OPTIONS -options_file: cannot read missing.opts: No such file or directory\nerror: PETSC_OPTIONS -log_view :no_such_dir/log.txt: cannot write no_such_dir/log.txt\n$")
 # A tolerance that PETSc's options set outside the case file's range (a relative tolerance of 2 stops
 # every solve before its first iteration, a negative iteration limit at once) is refused before the
 # run, with status 2 and no output directory made.

@@ -182,7 +182,16 @@ int main(int argc, char** argv) {
   {
     int world_rank = 0;
     MPI_Comm_rank(MPI_COMM_WORLD, &world_rank);
-    std::string problem = world_rank == 0 ? granflow::unusable_petsc_file(petsc_words) : std::string();
+    std::string problem;
+    if (world_rank == 0) {
+      problem = granflow::unusable_petsc_file(petsc_words);
+      if (const char* env = std::getenv("PETSC_OPTIONS"); env && problem.empty()) {  // read by PETSc as well
+        std::vector<std::string> env_words;
+        std::istringstream words(env);
+        for (std::string w; words >> w;) env_words.push_back(w);
+        problem = granflow::unusable_petsc_file(env_words, "PETSC_OPTIONS");
+      }
+    }
     int failed = problem.empty() ? 0 : 1;
     MPI_Bcast(&failed, 1, MPI_INT, 0, MPI_COMM_WORLD);
     if (failed) {

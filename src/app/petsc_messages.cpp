@@ -92,13 +92,14 @@ namespace {
 // of a sane length, and not including itself (PETSc would recurse until its stack ran out). The lines'
 // own syntax is PETSc's to judge (keep_startup_petsc_error says what it found). `chain` holds the
 // files that include this one. Empty when every file can be used.
-std::string unusable_options_file(const std::string& option, const std::string& file, std::vector<std::string>& chain) {
+std::string unusable_options_file(const std::string& source, const std::string& option, const std::string& file,
+                                  std::vector<std::string>& chain) {
   std::error_code ec;
   const std::string path = std::filesystem::weakly_canonical(file, ec).string();
   if (std::find(chain.begin(), chain.end(), path) != chain.end()) {
     std::string loop;
     for (auto k = std::find(chain.begin(), chain.end(), path); k != chain.end(); ++k) loop += *k + " -> ";
-    return fmt::format("--petsc {}: {} includes itself ({}{})", option, file, loop, path);
+    return fmt::format("{} {}: {} includes itself ({}{})", source, option, file, loop, path);
   }
   constexpr std::size_t limit = std::size_t(1) << 20;
   const TextFile read = std::filesystem::is_directory(file, ec)
@@ -107,9 +108,9 @@ std::string unusable_options_file(const std::string& option, const std::string& 
   switch (read.status) {
     case TextFile::Status::read: break;
     case TextFile::Status::cannot_open:
-    case TextFile::Status::cannot_read: return fmt::format("--petsc {}: cannot read {}: {}", option, file, read.reason);
+    case TextFile::Status::cannot_read: return fmt::format("{} {}: cannot read {}: {}", source, option, file, read.reason);
     case TextFile::Status::too_long:
-      return fmt::format("--petsc {}: {} is longer than {} MiB, not an options file", option, file, limit >> 20);
+      return fmt::format("{} {}: {} is longer than {} MiB, not an options file", source, option, file, limit >> 20);
   }
   if (option != "-options_file") return {};
   chain.push_back(path);
@@ -118,7 +119,7 @@ std::string unusable_options_file(const std::string& option, const std::string& 
     std::istringstream words(line.substr(0, line.find('#')));
     std::string first, second;
     if (words >> first >> second && first == "-options_file")
-      if (auto problem = unusable_options_file(option, second, chain); !problem.empty()) return problem;
+      if (auto problem = unusable_options_file(source, option, second, chain); !problem.empty()) return problem;
   }
   chain.pop_back();
   return {};
@@ -129,7 +130,7 @@ std::string unusable_options_file(const std::string& option, const std::string& 
 // PETSc stops inside PetscInitialize, with its error trace, on an options file it cannot read, and
 // finds a -log_view file it cannot write only at the end of the run: say which, in one line, before
 // anything runs. Empty when every such file among the --petsc words can be used.
-std::string unusable_petsc_file(const std::vector<std::string>& words) {
+std::string unusable_petsc_file(const std::vector<std::string>& words, const std::string& source) {
   for (size_t k = 0; k < words.size(); ++k) {
     if (words[k] == "-log_view" && k + 1 < words.size() && words[k + 1][0] != '-') {
       // [type]:file[:format]: a file named where the viewer's type ends
@@ -145,13 +146,13 @@ std::string unusable_petsc_file(const std::vector<std::string>& words) {
                                                                      access(file.c_str(), W_OK) == 0
                                                                : std::filesystem::is_directory(dir, ec) &&
                                                                      access(dir.c_str(), W_OK) == 0;
-      if (!writable) return fmt::format("--petsc -log_view {}: cannot write {}", viewer, file);
+      if (!writable) return fmt::format("{} -log_view {}: cannot write {}", source, viewer, file);
       continue;
     }
     if (words[k] != "-options_file" && words[k] != "-options_file_yaml") continue;
-    if (k + 1 == words.size()) return fmt::format("--petsc {}: names no file", words[k]);
+    if (k + 1 == words.size()) return fmt::format("{} {}: names no file", source, words[k]);
     std::vector<std::string> chain;
-    if (auto problem = unusable_options_file(words[k], words[k + 1], chain); !problem.empty()) return problem;
+    if (auto problem = unusable_options_file(source, words[k], words[k + 1], chain); !problem.empty()) return problem;
   }
   return {};
 }

@@ -29,7 +29,8 @@ PetscErrorCode keep_startup_petsc_error(MPI_Comm, int line, const char* function
 const std::string& startup_petsc_error_text();
 
 // The first options file PETSc could not read, or -log_view file it could not write, among the
-// --petsc words, as a message; empty when every such file can be used.
-std::string unusable_petsc_file(const std::vector<std::string>& words);
+// words of PETSc options from `source` (--petsc, or PETSC_OPTIONS from the environment), as a
+// message naming it; empty when every such file can be used.
+std::string unusable_petsc_file(const std::vector<std::string>& words, const std::string& source = "--petsc");
 
 }  // namespace granflow
