@@ -416,6 +416,19 @@ GridSpec read_mesh(TableReader& top) {
     if (!(mesh.upper[a] > mesh.lower[a]))
       throw CaseError(fmt::format("mesh.upper: the domain is empty along {} (upper {} <= lower {})",
                                   a == 0 ? "x" : "y", mesh.upper[a], mesh.lower[a]));
+  for (int a = 0; a < 2; ++a) {
+    // Cells narrower than a nanometre are no continuum (a mesh in other units than metres?), and
+    // cells far narrower than the coordinates' size lose their faces' positions to round-off.
+    const double width = (mesh.upper[a] - mesh.lower[a]) / mesh.cells[a];
+    const double reach = std::max(std::abs(mesh.lower[a]), std::abs(mesh.upper[a]));
+    if (width < 1e-9)
+      throw CaseError(fmt::format("mesh: cells {:.3g} m wide along {}, narrower than a nanometre, where no "
+                                  "continuum model holds (lengths are in metres)", width, a == 0 ? "x" : "y"));
+    if (width < 1e-9 * reach)
+      throw CaseError(fmt::format("mesh: cells {:.3g} m wide along {} at coordinates up to {:.3g} m: fewer than "
+                                  "10 significant digits are left for their faces' positions (move mesh.lower "
+                                  "nearer the origin)", width, a == 0 ? "x" : "y", reach));
+  }
   mesh.axisymmetric = m.choice("geometry", "planar", {"planar", "axisymmetric"}) == "axisymmetric";
   if (mesh.axisymmetric && mesh.lower[0] < 0.0)
     throw CaseError(fmt::format("mesh.lower: an axisymmetric mesh needs r >= 0 (x = r), got {}", mesh.lower[0]));

@@ -74,6 +74,17 @@ TEST(CaseFile, EmptyDomainIsRejected) {
   EXPECT_NE(e.find("empty"), std::string::npos) << e;
 }
 
+// Cells below a nanometre, or too narrow for their coordinates' double precision, are refused;
+// a micrometre cell at the origin and a metre cell 1e8 m out are not.
+TEST(CaseFile, CellsTooSmallForTheirCoordinatesAreRejected) {
+  const std::string tiny = error_of(minimal, {"mesh.upper=[1e-25, 1.0]"});
+  EXPECT_NE(tiny.find("cells 1.25e-26 m wide along x, narrower than a nanometre"), std::string::npos) << tiny;
+  const std::string far = error_of(minimal, {"mesh.lower=[0.0, 1e9]", "mesh.upper=[1.0, 1.000000001e9]"});
+  EXPECT_NE(far.find("along y at coordinates up to 1e+09 m"), std::string::npos) << far;
+  EXPECT_NO_THROW(parse_case(minimal, {"mesh.upper=[8e-6, 1.0]"}));
+  EXPECT_NO_THROW(parse_case(minimal, {"mesh.lower=[0.0, 1e8]", "mesh.upper=[8.0, 1.00000008e8]"}));
+}
+
 TEST(CaseFile, WrongTypeIsNamed) {
   const std::string e = error_of(minimal, {"time.end=\"soon\""});
   EXPECT_NE(e.find("time.end"), std::string::npos) << e;
