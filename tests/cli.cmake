@@ -2,7 +2,7 @@
 file(WRITE ${CMAKE_CURRENT_BINARY_DIR}/misspelt.toml "[mesh]\ncells = [4, 4]\nupper = [1.0, 1.0]\nupeer = 3\n")
 add_test(NAME cli_check_misspelt_key COMMAND granflow check ${CMAKE_CURRENT_BINARY_DIR}/misspelt.toml)
 set_tests_properties(cli_check_misspelt_key PROPERTIES LABELS cli WILL_FAIL TRUE)
-add_test(NAME cli_check_misspelt_key_message COMMAND granflow check ${CMAKE_CURRENT_BINARY_DIR}/misspelt.toml)
+add_test(NAME cli_check_misspelt_key_message COMMAND ${GRANFLOW_EXPECT_STATUS} 2 $<TARGET_FILE:granflow> check ${CMAKE_CURRENT_BINARY_DIR}/misspelt.toml)
 set_tests_properties(cli_check_misspelt_key_message PROPERTIES LABELS cli
                      PASS_REGULAR_EXPRESSION "error: [^ ]*misspelt.toml: mesh.upeer: unknown key")
 # A key nested 100 000 levels deep (a dotted key of 100 000 parts) is read like any other, not a
@@ -19,19 +19,19 @@ add_test(NAME cli_run_missing_file
 set_tests_properties(cli_run_missing_file PROPERTIES LABELS cli)
 # A file read is a whole file: a read error is named (it was taken for the end of the file, and a case
 # cut short ran with defaults), and a device that never ends is not read until memory runs out.
-add_test(NAME cli_check_unreadable_case COMMAND granflow check /proc/self/mem)
+add_test(NAME cli_check_unreadable_case COMMAND ${GRANFLOW_EXPECT_STATUS} 2 $<TARGET_FILE:granflow> check /proc/self/mem)
 set_tests_properties(cli_check_unreadable_case PROPERTIES LABELS cli
                      PASS_REGULAR_EXPRESSION "^error: /proc/self/mem: cannot read the case file: Input/output error\n$")
-add_test(NAME cli_check_endless_case COMMAND granflow check /dev/zero)
+add_test(NAME cli_check_endless_case COMMAND ${GRANFLOW_EXPECT_STATUS} 2 $<TARGET_FILE:granflow> check /dev/zero)
 set_tests_properties(cli_check_endless_case PROPERTIES LABELS cli TIMEOUT 60
                      PASS_REGULAR_EXPRESSION "^error: /dev/zero: longer than 64 MiB, not a case file")
 add_test(NAME cli_check_endless_points_file
-         COMMAND granflow check ${CMAKE_SOURCE_DIR}/cases/bui2008_experiment.toml
+         COMMAND ${GRANFLOW_EXPECT_STATUS} 2 $<TARGET_FILE:granflow> check ${CMAKE_SOURCE_DIR}/cases/bui2008_experiment.toml
                  --set "initial.soil=[{shape = \"polygon\", points_file = \"/dev/zero\"}]")
 set_tests_properties(cli_check_endless_points_file PROPERTIES LABELS cli TIMEOUT 60
                      PASS_REGULAR_EXPRESSION "'/dev/zero' is longer than 256 MiB, not a file of points")
 add_test(NAME cli_restart_without_checkpoint
-         COMMAND granflow run ${CMAKE_SOURCE_DIR}/cases/lid_driven_cavity_re100.toml
+         COMMAND ${GRANFLOW_EXPECT_STATUS} 1 $<TARGET_FILE:granflow> run ${CMAKE_SOURCE_DIR}/cases/lid_driven_cavity_re100.toml
                  -o ${CMAKE_CURRENT_BINARY_DIR}/no_such_run --restart)
 set_tests_properties(cli_restart_without_checkpoint PROPERTIES LABELS cli
                      PASS_REGULAR_EXPRESSION "error: no checkpoint to restart from")
@@ -41,14 +41,14 @@ add_test(NAME cli_failed_restart_leaves_no_directory
                  $<TARGET_FILE:granflow> ${CMAKE_CURRENT_BINARY_DIR}/no_such_run_left
                  ${CMAKE_SOURCE_DIR}/cases/lid_driven_cavity_re100.toml)
 set_tests_properties(cli_failed_restart_leaves_no_directory PROPERTIES LABELS cli)
-add_test(NAME cli_element_test_csv COMMAND granflow element-test --csv)
+add_test(NAME cli_element_test_csv COMMAND ${GRANFLOW_EXPECT_STATUS} 0 $<TARGET_FILE:granflow> element-test --csv)
 set_tests_properties(cli_element_test_csv PROPERTIES LABELS cli
                      PASS_REGULAR_EXPRESSION "deformation,theta_deg,model,eta_norm_D_over_p,norm_Tdev_over_p,relative\n.*TXC,-30.000000,MC,0.428352,0.856705,1.440269")
 # Every shipped case file validates.
 file(GLOB GRANFLOW_SHIPPED_CASES CONFIGURE_DEPENDS ${CMAKE_SOURCE_DIR}/cases/*.toml)
 foreach(case_file ${GRANFLOW_SHIPPED_CASES})
   get_filename_component(case_name ${case_file} NAME_WE)
-  add_test(NAME cli_check_case_${case_name} COMMAND granflow check ${case_file})
+  add_test(NAME cli_check_case_${case_name} COMMAND ${GRANFLOW_EXPECT_STATUS} @S_cli_check_case_${case_name}@ $<TARGET_FILE:granflow> check ${case_file})
   set_tests_properties(cli_check_case_${case_name} PROPERTIES LABELS cli PASS_REGULAR_EXPRESSION ": valid [(]")
 endforeach()
 # A new run into a directory that holds an earlier run is refused, and the earlier run is kept;
@@ -62,25 +62,25 @@ set_tests_properties(cli_run_into_earlier_run_refused PROPERTIES LABELS cli)
 # An output directory inside another run's checkpoint (which that run replaces whole at its next
 # output) is refused for a run and for a strength analysis, with status 2 and nothing made there.
 add_test(NAME cli_output_inside_a_runs_checkpoint_refused
-         COMMAND sh -c "g=$0; d=$1; c=$2; shift 2; rm -rf \"$d\"; \"$g\" run \"$c\" -o \"$d\" \"$@\" > /dev/null || exit 1; \"$g\" run \"$c\" -o \"$d/checkpoint/inner\" \"$@\" 2>&1; test $? -eq 2 || exit 1; \"$g\" stability \"$c\" -o \"$d/./checkpoint.old/s\" 2>&1; test $? -eq 2 || exit 1; test ! -e \"$d/checkpoint/inner\" && test ! -e \"$d/checkpoint.old\" && echo nothing made"
+         COMMAND ${GRANFLOW_EXPECT_STATUS} 0 sh -c "g=$0; d=$1; c=$2; shift 2; rm -rf \"$d\"; \"$g\" run \"$c\" -o \"$d\" \"$@\" > /dev/null || exit 1; \"$g\" run \"$c\" -o \"$d/checkpoint/inner\" \"$@\" 2>&1; test $? -eq 2 || exit 1; \"$g\" stability \"$c\" -o \"$d/./checkpoint.old/s\" 2>&1; test $? -eq 2 || exit 1; test ! -e \"$d/checkpoint/inner\" && test ! -e \"$d/checkpoint.old\" && echo nothing made"
                  $<TARGET_FILE:granflow> ${CMAKE_CURRENT_BINARY_DIR}/output_inside ${CMAKE_SOURCE_DIR}/cases/bui2008_experiment.toml
                  ${GRANFLOW_SHORT_RUN})
 set_tests_properties(cli_output_inside_a_runs_checkpoint_refused PROPERTIES LABELS cli
                      PASS_REGULAR_EXPRESSION "-o [^\n]*/checkpoint/inner: inside [^\n]*/output_inside/checkpoint, which the run in [^\n]*/output_inside replaces whole.*\n.*-o [^\n]*checkpoint.old/s: inside [^\n]*/output_inside/checkpoint.old, which the run .*nothing made")
 # A restart whose end is not past the checkpoint, and a damaged checkpoint, are named.
 add_test(NAME cli_restart_end_before_checkpoint
-         COMMAND sh -c "g=$0; d=$1; c=$2; shift 2; rm -rf \"$d\"; \"$g\" run \"$c\" -o \"$d\" \"$@\" > /dev/null || exit 1; \"$g\" run \"$c\" -o \"$d\" --restart \"$@\" 2>&1"
+         COMMAND ${GRANFLOW_EXPECT_STATUS} 1 sh -c "g=$0; d=$1; c=$2; shift 2; rm -rf \"$d\"; \"$g\" run \"$c\" -o \"$d\" \"$@\" > /dev/null || exit 1; \"$g\" run \"$c\" -o \"$d\" --restart \"$@\" 2>&1"
                  $<TARGET_FILE:granflow> ${CMAKE_CURRENT_BINARY_DIR}/restart_end ${CMAKE_SOURCE_DIR}/cases/bui2008_experiment.toml
                  ${GRANFLOW_SHORT_RUN})
 set_tests_properties(cli_restart_end_before_checkpoint PROPERTIES LABELS cli
                      PASS_REGULAR_EXPRESSION "error: time.end = 0.02 s is not past the checkpoint's t = 0.02 s")
 add_test(NAME cli_restart_damaged_checkpoint
-         COMMAND sh -c "g=$0; d=$1; c=$2; shift 2; rm -rf \"$d\"; \"$g\" run \"$c\" -o \"$d\" \"$@\" > /dev/null || exit 1; sed -i 's/^output_index .*/output_index abc/' \"$d/checkpoint/run.txt\"; \"$g\" run \"$c\" -o \"$d\" --restart \"$@\" --set time.end=0.05 2>&1"
+         COMMAND ${GRANFLOW_EXPECT_STATUS} 1 sh -c "g=$0; d=$1; c=$2; shift 2; rm -rf \"$d\"; \"$g\" run \"$c\" -o \"$d\" \"$@\" > /dev/null || exit 1; sed -i 's/^output_index .*/output_index abc/' \"$d/checkpoint/run.txt\"; \"$g\" run \"$c\" -o \"$d\" --restart \"$@\" --set time.end=0.05 2>&1"
                  $<TARGET_FILE:granflow> ${CMAKE_CURRENT_BINARY_DIR}/restart_damaged ${CMAKE_SOURCE_DIR}/cases/bui2008_experiment.toml
                  ${GRANFLOW_SHORT_RUN})
 set_tests_properties(cli_restart_damaged_checkpoint PROPERTIES LABELS cli PASS_REGULAR_EXPRESSION "checkpoint is damaged: .*run.txt: 'abc' is not a count for 'output_index'")
 add_test(NAME cli_restart_damaged_clock
-         COMMAND sh -c "g=$0; d=$1; c=$2; shift 2; rm -rf \"$d\"; \"$g\" run \"$c\" -o \"$d\" \"$@\" > /dev/null || exit 1; sed -i 's/^time .*/time garbage/' \"$d/checkpoint/run.txt\"; \"$g\" run \"$c\" -o \"$d\" --restart \"$@\" --set time.end=0.05 2>&1"
+         COMMAND ${GRANFLOW_EXPECT_STATUS} 1 sh -c "g=$0; d=$1; c=$2; shift 2; rm -rf \"$d\"; \"$g\" run \"$c\" -o \"$d\" \"$@\" > /dev/null || exit 1; sed -i 's/^time .*/time garbage/' \"$d/checkpoint/run.txt\"; \"$g\" run \"$c\" -o \"$d\" --restart \"$@\" --set time.end=0.05 2>&1"
                  $<TARGET_FILE:granflow> ${CMAKE_CURRENT_BINARY_DIR}/restart_clock ${CMAKE_SOURCE_DIR}/cases/bui2008_experiment.toml
                  ${GRANFLOW_SHORT_RUN})
 set_tests_properties(cli_restart_damaged_clock PROPERTIES LABELS cli PASS_REGULAR_EXPRESSION "checkpoint is damaged: .*run.txt: the clock \\(time nan")
@@ -89,26 +89,26 @@ set_tests_properties(cli_restart_damaged_clock PROPERTIES LABELS cli PASS_REGULA
 # checkpoint before it stays as it was.
 find_program(GRANFLOW_STRACE strace REQUIRED)
 add_test(NAME cli_checkpoint_on_a_full_disk_is_named
-         COMMAND sh -c "g=$0; s=$1; d=$2; c=$3; shift 3; rm -rf \"$d\" \"$d.kept\"; \"$g\" run \"$c\" -o \"$d\" \"$@\" > /dev/null || exit 1; cp \"$d/checkpoint/fields.bin\" \"$d.kept\"; out=$(\"$s\" -f -o /dev/null -e inject=pwrite64,pwritev:error=ENOSPC \"$g\" run \"$c\" -o \"$d\" --restart \"$@\" --set time.end=0.04 2>&1); status=$?; echo \"$out\" | grep '^error'; test $status -eq 1 && cmp -s \"$d/checkpoint/fields.bin\" \"$d.kept\" && echo earlier checkpoint kept"
+         COMMAND ${GRANFLOW_EXPECT_STATUS} 0 sh -c "g=$0; s=$1; d=$2; c=$3; shift 3; rm -rf \"$d\" \"$d.kept\"; \"$g\" run \"$c\" -o \"$d\" \"$@\" > /dev/null || exit 1; cp \"$d/checkpoint/fields.bin\" \"$d.kept\"; out=$(\"$s\" -f -o /dev/null -e inject=pwrite64,pwritev:error=ENOSPC \"$g\" run \"$c\" -o \"$d\" --restart \"$@\" --set time.end=0.04 2>&1); status=$?; echo \"$out\" | grep '^error'; test $status -eq 1 && cmp -s \"$d/checkpoint/fields.bin\" \"$d.kept\" && echo earlier checkpoint kept"
                  $<TARGET_FILE:granflow> ${GRANFLOW_STRACE} ${CMAKE_CURRENT_BINARY_DIR}/full_disk
                  ${CMAKE_SOURCE_DIR}/cases/bui2008_experiment.toml ${GRANFLOW_SHORT_RUN})
 set_tests_properties(cli_checkpoint_on_a_full_disk_is_named PROPERTIES LABELS cli PASS_REGULAR_EXPRESSION
   "^error: cannot write [^\n]*checkpoint.partial/fields.bin: what it holds is not what was written [(]is the disk full[?][)]\nearlier checkpoint kept\n$")
 # A run out of steps says so; a restart must raise time.max_steps, which counts the whole run's.
 add_test(NAME cli_max_steps_said
-         COMMAND sh -c "g=$0; d=$1; c=$2; shift 2; rm -rf \"$d\"; \"$g\" run \"$c\" -o \"$d\" \"$@\" --set time.max_steps=3 2>&1 || exit 1; \"$g\" run \"$c\" -o \"$d\" --restart \"$@\" --set time.max_steps=3 2>&1"
+         COMMAND ${GRANFLOW_EXPECT_STATUS} 1 sh -c "g=$0; d=$1; c=$2; shift 2; rm -rf \"$d\"; \"$g\" run \"$c\" -o \"$d\" \"$@\" --set time.max_steps=3 2>&1 || exit 1; \"$g\" run \"$c\" -o \"$d\" --restart \"$@\" --set time.max_steps=3 2>&1"
                  $<TARGET_FILE:granflow> ${CMAKE_CURRENT_BINARY_DIR}/max_steps ${CMAKE_SOURCE_DIR}/cases/bui2008_experiment.toml
                  ${GRANFLOW_SHORT_RUN})
 set_tests_properties(cli_max_steps_said PROPERTIES LABELS cli PASS_REGULAR_EXPRESSION
                      "in 3 steps [^\n]*, stopped at time.max_steps = 3 before time.end = 0.02 s\n.*error: time.max_steps = 3 is not past the checkpoint's 3 steps")
 add_test(NAME cli_restart_other_domain
-         COMMAND sh -c "g=$0; d=$1; c=$2; shift 2; rm -rf \"$d\"; \"$g\" run \"$c\" -o \"$d\" \"$@\" > /dev/null || exit 1; \"$g\" run \"$c\" -o \"$d\" --restart \"$@\" --set time.end=0.05 --set mesh.upper=[0.7,0.2] 2>&1"
+         COMMAND ${GRANFLOW_EXPECT_STATUS} 1 sh -c "g=$0; d=$1; c=$2; shift 2; rm -rf \"$d\"; \"$g\" run \"$c\" -o \"$d\" \"$@\" > /dev/null || exit 1; \"$g\" run \"$c\" -o \"$d\" --restart \"$@\" --set time.end=0.05 --set mesh.upper=[0.7,0.2] 2>&1"
                  $<TARGET_FILE:granflow> ${CMAKE_CURRENT_BINARY_DIR}/restart_domain ${CMAKE_SOURCE_DIR}/cases/bui2008_experiment.toml
                  ${GRANFLOW_SHORT_RUN})
 set_tests_properties(cli_restart_other_domain PROPERTIES LABELS cli
                      PASS_REGULAR_EXPRESSION "the checkpoint is of the domain \\[0, 0.6\\] x \\[0, 0.2\\] \\(planar\\); the case's is \\[0, 0.7\\]")
 add_test(NAME cli_restart_other_grading
-         COMMAND sh -c "g=$0; d=$1; c=$2; shift 2; rm -rf \"$d\"; \"$g\" run \"$c\" -o \"$d\" \"$@\" > /dev/null || exit 1; \"$g\" run \"$c\" -o \"$d\" --restart \"$@\" --set time.end=0.05 --set mesh.grading=[5,0.2] 2>&1"
+         COMMAND ${GRANFLOW_EXPECT_STATUS} 1 sh -c "g=$0; d=$1; c=$2; shift 2; rm -rf \"$d\"; \"$g\" run \"$c\" -o \"$d\" \"$@\" > /dev/null || exit 1; \"$g\" run \"$c\" -o \"$d\" --restart \"$@\" --set time.end=0.05 --set mesh.grading=[5,0.2] 2>&1"
                  $<TARGET_FILE:granflow> ${CMAKE_CURRENT_BINARY_DIR}/restart_grading ${CMAKE_SOURCE_DIR}/cases/bui2008_experiment.toml
                  ${GRANFLOW_SHORT_RUN})
 set_tests_properties(cli_restart_other_grading PROPERTIES LABELS cli
@@ -121,11 +121,11 @@ set_tests_properties(cli_restart_takes_the_new_max_dt PROPERTIES LABELS cli)
 # An output path that is a file, a misspelt command, a solver PETSc does not know, a PETSc option
 # nothing reads.
 add_test(NAME cli_output_is_a_file
-         COMMAND sh -c "touch \"$1\"; \"$0\" run \"$2\" -o \"$1\" 2>&1"
+         COMMAND ${GRANFLOW_EXPECT_STATUS} 2 sh -c "touch \"$1\"; \"$0\" run \"$2\" -o \"$1\" 2>&1"
                  $<TARGET_FILE:granflow> ${CMAKE_CURRENT_BINARY_DIR}/output_file ${CMAKE_SOURCE_DIR}/cases/lid_driven_cavity_re100.toml)
 set_tests_properties(cli_output_is_a_file PROPERTIES LABELS cli PASS_REGULAR_EXPRESSION "error: -o [^\n]*output_file: not a directory")
 add_test(NAME cli_output_is_a_file_overwrite
-         COMMAND sh -c "touch \"$1\"; \"$0\" run \"$2\" -o \"$1\" --overwrite 2>&1; test -f \"$1\" && echo file kept"
+         COMMAND ${GRANFLOW_EXPECT_STATUS} 0 sh -c "touch \"$1\"; \"$0\" run \"$2\" -o \"$1\" --overwrite 2>&1; test -f \"$1\" && echo file kept"
                  $<TARGET_FILE:granflow> ${CMAKE_CURRENT_BINARY_DIR}/output_file_overwrite ${CMAKE_SOURCE_DIR}/cases/lid_driven_cavity_re100.toml)
 set_tests_properties(cli_output_is_a_file_overwrite PROPERTIES LABELS cli PASS_REGULAR_EXPRESSION "^error: -o [^\n]*output_file_overwrite: not a directory\nfile kept\n$")
 # --overwrite keeps the earlier run when PETSc refuses an option of the coupled solve's region (its
@@ -149,7 +149,7 @@ set_tests_properties(cli_overwrite_keeps_the_run_when_the_first_step_diverges PR
 # A run set aside by --overwrite and left there (the new run was killed before its first step) is the
 # only copy of that run: a run into the directory is refused, naming it, and it is left as it is.
 add_test(NAME cli_set_aside_run_left_by_a_killed_run_is_refused
-         COMMAND sh -c "d=$1; rm -rf \"$d\"; mkdir -p \"$d/.replaced_run\" && echo x > \"$d/.replaced_run/history.csv\"; \"$0\" run \"$2\" -o \"$d\" --overwrite --set 'mesh.cells=[8,8]' --set time.end=0.01 2>&1; test -f \"$d/.replaced_run/history.csv\" && echo kept"
+         COMMAND ${GRANFLOW_EXPECT_STATUS} 0 sh -c "d=$1; rm -rf \"$d\"; mkdir -p \"$d/.replaced_run\" && echo x > \"$d/.replaced_run/history.csv\"; \"$0\" run \"$2\" -o \"$d\" --overwrite --set 'mesh.cells=[8,8]' --set time.end=0.01 2>&1; test -f \"$d/.replaced_run/history.csv\" && echo kept"
                  $<TARGET_FILE:granflow> ${CMAKE_CURRENT_BINARY_DIR}/set_aside_left ${CMAKE_SOURCE_DIR}/cases/lid_driven_cavity_re100.toml)
 set_tests_properties(cli_set_aside_run_left_by_a_killed_run_is_refused PROPERTIES LABELS cli
   PASS_REGULAR_EXPRESSION "^error: [^\n]*set_aside_left holds [^\n]*\\.replaced_run, the files of an earlier run that a run with --overwrite set aside[^\n]*\nkept\n$")
@@ -161,15 +161,15 @@ add_test(NAME cli_overwrite_removes_the_earlier_run
                  ${GRANFLOW_SHORT_RUN})
 set_tests_properties(cli_overwrite_removes_the_earlier_run PROPERTIES LABELS cli)
 add_test(NAME cli_earlier_run_of_line_samples_refused
-         COMMAND sh -c "g=$0; d=$1; c=$2; shift 2; rm -rf \"$d\"; \"$g\" run \"$c\" -o \"$d\" \"$@\" > /dev/null || exit 1; \"$g\" run \"$c\" -o \"$d\" \"$@\" 2>&1"
+         COMMAND ${GRANFLOW_EXPECT_STATUS} 2 sh -c "g=$0; d=$1; c=$2; shift 2; rm -rf \"$d\"; \"$g\" run \"$c\" -o \"$d\" \"$@\" > /dev/null || exit 1; \"$g\" run \"$c\" -o \"$d\" \"$@\" 2>&1"
                  $<TARGET_FILE:granflow> ${CMAKE_CURRENT_BINARY_DIR}/earlier_lines ${CMAKE_SOURCE_DIR}/cases/lid_driven_cavity_re100.toml
                  --set "mesh.cells=[8,8]" --set time.end=0.02 --set output.fields=false --set output.checkpoints=false --set output.progress_seconds=0)
 set_tests_properties(cli_earlier_run_of_line_samples_refused PROPERTIES LABELS cli
                      PASS_REGULAR_EXPRESSION "holds an earlier run [(][^)]*(granflow_run.txt|granflow_case.toml|centreline)[^)]*[)]")
-add_test(NAME cli_unknown_command COMMAND granflow runn ${CMAKE_SOURCE_DIR}/cases/lid_driven_cavity_re100.toml)
+add_test(NAME cli_unknown_command COMMAND ${GRANFLOW_EXPECT_STATUS} 2 $<TARGET_FILE:granflow> runn ${CMAKE_SOURCE_DIR}/cases/lid_driven_cavity_re100.toml)
 set_tests_properties(cli_unknown_command PROPERTIES LABELS cli PASS_REGULAR_EXPRESSION "error: unknown command 'runn'")
 add_test(NAME cli_check_unknown_solver
-         COMMAND granflow check ${CMAKE_SOURCE_DIR}/cases/bui2008_experiment.toml --set solver.coupled.ksp_type=bogus)
+         COMMAND ${GRANFLOW_EXPECT_STATUS} 2 $<TARGET_FILE:granflow> check ${CMAKE_SOURCE_DIR}/cases/bui2008_experiment.toml --set solver.coupled.ksp_type=bogus)
 set_tests_properties(cli_check_unknown_solver PROPERTIES LABELS cli
                      PASS_REGULAR_EXPRESSION "solver.coupled.ksp_type: 'bogus' is not a Krylov method")
 # Options may come before the case file, each --set taking one value; blanks around a key are the
@@ -198,14 +198,14 @@ set_tests_properties(cli_check_lays_out_the_initial_state PROPERTIES LABELS cli)
 # A run of the cavity on 8 x 8 cells to t = 0.01 s into its own directory, for the --petsc tests.
 set(GRANFLOW_TINY_CAVITY_RUN --overwrite --set "mesh.cells=[8,8]" --set time.end=0.01 --set output.progress_seconds=0)
 add_test(NAME cli_unused_petsc_option
-         COMMAND granflow run ${CMAKE_SOURCE_DIR}/cases/lid_driven_cavity_re100.toml -o ${CMAKE_CURRENT_BINARY_DIR}/unused_option
+         COMMAND ${GRANFLOW_EXPECT_STATUS} 0 $<TARGET_FILE:granflow> run ${CMAKE_SOURCE_DIR}/cases/lid_driven_cavity_re100.toml -o ${CMAKE_CURRENT_BINARY_DIR}/unused_option
                  ${GRANFLOW_TINY_CAVITY_RUN}
                  --petsc=-presure_ksp_monitor)
 set_tests_properties(cli_unused_petsc_option PROPERTIES LABELS cli
                      PASS_REGULAR_EXPRESSION "warning: PETSc option -presure_ksp_monitor was given but not used")
 # Another preconditioner reads none of the BoomerAMG defaults granflow sets: no warning for those.
 add_test(NAME cli_other_preconditioner_no_warning
-         COMMAND granflow run ${CMAKE_SOURCE_DIR}/cases/lid_driven_cavity_re100.toml -o ${CMAKE_CURRENT_BINARY_DIR}/other_pc
+         COMMAND ${GRANFLOW_EXPECT_STATUS} 0 $<TARGET_FILE:granflow> run ${CMAKE_SOURCE_DIR}/cases/lid_driven_cavity_re100.toml -o ${CMAKE_CURRENT_BINARY_DIR}/other_pc
                  ${GRANFLOW_TINY_CAVITY_RUN}
                  "--petsc=-pressure_pc_type gamg")
 set_tests_properties(cli_other_preconditioner_no_warning PROPERTIES LABELS cli
@@ -213,7 +213,7 @@ set_tests_properties(cli_other_preconditioner_no_warning PROPERTIES LABELS cli
                      FAIL_REGULAR_EXPRESSION "was given but not used;error:")
 # PETSc options read at start-up (-log_view) work through --petsc, and one --petsc may hold several.
 add_test(NAME cli_petsc_start_up_option
-         COMMAND granflow run ${CMAKE_SOURCE_DIR}/cases/lid_driven_cavity_re100.toml -o ${CMAKE_CURRENT_BINARY_DIR}/log_view
+         COMMAND ${GRANFLOW_EXPECT_STATUS} 0 $<TARGET_FILE:granflow> run ${CMAKE_SOURCE_DIR}/cases/lid_driven_cavity_re100.toml -o ${CMAKE_CURRENT_BINARY_DIR}/log_view
                  ${GRANFLOW_TINY_CAVITY_RUN}
                  "--petsc=-log_view -pressure_ksp_rtol 1e-9")
 set_tests_properties(cli_petsc_start_up_option PROPERTIES LABELS cli
@@ -228,13 +228,13 @@ set_tests_properties(cli_petsc_missing_options_file PROPERTIES LABELS cli)
 # stack ran out), a device that never ends, and a line PETSc cannot parse: each refused in one line,
 # status 2, without PETSc's trace.
 add_test(NAME cli_petsc_options_files_refused
-         COMMAND sh -c "g=$0; c=$1; d=$2; rm -rf \"$d\"; mkdir -p \"$d\" && cd \"$d\" || exit 1; echo '-options_file self.opts' > self.opts; echo '-options_file b.opts' > a.opts; printf '%s\\n' '-coupled_ksp_monitor' '-options_file a.opts # back' > b.opts; echo 'coupled_ksp_monitor' > bad.opts; for w in self.opts a.opts /dev/zero bad.opts; do out=$(\"$g\" check \"$c\" \"--petsc=-options_file $w\" 2>&1); s=$?; echo \"$out\"; test $s -eq 2 || exit 1; echo \"$out\" | grep -q 'PETSC ERROR' && exit 1; done; exit 0"
+         COMMAND ${GRANFLOW_EXPECT_STATUS} 0 sh -c "g=$0; c=$1; d=$2; rm -rf \"$d\"; mkdir -p \"$d\" && cd \"$d\" || exit 1; echo '-options_file self.opts' > self.opts; echo '-options_file b.opts' > a.opts; printf '%s\\n' '-coupled_ksp_monitor' '-options_file a.opts # back' > b.opts; echo 'coupled_ksp_monitor' > bad.opts; for w in self.opts a.opts /dev/zero bad.opts; do out=$(\"$g\" check \"$c\" \"--petsc=-options_file $w\" 2>&1); s=$?; echo \"$out\"; test $s -eq 2 || exit 1; echo \"$out\" | grep -q 'PETSC ERROR' && exit 1; done; exit 0"
                  $<TARGET_FILE:granflow> ${CMAKE_SOURCE_DIR}/cases/lid_driven_cavity_re100.toml ${CMAKE_CURRENT_BINARY_DIR}/options_files)
 set_tests_properties(cli_petsc_options_files_refused PROPERTIES LABELS cli TIMEOUT 60
                      PASS_REGULAR_EXPRESSION "error: --petsc -options_file: self.opts includes itself \\([^)]*/self.opts -> [^)]*/self.opts\\)\nerror: --petsc -options_file: a.opts includes itself \\([^)]*/a.opts -> [^)]*/b.opts -> [^)]*/a.opts\\)\nerror: --petsc -options_file: /dev/zero is longer than 1 MiB, not an options file\nerror: PETSc could not start: Unknown first token in options file bad.opts line 1: coupled_ksp_monitor")
 # The same checks for the options PETSc reads from the environment's PETSC_OPTIONS, named so.
 add_test(NAME cli_petsc_environment_options_files_refused
-         COMMAND sh -c "g=$0; c=$1; d=$2; rm -rf \"$d\"; mkdir -p \"$d\" && cd \"$d\" || exit 1; echo '-options_file self.opts' > self.opts; for o in '-options_file self.opts' '-options_file missing.opts' '-log_view :no_such_dir/log.txt'; do out=$(PETSC_OPTIONS=\"$o\" \"$g\" run \"$c\" -o run --set 'mesh.cells=[8,8]' 2>&1); s=$?; echo \"$out\"; test $s -eq 2 || exit 1; test -e run && exit 1; echo \"$out\" | grep -q 'PETSC ERROR' && exit 1; done; exit 0"
+         COMMAND ${GRANFLOW_EXPECT_STATUS} 0 sh -c "g=$0; c=$1; d=$2; rm -rf \"$d\"; mkdir -p \"$d\" && cd \"$d\" || exit 1; echo '-options_file self.opts' > self.opts; for o in '-options_file self.opts' '-options_file missing.opts' '-log_view :no_such_dir/log.txt'; do out=$(PETSC_OPTIONS=\"$o\" \"$g\" run \"$c\" -o run --set 'mesh.cells=[8,8]' 2>&1); s=$?; echo \"$out\"; test $s -eq 2 || exit 1; test -e run && exit 1; echo \"$out\" | grep -q 'PETSC ERROR' && exit 1; done; exit 0"
                  $<TARGET_FILE:granflow> ${CMAKE_SOURCE_DIR}/cases/lid_driven_cavity_re100.toml ${CMAKE_CURRENT_BINARY_DIR}/environment_options)
 set_tests_properties(cli_petsc_environment_options_files_refused PROPERTIES LABELS cli TIMEOUT 60
                      PASS_REGULAR_EXPRESSION "^error: PETSC_OPTIONS -options_file: self.opts includes itself \\([^)]*/self.opts -> [^)]*/self.opts\\)\nerror: PETSC_OPTIONS -options_file: cannot read missing.opts: No such file or directory\nerror: PETSC_OPTIONS -log_view :no_such_dir/log.txt: cannot write no_such_dir/log.txt\n$")
@@ -242,14 +242,14 @@ set_tests_properties(cli_petsc_environment_options_files_refused PROPERTIES LABE
 # every solve before its first iteration, a negative iteration limit at once) is refused before the
 # run, with status 2 and no output directory made.
 add_test(NAME cli_petsc_tolerance_out_of_range
-         COMMAND sh -c "g=$0; c=$1; d=$2; rm -rf \"$d\"; for o in '-pressure_ksp_rtol 2' '-pressure_ksp_max_it -5' '-pressure_ksp_divtol -3'; do \"$g\" run \"$c\" -o \"$d\" --set time.end=0.01 \"--petsc=$o\" 2>&1; test $? -eq 2 || exit 1; test -e \"$d\" && exit 1; done; exit 0"
+         COMMAND ${GRANFLOW_EXPECT_STATUS} 0 sh -c "g=$0; c=$1; d=$2; rm -rf \"$d\"; for o in '-pressure_ksp_rtol 2' '-pressure_ksp_max_it -5' '-pressure_ksp_divtol -3'; do \"$g\" run \"$c\" -o \"$d\" --set time.end=0.01 \"--petsc=$o\" 2>&1; test $? -eq 2 || exit 1; test -e \"$d\" && exit 1; done; exit 0"
                  $<TARGET_FILE:granflow> ${CMAKE_SOURCE_DIR}/cases/lid_driven_cavity_re100.toml ${CMAKE_CURRENT_BINARY_DIR}/tolerance_out_of_range)
 set_tests_properties(cli_petsc_tolerance_out_of_range PROPERTIES LABELS cli
                      PASS_REGULAR_EXPRESSION "error: linear solver 'pressure': rtol = 2 \\(solver.pressure.rtol, or PETSc's -pressure_ksp_rtol\\) must be within \\[0, 1\\]\nerror: linear solver 'pressure': max_iterations = -5 \\(solver.pressure.max_iterations, or PETSc's -pressure_ksp_max_it\\) must be at least 1\nerror: linear solver 'pressure': PETSc's -pressure_ksp_divtol = -3 must be at least 1")
 # preonly with a preconditioner that does not factorise is an inexact solve nothing counts: warned
 # of once, naming the solver; with lu, not.
 add_test(NAME cli_preonly_without_factorisation_warned
-         COMMAND sh -c "g=$0; c=$1; d=$2; rm -rf \"$d\" \"$d.lu\"; \"$g\" run \"$c\" -o \"$d\" --set 'mesh.cells=[8,8]' --set time.end=0.01 --set output.fields=false --set solver.pressure.ksp_type=preonly --set solver.pressure.pc_type=jacobi 2>&1 >/dev/null; \"$g\" run \"$c\" -o \"$d.lu\" --set 'mesh.cells=[8,8]' --set time.end=0.01 --set output.fields=false --set solver.pressure.ksp_type=preonly --set solver.pressure.pc_type=lu 2>&1 >/dev/null"
+         COMMAND ${GRANFLOW_EXPECT_STATUS} 0 sh -c "g=$0; c=$1; d=$2; rm -rf \"$d\" \"$d.lu\"; \"$g\" run \"$c\" -o \"$d\" --set 'mesh.cells=[8,8]' --set time.end=0.01 --set output.fields=false --set solver.pressure.ksp_type=preonly --set solver.pressure.pc_type=jacobi 2>&1 >/dev/null; \"$g\" run \"$c\" -o \"$d.lu\" --set 'mesh.cells=[8,8]' --set time.end=0.01 --set output.fields=false --set solver.pressure.ksp_type=preonly --set solver.pressure.pc_type=lu 2>&1 >/dev/null"
                  $<TARGET_FILE:granflow> ${CMAKE_SOURCE_DIR}/cases/lid_driven_cavity_re100.toml ${CMAKE_CURRENT_BINARY_DIR}/preonly_jacobi)
 set_tests_properties(cli_preonly_without_factorisation_warned PROPERTIES LABELS cli
                      PASS_REGULAR_EXPRESSION "^warning: linear solver 'pressure' applies pc_type = jacobi once \\(ksp_type = preonly\\), which solves only with a factorisation \\(lu, cholesky\\)[^\n]*\n$")
@@ -273,13 +273,13 @@ add_test(NAME cli_line_sample_on_obstacle_faces
 set_tests_properties(cli_line_sample_on_obstacle_faces PROPERTIES LABELS cli)
 # check says what it laid out: the soil the shapes place, and the cells the obstacles block.
 add_test(NAME cli_check_says_what_it_laid_out
-         COMMAND granflow check ${CMAKE_SOURCE_DIR}/cases/barrier_collapse.toml)
+         COMMAND ${GRANFLOW_EXPECT_STATUS} 0 $<TARGET_FILE:granflow> check ${CMAKE_SOURCE_DIR}/cases/barrier_collapse.toml)
 set_tests_properties(cli_check_says_what_it_laid_out PROPERTIES LABELS cli
                      PASS_REGULAR_EXPRESSION "valid [(]150 x 50 cells, t_end = 2 s; initial soil 0[.]02 m\\^2 per metre of depth; 21 cells blocked by obstacles[)]")
 # ... and with soil materials, each one's soil; a material whose shapes all lie under later shapes
 # holds none, which check finds as a run does (exit 2, the message naming it).
 add_test(NAME cli_check_says_each_materials_soil
-         COMMAND granflow check ${CMAKE_SOURCE_DIR}/cases/slope_griffiths_lane1999_foundation.toml --set "mesh.cells=[90,30]")
+         COMMAND ${GRANFLOW_EXPECT_STATUS} 0 $<TARGET_FILE:granflow> check ${CMAKE_SOURCE_DIR}/cases/slope_griffiths_lane1999_foundation.toml --set "mesh.cells=[90,30]")
 set_tests_properties(cli_check_says_each_materials_soil PROPERTIES LABELS cli
                      PASS_REGULAR_EXPRESSION "initial soil 1300 m\\^2 per metre of depth, of which the rheology's own soil 400, foundation 900[)]")
 add_test(NAME cli_check_material_under_later_shapes
@@ -320,11 +320,11 @@ set_tests_properties(cli_output_name_too_long PROPERTIES LABELS cli)
 # The comparison scripts name a missing or malformed file in one line, not a traceback.
 file(WRITE ${CMAKE_CURRENT_BINARY_DIR}/bad_refdata/ghia1982_cavity_re100.csv "y,u\n0.5,abc\n")
 add_test(NAME scripts_compare_missing_run
-         COMMAND /usr/bin/python3 ${CMAKE_SOURCE_DIR}/scripts/compare_dam_break.py ${CMAKE_CURRENT_BINARY_DIR}/no_such_run)
+         COMMAND ${GRANFLOW_EXPECT_STATUS} 1 /usr/bin/python3 ${CMAKE_SOURCE_DIR}/scripts/compare_dam_break.py ${CMAKE_CURRENT_BINARY_DIR}/no_such_run)
 set_tests_properties(scripts_compare_missing_run PROPERTIES LABELS cli
                      PASS_REGULAR_EXPRESSION "^error: cannot read [^\n]*no_such_run/history.csv: No such file or directory\n$")
 add_test(NAME scripts_compare_malformed_refdata
-         COMMAND /usr/bin/python3 ${CMAKE_SOURCE_DIR}/scripts/compare_cavity.py ${CMAKE_CURRENT_BINARY_DIR}/no_such_run 100
+         COMMAND ${GRANFLOW_EXPECT_STATUS} 1 /usr/bin/python3 ${CMAKE_SOURCE_DIR}/scripts/compare_cavity.py ${CMAKE_CURRENT_BINARY_DIR}/no_such_run 100
                  --refdata ${CMAKE_CURRENT_BINARY_DIR}/bad_refdata)
 set_tests_properties(scripts_compare_malformed_refdata PROPERTIES LABELS cli
                      PASS_REGULAR_EXPRESSION "^error: [^\n]*bad_refdata/ghia1982_cavity_re100.csv: not a table of numbers")
@@ -347,7 +347,7 @@ file(WRITE ${GRANFLOW_BUI_FIXTURE}_partial/history.csv
      "time,soil_volume,soil_outflow,kinetic_energy,potential_energy,dissipated_energy\n0.001,0.02,0,0,1.0,0\n2,0.0198,0.0002,0.01,0.5,0.5\n")
 file(WRITE ${GRANFLOW_BUI_FIXTURE}_partial/granflow_case.toml "[time]\nend = 3.0\n")
 add_test(NAME scripts_compare_bui2008_partial_run
-         COMMAND sh -c "/usr/bin/python3 \"$0\" \"$1\" --json \"$1/comparison.json\" 2>&1 && cat \"$1/comparison.json\""
+         COMMAND ${GRANFLOW_EXPECT_STATUS} 0 sh -c "/usr/bin/python3 \"$0\" \"$1\" --json \"$1/comparison.json\" 2>&1 && cat \"$1/comparison.json\""
                  ${CMAKE_SOURCE_DIR}/scripts/compare_bui2008.py ${GRANFLOW_BUI_FIXTURE}_partial)
 set_tests_properties(scripts_compare_bui2008_partial_run PROPERTIES LABELS cli
                      PASS_REGULAR_EXPRESSION "failure_line_mean_distance_m = nan\n.*soil_outflow_fraction = 0[.]01\nenergy_budget_error = 0[.]0200\nwarning: the last output is at t = 2 s, before the case's time[.]end = 3 s.*\nwarning: 1 % of the soil left the domain.*\nnote: no failure line.*\"failure_line_mean_distance_m\": null"
@@ -358,37 +358,37 @@ file(WRITE ${GRANFLOW_BUI_FIXTURE}_other/surface_00001.csv "# surface at t = 2 s
 file(WRITE ${GRANFLOW_BUI_FIXTURE}_other/failure_line_00001.csv "# failure_line at t = 2 s\nx0,y0,x1,y1\n")
 file(WRITE ${GRANFLOW_BUI_FIXTURE}_other/history.csv "time,soil_volume,soil_outflow,kinetic_energy,potential_energy,dissipated_energy\n0.001,0.0065,0,0,1,0\n")
 add_test(NAME scripts_compare_bui2008_one_cell_toe
-         COMMAND /usr/bin/python3 ${CMAKE_SOURCE_DIR}/scripts/compare_bui2008.py ${GRANFLOW_BUI_FIXTURE})
+         COMMAND ${GRANFLOW_EXPECT_STATUS} 0 /usr/bin/python3 ${CMAKE_SOURCE_DIR}/scripts/compare_bui2008.py ${GRANFLOW_BUI_FIXTURE})
 set_tests_properties(scripts_compare_bui2008_one_cell_toe PROPERTIES LABELS cli
                      PASS_REGULAR_EXPRESSION "runout_one_cell_m = 0[.]3100\n.*energy_budget_error = 0[.]0200\n"
                      FAIL_REGULAR_EXPRESSION "Traceback;error:;warning:")
 add_test(NAME scripts_compare_bui2008_other_case
-         COMMAND /usr/bin/python3 ${CMAKE_SOURCE_DIR}/scripts/compare_bui2008.py ${GRANFLOW_BUI_FIXTURE}_other)
+         COMMAND ${GRANFLOW_EXPECT_STATUS} 1 /usr/bin/python3 ${CMAKE_SOURCE_DIR}/scripts/compare_bui2008.py ${GRANFLOW_BUI_FIXTURE}_other)
 set_tests_properties(scripts_compare_bui2008_other_case PROPERTIES LABELS cli
                      PASS_REGULAR_EXPRESSION "^error: [^\n]*history.csv: the run's initial volume is 0.0065, not the 0.02 of the bui2008_experiment block")
 # The SPH-case drawing refuses a run of another block too, rather than label it as the paper's figure.
 add_test(NAME scripts_compare_bui2008_sph_other_case
-         COMMAND /usr/bin/python3 ${CMAKE_SOURCE_DIR}/scripts/compare_bui2008_sph.py ${GRANFLOW_BUI_FIXTURE}_other --times 2)
+         COMMAND ${GRANFLOW_EXPECT_STATUS} 1 /usr/bin/python3 ${CMAKE_SOURCE_DIR}/scripts/compare_bui2008_sph.py ${GRANFLOW_BUI_FIXTURE}_other --times 2)
 set_tests_properties(scripts_compare_bui2008_sph_other_case PROPERTIES LABELS cli
                      PASS_REGULAR_EXPRESSION "^error: [^\n]*history.csv: the run's initial volume is 0.0065, not the 8 of the 4 x 2 m block")
 # The front's history interpolates between steps and marks times past the run's end.
 file(WRITE ${CMAKE_CURRENT_BINARY_DIR}/front_run/history.csv "time,dt,toe_contour\n0.0,0.1,0.2\n0.2,0.1,0.4\n")
 add_test(NAME scripts_front_history
-         COMMAND /usr/bin/python3 ${CMAKE_SOURCE_DIR}/scripts/front_history.py ${CMAKE_CURRENT_BINARY_DIR}/front_run
+         COMMAND ${GRANFLOW_EXPECT_STATUS} 0 /usr/bin/python3 ${CMAKE_SOURCE_DIR}/scripts/front_history.py ${CMAKE_CURRENT_BINARY_DIR}/front_run
                  --times 0.05,0.15,0.3)
 set_tests_properties(scripts_front_history PROPERTIES LABELS cli
                      PASS_REGULAR_EXPRESSION "front_run +0[.]250 +0[.]350 +-"
                      FAIL_REGULAR_EXPRESSION "Traceback;error:")
 # A restart with other materials is allowed, but said.
 add_test(NAME cli_restart_other_physics_warned
-         COMMAND sh -c "g=$0; d=$1; c=$2; shift 2; rm -rf \"$d\"; \"$g\" run \"$c\" -o \"$d\" \"$@\" > /dev/null || exit 1; \"$g\" run \"$c\" -o \"$d\" --restart \"$@\" --set time.end=0.03 --set soil.rheology.friction_angle=30 2>&1"
+         COMMAND ${GRANFLOW_EXPECT_STATUS} 0 sh -c "g=$0; d=$1; c=$2; shift 2; rm -rf \"$d\"; \"$g\" run \"$c\" -o \"$d\" \"$@\" > /dev/null || exit 1; \"$g\" run \"$c\" -o \"$d\" --restart \"$@\" --set time.end=0.03 --set soil.rheology.friction_angle=30 2>&1"
                  $<TARGET_FILE:granflow> ${CMAKE_CURRENT_BINARY_DIR}/restart_physics ${CMAKE_SOURCE_DIR}/cases/bui2008_experiment.toml
                  ${GRANFLOW_SHORT_RUN})
 set_tests_properties(cli_restart_other_physics_warned PROPERTIES LABELS cli
                      PASS_REGULAR_EXPRESSION "warning: the case's physics [(][^)]*phi 30 deg[^)]*[)] differs from the checkpoint's run [(][^)]*phi 19.8 deg")
 # ... and so is a restart with other boundaries.
 add_test(NAME cli_restart_other_boundaries_warned
-         COMMAND sh -c "g=$0; d=$1; c=$2; shift 2; rm -rf \"$d\"; \"$g\" run \"$c\" -o \"$d\" \"$@\" > /dev/null || exit 1; \"$g\" run \"$c\" -o \"$d\" --restart \"$@\" --set time.end=0.03 --set 'boundary.east={type = \"wall\"}' 2>&1"
+         COMMAND ${GRANFLOW_EXPECT_STATUS} 0 sh -c "g=$0; d=$1; c=$2; shift 2; rm -rf \"$d\"; \"$g\" run \"$c\" -o \"$d\" \"$@\" > /dev/null || exit 1; \"$g\" run \"$c\" -o \"$d\" --restart \"$@\" --set time.end=0.03 --set 'boundary.east={type = \"wall\"}' 2>&1"
                  $<TARGET_FILE:granflow> ${CMAKE_CURRENT_BINARY_DIR}/restart_boundaries ${CMAKE_SOURCE_DIR}/cases/bui2008_experiment.toml
                  ${GRANFLOW_SHORT_RUN})
 set_tests_properties(cli_restart_other_boundaries_warned PROPERTIES LABELS cli
@@ -403,7 +403,7 @@ add_test(NAME cli_restart_older_checkpoint_not_warned
 set_tests_properties(cli_restart_older_checkpoint_not_warned PROPERTIES LABELS cli)
 # The example of docs/case_file.md is a valid case, and runs.
 add_test(NAME cli_docs_case_example
-         COMMAND sh -c "sed -n '/^## Example/,$p' \"$1\" | sed -n '/^```toml/,/^```$/p' | sed '1d;$d' > \"$2.toml\" && \"$0\" check \"$2.toml\" && \"$0\" run \"$2.toml\" -o \"$2\" --overwrite --set \"mesh.cells=[30,10]\" --set time.end=0.05 --set output.progress_seconds=0"
+         COMMAND ${GRANFLOW_EXPECT_STATUS} 0 sh -c "sed -n '/^## Example/,$p' \"$1\" | sed -n '/^```toml/,/^```$/p' | sed '1d;$d' > \"$2.toml\" && \"$0\" check \"$2.toml\" && \"$0\" run \"$2.toml\" -o \"$2\" --overwrite --set \"mesh.cells=[30,10]\" --set time.end=0.05 --set output.progress_seconds=0"
                  $<TARGET_FILE:granflow> ${CMAKE_SOURCE_DIR}/docs/case_file.md ${CMAKE_CURRENT_BINARY_DIR}/docs_case_example)
 set_tests_properties(cli_docs_case_example PROPERTIES LABELS cli PASS_REGULAR_EXPRESSION "done: t = 0.05 s"
                      FAIL_REGULAR_EXPRESSION "error:;warning:")
@@ -415,21 +415,21 @@ set_tests_properties(cli_check_advice_on_numerics PROPERTIES LABELS cli)
 # Line samples end on the boundary's values: the cavity's vertical centre line starts at rest on the
 # floor and ends on the lid's u = 1 (and v = 0).
 add_test(NAME cli_line_sample_ends_on_the_walls
-         COMMAND sh -c "\"$0\" run \"$1\" -o \"$2\" --overwrite --set \"mesh.cells=[16,16]\" --set time.end=0.05 --set output.progress_seconds=0 > /dev/null && sed -n '3p;$p' \"$2/u_vertical_centreline.csv\""
+         COMMAND ${GRANFLOW_EXPECT_STATUS} 0 sh -c "\"$0\" run \"$1\" -o \"$2\" --overwrite --set \"mesh.cells=[16,16]\" --set time.end=0.05 --set output.progress_seconds=0 > /dev/null && sed -n '3p;$p' \"$2/u_vertical_centreline.csv\""
                  $<TARGET_FILE:granflow> ${CMAKE_SOURCE_DIR}/cases/lid_driven_cavity_re100.toml ${CMAKE_CURRENT_BINARY_DIR}/line_sample)
 set_tests_properties(cli_line_sample_ends_on_the_walls PROPERTIES LABELS cli
                      PASS_REGULAR_EXPRESSION "^0[.]5,0,0,0,[^\n]*\n0[.]5,1,1,0,")
 # With soil, line samples add its fraction, strain norm and strain rate norm; on the floor (a wall)
 # the velocity is zero.
 add_test(NAME cli_line_sample_soil_columns
-         COMMAND sh -c "{ cat \"$1\"; printf '[[output.line]]\\nname = \"profile\"\\nstart = [0.1, 0.0]\\nend = [0.1, 0.05]\\npoints = 6\\n'; } > \"$2.toml\" && \"$0\" run \"$2.toml\" -o \"$2\" --overwrite --set \"mesh.cells=[30,10]\" --set time.end=0.05 --set output.fields=false --set output.progress_seconds=0 > /dev/null && sed -n '2,3p' \"$2/profile.csv\""
+         COMMAND ${GRANFLOW_EXPECT_STATUS} 0 sh -c "{ cat \"$1\"; printf '[[output.line]]\\nname = \"profile\"\\nstart = [0.1, 0.0]\\nend = [0.1, 0.05]\\npoints = 6\\n'; } > \"$2.toml\" && \"$0\" run \"$2.toml\" -o \"$2\" --overwrite --set \"mesh.cells=[30,10]\" --set time.end=0.05 --set output.fields=false --set output.progress_seconds=0 > /dev/null && sed -n '2,3p' \"$2/profile.csv\""
                  $<TARGET_FILE:granflow> ${CMAKE_SOURCE_DIR}/cases/bui2008_experiment.toml ${CMAKE_CURRENT_BINARY_DIR}/line_sample_soil)
 set_tests_properties(cli_line_sample_soil_columns PROPERTIES LABELS cli
                      PASS_REGULAR_EXPRESSION "^x,y,u,v,p,viscosity,soil_fraction,strain_norm,strain_rate_norm\n0[.]1,0,0,0,[0-9.e+]+,[0-9.e+]+,1,")
 # A linear solver that fails inside (hypre on a closed mesh of two cells) ends the run with one
 # message, not PETSc's error trace.
 add_test(NAME cli_linear_solver_failure_named
-         COMMAND granflow run ${CMAKE_SOURCE_DIR}/cases/lid_driven_cavity_re100.toml -o ${CMAKE_CURRENT_BINARY_DIR}/solver_failure
+         COMMAND ${GRANFLOW_EXPECT_STATUS} 3 $<TARGET_FILE:granflow> run ${CMAKE_SOURCE_DIR}/cases/lid_driven_cavity_re100.toml -o ${CMAKE_CURRENT_BINARY_DIR}/solver_failure
                  --overwrite --set "mesh.cells=[1,2]" --set time.end=0.05 --set output.progress_seconds=0)
 set_tests_properties(cli_linear_solver_failure_named PROPERTIES LABELS cli
                      PASS_REGULAR_EXPRESSION "error: linear solver 'pressure' failed: [^\n]*another solver.pressure.pc_type may do"
@@ -442,7 +442,7 @@ add_test(NAME cli_linear_solver_iteration_limit_counted
 set_tests_properties(cli_linear_solver_iteration_limit_counted PROPERTIES LABELS cli)
 # Any other PETSc error is one line, not PETSc's trace (GRANFLOW_PETSC_TRACE=1 keeps the trace).
 add_test(NAME cli_petsc_error_one_line
-         COMMAND granflow run ${CMAKE_SOURCE_DIR}/cases/lid_driven_cavity_re100.toml -o ${CMAKE_CURRENT_BINARY_DIR}/petsc_error
+         COMMAND ${GRANFLOW_EXPECT_STATUS} 1 $<TARGET_FILE:granflow> run ${CMAKE_SOURCE_DIR}/cases/lid_driven_cavity_re100.toml -o ${CMAKE_CURRENT_BINARY_DIR}/petsc_error
                  ${GRANFLOW_TINY_CAVITY_RUN}
                  "--petsc=-pressure_ksp_type bogus")
 set_tests_properties(cli_petsc_error_one_line PROPERTIES LABELS cli
@@ -460,17 +460,17 @@ add_test(NAME cli_case_record_runs_the_same_case
                  $<TARGET_FILE:granflow> ${CMAKE_CURRENT_BINARY_DIR}/case_record ${CMAKE_SOURCE_DIR}/cases/bui2008_experiment.toml
                  ${GRANFLOW_SHORT_RUN})
 set_tests_properties(cli_case_record_runs_the_same_case PROPERTIES LABELS cli)
-add_test(NAME cli_version COMMAND granflow --version)
+add_test(NAME cli_version COMMAND ${GRANFLOW_EXPECT_STATUS} 0 $<TARGET_FILE:granflow> --version)
 set_tests_properties(cli_version PROPERTIES LABELS cli PASS_REGULAR_EXPRESSION "^granflow [0-9]+[.][0-9]+[.][0-9]+\n$")
 # granflow stability: a case with no strength to reduce is refused with one message; a soil that stands
 # at every factor says so (status 1) and leaves its table; a second analysis into the directory is
 # refused without --overwrite.
 add_test(NAME cli_stability_needs_a_rheology
-         COMMAND granflow stability ${CMAKE_SOURCE_DIR}/cases/lid_driven_cavity_re100.toml -o ${CMAKE_CURRENT_BINARY_DIR}/stability_none)
+         COMMAND ${GRANFLOW_EXPECT_STATUS} 2 $<TARGET_FILE:granflow> stability ${CMAKE_SOURCE_DIR}/cases/lid_driven_cavity_re100.toml -o ${CMAKE_CURRENT_BINARY_DIR}/stability_none)
 set_tests_properties(cli_stability_needs_a_rheology PROPERTIES LABELS cli
                      PASS_REGULAR_EXPRESSION "^error: [^\n]*lid_driven_cavity_re100.toml: strength reduction needs soil with a rheology")
 add_test(NAME cli_stability_refuses_mu_of_i
-         COMMAND granflow stability ${CMAKE_SOURCE_DIR}/cases/bui2008_experiment_mu_of_i.toml -o ${CMAKE_CURRENT_BINARY_DIR}/stability_none)
+         COMMAND ${GRANFLOW_EXPECT_STATUS} 2 $<TARGET_FILE:granflow> stability ${CMAKE_SOURCE_DIR}/cases/bui2008_experiment_mu_of_i.toml -o ${CMAKE_CURRENT_BINARY_DIR}/stability_none)
 set_tests_properties(cli_stability_refuses_mu_of_i PROPERTIES LABELS cli
                      PASS_REGULAR_EXPRESSION "strength reduction divides a constant friction angle; mu[(]I[)] friction has none")
 add_test(NAME cli_stability_stands_at_every_factor_and_keeps_its_analysis
@@ -480,20 +480,20 @@ add_test(NAME cli_stability_stands_at_every_factor_and_keeps_its_analysis
 set_tests_properties(cli_stability_stands_at_every_factor_and_keeps_its_analysis PROPERTIES LABELS cli)
 # The command line's numbers are finite and in range: "nan" passes no comparison, and was taken.
 add_test(NAME cli_stability_displacement_nan_refused
-         COMMAND granflow stability ${CMAKE_SOURCE_DIR}/cases/bui2008_experiment.toml --displacement nan)
+         COMMAND ${GRANFLOW_EXPECT_STATUS} 2 $<TARGET_FILE:granflow> stability ${CMAKE_SOURCE_DIR}/cases/bui2008_experiment.toml --displacement nan)
 set_tests_properties(cli_stability_displacement_nan_refused PROPERTIES LABELS cli
                      PASS_REGULAR_EXPRESSION "^--displacement: 'nan' is not a length from 1e-12 to 1e12 m\n")
-add_test(NAME cli_element_test_phi_message COMMAND granflow element-test --phi 0)
+add_test(NAME cli_element_test_phi_message COMMAND ${GRANFLOW_EXPECT_STATUS} 2 $<TARGET_FILE:granflow> element-test --phi 0)
 set_tests_properties(cli_element_test_phi_message PROPERTIES LABELS cli
                      PASS_REGULAR_EXPRESSION "^--phi: '0' is not an angle from 0.001 to 89.999 degrees\n")
-add_test(NAME cli_stability_first_nan_message COMMAND granflow stability ${CMAKE_SOURCE_DIR}/cases/bui2008_experiment.toml --first nan)
+add_test(NAME cli_stability_first_nan_message COMMAND ${GRANFLOW_EXPECT_STATUS} 2 $<TARGET_FILE:granflow> stability ${CMAKE_SOURCE_DIR}/cases/bui2008_experiment.toml --first nan)
 set_tests_properties(cli_stability_first_nan_message PROPERTIES LABELS cli
                      PASS_REGULAR_EXPRESSION "^--first: 'nan' is not a number from 0.01 to 100\n")
 # --overwrite keeps the earlier analysis while the new one fails before its first trial has ended: on an
 # option PETSc refuses (read before the directory is touched), and where the first trial cannot make
 # its directory (a file named F_3 stands there); then it replaces it.
 add_test(NAME cli_stability_overwrite_keeps_the_analysis_until_the_first_trial_ends
-         COMMAND sh -c "g=$0; d=$1; c=$2; shift 2; rm -rf \"$d\" \"$d.kept\"; \"$g\" stability \"$c\" -o \"$d\" \"$@\" > /dev/null 2>&1; test $? -eq 1 || exit 1; cp \"$d/stability.csv\" \"$d.kept\"; \"$g\" stability \"$c\" -o \"$d\" --overwrite \"$@\" '--petsc=-coupled_ksp_type bogus' > /dev/null 2>&1 && exit 1; cmp -s \"$d/stability.csv\" \"$d.kept\" && test -f \"$d/F_64/granflow_case.toml\" || exit 1; touch \"$d/F_3\"; \"$g\" stability \"$c\" -o \"$d\" --overwrite --first 3 \"$@\" 2>&1; cmp -s \"$d/stability.csv\" \"$d.kept\" && test -f \"$d/F_64/granflow_case.toml\" && test ! -e \"$d/.replaced_run\" && echo kept; rm \"$d/F_3\"; \"$g\" stability \"$c\" -o \"$d\" --overwrite --first 2 \"$@\" > /dev/null 2>&1; test $? -eq 1 && test ! -e \"$d/F_1\" && test -f \"$d/F_2/granflow_case.toml\" && test ! -e \"$d/.replaced_run\" && echo replaced"
+         COMMAND ${GRANFLOW_EXPECT_STATUS} 0 sh -c "g=$0; d=$1; c=$2; shift 2; rm -rf \"$d\" \"$d.kept\"; \"$g\" stability \"$c\" -o \"$d\" \"$@\" > /dev/null 2>&1; test $? -eq 1 || exit 1; cp \"$d/stability.csv\" \"$d.kept\"; \"$g\" stability \"$c\" -o \"$d\" --overwrite \"$@\" '--petsc=-coupled_ksp_type bogus' > /dev/null 2>&1 && exit 1; cmp -s \"$d/stability.csv\" \"$d.kept\" && test -f \"$d/F_64/granflow_case.toml\" || exit 1; touch \"$d/F_3\"; \"$g\" stability \"$c\" -o \"$d\" --overwrite --first 3 \"$@\" 2>&1; cmp -s \"$d/stability.csv\" \"$d.kept\" && test -f \"$d/F_64/granflow_case.toml\" && test ! -e \"$d/.replaced_run\" && echo kept; rm \"$d/F_3\"; \"$g\" stability \"$c\" -o \"$d\" --overwrite --first 2 \"$@\" > /dev/null 2>&1; test $? -eq 1 && test ! -e \"$d/F_1\" && test -f \"$d/F_2/granflow_case.toml\" && test ! -e \"$d/.replaced_run\" && echo replaced"
                  $<TARGET_FILE:granflow> ${CMAKE_CURRENT_BINARY_DIR}/stability_overwrite ${CMAKE_SOURCE_DIR}/cases/bui2008_experiment.toml
                  --set "mesh.cells=[30,10]" --set time.end=0.02 --set soil.rheology.cohesion=1e5 --set output.progress_seconds=0 --set output.fields=false)
 set_tests_properties(cli_stability_overwrite_keeps_the_analysis_until_the_first_trial_ends PROPERTIES LABELS cli
@@ -501,14 +501,14 @@ set_tests_properties(cli_stability_overwrite_keeps_the_analysis_until_the_first_
 # A run that stops at its steady state marks its line samples so; the cavity comparison warns of a
 # sample that is not one (a run stopped at time.end), and the chute's of a profile still changing.
 add_test(NAME scripts_compare_cavity_steadiness
-         COMMAND sh -c "\"$0\" run \"$1\" -o \"$3/steady\" --overwrite --set 'mesh.cells=[16,16]' >/dev/null 2>&1 && head -1 \"$3/steady/u_vertical_centreline.csv\" && /usr/bin/python3 -u \"$2\" \"$3/steady\" 100 2>&1 && \"$0\" run \"$1\" -o \"$3/short\" --overwrite --set 'mesh.cells=[16,16]' --set time.end=0.5 >/dev/null 2>&1 && /usr/bin/python3 -u \"$2\" \"$3/short\" 100 2>&1"
+         COMMAND ${GRANFLOW_EXPECT_STATUS} 0 sh -c "\"$0\" run \"$1\" -o \"$3/steady\" --overwrite --set 'mesh.cells=[16,16]' >/dev/null 2>&1 && head -1 \"$3/steady/u_vertical_centreline.csv\" && /usr/bin/python3 -u \"$2\" \"$3/steady\" 100 2>&1 && \"$0\" run \"$1\" -o \"$3/short\" --overwrite --set 'mesh.cells=[16,16]' --set time.end=0.5 >/dev/null 2>&1 && /usr/bin/python3 -u \"$2\" \"$3/short\" 100 2>&1"
                  $<TARGET_FILE:granflow> ${CMAKE_SOURCE_DIR}/cases/lid_driven_cavity_re100.toml
                  ${CMAKE_SOURCE_DIR}/scripts/compare_cavity.py ${CMAKE_CURRENT_BINARY_DIR}/cavity_steadiness)
 set_tests_properties(scripts_compare_cavity_steadiness PROPERTIES LABELS cli
                      PASS_REGULAR_EXPRESSION "^# u_vertical_centreline at t = [0-9.]+ s, steady state reached\nRe 100: max [^\n]*\nwarning: [^\n]*short/u_vertical_centreline.csv is not a steady state [(]u_vertical_centreline at t = 0[.]5 s[)][^\n]*\nRe 100: max [^\n]*\n$"
                      FAIL_REGULAR_EXPRESSION "Traceback;error:")
 add_test(NAME scripts_compare_bagnold_steadiness
-         COMMAND sh -c "\"$0\" run \"$1\" -o \"$3/short\" --overwrite --set time.end=1.5 >/dev/null 2>&1 && /usr/bin/python3 -u \"$2\" \"$3/short\" 2>&1 && \"$0\" run \"$1\" -o \"$3/full\" --overwrite >/dev/null 2>&1 && /usr/bin/python3 -u \"$2\" \"$3/full\" 2>&1 | sed 's/^/full: /'"
+         COMMAND ${GRANFLOW_EXPECT_STATUS} 0 sh -c "\"$0\" run \"$1\" -o \"$3/short\" --overwrite --set time.end=1.5 >/dev/null 2>&1 && /usr/bin/python3 -u \"$2\" \"$3/short\" 2>&1 && \"$0\" run \"$1\" -o \"$3/full\" --overwrite >/dev/null 2>&1 && /usr/bin/python3 -u \"$2\" \"$3/full\" 2>&1 | sed 's/^/full: /'"
                  $<TARGET_FILE:granflow> ${CMAKE_SOURCE_DIR}/cases/bagnold_chute.toml
                  ${CMAKE_SOURCE_DIR}/scripts/compare_bagnold.py ${CMAKE_CURRENT_BINARY_DIR}/bagnold_steadiness)
 set_tests_properties(scripts_compare_bagnold_steadiness PROPERTIES LABELS cli
@@ -517,7 +517,7 @@ set_tests_properties(scripts_compare_bagnold_steadiness PROPERTIES LABELS cli
 # The axisymmetric comparison scores each run it finds and skips, with a note, a run that did not
 # start with its case's soil (here a cylinder of half the radius under lube2004_a05's name).
 add_test(NAME scripts_compare_axisymmetric_skips_another_block
-         COMMAND sh -c "\"$0\" run \"$1/lube2004_a2.toml\" -o \"$3/lube2004_a2_drucker_prager\" --overwrite --set 'mesh.cells=[36,18]' --set time.end=0.1 >/dev/null 2>&1 && \"$0\" run \"$1/lube2004_a05.toml\" -o \"$3/lube2004_a05_mohr_coulomb\" --overwrite --set 'mesh.cells=[36,18]' --set time.end=0.1 --set 'initial.soil=[{shape=\"box\",lower=[0,0],upper=[0.1,0.1]}]' >/dev/null 2>&1 && /usr/bin/python3 -u \"$2\" \"$3\" 2>&1"
+         COMMAND ${GRANFLOW_EXPECT_STATUS} 0 sh -c "\"$0\" run \"$1/lube2004_a2.toml\" -o \"$3/lube2004_a2_drucker_prager\" --overwrite --set 'mesh.cells=[36,18]' --set time.end=0.1 >/dev/null 2>&1 && \"$0\" run \"$1/lube2004_a05.toml\" -o \"$3/lube2004_a05_mohr_coulomb\" --overwrite --set 'mesh.cells=[36,18]' --set time.end=0.1 --set 'initial.soil=[{shape=\"box\",lower=[0,0],upper=[0.1,0.1]}]' >/dev/null 2>&1 && /usr/bin/python3 -u \"$2\" \"$3\" 2>&1"
                  $<TARGET_FILE:granflow> ${CMAKE_SOURCE_DIR}/cases ${CMAKE_SOURCE_DIR}/scripts/compare_axisymmetric.py
                  ${CMAKE_CURRENT_BINARY_DIR}/axisymmetric_runs)
 set_tests_properties(scripts_compare_axisymmetric_skips_another_block PROPERTIES LABELS cli

@@ -20,7 +20,7 @@ set_tests_properties(cli_run_soil_case_2_ranks_with_output PROPERTIES
 
 # More ranks than the cells can be shared by: one message, no PETSc error trace.
 add_test(NAME cli_too_many_ranks_for_the_cells
-         COMMAND ${MPIRUN} -np 2 --oversubscribe $<TARGET_FILE:granflow> run ${CMAKE_SOURCE_DIR}/cases/lid_driven_cavity_re100.toml
+         COMMAND ${GRANFLOW_EXPECT_STATUS} 2 ${MPIRUN} -np 2 --oversubscribe $<TARGET_FILE:granflow> run ${CMAKE_SOURCE_DIR}/cases/lid_driven_cavity_re100.toml
                  -o ${CMAKE_CURRENT_BINARY_DIR}/too_many_ranks --overwrite --set "mesh.cells=[3,3]" --set time.end=0.01)
 set_tests_properties(cli_too_many_ranks_for_the_cells PROPERTIES
   LABELS parallel TIMEOUT 120 PASS_REGULAR_EXPRESSION "error: [^\n]*lid_driven_cavity_re100.toml: mesh.cells: 3 x 3 cells cannot be shared by 2 ranks"
