@@ -88,7 +88,10 @@ void expect_conserving(const CollapseResult& r) {
   // At rest by t = 0.5 s: the coupled solve holds the yield stress at the surface (the projection, the
   // cases' numerics before, left the low cylinder at 7 % of its peak at this resolution).
   EXPECT_LT(r.kinetic_end_over_peak, 0.01);
-  EXPECT_NEAR(r.lode_total_vs_history, 1.0, 1e-7);  // the bins account for all the dissipated energy
+  // lode_dissipation.csv as written holds the history's dissipated energy at the same time: a check of
+  // the file and its reduction over the ranks (the bins take every cell's rate by construction; the
+  // binning itself is LodeHistogram's unit test).
+  EXPECT_NEAR(r.lode_total_vs_history, 1.0, 1e-7);
 }
 
 double lube_runout(double h0, double r0) {

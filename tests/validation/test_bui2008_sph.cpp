@@ -72,13 +72,13 @@ SphRun run_sph(const std::string& case_name, std::vector<std::string> overrides 
   return r;
 }
 
-// What every case must do: keep its soil, close its energy budget (+6 % for 25 degrees, where the
-// arctan density makes partly filled cells heavy, docs/method.md; within 3 % for the others), and
-// keep the top of the block at the wall.
+// What every case must do: keep its soil, close its energy budget (measured at 150 x 50: +4.9 % for
+// 25 degrees, where the arctan density makes partly filled cells heavy, docs/method.md; -4.4, -4.9
+// and -1.7 % for the others; within 6 %), and keep the top of the block at the wall.
 void expect_conserved_and_wall_kept(const SphRun& r) {
   EXPECT_LT(r.volume_error, 1e-10);
   EXPECT_EQ(r.outflow, 0.0);
-  EXPECT_LT(std::abs(r.energy_ratio - 1.0), 0.10);
+  EXPECT_LT(std::abs(r.energy_ratio - 1.0), 0.06);
   EXPECT_GT(r.wall_height, 2.0 - r.dy);
 }
 

@@ -99,7 +99,10 @@ inline double expect_restart_reproduces(const std::string& case_file, std::vecto
     EXPECT_EQ(differ, 0u) << "field " << k << " differs in " << differ << " cells";
   }
   if (has_history) EXPECT_EQ(file_text(split_dir / "history.csv"), file_text(whole_dir / "history.csv"));
-  EXPECT_EQ(file_text(split_dir / "fields.pvd"), file_text(whole_dir / "fields.pvd"));
+  // The series of field files, where the case writes fields (a missing file reads as empty text).
+  const bool fields = std::filesystem::exists(whole_dir / "fields.pvd");
+  EXPECT_EQ(std::filesystem::exists(split_dir / "fields.pvd"), fields);
+  if (fields) EXPECT_EQ(file_text(split_dir / "fields.pvd"), file_text(whole_dir / "fields.pvd"));
   remove_scratch(whole_dir);
   remove_scratch(split_dir);
   return checkpoint_time;

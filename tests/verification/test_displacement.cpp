@@ -80,7 +80,8 @@ TEST(Displacement, SlugSlidesItsDistanceAtLongSteps) {
     if (!test::is_root()) continue;
     std::printf("slug at Courant %.1f: mean displacement %.3f m, largest %.3f m; slid %.3f m\n", courant, mean, largest,
                 slid);
-    EXPECT_GT(mean, 0.7 * slid) << courant;
+    EXPECT_GT(mean, 0.8 * slid) << courant;  // 0.84 and 0.93 of it measured
+    EXPECT_LT(mean, 1.0 * slid) << courant;
     EXPECT_LT(largest, 1.5 * slid) << courant;
   }
 }

@@ -96,7 +96,6 @@ void expect_bracket(const std::vector<std::string>& overrides, double expected_m
   // Past the limit the layer yields throughout and its steps stop at the iteration count (all of them,
   // measured); the trial counts them.
   EXPECT_GT(above.unconverged_steps, above.steps / 2);
-  EXPECT_LE(above.unconverged_steps, above.steps);
 }
 
 TEST(InfiniteSlope, CohesiveLayerFailsAtTheBedWhereTheModelsConeSaysSo) {

@@ -98,7 +98,9 @@ ClosedTank closed_tank(std::vector<std::string> overrides) {
 }
 
 // A closed domain's pressure is held at zero on its top side, as the initial hydrostatic pressure
-// is: the yield stress must not read whatever constant the iterative pressure solve ends with.
+// is, so that the yield stress does not read whatever constant the iterative pressure solve ends
+// with. This checks the convention end to end, on the projection's path (the coupled solve's below);
+// it does not measure the yield stress's response to a wrong level.
 TEST(PressureLevel, ClosedDomainHoldsZeroOnItsTop) {
   const ClosedTank tank = closed_tank({"solver.pressure.rtol=1e-3"});  // a loose solve leaves the level far off
   if (!test::is_root()) return;

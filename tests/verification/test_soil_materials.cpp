@@ -29,7 +29,6 @@ struct Layers {
   std::vector<double> u, v, c, share;
   double lower_volume = 0.0, upper_volume = 0.0;  // m^2 per metre
   double lower_height = 0.0, upper_height = 0.0;  // their centroids' heights, m
-  double share_min = 0.0, share_max = 0.0;        // over cells with soil
 };
 
 Layers run(const std::vector<std::string>& overrides) {
@@ -43,8 +42,6 @@ Layers run(const std::vector<std::string>& overrides) {
     if (sim.soil()->material_count() == 0) return;
     r.share = gather_to_root(g, sim.soil()->material_share(1));
     r.lower_volume = r.upper_volume = r.lower_height = r.upper_height = 0.0;
-    r.share_min = 1.0;
-    r.share_max = 0.0;
     for (int j = 0; j < g.ny(); ++j)
       for (int i = 0; i < g.nx(); ++i) {
         const size_t k = size_t(j) * g.nx() + i;
@@ -53,10 +50,6 @@ Layers run(const std::vector<std::string>& overrides) {
         r.upper_volume += upper;
         r.lower_height += lower * g.yc(j);
         r.upper_height += upper * g.yc(j);
-        if (r.c[k] > 1e-9) {
-          r.share_min = std::min(r.share_min, r.share[k]);
-          r.share_max = std::max(r.share_max, r.share[k]);
-        }
       }
     r.lower_height /= r.lower_volume;
     r.upper_height /= r.upper_volume;
@@ -87,8 +80,6 @@ TEST(SoilMaterials, TwoLayersOfOneStrengthCollapseAsOneSoil) {
   EXPECT_LT(test::max_difference(one.c, two.c), 1e-10);
   EXPECT_LT(two.lower_volume, 1e-12);
   EXPECT_LT(two.upper_volume, 1e-12);
-  EXPECT_GE(two.share_min, 0.0);
-  EXPECT_LE(two.share_max, 1.0);
   EXPECT_LT(two.lower_height, two.upper_height);  // the layers keep their order
 }
 
@@ -146,8 +137,6 @@ TEST(SoilMaterials, AWeakLowerLayerCarriesTheBlockFurther) {
   EXPECT_GT(toe(weak), toe(uniform) + 0.02);
   EXPECT_LT(weak.lower_volume, 1e-12);
   EXPECT_LT(weak.upper_volume, 1e-12);
-  EXPECT_GE(weak.share_min, 0.0);
-  EXPECT_LE(weak.share_max, 1.0);
 }
 
 // A bed across the Bui domain (walls on both sides), a heavy layer (5300 kg/m^3) 5 cm deep under 5 cm

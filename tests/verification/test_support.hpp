@@ -20,11 +20,17 @@ namespace granflow::test {
 
 inline std::string repo_path(const std::string& rel) { return std::string(GRANFLOW_SOURCE_DIR) + "/" + rel; }
 
-// The largest difference between two fields gathered alike; infinite where their sizes differ.
+// worst = max(worst, e), but a NaN e makes it infinite (std::max would pass over it).
+inline void keep_largest(double& worst, double e) {
+  if (!(e <= worst)) worst = std::isnan(e) ? INFINITY : e;
+}
+
+// The largest difference between two fields gathered alike; infinite where their sizes differ or a
+// difference is not a number.
 inline double max_difference(const std::vector<double>& a, const std::vector<double>& b) {
   if (a.size() != b.size() || a.empty()) return INFINITY;
   double d = 0.0;
-  for (size_t k = 0; k < a.size(); ++k) d = std::max(d, std::abs(a[k] - b[k]));
+  for (size_t k = 0; k < a.size(); ++k) keep_largest(d, std::abs(a[k] - b[k]));
   return d;
 }
 

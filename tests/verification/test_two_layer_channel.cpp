@@ -73,7 +73,7 @@ progress_seconds = 0
   const RunSummary s = sim.run();
   EXPECT_TRUE(s.reached_steady_state) << s.steps << " steps";
   double scale = 0.0;
-  for (int j = 0; j < ny; ++j) scale = std::max(scale, std::abs(exact(g.yc(j), G, U)));
+  for (int j = 0; j < ny; ++j) test::keep_largest(scale, std::abs(exact(g.yc(j), G, U)));
   const double err = test::l2_error(g, sim.flow().velocity(0), [&](double, double y) { return exact(y, G, U); });
   // Largest deviation: gather u and compare at every centre.
   const auto u = gather_to_root(g, sim.flow().velocity(0));
@@ -82,7 +82,7 @@ progress_seconds = 0
   MPI_Comm_rank(PETSC_COMM_WORLD, &rank);
   if (rank == 0)
     for (int j = 0; j < ny; ++j)
-      for (int i = 0; i < g.nx(); ++i) worst = std::max(worst, std::abs(u[size_t(j) * g.nx() + i] - exact(g.yc(j), G, U)));
+      for (int i = 0; i < g.nx(); ++i) test::keep_largest(worst, std::abs(u[size_t(j) * g.nx() + i] - exact(g.yc(j), G, U)));
   MPI_Bcast(&worst, 1, MPI_DOUBLE, 0, PETSC_COMM_WORLD);
   std::printf("two-layer channel G = %g, U = %g, %d cells: max error / max |u| = %.3e (L2 %.3e)\n", G, U, ny,
               worst / scale, err / scale);

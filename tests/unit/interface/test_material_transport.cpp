@@ -118,9 +118,9 @@ void report(const char* name, const std::vector<MaterialRun>& runs) {
   for (const MaterialRun& r : runs) {
     std::printf("[materials]   %5d %12.4e %12.2e %12.2e %12.2e %12.2e\n", r.n, r.l1 / r.volume, r.volume_error,
                 r.soil_error, r.share_min, r.share_max - 1.0);
+    // The sweep clamps the shares to [0, 1] and their sum to 1, so their bounds say nothing; that
+    // each material keeps its volume to round-off shows the clamp took nothing away.
     EXPECT_LT(r.volume_error, 1e-12) << r.n;
-    EXPECT_GE(r.share_min, 0.0) << r.n;
-    EXPECT_LE(r.share_max, 1.0 + 1e-12) << r.n;  // the materials' shares add up to at most the soil
   }
 }
 
@@ -169,19 +169,13 @@ TEST(MaterialTransport, ContactMovesWithTheSoil) {
   const double volume = f.material_volume(0);
   const int steps = 40;  // Courant 0.4, to t = 0.25
   for (int s = 0; s < steps; ++s) f.step(0.25 / steps);
-  double centroid = 0.0, lowest = 1.0, highest = 0.0;
-  for (int i = 0; i < n; ++i) {
-    centroid += f.x_centre(i) * f.material(0)(i, 0) * f.dx()[i] * f.dy()[0];
-    lowest = std::min(lowest, f.material(0)(i, 0));
-    highest = std::max(highest, f.material(0)(i, 0));
-  }
+  double centroid = 0.0;
+  for (int i = 0; i < n; ++i) centroid += f.x_centre(i) * f.material(0)(i, 0) * f.dx()[i] * f.dy()[0];
   centroid /= f.material_volume(0) / 4.0;
   std::printf("[materials] contact carried 0.25 by u = 1 on 64 cells: centroid %.6f (0.625), volume %.2e of itself off\n",
               centroid, std::abs(f.material_volume(0) / volume - 1.0));
   EXPECT_NEAR(centroid, 0.625, 0.25 / n);
-  EXPECT_LT(std::abs(f.material_volume(0) / volume - 1.0), 1e-13);
-  EXPECT_GE(lowest, 0.0);
-  EXPECT_LE(highest, 1.0);
+  EXPECT_LT(std::abs(f.material_volume(0) / volume - 1.0), 1e-13);  // nothing clamped away
 }
 
 // Soils of three densities: the mass each face carries (material_sweep's face_density times the
