@@ -28,7 +28,7 @@ import tomllib
 
 import numpy as np
 
-from granflow_files import InputError, main_with_errors, read_csv, require_columns
+from granflow_files import InputError, main_with_errors, read_csv, require_columns, sample_time
 
 
 def read_case(run_dir):
@@ -90,18 +90,9 @@ def read_profile(run_dir):
     return table, first
 
 
-def read_time(path):
-    with open(path) as f:
-        first = f.readline()
-    try:
-        return float(first.split(" at t = ")[1].split()[0])
-    except (IndexError, ValueError):
-        raise InputError(f"{path}: its first line does not give the sample's time")
-
-
 def last_change(run_dir, depth):
     """(t_before, t_last, largest |u_last - u_before| in the layer) from the last two numbered samples."""
-    samples = sorted(glob.glob(os.path.join(run_dir, "profile_[0-9][0-9][0-9][0-9][0-9].csv")))
+    samples = sorted(glob.glob(os.path.join(glob.escape(run_dir), "profile_[0-9][0-9][0-9][0-9][0-9].csv")))
     if len(samples) < 2:
         return None
     before, last = read_csv(samples[-2]), read_csv(samples[-1])
@@ -110,7 +101,7 @@ def last_change(run_dir, depth):
         raise InputError(f"{samples[-2]} and {samples[-1]} sample different points")
     inside = last["y"] < depth
     change = np.max(np.abs(last["u"] - before["u"])[inside]) / max(np.max(np.abs(last["u"][inside])), 1e-300)
-    return read_time(samples[-2]), read_time(samples[-1]), float(change)
+    return sample_time(samples[-2]), sample_time(samples[-1]), float(change)
 
 
 def main():

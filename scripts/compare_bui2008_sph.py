@@ -19,11 +19,10 @@ import argparse
 import glob
 import json
 import os
-import re
 
 import numpy as np
 
-from granflow_files import InputError, main_with_errors, one_cell_toe, read_csv, require_initial_volume
+from granflow_files import InputError, main_with_errors, one_cell_toe, read_csv, require_initial_volume, sample_time
 
 # Which figure of [VoF] a case is drawn for, from the run directory's name.
 FIGURES = {"bui2008_sph_phi25_c5": "Fig. 7", "bui2008_sph_phi25": "Fig. 4", "bui2008_sph_phi45": "Fig. 5",
@@ -31,20 +30,12 @@ FIGURES = {"bui2008_sph_phi25_c5": "Fig. 7", "bui2008_sph_phi25": "Fig. 4", "bui
 BLOCK_AREA = 4.0 * 2.0  # m^2, the initial block of every bui2008_sph case
 
 
-def time_of(path):
-    first = open(path).readline()
-    m = re.search(r"t = ([-+0-9.eE]+)", first)
-    if not m:
-        raise InputError(f"{path}: first line does not give the time ('# ... at t = T s')")
-    return float(m.group(1))
-
-
 def outputs(run_dir):
     """Output index -> time, from the surface files' headers."""
     files = sorted(glob.glob(os.path.join(glob.escape(run_dir), "surface_[0-9][0-9][0-9][0-9][0-9].csv")))
     if not files:
         raise InputError(f"{run_dir}: no surface_NNNNN.csv (not a granflow output directory of a soil case?)")
-    return {os.path.basename(f)[8:13]: time_of(f) for f in files}
+    return {os.path.basename(f)[8:13]: sample_time(f) for f in files}
 
 
 def chains(x0, y0, x1, y1, tol):

@@ -35,6 +35,15 @@ def read_csv(path):
     return {h: data[:, k] for k, h in enumerate(header)}
 
 
+def sample_time(path):
+    """The time on an output CSV's first line ('# ... at t = T s')."""
+    with open(path) as f:
+        m = re.search(r"t = ([-+0-9.eE]+)", f.readline())
+    if not m:
+        raise InputError(f"{path}: first line does not give the time ('# ... at t = T s')")
+    return float(m.group(1))
+
+
 def require_columns(table, path, names):
     missing = [n for n in names if n not in table]
     if missing:

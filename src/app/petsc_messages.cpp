@@ -129,7 +129,7 @@ std::string unusable_options_file(const std::string& source, const std::string& 
 
 // PETSc stops inside PetscInitialize, with its error trace, on an options file it cannot read, and
 // finds a -log_view file it cannot write only at the end of the run: say which, in one line, before
-// anything runs. Empty when every such file among the --petsc words can be used.
+// anything runs. Empty when every such file among the words (of --petsc or PETSC_OPTIONS) can be used.
 std::string unusable_petsc_file(const std::vector<std::string>& words, const std::string& source) {
   for (size_t k = 0; k < words.size(); ++k) {
     if (words[k] == "-log_view" && k + 1 < words.size() && words[k + 1][0] != '-') {
