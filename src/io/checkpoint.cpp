@@ -5,13 +5,18 @@
 
 #include <algorithm>
 #include <cerrno>
+#include <cinttypes>
+#include <cstdio>
 #include <cmath>
 #include <cstdint>
 #include <cstdlib>
 #include <cstring>
 #include <fstream>
+#include <iterator>
 #include <limits>
 #include <optional>
+#include <sstream>
+#include <string_view>
 
 #include "io/atomic_file.hpp"
 #include "io/collective_failure.hpp"
@@ -34,6 +39,32 @@ struct FieldsHeader {
 };
 
 constexpr const char* fields_file = "fields.bin";
+
+// Checksums, written on run.txt's last line, so that a restart refuses a checkpoint altered after it
+// was written even where every value is one a run could hold (or whose two files come from
+// different checkpoints). The fields file's is a sum, modulo 2^64, of a hash of each value's bits
+// and its place in the file: the ranks add their parts in any order, and a restart on another number
+// of ranks gets the same sum. run.txt's is FNV-1a over its text before that line.
+std::uint64_t scramble(std::uint64_t x) {  // splitmix64's finaliser
+  x += 0x9e3779b97f4a7c15ull;
+  x = (x ^ (x >> 30)) * 0xbf58476d1ce4e5b9ull;
+  x = (x ^ (x >> 27)) * 0x94d049bb133111ebull;
+  return x ^ (x >> 31);
+}
+
+template <class T>
+std::uint64_t hash_at(std::uint64_t place, T value) {
+  static_assert(sizeof(T) == sizeof(std::uint64_t));
+  std::uint64_t bits;
+  std::memcpy(&bits, &value, sizeof bits);
+  return scramble(bits ^ scramble(place));
+}
+
+std::uint64_t text_checksum(std::string_view text) {
+  std::uint64_t h = 0xcbf29ce484222325ull;
+  for (const unsigned char ch : text) h = (h ^ ch) * 0x100000001b3ull;
+  return h;
+}
 
 std::string other_mesh(std::int64_t nx, std::int64_t ny, std::int64_t case_nx, std::int64_t case_ny) {
   return fmt::format("the checkpoint is of a {} x {} mesh, the case has {} x {} cells", nx, ny, case_nx, case_ny);
@@ -122,6 +153,45 @@ MPI_Offset field_offset(const FieldsHeader& h, std::int64_t k) {
   return MPI_Offset(sizeof h) + MPI_Offset(sizeof(double)) * (h.nx + 2 * h.ghosts) * (h.ny + 2 * h.ghosts) * k;
 }
 
+// This rank's part of the fields file's checksum: the header (on rank 0), the rows of numbers
+// `rows` holds, from rank `first_rank`'s on, and the values of the fields this rank writes (`own`),
+// from its local vectors.
+std::uint64_t checksum_part(MPI_Comm comm, const FieldsHeader& h, std::span<Field* const> fields, std::int64_t first_rank,
+                            std::span<const double> rows) {
+  int rank;
+  MPI_Comm_rank(comm, &rank);
+  std::uint64_t sum = 0;
+  if (rank == 0) {
+    const std::int64_t counts[] = {h.nx, h.ny, h.ghosts, h.fields, h.ranks, h.shared, h.summed};
+    sum += hash_at(0, h.magic);
+    for (std::uint64_t w = 0; w < std::size(counts); ++w) sum += hash_at(1 + w, counts[w]);
+  }
+  const std::uint64_t header_words = 8, full_x = std::uint64_t(h.nx + 2 * h.ghosts),
+                      full = full_x * std::uint64_t(h.ny + 2 * h.ghosts);
+  const std::uint64_t first_row = header_words + full * std::uint64_t(h.fields) +
+                                  std::uint64_t(first_rank) * std::uint64_t(h.shared + h.summed);
+  for (std::size_t s = 0; s < rows.size(); ++s) sum += hash_at(first_row + s, rows[s]);
+  if (fields.empty()) return sum;
+  const RankLayout l = rank_layout(fields[0]->dm(), int(h.nx), int(h.ny));
+  for (std::size_t k = 0; k < fields.size(); ++k) {
+    const PetscScalar* a;
+    VecGetArrayRead(fields[k]->local(), &a);
+    for (int y = 0; y < l.own.height; ++y) {
+      const PetscScalar* line = a + size_t(l.own.y0 - l.window.y0 + y) * size_t(l.window.width) + (l.own.x0 - l.window.x0);
+      const std::uint64_t place = header_words + full * k + std::uint64_t(l.own.y0 + y) * full_x + std::uint64_t(l.own.x0);
+      for (int x = 0; x < l.own.width; ++x) sum += hash_at(place + std::uint64_t(x), line[x]);
+    }
+    VecRestoreArrayRead(fields[k]->local(), &a);
+  }
+  return sum;
+}
+
+std::uint64_t summed_over_ranks(MPI_Comm comm, std::uint64_t part) {
+  std::uint64_t total = 0;
+  MPI_Allreduce(&part, &total, 1, MPI_UINT64_T, MPI_SUM, comm);
+  return total;
+}
+
 // Writes the header, each rank's row of numbers and the fields.
 std::string send_fields(MPI_Comm comm, const std::filesystem::path& path, const FieldsHeader& h,
                         std::span<Field* const> fields, const std::vector<double>& row) {
@@ -203,8 +273,9 @@ std::string write_fields(MPI_Comm comm, const std::filesystem::path& path, const
 
 // Reads the fields and this rank's scalars; returns an empty string or what is wrong (the same on
 // every rank).
+// `checksum` receives the file's checksum (checksum_part), where nothing is wrong.
 std::string read_fields(MPI_Comm comm, const std::filesystem::path& path, int nx, int ny,
-                        std::span<Field* const> fields, CheckpointScalars& scalars) {
+                        std::span<Field* const> fields, CheckpointScalars& scalars, std::uint64_t& checksum) {
   int rank, size;
   MPI_Comm_rank(comm, &rank);
   MPI_Comm_size(comm, &size);
@@ -257,7 +328,10 @@ std::string read_fields(MPI_Comm comm, const std::filesystem::path& path, int nx
       fields[k]->gather_from_local();
     }
   }
-  return file.problem();
+  if (!file.problem().empty()) return file.problem();
+  checksum = summed_over_ranks(comm, checksum_part(comm, h, fields, 0, rank == 0 ? std::span<const double>(table)
+                                                                                   : std::span<const double>()));
+  return {};
 }
 
 // The first value of this rank's cells or of the numbers that is NaN or infinite, named ("" if none).
@@ -287,16 +361,23 @@ std::string non_finite_value(std::span<Field* const> fields, const std::string& 
   return {};
 }
 
-void write_run(const std::filesystem::path& path, const RunCheckpoint& r) {
-  write_file_atomically(path, [&](std::ostream& out) {
-    fmt::print(out, "time {:a}\nnext_dt {:a}\noutput_index {}\ndissipated_energy {:a}\ninitial_soil_volume {:a}\n", r.time,
-               r.next_dt, r.output_index, r.dissipated_energy, r.initial_soil_volume);
-    fmt::print(out, "series {}\n", r.series.size());
-    for (const auto& [t, f] : r.series) fmt::print(out, "{:a} {}\n", t, f);
-    fmt::print(out, "history {}\n", r.history.size());
-    for (const auto& row : r.history) fmt::print(out, "{}\n", row);
-    fmt::print(out, "domain {}\nsteps {}\nphysics {}\nfields {}\nboundaries {}\n", r.domain, r.steps, r.physics, r.fields,
-               r.boundaries);
+constexpr std::string_view checksum_line = "\nchecksum ", checksum_key = checksum_line.substr(1);
+
+void write_run(const std::filesystem::path& path, const RunCheckpoint& r, std::uint64_t fields_checksum) {
+  fmt::memory_buffer text;
+  auto out = std::back_inserter(text);
+  fmt::format_to(out, "time {:a}\nnext_dt {:a}\noutput_index {}\ndissipated_energy {:a}\ninitial_soil_volume {:a}\n", r.time,
+                 r.next_dt, r.output_index, r.dissipated_energy, r.initial_soil_volume);
+  fmt::format_to(out, "series {}\n", r.series.size());
+  for (const auto& [t, f] : r.series) fmt::format_to(out, "{:a} {}\n", t, f);
+  fmt::format_to(out, "history {}\n", r.history.size());
+  for (const auto& row : r.history) fmt::format_to(out, "{}\n", row);
+  fmt::format_to(out, "domain {}\nsteps {}\nphysics {}\nfields {}\nboundaries {}\n", r.domain, r.steps, r.physics,
+                 r.fields, r.boundaries);
+  const std::string_view body(text.data(), text.size());
+  write_file_atomically(path, [&](std::ostream& file) {
+    file << body;
+    fmt::print(file, "{}{:016x} {:016x}\n", checksum_key, fields_checksum, text_checksum(body));
   });
 }
 
@@ -308,9 +389,25 @@ double hex_double(const std::string& s) {
   return end == s.c_str() || *end != '\0' ? std::nan("") : x;
 }
 
-RunCheckpoint read_run(const std::filesystem::path& path) {
-  std::ifstream in(path);
-  if (!in) throw CheckpointError(fmt::format("cannot read {}", path.string()));
+// `fields_checksum` receives the fields file's checksum where run.txt gives one (older checkpoints do not).
+RunCheckpoint read_run(const std::filesystem::path& path, std::optional<std::uint64_t>& fields_checksum) {
+  std::ifstream file(path, std::ios::binary);
+  if (!file) throw CheckpointError(fmt::format("cannot read {}", path.string()));
+  std::string content{std::istreambuf_iterator<char>(file), std::istreambuf_iterator<char>()};
+  // The checksum line is the last; its text checksum covers every byte before it. It is compared
+  // once the text has been read, so that a value that is not one (a count of 'abc') is named first.
+  bool text_matches = true;
+  if (const size_t at = content.rfind(checksum_line); at != std::string::npos) {
+    const std::string line = content.substr(at + checksum_line.size());
+    std::uint64_t fields_sum = 0, text_sum = 0;
+    char tail = '\0';
+    const bool read = std::sscanf(line.c_str(), "%16" SCNx64 " %16" SCNx64 "%c", &fields_sum, &text_sum, &tail) == 3 &&
+                      tail == '\n' && line.find('\n') + 1 == line.size();
+    content.resize(at + 1);
+    text_matches = read && text_sum == text_checksum(content);
+    fields_checksum = fields_sum;
+  }
+  std::istringstream in(content);
   RunCheckpoint r;
   std::string key, value;
   auto field = [&](const char* name) {
@@ -360,6 +457,8 @@ RunCheckpoint read_run(const std::filesystem::path& path) {
     else if (name == "fields") r.fields = text;
     else if (name == "boundaries") r.boundaries = text;
   }
+  if (!text_matches)
+    throw CheckpointError(fmt::format("{} does not match its checksum (altered after it was written)", path.string()));
   return r;
 }
 
@@ -385,7 +484,10 @@ void write_checkpoint(MPI_Comm comm, const std::filesystem::path& dir, int nx, i
                        std::int64_t(scalars.shared.size()), std::int64_t(scalars.summed.size())};
   if (auto problem = write_fields(comm, partial / fields_file, h, fields, scalars); !problem.empty())
     throw std::runtime_error(problem);
-  if (rank == 0) write_run(partial / "run.txt", run);
+  std::vector<double> row = scalars.shared;
+  row.insert(row.end(), scalars.summed.begin(), scalars.summed.end());
+  const std::uint64_t checksum = summed_over_ranks(comm, checksum_part(comm, h, fields, rank, row));
+  if (rank == 0) write_run(partial / "run.txt", run, checksum);
   MPI_Barrier(comm);
   if (rank == 0) {
     // The last complete checkpoint is kept until the new one has its name: it is checkpoint/, or,
@@ -416,9 +518,10 @@ RunCheckpoint read_checkpoint(MPI_Comm comm, const std::filesystem::path& dir, i
     problem = fmt::format("no checkpoint to restart from in {} (one is written at each output time after the start)", dir.string());
   agree(comm, problem);
   RunCheckpoint run;
+  std::optional<std::uint64_t> recorded_checksum;
   if (rank == 0) {
     try {
-      run = read_run(from / "run.txt");
+      run = read_run(from / "run.txt", recorded_checksum);
     } catch (const CheckpointError& e) {
       problem = fmt::format("the checkpoint is damaged: {}", e.what());
     } catch (const std::exception& e) {  // whatever else reading it throws must reach every rank too
@@ -445,8 +548,14 @@ RunCheckpoint read_checkpoint(MPI_Comm comm, const std::filesystem::path& dir, i
                           "run the case anew", from.string(), first == magic_version_1 ? 1 : 2);
   }
   agree(comm, problem);
-  agree(comm, read_fields(comm, from / fields_file, nx, ny, fields, scalars));
+  std::uint64_t checksum = 0;
+  agree(comm, read_fields(comm, from / fields_file, nx, ny, fields, scalars, checksum));
   agree(comm, non_finite_value(fields, field_names, scalars));
+  std::uint64_t recorded[2] = {recorded_checksum.has_value(), recorded_checksum.value_or(0)};
+  MPI_Bcast(recorded, 2, MPI_UINT64_T, 0, comm);
+  if (recorded[0] && recorded[1] != checksum)
+    agree(comm, fmt::format("the checkpoint is damaged: {} does not match the checksum in run.txt (altered after it was "
+                            "written, or of another checkpoint)", (from / fields_file).string()));
   double clock[6] = {run.time, run.next_dt, double(run.output_index), run.dissipated_energy, run.initial_soil_volume,
                      double(run.steps)};
   MPI_Bcast(clock, 6, MPI_DOUBLE, 0, comm);

@@ -3,7 +3,8 @@
 // continue where it stopped. The fields are stored over the whole mesh, the boundary's ghost cells
 // included, as raw doubles in one file (fields.bin, written and read by all ranks through MPI-IO),
 // so that a restart may take another number of ranks; rank 0 adds the run's clock, the history rows
-// and the field-series index as text (run.txt). A restart must use the same mesh.
+// and the field-series index as text (run.txt), ending with checksums of both files. A restart must
+// use the same mesh.
 #include <mpi.h>
 
 #include <filesystem>
@@ -55,7 +56,8 @@ void write_checkpoint(MPI_Comm comm, const std::filesystem::path& dir, int nx, i
 // ranks is the one written, else as CheckpointScalars says); and rank 0's run part into the return
 // value (on every rank; the history, series and domain on rank 0 only). Throws CheckpointError naming
 // what does not match, on every rank: the mesh, the fields (their number, and their names where the
-// checkpoint records them, against `field_names`), or a domain other than `domain`. Nothing is read
+// checkpoint records them, against `field_names`), a domain other than `domain`, or a file that does
+// not match its checksum (where run.txt gives them: older checkpoints do not). Nothing is read
 // into the fields unless the run's record matches.
 RunCheckpoint read_checkpoint(MPI_Comm comm, const std::filesystem::path& dir, int nx, int ny,
                               const std::string& domain, const std::string& field_names,

@@ -25,6 +25,17 @@ namespace {
 using test::expect_restart_reproduces;
 using test::scratch;
 
+// Makes a checkpoint one of those written before run.txt ended with the checksums: takes off that
+// line, so that a test may alter the files and reach the checks a checksum would come before.
+void as_written_before_checksums(const std::filesystem::path& checkpoint) {
+  const auto run_txt = checkpoint / "run.txt";
+  std::string text = test::file_text(run_txt);
+  const size_t at = text.rfind("\nchecksum ");
+  ASSERT_NE(at, std::string::npos) << "run.txt has no checksum";
+  text.resize(at + 1);
+  std::ofstream(run_txt) << text;
+}
+
 TEST(Restart, CollapseContinuesExactlyFromItsLastCheckpoint) {
   const double t = expect_restart_reproduces(
       "cases/bui2008_experiment.toml",
@@ -76,6 +87,7 @@ TEST(Restart, CollapseContinuesFromACheckpointOfBeforeTheJoinsMoment) {
         ASSERT_TRUE(f.good());
         f.close();
         std::filesystem::resize_file(path, std::uintmax_t(rows_at) + kept.size() * sizeof(double));
+        as_written_before_checksums(checkpoint);
       });
   std::printf("collapse restarted from a checkpoint without the join's moment at t = %.3g s\n", t);
 }
@@ -226,7 +238,11 @@ TEST(Restart, RefusesAMissingOrForeignCheckpoint) {
     std::filesystem::rename(kept, fields_bin);
   }
   // Values no run writes (NaN in a velocity, a soil fraction of 2) are damage done to the file after
-  // it was written: named, with the field and the cell, before the run goes on from them.
+  // it was written: named, with the field and the cell, before the run goes on from them. Where the
+  // checkpoint has its checksums, any change of a value is refused (the next block); these are the
+  // checks that remain for a checkpoint written before them.
+  const auto run_txt = dir / "checkpoint" / "run.txt";
+  as_written_before_checksums(dir / "checkpoint");
   {
     const auto fields_bin = dir / "checkpoint" / "fields.bin", kept = dir / "fields.bin.kept";
     std::filesystem::copy_file(fields_bin, kept);
@@ -269,7 +285,6 @@ TEST(Restart, RefusesAMissingOrForeignCheckpoint) {
   }
   // A run of more steps than an int holds restarts (time.max_steps goes to 1e12).
   {
-    const auto run_txt = dir / "checkpoint" / "run.txt";
     std::string text = test::file_text(run_txt);
     const size_t at = text.find("\nsteps ");
     ASSERT_NE(at, std::string::npos);
@@ -285,6 +300,74 @@ TEST(Restart, RefusesAMissingOrForeignCheckpoint) {
     EXPECT_THROW(damaged.restart(), CheckpointError);
   }
   std::filesystem::remove_all(dir);
+}
+
+// With its checksums a checkpoint altered after it was written is refused, though every value is one
+// a run could hold: a velocity nudged by 1e-12 m/s, run.txt's dissipated energy changed, or
+// fields.bin taken from another checkpoint of the same case and mesh. Put back, it is taken.
+TEST(Restart, RefusesACheckpointThatDoesNotMatchItsChecksums) {
+  const auto dir = scratch("restart_checksum"), other = scratch("restart_checksum_other");
+  std::filesystem::remove_all(dir);
+  std::filesystem::remove_all(other);
+  const std::vector<std::string> small{"mesh.cells=[30,10]", "time.end=0.05", "output.interval=0.05",
+                                       "output.progress_seconds=0", "output.fields=false"};
+  auto earlier = small;
+  earlier[1] = "time.end=0.04";
+  earlier[2] = "output.interval=0.04";
+  const auto case_path = test::repo_path("cases/bui2008_experiment.toml");
+  Simulation(PETSC_COMM_WORLD, load_case(case_path, small), dir).run();
+  Simulation(PETSC_COMM_WORLD, load_case(case_path, earlier), other).run();
+  auto longer = small;
+  longer.push_back("time.end=0.1");
+  auto restart_says = [&]() -> std::string {
+    Simulation sim(PETSC_COMM_WORLD, load_case(case_path, longer), dir);
+    try {
+      sim.restart();
+    } catch (const CheckpointError& e) {
+      return e.what();
+    }
+    return "taken";
+  };
+  const auto checkpoint = dir / "checkpoint", fields_bin = checkpoint / "fields.bin", run_txt = checkpoint / "run.txt";
+  const std::string fields_text = test::file_text(fields_bin), run_text = test::file_text(run_txt);
+  auto put_back = [&] {
+    std::ofstream(fields_bin, std::ios::binary) << fields_text;
+    std::ofstream(run_txt, std::ios::binary) << run_text;
+  };
+  const std::string refused_fields = "does not match the checksum in run.txt (altered after it was written, or of "
+                                     "another checkpoint)";
+  {
+    // The first value of the fields after the header's eight words: a ghost of u, nudged.
+    std::fstream file(fields_bin, std::ios::binary | std::ios::in | std::ios::out);
+    double u = 0.0;
+    file.seekg(64);
+    file.read(reinterpret_cast<char*>(&u), sizeof u);
+    u += 1e-12;
+    file.seekp(64);
+    file.write(reinterpret_cast<const char*>(&u), sizeof u);
+  }
+  const std::string nudged = restart_says();
+  EXPECT_NE(nudged.find("fields.bin " + refused_fields), std::string::npos) << nudged;
+  put_back();
+  {
+    std::string text = run_text;
+    const size_t at = text.find("\ndissipated_energy ");
+    ASSERT_NE(at, std::string::npos);
+    text.replace(at, text.find('\n', at + 1) - at, "\ndissipated_energy 0x1p-10");
+    std::ofstream(run_txt, std::ios::binary) << text;
+  }
+  const std::string energy = restart_says();
+  EXPECT_NE(energy.find("the checkpoint is damaged: " + run_txt.string() + " does not match its checksum"),
+            std::string::npos) << energy;
+  put_back();
+  std::filesystem::copy_file(other / "checkpoint" / "fields.bin", fields_bin,
+                             std::filesystem::copy_options::overwrite_existing);
+  const std::string swapped = restart_says();
+  EXPECT_NE(swapped.find("fields.bin " + refused_fields), std::string::npos) << swapped;
+  put_back();
+  EXPECT_EQ(restart_says(), "taken");
+  std::filesystem::remove_all(dir);
+  std::filesystem::remove_all(other);
 }
 
 }  // namespace
