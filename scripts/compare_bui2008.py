@@ -21,7 +21,8 @@ import tomllib
 
 import numpy as np
 
-from granflow_files import InputError, main_with_errors, one_cell_toe, read_csv, require_columns, require_initial_volume
+from granflow_files import (InputError, main_with_errors, one_cell_toe, read_csv, require_columns, require_initial_volume,
+                            sample_time)
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 REFDATA = os.path.join(HERE, "..", "validation", "refdata")
@@ -58,15 +59,10 @@ def case_end_time(run_dir):
         return None
 
 
-def time_of(path):
-    first = open(path).readline()
-    return float(first.split("t =")[1].split()[0]) if "t =" in first else float("nan")
-
-
 def metrics(run_dir):
     files = last_output(run_dir)
     cols_path = files["column_height"]
-    time = time_of(cols_path)
+    time = sample_time(cols_path)
     if not time > 0:
         raise InputError(f"{cols_path}: the run has no output after its start (t = {time:g} s)")
     history_path = os.path.join(run_dir, "history.csv")
