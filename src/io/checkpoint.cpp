@@ -394,6 +394,8 @@ RunCheckpoint read_run(const std::filesystem::path& path, std::optional<std::uin
   std::ifstream file(path, std::ios::binary);
   if (!file) throw CheckpointError(fmt::format("cannot read {}", path.string()));
   std::string content{std::istreambuf_iterator<char>(file), std::istreambuf_iterator<char>()};
+  // Every run.txt ends its last line; one that does not was cut short (perhaps in its checksum line).
+  if (!content.empty() && content.back() != '\n') throw CheckpointError(fmt::format("{} is truncated", path.string()));
   // The checksum line is the last; its text checksum covers every byte before it. It is compared
   // once the text has been read, so that a value that is not one (a count of 'abc') is named first.
   bool text_matches = true;
@@ -474,12 +476,24 @@ void write_checkpoint(MPI_Comm comm, const std::filesystem::path& dir, int nx, i
   int rank, size;
   MPI_Comm_rank(comm, &rank);
   MPI_Comm_size(comm, &size);
+  // What rank 0 does alone; its failure (a full disk) reaches every rank, which would otherwise wait
+  // for it in the next collective call.
+  auto on_rank_0 = [&](auto&& step) {
+    std::string problem;
+    if (rank == 0) {
+      try {
+        step();
+      } catch (const std::exception& e) {
+        problem = e.what();
+      }
+    }
+    if (auto text = first_failure(comm, problem); !text.empty()) throw std::runtime_error(text);
+  };
   const auto partial = dir / "checkpoint.partial", final_dir = dir / "checkpoint", old = dir / "checkpoint.old";
-  if (rank == 0) {
+  on_rank_0([&] {
     std::filesystem::remove_all(partial);
     std::filesystem::create_directories(partial);
-  }
-  MPI_Barrier(comm);
+  });
   const FieldsHeader h{magic, nx, ny, Grid::ghost_width, std::int64_t(fields.size()), size,
                        std::int64_t(scalars.shared.size()), std::int64_t(scalars.summed.size())};
   if (auto problem = write_fields(comm, partial / fields_file, h, fields, scalars); !problem.empty())
@@ -487,9 +501,8 @@ void write_checkpoint(MPI_Comm comm, const std::filesystem::path& dir, int nx, i
   std::vector<double> row = scalars.shared;
   row.insert(row.end(), scalars.summed.begin(), scalars.summed.end());
   const std::uint64_t checksum = summed_over_ranks(comm, checksum_part(comm, h, fields, rank, row));
-  if (rank == 0) write_run(partial / "run.txt", run, checksum);
-  MPI_Barrier(comm);
-  if (rank == 0) {
+  on_rank_0([&] { write_run(partial / "run.txt", run, checksum); });
+  on_rank_0([&] {
     // The last complete checkpoint is kept until the new one has its name: it is checkpoint/, or,
     // after a run killed between these renames, checkpoint.old/ alone, which must then not be
     // removed before the new one is in place.
@@ -499,8 +512,7 @@ void write_checkpoint(MPI_Comm comm, const std::filesystem::path& dir, int nx, i
     }
     std::filesystem::rename(partial, final_dir);
     std::filesystem::remove_all(old);
-  }
-  MPI_Barrier(comm);
+  });
 }
 
 RunCheckpoint read_checkpoint(MPI_Comm comm, const std::filesystem::path& dir, int nx, int ny,

@@ -304,7 +304,8 @@ TEST(Restart, RefusesAMissingOrForeignCheckpoint) {
 
 // With its checksums a checkpoint altered after it was written is refused, though every value is one
 // a run could hold: a velocity nudged by 1e-12 m/s, run.txt's dissipated energy changed, or
-// fields.bin taken from another checkpoint of the same case and mesh. Put back, it is taken.
+// fields.bin taken from another checkpoint of the same case and mesh; and run.txt cut short in its
+// checksum line. Put back, it is taken.
 TEST(Restart, RefusesACheckpointThatDoesNotMatchItsChecksums) {
   const auto dir = scratch("restart_checksum"), other = scratch("restart_checksum_other");
   std::filesystem::remove_all(dir);
@@ -364,6 +365,11 @@ TEST(Restart, RefusesACheckpointThatDoesNotMatchItsChecksums) {
                              std::filesystem::copy_options::overwrite_existing);
   const std::string swapped = restart_says();
   EXPECT_NE(swapped.find("fields.bin " + refused_fields), std::string::npos) << swapped;
+  put_back();
+  // Cut short in its checksum line, run.txt must not pass for one written before the checksums.
+  std::ofstream(run_txt, std::ios::binary) << run_text.substr(0, run_text.rfind("\nchecksum ") + 7);
+  const std::string cut = restart_says();
+  EXPECT_NE(cut.find(run_txt.string() + " is truncated"), std::string::npos) << cut;
   put_back();
   EXPECT_EQ(restart_says(), "taken");
   std::filesystem::remove_all(dir);
