@@ -263,17 +263,15 @@ std::string verify_fields(MPI_Comm comm, const std::filesystem::path& path, cons
   return fmt::format("cannot write {}: what it holds is not what was written (is the disk full?)", path.string());
 }
 
+// `row`: this rank's shared numbers, then its summed ones.
 std::string write_fields(MPI_Comm comm, const std::filesystem::path& path, const FieldsHeader& h,
-                         std::span<Field* const> fields, const CheckpointScalars& scalars) {
-  std::vector<double> row = scalars.shared;
-  row.insert(row.end(), scalars.summed.begin(), scalars.summed.end());
+                         std::span<Field* const> fields, const std::vector<double>& row) {
   if (auto problem = send_fields(comm, path, h, fields, row); !problem.empty()) return problem;
   return verify_fields(comm, path, h, fields, row);  // the file closed: what it holds is on its way to the disk
 }
 
-// Reads the fields and this rank's scalars; returns an empty string or what is wrong (the same on
-// every rank).
-// `checksum` receives the file's checksum (checksum_part), where nothing is wrong.
+// Reads the fields and this rank's scalars, and the file's checksum (checksum_part) into `checksum`;
+// returns an empty string or what is wrong (the same on every rank).
 std::string read_fields(MPI_Comm comm, const std::filesystem::path& path, int nx, int ny,
                         std::span<Field* const> fields, CheckpointScalars& scalars, std::uint64_t& checksum) {
   int rank, size;
@@ -496,10 +494,10 @@ void write_checkpoint(MPI_Comm comm, const std::filesystem::path& dir, int nx, i
   });
   const FieldsHeader h{magic, nx, ny, Grid::ghost_width, std::int64_t(fields.size()), size,
                        std::int64_t(scalars.shared.size()), std::int64_t(scalars.summed.size())};
-  if (auto problem = write_fields(comm, partial / fields_file, h, fields, scalars); !problem.empty())
-    throw std::runtime_error(problem);
   std::vector<double> row = scalars.shared;
   row.insert(row.end(), scalars.summed.begin(), scalars.summed.end());
+  if (auto problem = write_fields(comm, partial / fields_file, h, fields, row); !problem.empty())
+    throw std::runtime_error(problem);
   const std::uint64_t checksum = summed_over_ranks(comm, checksum_part(comm, h, fields, rank, row));
   on_rank_0([&] { write_run(partial / "run.txt", run, checksum); });
   on_rank_0([&] {
