@@ -143,7 +143,7 @@ add_test(NAME cli_overwrite_keeps_the_run_when_the_first_step_fails
 set_tests_properties(cli_overwrite_keeps_the_run_when_the_first_step_fails PROPERTIES LABELS cli)
 # The same when the first step diverges (a lid at 1e8 m/s): the step is not an accepted one.
 add_test(NAME cli_overwrite_keeps_the_run_when_the_first_step_diverges
-         COMMAND sh -c "g=$0; d=$1; c=$2; rm -rf \"$d\"; \"$g\" run \"$c\" -o \"$d\" --set 'mesh.cells=[8,8]' --set time.end=0.01 --set output.progress_seconds=0 > /dev/null || exit 1; cp \"$d/u_vertical_centreline.csv\" \"$d.kept\"; \"$g\" run \"$c\" -o \"$d\" --overwrite --set 'mesh.cells=[8,8]' --set time.adaptive=false --set time.dt=0.01 --set 'boundary.north={type = \"wall\", velocity = [1e8, 0.0]}' > /dev/null 2>&1; status=$?; cmp -s \"$d/u_vertical_centreline.csv\" \"$d.kept\" && test $status -eq 3 && test -f \"$d/fields_00001.vtr\" && test -f \"$d/checkpoint/run.txt\" && test ! -e \"$d/.replaced_run\""
+         COMMAND sh -c "g=$0; d=$1; c=$2; rm -rf \"$d\"; \"$g\" run \"$c\" -o \"$d\" --set 'mesh.cells=[8,8]' --set time.end=0.01 --set output.progress_seconds=0 > /dev/null || exit 1; cp \"$d/u_vertical_centreline.csv\" \"$d.kept\"; said=$(\"$g\" run \"$c\" -o \"$d\" --overwrite --set 'mesh.cells=[8,8]' --set time.adaptive=false --set time.dt=0.01 --set 'boundary.north={type = \"wall\", velocity = [1e8, 0.0]}' 2>&1 > /dev/null); status=$?; cmp -s \"$d/u_vertical_centreline.csv\" \"$d.kept\" && test $status -eq 3 && echo \"$said\" | grep -q \"diverged.*the earlier run's files are put back in $d\" && test -f \"$d/fields_00001.vtr\" && test -f \"$d/checkpoint/run.txt\" && test ! -e \"$d/.replaced_run\""
                  $<TARGET_FILE:granflow> ${CMAKE_CURRENT_BINARY_DIR}/overwrite_first_step_diverges ${CMAKE_SOURCE_DIR}/cases/lid_driven_cavity_re100.toml)
 set_tests_properties(cli_overwrite_keeps_the_run_when_the_first_step_diverges PROPERTIES LABELS cli)
 # A run set aside by --overwrite and left there (the new run was killed before its first step) is the
@@ -460,6 +460,12 @@ add_test(NAME cli_case_record_runs_the_same_case
                  $<TARGET_FILE:granflow> ${CMAKE_CURRENT_BINARY_DIR}/case_record ${CMAKE_SOURCE_DIR}/cases/bui2008_experiment.toml
                  ${GRANFLOW_SHORT_RUN})
 set_tests_properties(cli_case_record_runs_the_same_case PROPERTIES LABELS cli)
+# A case path that is not UTF-8 (Latin-1 "latin\351"): the record names it with \xNN, as TOML, which
+# is UTF-8 throughout, can read back; run from that record, the case is valid.
+add_test(NAME cli_case_record_of_a_path_not_utf8
+         COMMAND ${GRANFLOW_EXPECT_STATUS} 0 sh -c "g=$0; d=$1; c=$2; rm -rf \"$d\"; mkdir -p \"$d\"; n=\"$d/$(printf 'lat\\351')\"; cp \"$c\" \"$n.toml\"; \"$g\" run \"$n.toml\" -o \"$d/run\" --set 'mesh.cells=[8,8]' --set time.end=0.01 --set output.progress_seconds=0 > /dev/null || exit 1; head -1 \"$d/run/granflow_case.toml\" | sed 's/.*[/]//'; \"$g\" check \"$d/run/granflow_case.toml\" | sed 's/.*: valid .*/valid/'"
+                 $<TARGET_FILE:granflow> ${CMAKE_CURRENT_BINARY_DIR}/case_record_not_utf8 ${CMAKE_SOURCE_DIR}/cases/lid_driven_cavity_re100.toml)
+set_tests_properties(cli_case_record_of_a_path_not_utf8 PROPERTIES LABELS cli PASS_REGULAR_EXPRESSION "^lat\\\\xE9[.]toml\nvalid\n$")
 add_test(NAME cli_version COMMAND ${GRANFLOW_EXPECT_STATUS} 0 $<TARGET_FILE:granflow> --version)
 set_tests_properties(cli_version PROPERTIES LABELS cli PASS_REGULAR_EXPRESSION "^granflow [0-9]+[.][0-9]+[.][0-9]+\n$")
 # granflow stability: a case with no strength to reduce is refused with one message; a soil that stands

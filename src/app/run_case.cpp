@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <string>
+#include <string_view>
 #include <utility>
 #include <vector>
 
@@ -15,6 +16,7 @@
 #include "io/collective_failure.hpp"
 #include "io/run_directory.hpp"
 #include "io/run_lock.hpp"
+#include "solver/divergence_error.hpp"
 #include "solver/linear_solver.hpp"
 #include "solver/simulation.hpp"
 
@@ -114,6 +116,15 @@ int run_case(const std::string& case_file, const std::vector<std::string>& overr
       under_way = true;
       if (rank == 0) discard_set_aside_run(out_dir);
     });
+  } catch (const DivergenceError& e) {
+    if (under_way) throw;
+    if (rank == 0) restore_set_aside_run(out_dir, config.output.lines);
+    // The new run's first output went with it: what is kept is the earlier run.
+    std::string text = e.what();
+    if (const auto at = text.find(last_output_kept); at != std::string::npos)
+      text.replace(at, std::string_view(last_output_kept).size(),
+                   fmt::format("the earlier run's files are put back in {}", out_dir));
+    throw DivergenceError(text);
   } catch (...) {
     if (!under_way && rank == 0) restore_set_aside_run(out_dir, config.output.lines);
     throw;

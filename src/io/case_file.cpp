@@ -19,6 +19,7 @@
 #include "io/points_file.hpp"
 #include "io/table_reader.hpp"
 #include "io/text_file.hpp"
+#include "io/utf8_text.hpp"
 #include "models/rheology/parameters.hpp"
 
 namespace granflow {
@@ -31,6 +32,9 @@ constexpr double inf = std::numeric_limits<double>::infinity();
 constexpr std::size_t case_file_limit = std::size_t(64) << 20;
 
 void apply_override(toml::table& root, const std::string& assignment) {
+  // The case as run is recorded as TOML, which is UTF-8 throughout (a bare word would be kept as it is).
+  if (!is_valid_utf8(assignment))
+    throw CaseError(fmt::format("--set '{}': the text is not valid UTF-8", utf8_or_escaped(assignment)));
   const auto eq = assignment.find('=');
   if (eq == std::string::npos || eq == 0)
     throw CaseError(fmt::format("--set '{}': expected KEY=VALUE", assignment));
@@ -39,10 +43,15 @@ void apply_override(toml::table& root, const std::string& assignment) {
   for (char ch : assignment.substr(0, eq))
     if (ch != ' ' && ch != '\t') key += ch;
   if (key.empty()) throw CaseError(fmt::format("--set '{}': expected KEY=VALUE", assignment));
-  if (key.find_first_of("[]") != std::string::npos)
-    throw CaseError(fmt::format("--set '{}': an element of an array of tables cannot be set alone; set the whole "
-                                "array, e.g. --set 'initial.soil=[{{shape = \"box\", lower = [0, 0], upper = [0.2, 0.1]}}]'",
-                                assignment));
+  const auto whole_array_only = [&] {
+    return CaseError(fmt::format("--set '{}': an element of an array of tables cannot be set alone; set the whole "
+                                 "array, e.g. --set 'initial.soil=[{{shape = \"box\", lower = [0, 0], upper = [0.2, 0.1]}}]'",
+                                 assignment));
+  };
+  if (key.find_first_of("[]") != std::string::npos) throw whole_array_only();
+  // Keys are read as dotted bare words; a quoted part would be taken with its quotes.
+  if (key.find_first_of("\"'") != std::string::npos)
+    throw CaseError(fmt::format("--set '{}': write the key without quotes (e.g. mesh.cells)", assignment));
   const std::string value = assignment.substr(eq + 1);
   toml::table parsed;
   try {
@@ -74,6 +83,7 @@ void apply_override(toml::table& root, const std::string& assignment) {
       t->insert(part, toml::table{});
       n = t->get(part);
     }
+    if (n->is_array_of_tables()) throw whole_array_only();
     if (!n->is_table()) throw CaseError(fmt::format("--set '{}': '{}' is not a table", assignment, part));
     t = n->as_table();
     rest = rest.substr(dot + 1);
@@ -225,6 +235,16 @@ interface::Polygon polygon_of(std::vector<std::array<double, 2>> points, const s
   if (v.size() < 3) throw CaseError(fmt::format("{}: the polygon needs at least 3 distinct points", where));
   if (interface::self_intersecting(polygon))
     throw CaseError(fmt::format("{}: the polygon crosses itself (two of its edges meet)", where));
+  // Points on one line (to round-off of their extent) enclose nothing.
+  double twice_area = 0.0, extent = 0.0;
+  for (std::size_t k = 0; k < v.size(); ++k) {
+    const auto& p = v[k];
+    const auto& q = v[(k + 1) % v.size()];
+    twice_area += (p[0] - v[0][0]) * (q[1] - v[0][1]) - (q[0] - v[0][0]) * (p[1] - v[0][1]);
+    extent = std::max({extent, std::abs(p[0] - v[0][0]), std::abs(p[1] - v[0][1])});
+  }
+  if (!(std::abs(twice_area) > 1e-12 * extent * extent))
+    throw CaseError(fmt::format("{}: the polygon encloses no area (its points lie on one line)", where));
   return polygon;
 }
 
@@ -689,6 +709,15 @@ PhaseSettings read_fluid(TableReader& top) {
   return fluid;
 }
 
+// Why a shape within [lo, hi] covers no area of the mesh's domain (interface::overlaps): it lies
+// outside, or what lies inside is too small to count.
+std::string no_area_in_domain(const interface::Point& lo, const interface::Point& hi, const GridSpec& mesh) {
+  const bool outside = !(lo[0] < mesh.upper[0] && hi[0] > mesh.lower[0] && lo[1] < mesh.upper[1] && hi[1] > mesh.lower[1]);
+  return fmt::format("the shape, within [{}, {}] x [{}, {}], covers {} area of the domain [{}, {}] x [{}, {}]{}", lo[0],
+                     hi[0], lo[1], hi[1], outside ? "no" : "next to no", mesh.lower[0], mesh.upper[0], mesh.lower[1],
+                     mesh.upper[1], outside ? "" : " (less than 1e-12 of it: a shape far smaller than a cell)");
+}
+
 // Rules between tables, once every table is read: shapes within the domain, and what obstacles and
 // the air band need of the rest of the case.
 void require_consistent(const CaseConfig& c) {
@@ -697,9 +726,7 @@ void require_consistent(const CaseConfig& c) {
     for (size_t k = 0; k < c.soil->initial_soil.size(); ++k) {
       const auto [lo, hi] = interface::bounding_box(c.soil->initial_soil[k]);
       if (!interface::overlaps(c.soil->initial_soil[k], c.mesh.lower, c.mesh.upper))
-        throw CaseError(fmt::format("initial.soil[{}]: the shape, within [{}, {}] x [{}, {}], covers no area of the domain "
-                                    "[{}, {}] x [{}, {}]", k, lo[0], hi[0], lo[1], hi[1], c.mesh.lower[0],
-                                    c.mesh.upper[0], c.mesh.lower[1], c.mesh.upper[1]));
+        throw CaseError(fmt::format("initial.soil[{}]: {}", k, no_area_in_domain(lo, hi, c.mesh)));
     }
   }
   auto frictional_wall = [&](const std::string& wall) {
@@ -718,9 +745,7 @@ void require_consistent(const CaseConfig& c) {
   for (size_t k = 0; k < c.obstacles.size(); ++k) {
     const auto [lo, hi] = interface::bounding_box(c.obstacles[k]);
     if (!interface::overlaps(c.obstacles[k], c.mesh.lower, c.mesh.upper))
-      throw CaseError(fmt::format("obstacle[{}]: the shape, within [{}, {}] x [{}, {}], covers no area of the domain "
-                                  "[{}, {}] x [{}, {}]", k, lo[0], hi[0], lo[1], hi[1], c.mesh.lower[0],
-                                  c.mesh.upper[0], c.mesh.lower[1], c.mesh.upper[1]));
+      throw CaseError(fmt::format("obstacle[{}]: {}", k, no_area_in_domain(lo, hi, c.mesh)));
   }
   if (!c.obstacles.empty()) {
     // The obstacles' walls are built into the coupled solve's rows and the operators it uses.
@@ -778,9 +803,15 @@ CaseConfig read_case(const toml::table& root, const std::filesystem::path& sourc
     p.finish();
   }
   if (top.has("soil")) {
+    if (top.has("fluid"))
+      throw CaseError("fluid: a two-phase case ([soil] and [air]) takes no [fluid] table (the light phase is [air])");
     c.soil = read_soil(top, c.keys_without_effect);
-    if (top.has("fluid")) throw CaseError("fluid: a two-phase case ([soil] and [air]) takes no [fluid] table");
   } else {
+    // The tables only a case with soil reads, named as such rather than as unknown.
+    for (const char* table : {"air", "mixture", "initial"})
+      if (top.has(table))
+        throw CaseError(fmt::format("{}: applies to cases with soil only (this case has no [soil]{}){}", table,
+                                    top.has("fluid") ? ", and [fluid] for its one phase" : "", top.misspelling_of("soil")));
     c.fluid = read_fluid(top);
   }
   c.flow.boundaries = read_boundaries(top, c.mesh, two_phase_keys);

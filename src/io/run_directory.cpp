@@ -8,6 +8,7 @@
 #include <system_error>
 
 #include "io/atomic_file.hpp"
+#include "io/utf8_text.hpp"
 
 namespace granflow {
 
@@ -148,10 +149,11 @@ void restore_set_aside_run(const std::filesystem::path& dir, const std::vector<L
 }
 
 namespace {
-// Text for one comment line: a line break in it (a --set value over two lines) as \n.
+// Text for one comment line: a line break in it (a --set value over two lines) as \n, and bytes that
+// are not UTF-8 (a path's) as \xNN, since the whole file must be UTF-8 to be read again.
 std::string one_line(const std::string& text) {
   std::string out;
-  for (char ch : text) out += ch == '\n' ? std::string("\\n") : ch == '\r' ? std::string("\\r") : std::string(1, ch);
+  for (char ch : utf8_or_escaped(text)) out += ch == '\n' ? std::string("\\n") : ch == '\r' ? std::string("\\r") : std::string(1, ch);
   return out;
 }
 }  // namespace

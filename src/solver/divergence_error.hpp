@@ -4,6 +4,11 @@
 #include <stdexcept>
 
 namespace granflow {
+// What the message says of the output; a run that replaces an earlier one and diverges before its first
+// step puts the earlier run back instead, and says so in place of this (app/run_case.cpp).
+inline constexpr const char* last_output_kept = "the last good output is kept";
+
+
 struct DivergenceError : std::runtime_error {
   using std::runtime_error::runtime_error;
 };

@@ -403,8 +403,8 @@ RunSummary Simulation::run(const StepObserver& after_step) {
       const auto f = flow_->fastest_cell();
       const long at_limit = flow_->solves_at_iteration_limit();
       throw DivergenceError(fmt::format("the solution diverged at t = {:.6g} s (step {}): largest speed {:.3g} m/s "
-                                        "at x = {:.4g} m, y = {:.4g} m; the last good output is kept{}",
-                                        time_, summary.steps, f.speed, f.x, f.y,
+                                        "at x = {:.4g} m, y = {:.4g} m; {}{}",
+                                        time_, summary.steps, f.speed, f.x, f.y, last_output_kept,
                                         at_limit > 0 ? fmt::format(" ({} linear solves had stopped at their "
                                                                    "max_iterations)", at_limit)
                                                      : std::string()));

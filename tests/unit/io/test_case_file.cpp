@@ -393,6 +393,18 @@ TEST(CaseFile, TwoPhaseKeysRefusedWithoutSoil) {
     EXPECT_NE(e.find("applies to cases with soil only"), std::string::npos) << key << ": " << e;
   }
   EXPECT_EQ(error_of(two_phase, {"soil.rheology.friction_angle=30", "time.interface_substeps=3"}), "");
+  // So are the tables only such a case reads, named as such rather than as unknown keys.
+  for (const char* table : {"mixture.density=\"arctan\"", "air.density=1.0", "initial.soil=[]"}) {
+    const std::string e = error_of(minimal, {table});
+    EXPECT_NE(e.find(": applies to cases with soil only (this case has no [soil], and [fluid] for its one phase)"),
+              std::string::npos) << table << ": " << e;
+  }
+  // A light phase written as [fluid] beside [soil] is named first, not the [air] it lacks.
+  std::string fluid_for_air = two_phase;
+  fluid_for_air.replace(fluid_for_air.find("[air]"), 5, "[fluid]");
+  const std::string e = error_of(fluid_for_air);
+  EXPECT_NE(e.find("fluid: a two-phase case ([soil] and [air]) takes no [fluid] table (the light phase is [air])"),
+            std::string::npos) << e;
 }
 
 // A wall of its own friction: the angle and adhesion checked, and the soil it acts on granular with its
@@ -584,6 +596,16 @@ TEST(CaseFile, PolygonsMayCloseTheirOutlineButNotCrossIt) {
   EXPECT_NE(bow_tie.find("crosses itself"), std::string::npos) << bow_tie;
   const std::string degenerate = error_of(two_phase, with_polygon("[[0,0],[0.2,0],[0.2,0],[0,0]]"));
   EXPECT_NE(degenerate.find("3 distinct points"), std::string::npos) << degenerate;
+  // Points on one line enclose nothing: said so, not blamed on the domain.
+  const std::string line = error_of(two_phase, with_polygon("[[0,0],[0.1,0],[0.2,0]]"));
+  EXPECT_NE(line.find("initial.soil[0].points: the polygon encloses no area (its points lie on one line)"),
+            std::string::npos) << line;
+  // A triangle of a nanometre inside the domain: not outside it, but too small to count.
+  const std::string speck = error_of(two_phase, with_polygon("[[0.1,0.1],[0.100000001,0.1],[0.1,0.100000001]]"));
+  EXPECT_NE(speck.find("covers next to no area of the domain"), std::string::npos) << speck;
+  EXPECT_NE(speck.find("far smaller than a cell"), std::string::npos) << speck;
+  const std::string outside = error_of(two_phase, with_polygon("[[2,2],[3,2],[2,3]]"));
+  EXPECT_NE(outside.find("covers no area of the domain"), std::string::npos) << outside;
 }
 
 // A required key or table that is missing because it is misspelt is reported as the misspelling: the
@@ -620,6 +642,15 @@ TEST(CaseFile, MissingKeyNamesItsMisspelling) {
 TEST(CaseFile, SetRefusesArrayElementsAndValuesOverSeveralLines) {
   const std::string element = error_of(two_phase, {"soil.rheology.friction_angle=30", "initial.soil[0].upper=[0.3, 0.1]"});
   EXPECT_NE(element.find("an element of an array of tables cannot be set alone"), std::string::npos) << element;
+  // So is a key under one (initial.soil is an array of tables, not a table).
+  const std::string under = error_of(two_phase, {"soil.rheology.friction_angle=30", "initial.soil.upper=[0.3, 0.1]"});
+  EXPECT_NE(under.find("an element of an array of tables cannot be set alone"), std::string::npos) << under;
+  // A quoted key would be taken with its quotes; text that is not UTF-8 could not be recorded as TOML.
+  const std::string quoted = error_of(minimal, {"\"mesh\".cells=[3, 3]"});
+  EXPECT_NE(quoted.find("write the key without quotes"), std::string::npos) << quoted;
+  const std::string latin1 = error_of(minimal, {"title=caf\xe9"});
+  EXPECT_NE(latin1.find("--set 'title=caf\\xE9': the text is not valid UTF-8"), std::string::npos) << latin1;
+  EXPECT_EQ(parse_case(minimal, {"title=caf\xc3\xa9"}).title, "caf\xc3\xa9");
   const std::string lines = error_of(minimal, {"time.end=0.02\nmesh.cells=[1, 1]"});
   EXPECT_NE(lines.find("more than one key"), std::string::npos) << lines;
   // A value that is one TOML value over several lines is one value.
