@@ -62,10 +62,11 @@ add_test(NAME cli_command_line_error_2_ranks_says_once
 set_tests_properties(cli_command_line_error_2_ranks_says_once PROPERTIES LABELS parallel
   ENVIRONMENT "OMPI_ALLOW_RUN_AS_ROOT=1;OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1")
 
-# A PETSc error every rank meets (an option value it does not know) is one line, from rank 0, and
-# status 1 (README, "Exit status"), not one line per rank and PETSc's error code.
+# A PETSc error every rank meets (out of memory while the grid is made: 16 million cells within 1.5 GB
+# of address space a rank) is one line, from rank 0, and status 1 (README, "Exit status"), not one line
+# per rank and PETSc's error code.
 add_test(NAME cli_petsc_error_2_ranks_once
-         COMMAND sh -c "out=$(\"$0\" -np 2 --oversubscribe \"$1\" run \"$2\" -o \"$3\" --overwrite --set 'mesh.cells=[8,8]' --set time.end=0.01 '--petsc=-pressure_ksp_type bogus' 2>&1); status=$?; echo \"$out\"; test $status -eq 1 && test $(echo \"$out\" | grep -c '^error: PETSc: .*KSP type bogus') -eq 1 && ! echo \"$out\" | grep -q 'rank 1)'"
+         COMMAND sh -c "out=$(ulimit -v 1500000; \"$0\" -np 2 --oversubscribe \"$1\" run \"$2\" -o \"$3\" --overwrite --set 'mesh.cells=[4000,4000]' --set time.end=0.01 2>&1); status=$?; echo \"$out\"; test $status -eq 1 && test $(echo \"$out\" | grep -c '^error: PETSc: out of memory') -eq 1 && ! echo \"$out\" | grep -q 'rank 1)'"
                  ${MPIRUN} $<TARGET_FILE:granflow> ${CMAKE_SOURCE_DIR}/cases/lid_driven_cavity_re100.toml ${CMAKE_CURRENT_BINARY_DIR}/petsc_error_2_ranks)
 set_tests_properties(cli_petsc_error_2_ranks_once PROPERTIES LABELS parallel TIMEOUT 120
   ENVIRONMENT "OMPI_ALLOW_RUN_AS_ROOT=1;OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1;OMPI_MCA_rmaps_base_oversubscribe=1")

@@ -120,8 +120,8 @@ int main(int argc, char** argv) {
   check->add_option("case", case_file, "case file (TOML)")->required();
   check->add_option("--set", overrides, "override a case key: KEY=VALUE (repeatable)")->allow_extra_args(false);
   check->add_option("--petsc", petsc_options,
-                    "the run's PETSc options, so that a run's command line can be checked as it is (their form and "
-                    "options files are checked; their values when a run builds its solvers)")
+                    "the run's PETSc options, so that a run's command line can be checked as it is (their form, "
+                    "options files and the solvers' options are checked; monitors and viewers are the run's)")
       ->allow_extra_args(false);
 
   double phi_deg = 36.5;
@@ -244,7 +244,7 @@ int main(int argc, char** argv) {
     int status = 0;
     try {
       const auto c = granflow::load_case(case_file, overrides);
-      granflow::check_solver_methods(c);
+      granflow::check_solver_options(c);
       // What the case file alone cannot tell (the mesh's layout on these ranks, initial shapes that
       // miss every cell's samples) is found where a run finds it: in laying out the initial state.
       const auto laid_out = granflow::check_initial_state(PETSC_COMM_WORLD, c);

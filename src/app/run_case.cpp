@@ -22,18 +22,26 @@
 
 namespace granflow {
 
-void check_solver_methods(const CaseConfig& c) {
+void check_solver_options(const CaseConfig& c) {
   const std::pair<const char*, const LinearSolverSettings*> solvers[] = {
       {"momentum", &c.flow.momentum_solver}, {"pressure", &c.flow.pressure_solver}, {"coupled", &c.flow.coupled_solver}};
   for (const auto& [name, settings] : solvers)
     if (auto problem = unknown_method(*settings); !problem.empty())
       throw CaseError(fmt::format("{}: solver.{}.{}", c.source.string(), name, problem));
+  // The solvers the run makes, as it makes them, under PETSc's options.
+  const bool coupled = c.flow.numerics.pressure_coupling == PressureCoupling::coupled;
+  const std::pair<const char*, const LinearSolverSettings*> made[] = {
+      {"momentum_x", &c.flow.momentum_solver}, {"momentum_y", &c.flow.momentum_solver},
+      {"pressure", &c.flow.pressure_solver}, {"coupled", coupled ? &c.flow.coupled_solver : nullptr}};
+  for (const auto& [prefix, settings] : made)
+    if (settings)
+      if (auto problem = petsc_options_problem(prefix, *settings); !problem.empty()) throw CaseError(problem);
 }
 
 int run_case(const std::string& case_file, const std::vector<std::string>& overrides, std::string out_dir,
              bool restart, bool overwrite) {
   CaseConfig config = load_case(case_file, overrides);
-  check_solver_methods(config);
+  check_solver_options(config);
   if (out_dir.empty()) out_dir = (std::filesystem::path("out") / std::filesystem::path(case_file).stem()).string();
   int rank;
   MPI_Comm_rank(PETSC_COMM_WORLD, &rank);

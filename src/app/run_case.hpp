@@ -7,8 +7,9 @@
 
 namespace granflow {
 
-// The solvers' method names, checked by PETSc itself (which must be initialised); throws CaseError.
-void check_solver_methods(const CaseConfig& c);
+// The solvers' method names and PETSc's options for the solvers the run makes, checked by PETSc itself
+// (which must be initialised); throws CaseError.
+void check_solver_options(const CaseConfig& c);
 
 // Runs the case into out_dir (out/<case name> if empty): refuses a directory that holds an earlier run
 // (unless restart or overwrite), holds the directory alone while it runs, continues from its

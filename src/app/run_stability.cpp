@@ -50,7 +50,7 @@ void write_table(const std::filesystem::path& path, const StrengthReductionResul
 int run_stability(const std::string& case_file, const std::vector<std::string>& overrides, std::string out_dir,
                   bool overwrite, const StrengthReductionSettings& settings) {
   const CaseConfig config = load_case(case_file, overrides);
-  check_solver_methods(config);
+  check_solver_options(config);
   // A case with nothing to reduce, and the first trial's simulation, made and dropped before the
   // directory is touched: it checks what the case file alone cannot, and PETSc, which refuses an
   // option it does not know by ending the process, reads the solvers' options there (as a run's does).

@@ -6,7 +6,9 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <cctype>
 #include <set>
+#include <sstream>
 #include <stdexcept>
 
 #include "io/case_error.hpp"
@@ -40,7 +42,81 @@ std::string petsc_error_text(PetscErrorCode error) {
   PetscErrorMessage(error, &text, nullptr);
   return text ? fmt::format("{}, PETSc error {}", text, int(error)) : fmt::format("PETSc error {}", int(error));
 }
+
+// Where a tolerance of `ksp`, as PETSc's options may have set it, is outside the case file's range
+// ("" if none): PETSc takes any tolerance its options give (-PREFIX_ksp_rtol 2 stops every solve before
+// its first iteration, a negative -PREFIX_ksp_max_it at once), so the case file's ranges hold for them too.
+std::string tolerance_problem(KSP ksp, const std::string& prefix) {
+  PetscReal rtol, atol, divtol;
+  PetscInt max_it;
+  KSPGetTolerances(ksp, &rtol, &atol, &divtol, &max_it);
+  const std::string table = solver_table_name(prefix);
+  auto outside = [&](const char* key, const char* option, double value, const char* range) {
+    return fmt::format("linear solver '{}': {} = {} (solver.{}.{}, or PETSc's -{}_ksp_{}) must be {}", prefix, key,
+                       value, table, key, prefix, option, range);
+  };
+  if (!(rtol >= 0 && rtol <= 1)) return outside("rtol", "rtol", rtol, "within [0, 1]");
+  if (!(atol >= 0 && std::isfinite(atol))) return outside("atol", "atol", atol, "zero or positive");
+  if (max_it < 1) return outside("max_iterations", "max_it", double(max_it), "at least 1");
+  if (!(divtol >= 1))
+    return fmt::format("linear solver '{}': PETSc's -{}_ksp_divtol = {} must be at least 1 (a solve whose residual "
+                       "grows that many times is taken for diverged)", prefix, prefix, divtol);
+  return {};
+}
 }  // namespace
+
+namespace {
+// A copy of PETSc's options without those that open a file or print (-..._monitor..., -..._view...):
+// checking the options must not write, or empty, what the run would write. A name starts with '-' and a
+// letter; a value may start with '-' and a digit (-5).
+PetscOptions options_without_viewers() {
+  char* all = nullptr;
+  PetscOptionsGetAll(nullptr, &all);
+  std::istringstream words(all ? all : "");
+  PetscFree(all);
+  std::string kept, word;
+  bool keep = true;
+  while (words >> word) {
+    if (word.size() > 1 && word[0] == '-' && std::isalpha(static_cast<unsigned char>(word[1])))
+      keep = word.find("_monitor") == std::string::npos && word.find("_view") == std::string::npos &&
+             word.rfind("-monitor", 0) != 0 && word.rfind("-view", 0) != 0;
+    if (keep) kept += word + " ";
+  }
+  PetscOptions options;
+  PetscOptionsCreate(&options);
+  PetscOptionsInsertString(options, kept.c_str());
+  return options;
+}
+}  // namespace
+
+std::string petsc_options_problem(const std::string& prefix, const LinearSolverSettings& s) {
+  PetscOptions options = options_without_viewers();
+  KSP ksp;
+  PC pc;
+  KSPCreate(PETSC_COMM_SELF, &ksp);
+  PetscObjectSetOptions(reinterpret_cast<PetscObject>(ksp), options);
+  KSPSetOptionsPrefix(ksp, (prefix + "_").c_str());
+  KSPSetType(ksp, s.ksp_type.c_str());
+  KSPGetPC(ksp, &pc);
+  PetscObjectSetOptions(reinterpret_cast<PetscObject>(pc), options);
+  PCSetType(pc, s.pc_type.c_str());
+  KSPSetTolerances(ksp, s.rtol, s.atol, PETSC_DEFAULT, s.max_iterations);
+  PetscPushErrorHandler(PetscReturnErrorHandler, nullptr);  // what PETSc refuses is told in one line, below
+  const PetscErrorCode error = KSPSetFromOptions(ksp);
+  PetscPopErrorHandler();
+  std::string problem;
+  if (error) {
+    char* specific = nullptr;
+    PetscErrorMessage(error, nullptr, &specific);
+    problem = fmt::format("linear solver '{}': PETSc refuses its options: {}", prefix,
+                          specific && *specific ? std::string(specific) : petsc_error_text(error));
+  } else {
+    problem = tolerance_problem(ksp, prefix);
+  }
+  KSPDestroy(&ksp);
+  PetscOptionsDestroy(&options);
+  return problem;
+}
 
 std::string unknown_method(const LinearSolverSettings& s) {
   KSP ksp;
@@ -97,7 +173,10 @@ LinearSolver::LinearSolver(MPI_Comm comm, const std::string& prefix, const Linea
     set_default("P_max", "4");
   }
   PetscCallAbort(comm, KSPSetFromOptions(ksp_));
-  check_tolerances(prefix);
+  if (auto problem = tolerance_problem(ksp_, prefix); !problem.empty()) {
+    KSPDestroy(&ksp_);  // the destructor does not run for a constructor that throws
+    throw CaseError(problem);
+  }
   // A direct solve (preonly) takes no initial guess; iterative ones start from the last solution.
   KSPType type;
   KSPGetType(ksp_, &type);
@@ -128,25 +207,6 @@ void LinearSolver::warn_if_inexact(MPI_Comm comm, const std::string& prefix) con
                prefix, pc_type, solver_table_name(prefix));
 }
 
-// PETSc takes any tolerance its options give (-PREFIX_ksp_rtol 2 stops every solve before its first
-// iteration, a negative -PREFIX_ksp_max_it at once); the case file's ranges hold for them too.
-void LinearSolver::check_tolerances(const std::string& prefix) const {
-  PetscReal rtol, atol, divtol;
-  PetscInt max_it;
-  KSPGetTolerances(ksp_, &rtol, &atol, &divtol, &max_it);
-  const std::string table = solver_table_name(prefix);
-  auto refuse = [&](const char* key, const char* option, double value, const char* range) {
-    throw CaseError(fmt::format("linear solver '{}': {} = {} (solver.{}.{}, or PETSc's -{}_ksp_{}) must be {}", prefix,
-                                key, value, table, key, prefix, option, range));
-  };
-  if (!(rtol >= 0 && rtol <= 1)) refuse("rtol", "rtol", rtol, "within [0, 1]");
-  if (!(atol >= 0 && std::isfinite(atol))) refuse("atol", "atol", atol, "zero or positive");
-  if (max_it < 1) refuse("max_iterations", "max_it", double(max_it), "at least 1");
-  if (!(divtol >= 1)) {
-    throw CaseError(fmt::format("linear solver '{}': PETSc's -{}_ksp_divtol = {} must be at least 1 (a solve whose "
-                                "residual grows that many times is taken for diverged)", prefix, prefix, divtol));
-  }
-}
 
 LinearSolver::~LinearSolver() {
   // Quietly: after a failed solve a library's state may be left half made (hypre's vectors), and

@@ -23,6 +23,12 @@ struct LinearSolverSettings {
 // pc_type is found before a run starts, not as a PETSc error trace inside it. Needs PETSc initialised.
 std::string unknown_method(const LinearSolverSettings& settings);
 
+// What in PETSc's options (--petsc, PETSC_OPTIONS, options files) would stop the run's solver `prefix`
+// from being made with `settings` ("" if nothing): an option PETSc refuses (an unknown
+// -PREFIX_pc_type), or a tolerance outside the case file's range. So `granflow check` finds what
+// `granflow run` refuses before it starts. Needs PETSc initialised and the methods known.
+std::string petsc_options_problem(const std::string& prefix, const LinearSolverSettings& settings);
+
 // Whether granflow itself set the PETSc option `name` (without its '-') as a solver's default:
 // the user's --petsc may make another preconditioner read none of them, which is no mistake.
 bool is_default_petsc_option(const std::string& name);
@@ -59,8 +65,6 @@ class LinearSolver {
   void continue_count(long solves_at_limit_before) { solves_at_limit_ = solves_at_limit_before; }
 
  private:
-  // Throws CaseError where a tolerance, as PETSc's options may have set it, is outside the case file's range.
-  void check_tolerances(const std::string& prefix) const;
   // Warns (once per solver, rank 0) where preonly applies a preconditioner that does not factorise.
   void warn_if_inexact(MPI_Comm comm, const std::string& prefix) const;
   KSP ksp_ = nullptr;
