@@ -9,8 +9,9 @@ points from the computed failure line, and the change of the soil volume (with w
 domain) and the energy budget (kinetic plus dissipated energy against the potential energy released)
 from history.csv. A run with no output after its start, or of another block than the case's (by its
 initial soil volume), is refused. A run without failure lines (soil.displacement = false) is compared
-without them. Warned of on stderr: a last output before the case's time.end (a run stopped early), and
-soil that left the domain (its run-out and surface are then of what stayed).
+without them. Warned of on stderr: a last output before the case's time.end (a run stopped early), a
+pile still moving (a mean soil speed, from the kinetic energy, above 1e-3 m/s: the experiment's surface
+is the deposit at rest), and soil that left the domain (its run-out and surface are then of what stayed).
 """
 import argparse
 import glob
@@ -28,6 +29,8 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 REFDATA = os.path.join(HERE, "..", "validation", "refdata")
 EXPERIMENT_RUNOUT = 0.442
 BLOCK_AREA = 0.2 * 0.1  # m^2 per metre of depth: the block of cases/bui2008_experiment.toml
+SOIL_DENSITY = 2650.0  # kg/m^3, the case's, where the run's record does not give it
+REST_SPEED = 1e-3  # m/s: below it the pile is at rest (the issue's measure, on the largest speed)
 
 
 def last_output(run_dir):
@@ -49,12 +52,12 @@ def last_output(run_dir):
                      "(not the output directory of a run of bui2008_experiment?)")
 
 
-def case_end_time(run_dir):
-    """time.end of the case as the run took it (granflow_case.toml), or None."""
+def case_value(run_dir, table, key):
+    """A number of the case as the run took it (granflow_case.toml), or None."""
     path = os.path.join(run_dir, "granflow_case.toml")
     try:
         with open(path, "rb") as f:
-            return float(tomllib.load(f)["time"]["end"])
+            return float(tomllib.load(f)[table][key])
     except (OSError, KeyError, TypeError, ValueError, tomllib.TOMLDecodeError):
         return None
 
@@ -98,6 +101,9 @@ def metrics(run_dir):
         mean_dist = float(np.mean(d))
     released = history["potential_energy"][0] - history["potential_energy"][-1]
     accounted = history["kinetic_energy"][-1] + history["dissipated_energy"][-1]
+    # The speed that would carry the kinetic energy in the soil's mass (the air's share is negligible).
+    density = case_value(run_dir, "soil", "density") or SOIL_DENSITY
+    mean_speed = np.sqrt(2 * max(history["kinetic_energy"][-1], 0.0) / (density * history["soil_volume"][-1]))
     return {
         "time": time,
         "runout_contour_m": float(toe_contour),
@@ -107,6 +113,7 @@ def metrics(run_dir):
         "runout_error_one_cell": float(toe_cell / EXPERIMENT_RUNOUT - 1),
         "surface_rms_m": rms,
         "failure_line_mean_distance_m": mean_dist,
+        "mean_soil_speed_m_s": float(mean_speed),
         # what the domain holds and what left it, against the first step's
         "soil_volume_change": float((history["soil_volume"][-1] + history["soil_outflow"][-1]) / history["soil_volume"][0] - 1),
         # the share of the soil that left through the open sides
@@ -124,16 +131,20 @@ def main():
     a = ap.parse_args()
     m, (x, h, surf, fail, exp_s, exp_f) = metrics(a.run_dir)
     for k, v in m.items():
-        if k in ("soil_volume_change", "soil_outflow_fraction"):
+        if k in ("soil_volume_change", "soil_outflow_fraction", "mean_soil_speed_m_s"):
             print(f"{k} = {v:.3g}")
         elif k.endswith("_m") and k.startswith(("surface_rms", "failure_line")):  # to 0.01 mm, as the docs quote them
             print(f"{k} = {v:.5f}")
         else:
             print(f"{k} = {v:.4f}" if isinstance(v, float) else f"{k} = {v}")
-    end = case_end_time(a.run_dir)
+    end = case_value(a.run_dir, "time", "end")
     if end is not None and m["time"] < end * (1 - 1e-9):
         print(f"warning: the last output is at t = {m['time']:.6g} s, before the case's time.end = {end:g} s: "
               "the run stopped early, and this is not its final pile", file=sys.stderr)
+    if m["mean_soil_speed_m_s"] > REST_SPEED:  # the experiment's surface is its deposit at rest
+        print(f"warning: the pile still moves at t = {m['time']:.6g} s (a mean speed of "
+              f"{m['mean_soil_speed_m_s']:.3g} m/s over the soil, from its kinetic energy): the experiment's surface "
+              "is its deposit at rest", file=sys.stderr)
     if m["soil_outflow_fraction"] > 1e-10:
         print(f"warning: {100 * m['soil_outflow_fraction']:.3g} % of the soil left the domain; the run-out and the "
               "surface are of the soil that stayed (a longer domain is needed)", file=sys.stderr)

@@ -268,7 +268,7 @@ void FlowSolver::fill_coupled_rows() {
       fill_rows([](int, int) { return true; },
                 [&](int i, int j, int unknown, int n, const MatStencil* cols, const double* vals, double r) {
                   const MatStencil row{0, j, i, unknown};
-                  MatSetValuesStencil(coupled_matrix_, 1, &row, n, cols, vals, INSERT_VALUES);
+                  PetscCallAbort(PETSC_COMM_SELF, MatSetValuesStencil(coupled_matrix_, 1, &row, n, cols, vals, INSERT_VALUES));
                   rhs[j][i][unknown] = r;
                 });
       DMDAVecRestoreArrayDOF(coupled_dm_, coupled_rhs_, &rhs);

@@ -517,19 +517,19 @@ StepReport FlowSolver::step(double dt) {
       report.pressure_iterations += solve_coupled(outer > 0 && num.reuse_first_factorisation);
       ++report.pressure_solves;
     } else {
-    const bool projection = num.pressure_coupling == PressureCoupling::projection;
-    if (num.momentum_predictor || projection) report.momentum_iterations += solve_momentum();
-    compute_hbya();
-    // The projection's pressure operator has coefficients dt / rho_f, which the outer iterations do
-    // not change: one assembly and one preconditioner set-up per step. PISO's hold 1 / a_P.
-    if (!projection || outer == 0) assemble_pressure_matrix();
-    // The projection is exact in one solve; PISO repeats the correction with updated neighbours.
-    const int correctors = projection ? 1 : num.pressure_correctors;
-    for (int corr = 0; corr < correctors; ++corr) {
-      if (corr > 0) compute_hbya();
-      report.pressure_iterations += solve_pressure();
-      ++report.pressure_solves;
-    }
+      const bool projection = num.pressure_coupling == PressureCoupling::projection;
+      if (num.momentum_predictor || projection) report.momentum_iterations += solve_momentum();
+      compute_hbya();
+      // The projection's pressure operator has coefficients dt / rho_f, which the outer iterations do
+      // not change: one assembly and one preconditioner set-up per step. PISO's hold 1 / a_P.
+      if (!projection || outer == 0) assemble_pressure_matrix();
+      // The projection is exact in one solve; PISO repeats the correction with updated neighbours.
+      const int correctors = projection ? 1 : num.pressure_correctors;
+      for (int corr = 0; corr < correctors; ++corr) {
+        if (corr > 0) compute_hbya();
+        report.pressure_iterations += solve_pressure();
+        ++report.pressure_solves;
+      }
     }
     ++report.outer_iterations;
     // Convergence of the outer loop: largest velocity change relative to the largest velocity.

@@ -2,8 +2,8 @@
 // Pressure-based solver for the incompressible Navier-Stokes equations of a mixture with cell-wise
 // density and viscosity ([VoF] Eqs. 17-18, App. B; [YS] Eqs. 2-3), on collocated cells:
 //   - backward Euler in time, implicit upwind convection with deferred correction to the chosen
-//     scheme, implicit viscous term div(mu grad v) with its transpose part lagged
-//     (momentum_equation.cpp);
+//     scheme, the viscous stress div(mu (grad v + grad v^T)) split as 2 mu grad(v_c) implicit on
+//     every face and the remainder lagged (momentum_equation.cpp);
 //   - outer iterations with the properties updated in each, as in [VoF] Alg. 1 (flow_solver.cpp);
 //     in each, velocity and pressure either in one coupled solve with Rhie-Chow face fluxes
 //     (coupled_step.cpp), or segregated: a momentum predictor and a projection or PISO pressure
@@ -34,8 +34,9 @@ struct StepReport {
 
 class FlowSolver {
  public:
-  // Called once per outer iteration, before momentum assembly: fill density() and viscosity() for the
-  // owned cells (ghosts are refreshed by the solver afterwards).
+  // Called in each outer iteration, before momentum assembly (twice in the first under the look-ahead
+  // viscosity, update_properties_ahead): fill density() and viscosity() for the owned cells (ghosts are
+  // refreshed by the solver afterwards).
   using PropertyUpdate = std::function<void(FlowSolver&)>;
 
   FlowSolver(const Grid& grid, const FlowSettings& settings);

@@ -161,7 +161,7 @@ int FlowSolver::solve_momentum() {
         if (!grid_.outside(i - 1, j)) { cols[n] = MatStencil{0, j, i - 1, 0}; vals[n++] = -a_west_[k]; }
         if (j + 1 < ny) { cols[n] = MatStencil{0, j + 1, i, 0}; vals[n++] = -a_north_[k]; }
         if (j - 1 >= 0) { cols[n] = MatStencil{0, j - 1, i, 0}; vals[n++] = -a_south_[k]; }
-        MatSetValuesStencil(A, 1, &row, n, cols, vals, INSERT_VALUES);
+        PetscCallAbort(PETSC_COMM_SELF, MatSetValuesStencil(A, 1, &row, n, cols, vals, INSERT_VALUES));
       }
     PetscCallAbort(grid_.comm(), MatAssemblyBegin(A, MAT_FINAL_ASSEMBLY));
     PetscCallAbort(grid_.comm(), MatAssemblyEnd(A, MAT_FINAL_ASSEMBLY));

@@ -60,7 +60,7 @@ void FlowSolver::assemble_pressure_matrix() {
         vals[n++] = -K;
       }
       vals[0] = diag;
-      MatSetValuesStencil(pressure_matrix_, 1, &row, n, cols, vals, INSERT_VALUES);
+      PetscCallAbort(PETSC_COMM_SELF, MatSetValuesStencil(pressure_matrix_, 1, &row, n, cols, vals, INSERT_VALUES));
     }
   PetscCallAbort(grid_.comm(), MatAssemblyBegin(pressure_matrix_, MAT_FINAL_ASSEMBLY));
   PetscCallAbort(grid_.comm(), MatAssemblyEnd(pressure_matrix_, MAT_FINAL_ASSEMBLY));

@@ -539,16 +539,19 @@ void SoilPhase::advect(FlowSolver& flow, double dt) {
   // it covers them (once at most, in practice).
   // Far more sweeps than a step can need means velocities far beyond the step's (a fixed step over a
   // flow that has blown up); the Courant number is the same on every rank, so all stop together.
+  // Checked on the widened regions too, where faster air may lie, so the region stays within that reach.
   constexpr double max_substeps = 1000;
-  const double co = interface_courant(flow, dt, 1);
-  if (!(co / settings_.interface_courant <= max_substeps))
-    throw DivergenceError(fmt::format("the soil fraction would need {:.3g} sweeps in a step of {:.3g} s: the flow has "
-                                      "diverged (lower time.dt, or let time.adaptive size the step)",
-                                      co / settings_.interface_courant, dt));
-  int substeps = substeps_for(co);
+  auto sweeps_within_limit = [&](double co) {
+    if (!(co / settings_.interface_courant <= max_substeps))
+      throw DivergenceError(fmt::format("the soil fraction would need {:.3g} sweeps in a step of {:.3g} s: the flow "
+                                        "has diverged (lower time.dt, or let time.adaptive size the step)",
+                                        co / settings_.interface_courant, dt));
+    return substeps_for(co);
+  };
+  int substeps = sweeps_within_limit(interface_courant(flow, dt, 1));
   for (int reach = 1; substeps > reach;) {
     reach = substeps;
-    substeps = std::max(substeps, substeps_for(interface_courant(flow, dt, reach)));
+    substeps = std::max(substeps, sweeps_within_limit(interface_courant(flow, dt, reach)));
   }
   const double h = dt / substeps;
   const auto& b = grid_.owned();
