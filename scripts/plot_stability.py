@@ -3,7 +3,8 @@
 in the trial at the smallest factor that failed, as it was when the trial saw it fail.
 
 Usage: plot_stability.py OUT [--png FILE]
-Prints the bracket (the largest factor that stood, the smallest that failed) from OUT/stability.csv;
+Prints the bracket (the largest factor that stood, the smallest that failed) from OUT/stability.csv, or
+the smallest factor tried where the soil failed in every trial;
 with --png draws the displacement magnitude over the soil (cells with c >= 0.5) of that trial's last
 fields file, with the soil's surface (c = 0.5) and, dashed, the contacts of the soil materials (where
 a material's share of the soil is a half). The trials must have written fields
@@ -36,11 +37,15 @@ def main():
         raise InputError(f"{path}: not a table of trials (factor, fails, ..., directory)")
     failed = [t for t in trials if t[1]]
     stood = [t for t in trials if not t[1]]
-    if not failed or not stood:
-        raise InputError(f"{path}: the soil {'stands' if stood else 'fails'} in every trial: no bracket")
-    stands_at = max(t[0] for t in stood)
+    if not failed:
+        raise InputError(f"{path}: the soil stands in every trial: no failure to draw")
     fails_at, _, directory = min(failed)
-    print(f"stands at F = {stands_at:.4f}, fails at F = {fails_at:.4f}: factor of safety {0.5 * (stands_at + fails_at):.3f}")
+    if stood:
+        stands_at = max(t[0] for t in stood)
+        print(f"stands at F = {stands_at:.4f}, fails at F = {fails_at:.4f}: factor of safety "
+              f"{0.5 * (stands_at + fails_at):.3f}")
+    else:  # no bracket, but the mechanism of the smallest factor tried is still the one to see
+        print(f"fails at every factor tried, down to F = {fails_at:.4f}: factor of safety below it")
     if not a.png:
         return 0
     trial = os.path.join(a.out, directory)

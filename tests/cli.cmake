@@ -367,6 +367,22 @@ add_test(NAME scripts_compare_bui2008_other_case
          COMMAND ${GRANFLOW_EXPECT_STATUS} 1 /usr/bin/python3 ${CMAKE_SOURCE_DIR}/scripts/compare_bui2008.py ${GRANFLOW_BUI_FIXTURE}_other)
 set_tests_properties(scripts_compare_bui2008_other_case PROPERTIES LABELS cli
                      PASS_REGULAR_EXPRESSION "^error: [^\n]*history.csv: the run's initial volume is 0.0065, not the 0.02 of the bui2008_experiment block")
+# The stability plot's bracket from stability.csv: the factor of safety between the largest factor
+# that stood and the smallest that failed; where every trial failed, the smallest tried (its mechanism
+# is still the one to draw); where every trial stood, nothing to draw (status 1).
+set(GRANFLOW_STABILITY_FIXTURE ${CMAKE_CURRENT_BINARY_DIR}/stability_fixture)
+set(GRANFLOW_STABILITY_HEADER "factor,fails,diverged,largest_displacement_m,time_s,steps,unconverged_steps,wall_seconds,directory")
+file(WRITE ${GRANFLOW_STABILITY_FIXTURE}/bracket/stability.csv
+     "${GRANFLOW_STABILITY_HEADER}\n1,0,0,0.001,1,100,0,1,F_1\n2,1,0,0.2,0.5,50,0,1,F_2\n1.5,0,0,0.002,1,100,0,1,F_1.5\n1.75,1,0,0.1,0.6,60,0,1,F_1.75\n")
+file(WRITE ${GRANFLOW_STABILITY_FIXTURE}/fails/stability.csv
+     "${GRANFLOW_STABILITY_HEADER}\n1,1,0,0.2,0.5,50,0,1,F_1\n0.5,1,0,0.1,0.6,60,0,1,F_0.5\n")
+file(WRITE ${GRANFLOW_STABILITY_FIXTURE}/stands/stability.csv
+     "${GRANFLOW_STABILITY_HEADER}\n1,0,0,0.001,1,100,0,1,F_1\n")
+add_test(NAME scripts_plot_stability_bracket
+         COMMAND sh -c "for k in bracket fails stands; do /usr/bin/python3 \"$0\" \"$1/$k\" 2>&1; echo \"status $?\"; done"
+                 ${CMAKE_SOURCE_DIR}/scripts/plot_stability.py ${GRANFLOW_STABILITY_FIXTURE})
+set_tests_properties(scripts_plot_stability_bracket PROPERTIES LABELS cli
+                     PASS_REGULAR_EXPRESSION "^stands at F = 1[.]5000, fails at F = 1[.]7500: factor of safety 1[.]625\nstatus 0\nfails at every factor tried, down to F = 0[.]5000: factor of safety below it\nstatus 0\nerror: [^\n]*stands/stability.csv: the soil stands in every trial: no failure to draw\nstatus 1\n$")
 # The SPH-case drawing refuses a run of another block too, rather than label it as the paper's figure.
 add_test(NAME scripts_compare_bui2008_sph_other_case
          COMMAND ${GRANFLOW_EXPECT_STATUS} 1 /usr/bin/python3 ${CMAKE_SOURCE_DIR}/scripts/compare_bui2008_sph.py ${GRANFLOW_BUI_FIXTURE}_other --times 2)
