@@ -149,8 +149,10 @@ int main(int argc, char** argv) {
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    // CLI11's message (or the help, status 0); a command line it refuses is status 2, as a case is.
-    return app.exit(e, first ? std::cout : silent, first ? std::cerr : silent) == 0 ? 0 : 2;
+    // The help or the version (status 0) as CLI11 writes them; a command line it refuses is one error
+    // line, as other bad input, and status 2, as a case is.
+    if (e.get_exit_code() == 0) return app.exit(e, first ? std::cout : silent, first ? std::cerr : silent);
+    return refuse(fmt::format("{} (see granflow --help)", e.what()));
   }
   if ((run->count("--output") || stability->count("--output")) && out_dir.empty())
     return refuse("-o/--output: the output directory is empty");

@@ -269,6 +269,7 @@ interface::Shape read_shape(TableReader r, std::string* material = nullptr) {
     r.require_range("radius", c.radius, 1e-300, 1e300, "positive");
     out = c;
   } else {
+    r.known_elsewhere("points_file");  // read into `points` before (read_points_files)
     out = polygon_of(r.pairs("points", 3), r.key_path("points"));
   }
   r.finish();

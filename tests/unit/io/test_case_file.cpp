@@ -606,6 +606,10 @@ TEST(CaseFile, PolygonsMayCloseTheirOutlineButNotCrossIt) {
   EXPECT_NE(speck.find("far smaller than a cell"), std::string::npos) << speck;
   const std::string outside = error_of(two_phase, with_polygon("[[2,2],[3,2],[2,3]]"));
   EXPECT_NE(outside.find("covers no area of the domain"), std::string::npos) << outside;
+  // An unknown key lists the polygon's keys, points_file (read before the shape) among them.
+  const std::string unknown = error_of(two_phase, with_polygon("[[0,0],[0.2,0],[0,0.1]], colour = 1"));
+  EXPECT_NE(unknown.find("initial.soil[0].colour: unknown key (known keys here: material, points, points_file, shape)"),
+            std::string::npos) << unknown;
 }
 
 // A required key or table that is missing because it is misspelt is reported as the misspelling: the
