@@ -1,7 +1,9 @@
 #pragma once
 // The soil phase on the grid: its fraction c, carried by geometric VoF advection; the mixture
 // properties and the granular viscosity it gives the flow solver; the Eulerian displacement and
-// the Euler-Almansi strain ([VoF] Eqs. 13-16, 19-20).
+// the Euler-Almansi strain ([VoF] Eqs. 13-16, 19-20). Its state, checkpoint and ghosts are in
+// soil_phase.cpp, the properties it gives the flow in soil_properties.cpp, its transport in
+// soil_advection.cpp, and the strain and the history's measures in soil_diagnostics.cpp.
 #include <algorithm>
 #include <array>
 #include <deque>
