@@ -592,24 +592,23 @@ TEST(CaseFile, PolygonsMayCloseTheirOutlineButNotCrossIt) {
   };
   const CaseConfig closed = parse_case(two_phase, with_polygon("[[0,0],[0.2,0],[0.2,0.1],[0,0.1],[0,0]]"));
   EXPECT_EQ(std::get<interface::Polygon>(closed.soil->initial_soil[0]).vertices.size(), 4u);
-  const std::string bow_tie = error_of(two_phase, with_polygon("[[0,0],[0.2,0.1],[0.2,0],[0,0.1]]"));
-  EXPECT_NE(bow_tie.find("crosses itself"), std::string::npos) << bow_tie;
-  const std::string degenerate = error_of(two_phase, with_polygon("[[0,0],[0.2,0],[0.2,0],[0,0]]"));
-  EXPECT_NE(degenerate.find("3 distinct points"), std::string::npos) << degenerate;
-  // Points on one line enclose nothing: said so, not blamed on the domain.
-  const std::string line = error_of(two_phase, with_polygon("[[0,0],[0.1,0],[0.2,0]]"));
-  EXPECT_NE(line.find("initial.soil[0].points: the polygon encloses no area (its points lie on one line)"),
-            std::string::npos) << line;
-  // A triangle of a nanometre inside the domain: not outside it, but too small to count.
-  const std::string speck = error_of(two_phase, with_polygon("[[0.1,0.1],[0.100000001,0.1],[0.1,0.100000001]]"));
-  EXPECT_NE(speck.find("covers next to no area of the domain"), std::string::npos) << speck;
-  EXPECT_NE(speck.find("far smaller than a cell"), std::string::npos) << speck;
-  const std::string outside = error_of(two_phase, with_polygon("[[2,2],[3,2],[2,3]]"));
-  EXPECT_NE(outside.find("covers no area of the domain"), std::string::npos) << outside;
-  // An unknown key lists the polygon's keys, points_file (read before the shape) among them.
-  const std::string unknown = error_of(two_phase, with_polygon("[[0,0],[0.2,0],[0,0.1]], colour = 1"));
-  EXPECT_NE(unknown.find("initial.soil[0].colour: unknown key (known keys here: material, points, points_file, shape)"),
-            std::string::npos) << unknown;
+  // Each outline refused with its own message.
+  const std::pair<const char*, const char*> refused[] = {
+      {"[[0,0],[0.2,0.1],[0.2,0],[0,0.1]]", "crosses itself"},
+      {"[[0,0],[0.2,0],[0.2,0],[0,0]]", "3 distinct points"},
+      // points on one line enclose nothing: said so, not blamed on the domain
+      {"[[0,0],[0.1,0],[0.2,0]]", "initial.soil[0].points: the polygon encloses no area (its points lie on one line)"},
+      // a triangle of a nanometre inside the domain: not outside it, but too small to count
+      {"[[0.1,0.1],[0.100000001,0.1],[0.1,0.100000001]]",
+       "covers next to no area of the domain [0, 1] x [0, 1] (less than 1e-12 of it: a shape far smaller than a cell)"},
+      {"[[2,2],[3,2],[2,3]]", "covers no area of the domain [0, 1] x [0, 1]"},
+      // an unknown key lists the polygon's keys, points_file (read before the shape) among them
+      {"[[0,0],[0.2,0],[0,0.1]], colour = 1",
+       "initial.soil[0].colour: unknown key (known keys here: material, points, points_file, shape)"}};
+  for (const auto& [points, message] : refused) {
+    const std::string e = error_of(two_phase, with_polygon(points));
+    EXPECT_NE(e.find(message), std::string::npos) << points << ": " << e;
+  }
 }
 
 // A required key or table that is missing because it is misspelt is reported as the misspelling: the
