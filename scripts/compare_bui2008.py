@@ -10,8 +10,8 @@ domain) and the energy budget (kinetic plus dissipated energy against the potent
 from history.csv. A run with no output after its start, or of another block than the case's (by its
 initial soil volume), is refused. A run without failure lines (soil.displacement = false) is compared
 without them. Warned of on stderr: a last output before the case's time.end (a run stopped early), a
-pile still moving (a mean soil speed, from the kinetic energy, above 1e-3 m/s: the experiment's surface
-is the deposit at rest), and soil that left the domain (its run-out and surface are then of what stayed).
+pile that may still move (the kinetic energy in the soil's mass a root-mean-square speed above
+1e-3 m/s: the experiment's surface is the deposit at rest), and soil that left the domain (its run-out and surface are then of what stayed).
 """
 import argparse
 import glob
@@ -101,9 +101,10 @@ def metrics(run_dir):
         mean_dist = float(np.mean(d))
     released = history["potential_energy"][0] - history["potential_energy"][-1]
     accounted = history["kinetic_energy"][-1] + history["dissipated_energy"][-1]
-    # The speed that would carry the kinetic energy in the soil's mass (the air's share is negligible).
+    # The soil's root-mean-square speed were all the kinetic energy in its mass: a bound on it, since the
+    # air's share counts too (at rest most of what is left is the air's).
     density = case_value(run_dir, "soil", "density") or SOIL_DENSITY
-    mean_speed = np.sqrt(2 * max(history["kinetic_energy"][-1], 0.0) / (density * history["soil_volume"][-1]))
+    speed_bound = np.sqrt(2 * max(history["kinetic_energy"][-1], 0.0) / (density * history["soil_volume"][-1]))
     return {
         "time": time,
         "runout_contour_m": float(toe_contour),
@@ -113,7 +114,7 @@ def metrics(run_dir):
         "runout_error_one_cell": float(toe_cell / EXPERIMENT_RUNOUT - 1),
         "surface_rms_m": rms,
         "failure_line_mean_distance_m": mean_dist,
-        "mean_soil_speed_m_s": float(mean_speed),
+        "soil_speed_bound_m_s": float(speed_bound),
         # what the domain holds and what left it, against the first step's
         "soil_volume_change": float((history["soil_volume"][-1] + history["soil_outflow"][-1]) / history["soil_volume"][0] - 1),
         # the share of the soil that left through the open sides
@@ -131,7 +132,7 @@ def main():
     a = ap.parse_args()
     m, (x, h, surf, fail, exp_s, exp_f) = metrics(a.run_dir)
     for k, v in m.items():
-        if k in ("soil_volume_change", "soil_outflow_fraction", "mean_soil_speed_m_s"):
+        if k in ("soil_volume_change", "soil_outflow_fraction", "soil_speed_bound_m_s"):
             print(f"{k} = {v:.3g}")
         elif k.endswith("_m") and k.startswith(("surface_rms", "failure_line")):  # to 0.01 mm, as the docs quote them
             print(f"{k} = {v:.5f}")
@@ -141,10 +142,10 @@ def main():
     if end is not None and m["time"] < end * (1 - 1e-9):
         print(f"warning: the last output is at t = {m['time']:.6g} s, before the case's time.end = {end:g} s: "
               "the run stopped early, and this is not its final pile", file=sys.stderr)
-    if m["mean_soil_speed_m_s"] > REST_SPEED:  # the experiment's surface is its deposit at rest
-        print(f"warning: the pile still moves at t = {m['time']:.6g} s (a mean speed of "
-              f"{m['mean_soil_speed_m_s']:.3g} m/s over the soil, from its kinetic energy): the experiment's surface "
-              "is its deposit at rest", file=sys.stderr)
+    if m["soil_speed_bound_m_s"] > REST_SPEED:  # the experiment's surface is its deposit at rest
+        print(f"warning: the pile may still move at t = {m['time']:.6g} s (the kinetic energy in the soil's mass "
+              f"is a root-mean-square speed of {m['soil_speed_bound_m_s']:.3g} m/s): the experiment's surface is "
+              "its deposit at rest", file=sys.stderr)
     if m["soil_outflow_fraction"] > 1e-10:
         print(f"warning: {100 * m['soil_outflow_fraction']:.3g} % of the soil left the domain; the run-out and the "
               "surface are of the soil that stayed (a longer domain is needed)", file=sys.stderr)
