@@ -10,9 +10,9 @@ set_tests_properties(parallel_tests_2_ranks PROPERTIES
   ENVIRONMENT "OMPI_ALLOW_RUN_AS_ROOT=1;OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1;OMPI_MCA_rmaps_base_oversubscribe=1")
 
 # A soil case on 2 ranks writing every output (fields, lines, history): the gathered fields exist on
-# the root only, and the other rank must not touch them.
+# the root only, and the other rank must not touch them. The summary gives the ranks' peak memory.
 add_test(NAME cli_run_soil_case_2_ranks_with_output
-         COMMAND sh -c "d=$2; $0 -np 2 --oversubscribe \"$1\" run \"$3\" -o \"$d\" --overwrite --set 'mesh.cells=[60,20]' --set time.end=0.02 --set output.interval=0.01 --set output.progress_seconds=0 || exit 1; test $(grep -c DataSet \"$d/fields.pvd\") -eq 3 && test $(wc -l < \"$d/history.csv\") -gt 2 && test -s \"$d/fields_00002.vtr\" && test -s \"$d/surface_00002.csv\" && test -s \"$d/checkpoint/fields.bin\""
+         COMMAND sh -c "d=$2; $0 -np 2 --oversubscribe \"$1\" run \"$3\" -o \"$d\" --overwrite --set 'mesh.cells=[60,20]' --set time.end=0.02 --set output.interval=0.01 --set output.progress_seconds=0 > \"$d.log\" 2>&1 || { cat \"$d.log\"; exit 1; }; test $(grep -c DataSet \"$d/fields.pvd\") -eq 3 && test $(wc -l < \"$d/history.csv\") -gt 2 && test -s \"$d/fields_00002.vtr\" && test -s \"$d/surface_00002.csv\" && test -s \"$d/checkpoint/fields.bin\" && grep -q '^peak memory [1-9][0-9]* MB .summed over 2 ranks.$' \"$d.log\""
                  ${MPIRUN} $<TARGET_FILE:granflow> ${CMAKE_CURRENT_BINARY_DIR}/soil_2_ranks ${CMAKE_SOURCE_DIR}/cases/bui2008_experiment.toml)
 set_tests_properties(cli_run_soil_case_2_ranks_with_output PROPERTIES
   LABELS parallel TIMEOUT 300

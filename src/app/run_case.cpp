@@ -10,6 +10,7 @@
 #include <utility>
 #include <vector>
 
+#include "app/peak_memory.hpp"
 #include "io/case_advice.hpp"
 #include "io/case_error.hpp"
 #include "io/checkpoint.hpp"
@@ -138,6 +139,7 @@ int run_case(const std::string& case_file, const std::vector<std::string>& overr
     throw;
   }
   if (!under_way && rank == 0) discard_set_aside_run(out_dir);  // a run of no step (already at time.end)
+  const double peak_bytes = peak_resident_bytes_summed(PETSC_COMM_WORLD);
   if (rank == 0) {
     fmt::print("done: t = {:.6g} s in {} steps ({} taken again with a smaller step), {:.2f} s wall ({:.3g} cell-steps/s){}\n",
                s.time, s.steps, s.retried_steps, s.wall_seconds, double(sim.grid().cell_count()) * s.steps / s.wall_seconds,
@@ -151,6 +153,10 @@ int run_case(const std::string& case_file, const std::vector<std::string>& overr
                s.outer_iterations, s.steps_outer_unconverged, s.steps, s.momentum_iterations,
                coupled ? "coupled (velocity and pressure)" : "pressure", s.pressure_solves,
                s.pressure_solves ? double(s.pressure_iterations) / s.pressure_solves : 0.0);
+    int ranks = 1;
+    MPI_Comm_size(PETSC_COMM_WORLD, &ranks);
+    fmt::print("peak memory {:.0f} MB ({})\n", peak_bytes / 1e6,
+               ranks == 1 ? std::string("one rank") : fmt::format("summed over {} ranks", ranks));
     if (s.solves_at_iteration_limit > 0)
       fmt::print("warning: {} linear solves stopped at their solver's max_iterations before its rtol; the face fluxes "
                  "carry their residual (check the soil volume in history.csv)\n",

@@ -35,10 +35,7 @@ FlowSolver::FlowSolver(const Grid& grid, const FlowSettings& settings) : grid_(g
     face_[a] = make_field(grid);
     face_old_[a] = make_field(grid);
     face_force_[a] = make_field(grid);
-    hbya_[a] = make_field(grid);
     rau_[a] = make_field(grid);
-    time_weight_[a] = make_field(grid);
-    time_weight_[a]->set(0.0);  // stays zero under the projection coupling
     vel_[a]->set(0.0);
     face_[a]->set(0.0);
     face_force_[a]->set(0.0);
@@ -67,19 +64,27 @@ FlowSolver::FlowSolver(const Grid& grid, const FlowSettings& settings) : grid_(g
 
   const auto& box = grid.owned();
   const size_t n = size_t(box.xm) * box.ym;
-  for (auto* v : {&a_east_, &a_west_, &a_north_, &a_south_, &a_centre_[0], &a_centre_[1], &source_[0], &source_[1],
-                  &divergence_before_})
+  for (auto* v : {&a_east_, &a_west_, &a_north_, &a_south_, &a_centre_[0], &a_centre_[1], &source_[0], &source_[1]})
     v->assign(n, 0.0);
 
   MPI_Comm comm = grid.comm();
-  for (int a = 0; a < 2; ++a) {
-    PetscCallAbort(comm, DMCreateMatrix(grid.matrix_dm(), &momentum_matrix_[a]));
-    momentum_solver_[a] = std::make_unique<LinearSolver>(comm, a == 0 ? "momentum_x" : "momentum_y",
-                                                          settings.momentum_solver);
+  // The segregated steps' matrices, solvers and fields; the coupled solve makes its own system
+  // (coupled_step.cpp), so it is spared their memory.
+  const bool segregated = settings.numerics.pressure_coupling != PressureCoupling::coupled;
+  if (segregated) {
+    for (int a = 0; a < 2; ++a) {
+      hbya_[a] = make_field(grid);
+      time_weight_[a] = make_field(grid);
+      time_weight_[a]->set(0.0);  // stays zero under the projection coupling
+      PetscCallAbort(comm, DMCreateMatrix(grid.matrix_dm(), &momentum_matrix_[a]));
+      momentum_solver_[a] = std::make_unique<LinearSolver>(comm, a == 0 ? "momentum_x" : "momentum_y",
+                                                            settings.momentum_solver);
+    }
+    divergence_before_.assign(n, 0.0);
+    PetscCallAbort(comm, DMCreateMatrix(grid.matrix_dm(), &pressure_matrix_));
+    pressure_solver_ = std::make_unique<LinearSolver>(comm, "pressure", settings.pressure_solver);
+    PetscCallAbort(comm, DMCreateGlobalVector(grid.field_dm(), &rhs_));
   }
-  PetscCallAbort(comm, DMCreateMatrix(grid.matrix_dm(), &pressure_matrix_));
-  pressure_solver_ = std::make_unique<LinearSolver>(comm, "pressure", settings.pressure_solver);
-  PetscCallAbort(comm, DMCreateGlobalVector(grid.field_dm(), &rhs_));
 
   for (Side s : all_sides) {
     if (boundary(settings.boundaries, s).kind == BoundaryKind::atmosphere) has_pressure_boundary_ = true;
@@ -87,11 +92,11 @@ FlowSolver::FlowSolver(const Grid& grid, const FlowSettings& settings) : grid_(g
   }
   // The hoop stress 2 mu u_r / r^2 is on the radial component's diagonal alone.
   if (grid.axisymmetric()) shared_momentum_matrix_ = false;
-  if (settings.numerics.pressure_coupling == PressureCoupling::coupled) create_coupled_system();
+  if (!segregated) create_coupled_system();
   pin_j_ = grid.ny() - 1;  // the top-left cell, and every cell open, until set_blocked says otherwise
   open_cells_ = grid.cell_count();
   update_boundary_heads();
-  if (!has_pressure_boundary_) {
+  if (segregated && !has_pressure_boundary_) {
     PetscCallAbort(comm, MatNullSpaceCreate(comm, PETSC_TRUE, 0, nullptr, &pressure_null_space_));
     PetscCallAbort(comm, MatSetNullSpace(pressure_matrix_, pressure_null_space_));
   }

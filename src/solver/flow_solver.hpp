@@ -203,7 +203,8 @@ class FlowSolver {
   std::unique_ptr<Field> body_force_[2];
   std::unique_ptr<Field> start_density_, mass_flux_[2];  // enable_mass_transport
   FieldSnapshot saved_;  // save_state()
-  std::unique_ptr<Field> hbya_[2], rau_[2], time_weight_[2];
+  std::unique_ptr<Field> rau_[2];
+  std::unique_ptr<Field> hbya_[2], time_weight_[2];  // segregated steps only
 
   // Momentum coefficients of the owned cells (row-major over the owned box). Off-diagonal
   // coefficients are stored positive (matrix entry = -a_nb) and shared by both components.
@@ -211,6 +212,7 @@ class FlowSolver {
   std::vector<double> a_centre_[2], source_[2];
   std::vector<double> divergence_before_;  // div of the velocity entering the projection, per owned cell
 
+  // The segregated steps' systems (none under the coupled solve).
   Mat momentum_matrix_[2] = {nullptr, nullptr};
   Mat pressure_matrix_ = nullptr;
   MatNullSpace pressure_null_space_ = nullptr;
