@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Whole-run benchmarks of granflow on 1 and 2 MPI ranks (wall seconds, steps, iterations).
+# Whole-run benchmarks of granflow on 1 and 2 MPI ranks (wall seconds, steps, peak memory, iterations).
 # Usage: bench/run_benchmarks.sh [cavity|bui2008|dam_break|lube2004|all] [repetitions]
 # Prints one Markdown table row per run; docs/benchmarks.md holds the figures and this command.
 set -euo pipefail
@@ -28,15 +28,16 @@ run() {  # name ranks case overrides...
       exit 1
     fi
     end=$(date +%s.%N)
-    local steps its
+    local steps its peak
     steps=$(grep -oP 'in \K[0-9]+(?= steps)' "$log")
+    peak=$(grep -oP '^peak memory \K[0-9]+(?= MB)' "$log")
     its=$(grep -oP 'outer iterations \K.*(?= iterations each)' "$log" | sed -E 's/ \([0-9]+ of [0-9]+ steps[^)]*\)//; s/momentum iterations //; s/(pressure|coupled \(velocity and pressure\)) solves //; s/ \(/, /')
-    printf "| %s | %d | %.1f | %s | %s |\n" "$name" "$ranks" "$(awk -v a="$start" -v b="$end" 'BEGIN { print b - a }')" "$steps" "$its"
+    printf "| %s | %d | %.1f | %s | %s | %s |\n" "$name" "$ranks" "$(awk -v a="$start" -v b="$end" 'BEGIN { print b - a }')" "$steps" "$peak" "$its"
     rm -rf "$out"
   done
 }
-echo "| run | ranks | wall s | steps | outer its, momentum its, pressure (or coupled) solves, its/solve |"
-echo "|---|---|---|---|---|"
+echo "| run | ranks | wall s | steps | peak MB (all ranks) | outer its, momentum its, pressure (or coupled) solves, its/solve |"
+echo "|---|---|---|---|---|---|"
 if [[ $which == cavity || $which == all ]]; then
   for n in 1 2; do run "cavity Re 1000, 256 x 256, to steady state" $n cases/lid_driven_cavity_re1000.toml "--set" "mesh.cells=[256,256]" "--set" "time.end=400"; done
 fi

@@ -5,6 +5,12 @@
 # below in their FAIL_REGULAR_EXPRESSION, so the status is checked too.
 expected=$1
 shift
+case $expected in
+  '' | *[!0-9]*)
+    echo "unexpected exit status: STATUS '$expected' is not a number"
+    exit 1
+    ;;
+esac
 "$@" 2>&1
 status=$?
 if [ "$status" -ne "$expected" ]; then

@@ -177,10 +177,6 @@ TEST(RankConsistency, LayeredCollapseSplitAcrossItsLayersOneAndTwoRanksAgree) {
                           1e-9);
 }
 
-// A water drop falling through the ranks' boundary under the coupled solve and the conservative
-// momentum transport: the mesh is taller than wide, so the two ranks split it across y (rows 0-14 and
-// 15-29, at y = 0.15 m), and the face mass fluxes of the rows on either side of that boundary, which
-// the VoF's y sweep fills on each rank, enter the momentum of both.
 // A periodic strip (cases/bagnold_chute.toml, 32 x 8 cells split 16 | 16 along x): a mound on the
 // layer at the east end flows down the slope through the joined sides, from the second rank's cells
 // to the first's (by t = 0.25 s the layer at the west end has grown from 3.0 to 3.6 mm); on one rank
@@ -195,6 +191,10 @@ TEST(RankConsistency, FlowThroughPeriodicSidesOneAndTwoRanksAgree) {
                           1e-9);  // m/s; measured 2.3e-15
 }
 
+// A water drop falling through the ranks' boundary under the coupled solve and the conservative
+// momentum transport: the mesh is taller than wide, so the two ranks split it across y (rows 0-14 and
+// 15-29, at y = 0.15 m), and the face mass fluxes of the rows on either side of that boundary, which
+// the VoF's y sweep fills on each rank, enter the momentum of both.
 TEST(RankConsistency, DropThroughTheRanksBoundaryOneAndTwoRanksAgree) {
   // The drop of test::falling_drop_case, larger and lower so that it starts across the boundary.
   expect_rank_independent("a falling drop",

@@ -1,6 +1,6 @@
-// Soil materials carried with the soil (material_transport.hpp): each material's volume conserved to
-// round-off, its share of the soil within [0, 1], and the material back where it started when the
-// flow reverses, with an error that falls with the mesh.
+// Soil materials carried with the soil (material_transport.hpp): each material's volume and the
+// soil's conserved to round-off, and the material back where it started when the flow reverses, with
+// an error that falls with the mesh.
 #include "models/interface/material_transport.hpp"
 
 #include <gtest/gtest.h>
@@ -121,6 +121,7 @@ void report(const char* name, const std::vector<MaterialRun>& runs) {
     // The sweep clamps the shares to [0, 1] and their sum to 1, so their bounds say nothing; that
     // each material keeps its volume to round-off shows the clamp took nothing away.
     EXPECT_LT(r.volume_error, 1e-12) << r.n;
+    EXPECT_LT(r.soil_error, 1e-12) << r.n;
   }
 }
 

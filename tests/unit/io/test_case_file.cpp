@@ -545,10 +545,15 @@ TEST(CaseFile, AirBandNeedsTheCoupledSolveAndSoil) {
   EXPECT_NE(no_soil.find("numerics.air_band"), std::string::npos) << no_soil;
 }
 
-// A closed domain's coupled solve holds the pressure level in one of its continuity rows.
-TEST(CaseFile, CoupledSolveInAClosedDomainOrWithAnOpenSide) {
-  EXPECT_NO_THROW(parse_case(minimal, {"numerics.pressure_coupling=coupled"}));
-  EXPECT_NO_THROW(parse_case(minimal, {"numerics.pressure_coupling=coupled", "boundary.north={type=\"atmosphere\"}"}));
+// The coupled solve is accepted in a closed domain (it holds the pressure level in a continuity row,
+// PressureLevel.ClosedDomainUnderTheCoupledSolve) and with an open side.
+TEST(CaseFile, CoupledSolveInAClosedDomainOrWithAnOpenSideIsAccepted) {
+  const CaseConfig closed = parse_case(minimal, {"numerics.pressure_coupling=coupled"});
+  EXPECT_EQ(closed.flow.numerics.pressure_coupling, PressureCoupling::coupled);
+  EXPECT_EQ(boundary(closed.flow.boundaries, Side::north).kind, BoundaryKind::wall);
+  const CaseConfig open = parse_case(minimal, {"numerics.pressure_coupling=coupled", "boundary.north={type=\"atmosphere\"}"});
+  EXPECT_EQ(open.flow.numerics.pressure_coupling, PressureCoupling::coupled);
+  EXPECT_EQ(boundary(open.flow.boundaries, Side::north).kind, BoundaryKind::atmosphere);
 }
 
 // A Cholesky factor of a matrix that is not symmetric positive definite solves another system.

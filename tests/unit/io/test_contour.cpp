@@ -1,6 +1,7 @@
 // Iso-lines by marching squares over the cell centres (src/io/contour.hpp).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "io/contour.hpp"
@@ -28,8 +29,11 @@ TEST(Contour, StraightLineThroughASquare) {
   const Grid g = unit_square_grid();
   const auto s = iso_line(g, {0.0, 1.0, 0.0, 1.0}, 0.5);  // natural order: (0,0) (1,0) (0,1) (1,1)
   ASSERT_EQ(s.size(), 1u);
+  // c = 0.5 halfway between the centres at x = 0.5 and 1.5, on the square's lower and upper edges.
   EXPECT_DOUBLE_EQ(s[0].x0, 1.0);
   EXPECT_DOUBLE_EQ(s[0].x1, 1.0);
+  EXPECT_DOUBLE_EQ(std::min(s[0].y0, s[0].y1), 0.5);
+  EXPECT_DOUBLE_EQ(std::max(s[0].y0, s[0].y1), 1.5);
 }
 
 // A saddle: soil (1) at two opposite corners, air (0.1) at the others. The centre's mean, 0.55, is

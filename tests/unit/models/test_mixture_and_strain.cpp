@@ -79,6 +79,10 @@ TEST(EulerAlmansi, SimpleShearNormIsTheAlmansiStrainsAtAnyShear) {
 TEST(EulerAlmansi, RigidTranslationAndSingularGradient) {
   strain::AlmansiStrain e;
   EXPECT_TRUE(strain::almansi_strain({0.0, 0.0, 0.0, 0.0}, e));
+  EXPECT_DOUBLE_EQ(strain::deviatoric_norm(e), 0.0);
+  // A singular gradient leaves no strain of an earlier call behind: e is zeroed.
+  ASSERT_TRUE(strain::almansi_strain({0.0, 1.0, 0.0, 0.0}, e));
+  ASSERT_GT(strain::deviatoric_norm(e), 0.5);
   EXPECT_FALSE(strain::almansi_strain({1.0, 0.0, 0.0, 1.0}, e));  // F = 0
   EXPECT_DOUBLE_EQ(strain::deviatoric_norm(e), 0.0);
 }

@@ -45,9 +45,11 @@ TEST(RheologyInvariants, SecondInvariantOfTracelessTensorIsMinusNormSquared) {
   }
 }
 
-TEST(RheologyInvariants, PressureIsMinusThirdOfFirstInvariant) {
+TEST(RheologyInvariants, FirstInvariantIsTheTrace) {
+  // A stress of pressure 2500 Pa plus a traceless part: I_1 = trace = -3 p ([YS] Eq. 6).
   const SymmetricTensor t = isotropic_tensor(-2500.0) + SymmetricTensor{1.0, -3.0, 2.0, 4.0, 0, 0};
-  EXPECT_DOUBLE_EQ(first_invariant(t), -3.0 * 2500.0);  // [YS] Eq. 6
+  EXPECT_DOUBLE_EQ(first_invariant(t), -3.0 * 2500.0);
+  EXPECT_DOUBLE_EQ(-first_invariant(t) / 3.0, 2500.0);
 }
 
 TEST(RheologyInvariants, LodeAngleSignConvention) {

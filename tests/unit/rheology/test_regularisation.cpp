@@ -24,6 +24,12 @@ RheologyParameters bui2008_experiment() {
   return p;
 }
 
+// That material's yield stress 3 alpha_phi p + k_c ([VoF] Eqs. 8-9, C = 0), from its friction angle.
+double bui2008_yield_stress(double pressure) {
+  const double tan_phi = std::tan(19.8 * std::numbers::pi / 180.0);
+  return 3.0 * tan_phi / std::sqrt(9.0 + 12.0 * tan_phi * tan_phi) * pressure;
+}
+
 TEST(RheologyRegularisation, BinghamMaximumViscosityOfTheBuiBlock) {
   // mu_max = m (3 alpha_phi p + k_c) at vanishing strain rate ([VoF] Sec. 2), with p = rho g h
   // at the bottom of the 0.1 m block: about 8.6e7 Pa s.
@@ -83,7 +89,8 @@ TEST(RheologyRegularisation, ExponentialTendsToPlasticViscosityAtLargeRates) {
   const GranularRheology rheology(bui2008_experiment());
   const StrainRate d = planar_strain_rate(0.0, 0.0, 0.5);  // ||D|| = 0.5, sqrt(2 e:e) = 1
   const RheologyResult r = rheology.evaluate(d, 1000.0);
-  EXPECT_NEAR(r.dynamic_viscosity, 1e-3 + r.yield_stress / 1.0, 1e-12 * r.dynamic_viscosity);
+  EXPECT_NEAR(r.yield_stress, bui2008_yield_stress(1000.0), 1e-12 * r.yield_stress);
+  EXPECT_NEAR(r.dynamic_viscosity, 1e-3 + bui2008_yield_stress(1000.0) / 1.0, 1e-12 * r.dynamic_viscosity);
 }
 
 TEST(RheologyRegularisation, ExponentialIsIndependentOfTheModel) {
@@ -137,7 +144,7 @@ TEST(RheologyRegularisation, ClipIsIndependentOfTheModel) {
   EXPECT_DOUBLE_EQ(rheology.dynamic_viscosity(StrainRate{}, 2599.65), 2650.0 * 1.0);
   const StrainRate d = planar_strain_rate(0.0, 0.0, 5.0);
   const RheologyResult r = rheology.evaluate(d, 2599.65);
-  EXPECT_NEAR(r.dynamic_viscosity, r.yield_stress / (2.0 * 5.0), 1e-12 * r.dynamic_viscosity);
+  EXPECT_NEAR(r.dynamic_viscosity, bui2008_yield_stress(2599.65) / (2.0 * 5.0), 1e-12 * r.dynamic_viscosity);
 }
 
 TEST(RheologyRegularisation, ViscosityDecreasesMonotonicallyWithStrainRate) {
