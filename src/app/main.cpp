@@ -112,7 +112,7 @@ int main(int argc, char** argv) {
   stability->add_option("--tolerance", strength.tolerance, "bisect until the factors that stand and fail are this close (default 0.01)")
       ->check(finite_in(1e-4, 10.0, "a number from 0.0001 to 10"));
   stability->add_option("--displacement", strength.displacement_limit,
-                        "the soil fails when it moves further than this, m (default: a tenth of a cell)")
+                        "the soil fails when it moves further than this, m (default: a tenth of the smallest cell)")
       ->check(finite_in(1e-12, 1e12, "a length from 1e-12 to 1e12 m"));
   stability->add_flag("--overwrite", overwrite, "replace an earlier analysis in the output directory");
 

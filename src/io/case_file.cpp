@@ -106,6 +106,7 @@ LinearSolverSettings read_linear_solver(TableReader r, LinearSolverSettings d) {
 // A wall's own friction against the soil (a side of type "wall", an obstacle), if it gives one; its keys
 // go to two_phase_keys, which collects the keys given that only a case with soil uses.
 std::optional<rheology::WallFriction> read_wall_friction(TableReader& r, std::vector<std::string>& two_phase_keys) {
+  for (const char* key : {"friction_angle", "adhesion"}) r.known_elsewhere(key);  // named if a key is misspelt
   if (!r.has("friction_angle") && !r.has("adhesion")) return std::nullopt;
   for (const char* key : {"friction_angle", "adhesion"})
     if (r.has(key)) two_phase_keys.push_back(r.key_path(key));

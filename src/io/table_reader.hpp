@@ -44,8 +44,8 @@ class TableReader {
   // An array of tables ([[key]]).
   std::vector<TableReader> tables(std::string_view key);
 
-  // A key of this table taken before it was read (a polygon's points_file), to be named among the
-  // known keys of finish()'s message.
+  // A key this table knows though it was not read here (a polygon's points_file, taken before; a
+  // wall's friction keys, looked for with has()), to be named among the known keys of finish()'s message.
   void known_elsewhere(std::string_view key) { used_.insert(std::string(key)); }
   // Throws CaseError naming the first key present in the table that nobody read.
   void finish() const;

@@ -481,7 +481,10 @@ TEST(CaseFile, WallFrictionIsValidatedAndNeedsAGranularSoilOnFaces) {
                        Bad{with({"boundary.north={type = \"atmosphere\", friction_angle = 10.0}"}), "boundary.north.friction_angle"},
                        Bad{with({"boundary.east={type = \"slip\", friction_angle = 10.0}"}), "boundary.east.friction_angle"},
                        Bad{{"soil.rheology.friction_angle=30", "boundary.south={type = \"wall\", friction_angle = 10.0}"},
-                           "boundary.south: a wall's friction (friction_angle, adhesion) needs soil.yield_pressure = \"face\""}}) {
+                           "boundary.south: a wall's friction (friction_angle, adhesion) needs soil.yield_pressure = \"face\""},
+                       // a misspelt friction key: the known keys name the wall's friction keys too
+                       Bad{with({"boundary.south={type = \"wall\", frction_angle = 15.0}"}),
+                           "boundary.south.frction_angle: unknown key (known keys here: adhesion, friction_angle, type, velocity)"}}) {
     const std::string e = error_of(two_phase, b.keys);
     EXPECT_NE(e.find(b.names), std::string::npos) << b.keys.back() << ": " << e;
   }
