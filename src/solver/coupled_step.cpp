@@ -102,179 +102,209 @@ void FlowSolver::compute_mobilities() {
   }
 }
 
+// The rows of one outer iteration's coupled system, cell by cell, from the state they are linearised
+// at: each row is handed to `emit(i, j, unknown, n, cols, vals, rhs)`. A blocked cell's faces to open
+// cells are walls (mesh/obstacles.hpp): no flux, no face force, no coupling; the cell itself has no
+// unknowns (outside the region, or held at rest).
+class FlowSolver::CoupledRows {
+ public:
+  explicit CoupledRows(FlowSolver& flow)
+      : f_(flow),
+        grid_(flow.grid_),
+        b_(flow.grid_.owned()),
+        g_(flow.settings_.gravity),
+        rho_(local_read(grid_, *flow.rho_)),
+        u_(local_read(grid_, *flow.vel_[0])),
+        v_(local_read(grid_, *flow.vel_[1])),
+        fxv_(local_read(grid_, *flow.face_[0])),
+        fyv_(local_read(grid_, *flow.face_[1])),
+        rx_(local_read(grid_, *flow.rau_[0])),
+        ry_(local_read(grid_, *flow.rau_[1])),
+        fcx_(local_read(grid_, *flow.cell_force_[0])),
+        fcy_(local_read(grid_, *flow.cell_force_[1])),
+        p_now_(local_read(grid_, *flow.p_)),
+        mask_(flow.grid_, flow.blocked_) {}
+
+  double density(int i, int j) const { return rho_[j][i]; }
+
+  // The rows of cell (i, j): held at rest if blocked, else its two momentum rows and its continuity row.
+  template <class Emit>
+  void cell(int i, int j, Emit&& emit) {
+    if (is_blocked(mask_.data(), i, j)) {  // at rest, its pressure kept
+      const double one = 1.0;
+      for (int unknown : {int(U), int(V), int(P)}) {
+        const MatStencil row{0, j, i, unknown};
+        emit(i, j, unknown, 1, &row, &one, unknown == P ? p_now_[j][i] : 0.0);
+      }
+      return;
+    }
+    for (int c = 0; c < 2; ++c) momentum(i, j, c, emit);
+    continuity(i, j, emit);
+  }
+
+ private:
+  bool open_neighbour(int in, int jn) const { return !grid_.outside(in, jn) && !is_blocked(mask_.data(), in, jn); }
+
+  // The pressure pb of the atmosphere at the boundary face of (i, j) on side s along `axis`, recorded
+  // as the system took it; false where the side is a wall.
+  bool boundary_pressure(int axis, int s, int i, int j, double& pb) {
+    const Side bs = axis == 0 ? (s > 0 ? Side::east : Side::west) : (s > 0 ? Side::north : Side::south);
+    if (boundary(f_.settings_.boundaries, bs).kind != BoundaryKind::atmosphere) return false;
+    pb = f_.atmosphere_face_pressure(bs, i, j, rho_.data(), u_.data(), v_.data(), fxv_.data(), fyv_.data());
+    f_.solved_boundary_pressure_[static_cast<int>(bs)][axis == 0 ? j : i] = pb;
+    return true;
+  }
+
+  // Momentum row of component c: a_P v_P - sum a_nb v_nb - V f_cell(p) = source.
+  template <class Emit>
+  void momentum(int i, int j, int c, Emit&& emit) {
+    const size_t k = size_t(j - b_.ys) * b_.xm + (i - b_.xs);
+    const double Vol = grid_.volume(i, j), rhoP = rho_[j][i];
+    MatStencil row{0, j, i, c};
+    MatStencil cols[8];
+    double vals[8];
+    int n = 0;
+    cols[n] = row;
+    vals[n++] = f_.a_centre_[c][k];
+    const int di[4] = {1, -1, 0, 0}, dj[4] = {0, 0, 1, -1};
+    const double anb[4] = {f_.a_east_[k], f_.a_west_[k], f_.a_north_[k], f_.a_south_[k]};
+    for (int f = 0; f < 4; ++f) {
+      const int in = i + di[f], jn = j + dj[f];
+      if (!open_neighbour(in, jn)) continue;
+      cols[n] = MatStencil{0, jn, in, c};
+      vals[n++] = -anb[f];
+    }
+    double r = f_.source_[c][k];
+    double p_centre = 0.0;
+    for (int side = 0; side < 2; ++side) {  // high then low face along c
+      const int s = side == 0 ? 1 : -1;
+      const int in = i + (c == 0 ? s : 0), jn = j + (c == 1 ? s : 0);
+      if (is_blocked(mask_.data(), in, jn)) continue;  // an obstacle's wall carries no face force
+      if (grid_.outside(in, jn)) {
+        const double d = 0.5 * (c == 0 ? grid_.dx(i) : grid_.dy(j));
+        double pb;
+        if (!boundary_pressure(c, s, i, j, pb)) continue;  // walls carry no face force
+        // -V/2 f_b with f_b = -s (p_b - p_P)/d + rho_P g_c: p_b enters like a neighbour pressure.
+        const double w = Vol / (2 * d);
+        p_centre += -s * w;
+        r += -s * w * pb + 0.5 * Vol * rhoP * g_[c];
+        continue;
+      }
+      const double d = c == 0 ? std::abs(grid_.xc(in) - grid_.xc(i)) : std::abs(grid_.yc(jn) - grid_.yc(j));
+      const double rho_f = 0.5 * (rhoP + rho_[jn][in]);
+      const double w = Vol * rhoP / (2 * rho_f * d);  // -V rho_P/(2 rho_f) * (-s (p_N - p_P)/d)
+      cols[n] = MatStencil{0, jn, in, P};
+      vals[n++] = s * w;
+      p_centre += -s * w;
+      r += 0.5 * Vol * rhoP * (g_[c] - f_.ambient_weight(c) / rho_f);
+    }
+    cols[n] = MatStencil{0, j, i, P};
+    vals[n++] = p_centre;
+    emit(i, j, c, n, cols, vals, r);
+  }
+
+  // Continuity row: sum_f s A U_f = 0, U_f = mean(v_n) + m_f (f_f(p) - mean(f_cell)_lagged).
+  template <class Emit>
+  void continuity(int i, int j, Emit&& emit) {
+    const double rhoP = rho_[j][i];
+    const double* const* rau[2] = {rx_.data(), ry_.data()};
+    const double* const* fcell[2] = {fcx_.data(), fcy_.data()};
+    MatStencil row{0, j, i, P};
+    MatStencil cols[12];
+    double vals[12];
+    int n = 0;
+    double u_centre[2] = {0.0, 0.0}, p_centre = 0.0, r = 0.0;
+    for (int f = 0; f < 4; ++f) {
+      const int axis = f < 2 ? 0 : 1;
+      const int s = (f % 2 == 0) ? 1 : -1;
+      const int in = i + (axis == 0 ? s : 0), jn = j + (axis == 1 ? s : 0);
+      const double area = grid_.face_area(axis, i, j, s);
+      if (is_blocked(mask_.data(), in, jn)) continue;  // no flux through an obstacle's wall
+      if (grid_.outside(in, jn)) {
+        const double d = 0.5 * (axis == 0 ? grid_.dx(i) : grid_.dy(j));
+        double pb;
+        if (!boundary_pressure(axis, s, i, j, pb)) continue;
+        const double m = rau[axis][j][i];
+        u_centre[axis] += s * area;
+        p_centre += m * area / d;
+        r += m * area / d * pb - s * area * m * rhoP * g_[axis] + s * area * m * fcell[axis][j][i];
+        continue;
+      }
+      const double d = axis == 0 ? std::abs(grid_.xc(in) - grid_.xc(i)) : std::abs(grid_.yc(jn) - grid_.yc(j));
+      const double m = f_.coupled_mobility(rau[axis], i, j, in, jn);
+      const double rho_f = 0.5 * (rhoP + rho_[jn][in]);
+      u_centre[axis] += 0.5 * s * area;
+      cols[n] = MatStencil{0, jn, in, axis};
+      vals[n++] = 0.5 * s * area;
+      p_centre += m * area / d;
+      cols[n] = MatStencil{0, jn, in, P};
+      vals[n++] = -m * area / d;
+      r += -s * area * m * rho_f * g_[axis] + s * area * m * f_.ambient_weight(axis) +
+           s * area * m * 0.5 * (fcell[axis][j][i] + fcell[axis][jn][in]);
+    }
+    cols[n] = MatStencil{0, j, i, U};
+    vals[n++] = u_centre[0];
+    cols[n] = MatStencil{0, j, i, V};
+    vals[n++] = u_centre[1];
+    cols[n] = row;
+    vals[n++] = p_centre;
+    if (f_.pins_pressure_level_ && i == f_.pin_i_ && j == f_.pin_j_) {
+      // A closed domain's continuity rows sum to zero (every face's flux enters two of them with
+      // opposite signs), so one of them is implied by the others; this cell's holds the pressure
+      // level at the last iterate's instead, scaled like the row it replaces.
+      std::fill(vals, vals + n - 1, 0.0);
+      r = p_centre * p_now_[j][i];
+    }
+    emit(i, j, int(P), n, cols, vals, r);
+  }
+
+  FlowSolver& f_;
+  const Grid& grid_;
+  const CellBox& b_;
+  const std::array<double, 2>& g_;
+  ConstFieldArray rho_, u_, v_, fxv_, fyv_, rx_, ry_, fcx_, fcy_, p_now_;
+  const BlockedView mask_;
+};
+
 // The coupled rows of velocity and pressure, over the air band's region or the whole domain.
 void FlowSolver::fill_coupled_rows() {
   const auto& b = grid_.owned();
   const int nx = grid_.nx(), ny = grid_.ny();
-  const auto& g = settings_.gravity;
   for (Side side : all_sides)  // NaN: a face the system below does not hold (outside the air band's region)
     solved_boundary_pressure_[static_cast<int>(side)].assign(normal_axis(side) == 0 ? ny : nx, std::nan(""));
-  {
-    ConstFieldArray rho = local_read(grid_, *rho_), u = local_read(grid_, *vel_[0]), v = local_read(grid_, *vel_[1]);
-    ConstFieldArray fxv = local_read(grid_, *face_[0]), fyv = local_read(grid_, *face_[1]);
-    ConstFieldArray rx = local_read(grid_, *rau_[0]), ry = local_read(grid_, *rau_[1]);
-    ConstFieldArray fcx = local_read(grid_, *cell_force_[0]), fcy = local_read(grid_, *cell_force_[1]);
-    ConstFieldArray p_now = local_read(grid_, *p_);
-    const double* const* rau[2] = {rx.data(), ry.data()};
-    const double* const* fcell[2] = {fcx.data(), fcy.data()};
-    // Without an open side nothing else fixes the pressure's level, unless an air band's region leaves
-    // out some cells, whose air at rest under a zero top then holds it.
-    pins_pressure_level_ = false;
-    // The pressure pb of the atmosphere at the boundary face of (i, j) on side s along `axis`; false
-    // where the side is a wall.
-    auto boundary_pressure = [&](int axis, int s, int i, int j, double& pb) {
-      const Side bs = axis == 0 ? (s > 0 ? Side::east : Side::west) : (s > 0 ? Side::north : Side::south);
-      if (boundary(settings_.boundaries, bs).kind != BoundaryKind::atmosphere) return false;
-      pb = atmosphere_face_pressure(bs, i, j, rho.data(), u.data(), v.data(), fxv.data(), fyv.data());
-      solved_boundary_pressure_[static_cast<int>(bs)][axis == 0 ? j : i] = pb;
-      return true;
+  CoupledRows rows(*this);
+  if (solve_region_) {
+    // Only the region's rows; outside, air at rest under the pressure of the air column above it.
+    const long region_cells = solve_region_->prepare();
+    // Without an open side nothing else fixes the pressure's level, unless the region leaves out some
+    // cells, whose air at rest under a zero top then holds it. Blocked cells are never in the region:
+    // it covers every open cell if it holds as many.
+    pins_pressure_level_ = !has_pressure_boundary_ && region_cells == (blocked_ ? open_cells_ : long(nx) * ny);
+    if (region_cells == 0) return;
+    auto outside = [&](int i, int j, int unknown) {
+      return unknown == P ? pressure_at_rest(rows.density(i, j), j) : 0.0;
     };
-    // The rows of the cells `wanted(i, j)`, each handed to `emit(i, j, unknown, n, cols, vals, rhs)`.
-    // A blocked cell's faces to open cells are walls (mesh/obstacles.hpp): no flux, no face force,
-    // no coupling; the cell itself has no unknowns (outside the region, or held at rest).
-    const BlockedView mask(grid_, blocked_);
-    auto open_neighbour = [&](int in, int jn) {
-      return !grid_.outside(in, jn) && !is_blocked(mask.data(), in, jn);
+    SolveRegion::RowWriter region_rows(*solve_region_);
+    auto emit = [&](int i, int j, int unknown, int n, const MatStencil* cols, const double* vals, double r) {
+      region_rows.set(i, j, unknown, n, cols, vals, r, outside);
     };
-    auto fill_rows = [&](auto&& wanted, auto&& emit) {
-      for (int j = b.ys; j < b.ye(); ++j)
-        for (int i = b.xs; i < b.xe(); ++i) {
-          if (!wanted(i, j)) continue;
-          if (is_blocked(mask.data(), i, j)) {  // at rest, its pressure kept
-            const double one = 1.0;
-            for (int unknown : {int(U), int(V), int(P)}) {
-              const MatStencil row{0, j, i, unknown};
-              emit(i, j, unknown, 1, &row, &one, unknown == P ? p_now[j][i] : 0.0);
-            }
-            continue;
-          }
-          const size_t k = size_t(j - b.ys) * b.xm + (i - b.xs);
-          const double Vol = grid_.volume(i, j), rhoP = rho[j][i];
-          // Momentum rows: a_P v_P - sum a_nb v_nb - V f_cell(p) = source.
-          for (int c = 0; c < 2; ++c) {
-            MatStencil row{0, j, i, c};
-            MatStencil cols[8];
-            double vals[8];
-            int n = 0;
-            cols[n] = row;
-            vals[n++] = a_centre_[c][k];
-            const int di[4] = {1, -1, 0, 0}, dj[4] = {0, 0, 1, -1};
-            const double anb[4] = {a_east_[k], a_west_[k], a_north_[k], a_south_[k]};
-            for (int f = 0; f < 4; ++f) {
-              const int in = i + di[f], jn = j + dj[f];
-              if (!open_neighbour(in, jn)) continue;
-              cols[n] = MatStencil{0, jn, in, c};
-              vals[n++] = -anb[f];
-            }
-            double r = source_[c][k];
-            double p_centre = 0.0;
-            for (int side = 0; side < 2; ++side) {  // high then low face along c
-              const int s = side == 0 ? 1 : -1;
-              const int in = i + (c == 0 ? s : 0), jn = j + (c == 1 ? s : 0);
-              if (is_blocked(mask.data(), in, jn)) continue;  // an obstacle's wall carries no face force
-              if (grid_.outside(in, jn)) {
-                const double d = 0.5 * (c == 0 ? grid_.dx(i) : grid_.dy(j));
-                double pb;
-                if (!boundary_pressure(c, s, i, j, pb)) continue;  // walls carry no face force
-                // -V/2 f_b with f_b = -s (p_b - p_P)/d + rho_P g_c: p_b enters like a neighbour pressure.
-                const double w = Vol / (2 * d);
-                p_centre += -s * w;
-                r += -s * w * pb + 0.5 * Vol * rhoP * g[c];
-                continue;
-              }
-              const double d = c == 0 ? std::abs(grid_.xc(in) - grid_.xc(i)) : std::abs(grid_.yc(jn) - grid_.yc(j));
-              const double rho_f = 0.5 * (rhoP + rho[jn][in]);
-              const double w = Vol * rhoP / (2 * rho_f * d);  // -V rho_P/(2 rho_f) * (-s (p_N - p_P)/d)
-              cols[n] = MatStencil{0, jn, in, P};
-              vals[n++] = s * w;
-              p_centre += -s * w;
-              r += 0.5 * Vol * rhoP * (g[c] - ambient_weight(c) / rho_f);
-            }
-            cols[n] = MatStencil{0, j, i, P};
-            vals[n++] = p_centre;
-            emit(i, j, c, n, cols, vals, r);
-          }
-          // Continuity row: sum_f s A U_f = 0, U_f = mean(v_n) + m_f (f_f(p) - mean(f_cell)_lagged).
-          {
-            MatStencil row{0, j, i, P};
-            MatStencil cols[12];
-            double vals[12];
-            int n = 0;
-            double u_centre[2] = {0.0, 0.0}, p_centre = 0.0, r = 0.0;
-            for (int f = 0; f < 4; ++f) {
-              const int axis = f < 2 ? 0 : 1;
-              const int s = (f % 2 == 0) ? 1 : -1;
-              const int in = i + (axis == 0 ? s : 0), jn = j + (axis == 1 ? s : 0);
-              const double area = grid_.face_area(axis, i, j, s);
-              if (is_blocked(mask.data(), in, jn)) continue;  // no flux through an obstacle's wall
-              if (grid_.outside(in, jn)) {
-                const double d = 0.5 * (axis == 0 ? grid_.dx(i) : grid_.dy(j));
-                double pb;
-                if (!boundary_pressure(axis, s, i, j, pb)) continue;
-                const double m = rau[axis][j][i];
-                u_centre[axis] += s * area;
-                p_centre += m * area / d;
-                r += m * area / d * pb - s * area * m * rhoP * g[axis] + s * area * m * fcell[axis][j][i];
-                continue;
-              }
-              const double d = axis == 0 ? std::abs(grid_.xc(in) - grid_.xc(i)) : std::abs(grid_.yc(jn) - grid_.yc(j));
-              const double m = coupled_mobility(rau[axis], i, j, in, jn);
-              const double rho_f = 0.5 * (rhoP + rho[jn][in]);
-              u_centre[axis] += 0.5 * s * area;
-              cols[n] = MatStencil{0, jn, in, axis};
-              vals[n++] = 0.5 * s * area;
-              p_centre += m * area / d;
-              cols[n] = MatStencil{0, jn, in, P};
-              vals[n++] = -m * area / d;
-              r += -s * area * m * rho_f * g[axis] + s * area * m * ambient_weight(axis) +
-                   s * area * m * 0.5 * (fcell[axis][j][i] + fcell[axis][jn][in]);
-            }
-            cols[n] = MatStencil{0, j, i, U};
-            vals[n++] = u_centre[0];
-            cols[n] = MatStencil{0, j, i, V};
-            vals[n++] = u_centre[1];
-            cols[n] = row;
-            vals[n++] = p_centre;
-            if (pins_pressure_level_ && i == pin_i_ && j == pin_j_) {
-              // A closed domain's continuity rows sum to zero (every face's flux enters two of them
-              // with opposite signs), so one of them is implied by the others; this cell's holds the
-              // pressure level at the last iterate's instead, scaled like the row it replaces.
-              std::fill(vals, vals + n - 1, 0.0);
-              r = p_centre * p_now[j][i];
-            }
-            emit(i, j, int(P), n, cols, vals, r);
-          }
-        }
+    for (int j = b.ys; j < b.ye(); ++j)
+      for (int i = b.xs; i < b.xe(); ++i)
+        if (region_rows.inside(i, j)) rows.cell(i, j, emit);
+  } else {
+    pins_pressure_level_ = !has_pressure_boundary_;
+    PetscScalar*** rhs;
+    DMDAVecGetArrayDOF(coupled_dm_, coupled_rhs_, &rhs);
+    auto emit = [&](int i, int j, int unknown, int n, const MatStencil* cols, const double* vals, double r) {
+      const MatStencil row{0, j, i, unknown};
+      PetscCallAbort(PETSC_COMM_SELF, MatSetValuesStencil(coupled_matrix_, 1, &row, n, cols, vals, INSERT_VALUES));
+      rhs[j][i][unknown] = r;
     };
-    if (solve_region_) {
-      // Only the region's rows; outside, air at rest under the pressure of the air column above it.
-      const long region_cells = solve_region_->prepare();
-      // Blocked cells are never in the region: it covers every open cell if it holds as many.
-      pins_pressure_level_ = !has_pressure_boundary_ && region_cells == (blocked_ ? open_cells_ : long(nx) * ny);
-      if (region_cells > 0) {
-        auto outside = [&](int i, int j, int unknown) {
-          return unknown == P ? pressure_at_rest(rho[j][i], j) : 0.0;
-        };
-        SolveRegion::RowWriter rows(*solve_region_);
-        fill_rows([&](int i, int j) { return rows.inside(i, j); },
-                  [&](int i, int j, int unknown, int n, const MatStencil* cols, const double* vals, double r) {
-                    rows.set(i, j, unknown, n, cols, vals, r, outside);
-                  });
-      }
-    } else {
-      pins_pressure_level_ = !has_pressure_boundary_;
-      PetscScalar*** rhs;
-      DMDAVecGetArrayDOF(coupled_dm_, coupled_rhs_, &rhs);
-      fill_rows([](int, int) { return true; },
-                [&](int i, int j, int unknown, int n, const MatStencil* cols, const double* vals, double r) {
-                  const MatStencil row{0, j, i, unknown};
-                  PetscCallAbort(PETSC_COMM_SELF, MatSetValuesStencil(coupled_matrix_, 1, &row, n, cols, vals, INSERT_VALUES));
-                  rhs[j][i][unknown] = r;
-                });
-      DMDAVecRestoreArrayDOF(coupled_dm_, coupled_rhs_, &rhs);
-      PetscCallAbort(grid_.comm(), MatAssemblyBegin(coupled_matrix_, MAT_FINAL_ASSEMBLY));
-      PetscCallAbort(grid_.comm(), MatAssemblyEnd(coupled_matrix_, MAT_FINAL_ASSEMBLY));
-    }
+    for (int j = b.ys; j < b.ye(); ++j)
+      for (int i = b.xs; i < b.xe(); ++i) rows.cell(i, j, emit);
+    DMDAVecRestoreArrayDOF(coupled_dm_, coupled_rhs_, &rhs);
+    PetscCallAbort(grid_.comm(), MatAssemblyBegin(coupled_matrix_, MAT_FINAL_ASSEMBLY));
+    PetscCallAbort(grid_.comm(), MatAssemblyEnd(coupled_matrix_, MAT_FINAL_ASSEMBLY));
   }
 }
 

@@ -172,6 +172,7 @@ class FlowSolver {
   // by_first_factorisation: numerics.later_iterations = "first_factorisation" in a later outer iteration.
   int solve_coupled(bool by_first_factorisation);  // one outer iteration of the coupled solve, from the pieces below
   void compute_mobilities();
+  class CoupledRows;  // the rows of one cell (coupled_step.cpp)
   void fill_coupled_rows();
   int solve_coupled_rows(bool by_first_factorisation);
   void update_coupled_face_velocities();
