@@ -5,18 +5,15 @@
 #include <petscdmda.h>
 
 #include "mesh/grid.hpp"
+#include "mesh/petsc_handle.hpp"
 
 namespace granflow {
 
 class Field {
  public:
   explicit Field(const Grid& grid) : dm_(grid.field_dm()) {
-    PetscCallAbort(PETSC_COMM_WORLD, DMCreateGlobalVector(dm_, &global_));
-    PetscCallAbort(PETSC_COMM_WORLD, DMCreateLocalVector(dm_, &local_));
-  }
-  ~Field() {
-    VecDestroy(&global_);
-    VecDestroy(&local_);
+    PetscCallAbort(PETSC_COMM_WORLD, DMCreateGlobalVector(dm_, global_.put()));
+    PetscCallAbort(PETSC_COMM_WORLD, DMCreateLocalVector(dm_, local_.put()));
   }
   Field(const Field&) = delete;
   Field& operator=(const Field&) = delete;
@@ -63,8 +60,8 @@ class Field {
 
  private:
   DM dm_;
-  Vec global_ = nullptr;
-  Vec local_ = nullptr;
+  OwnedVec global_;
+  OwnedVec local_;
 };
 
 // RAII access to a local (ghosted) or global vector as a 2D array [j][i] in global indices.

@@ -4,27 +4,19 @@
 #include <vector>
 
 #include "mesh/field.hpp"
+#include "mesh/petsc_handle.hpp"
 
 namespace granflow {
 
 class FieldSnapshot {
  public:
   FieldSnapshot() = default;
-  FieldSnapshot(const FieldSnapshot&) = delete;
-  FieldSnapshot& operator=(const FieldSnapshot&) = delete;
-  ~FieldSnapshot() {
-    for (Vec& v : copies_) VecDestroy(&v);
-  }
 
   // The same fields, in the same order, on every save and restore.
   void save(std::span<Field* const> fields) {
     size_t k = 0;
     for (const Field* f : fields) {
-      if (k == copies_.size()) {
-        Vec copy;
-        VecDuplicate(f->local(), &copy);
-        copies_.push_back(copy);
-      }
+      if (k == copies_.size()) VecDuplicate(f->local(), copies_.emplace_back().put());
       VecCopy(f->local(), copies_[k++]);  // local vectors hold the ghosts (boundary conditions) too
     }
   }
@@ -37,7 +29,7 @@ class FieldSnapshot {
   }
 
  private:
-  std::vector<Vec> copies_;
+  std::vector<OwnedVec> copies_;
 };
 
 }  // namespace granflow

@@ -82,7 +82,7 @@ Grid::Grid(MPI_Comm comm, const GridSpec& spec) : comm_(comm), spec_(spec) {
   const DMBoundaryType x_sides = spec.periodic_x ? DM_BOUNDARY_PERIODIC : DM_BOUNDARY_GHOSTED;
   PetscCallAbort(comm, DMDACreate2d(comm, x_sides, DM_BOUNDARY_GHOSTED, DMDA_STENCIL_BOX,
                                     spec.cells[0], spec.cells[1], PETSC_DECIDE, PETSC_DECIDE, 1,
-                                    ghost_width, nullptr, nullptr, &field_dm_));
+                                    ghost_width, nullptr, nullptr, field_dm_.put()));
   PetscCallAbort(comm, DMSetUp(field_dm_));
   PetscInt m, n;
   const PetscInt *lx, *ly;
@@ -90,7 +90,7 @@ Grid::Grid(MPI_Comm comm, const GridSpec& spec) : comm_(comm), spec_(spec) {
                                    nullptr, nullptr, nullptr, nullptr, nullptr));
   PetscCallAbort(comm, DMDAGetOwnershipRanges(field_dm_, &lx, &ly, nullptr));
   PetscCallAbort(comm, DMDACreate2d(comm, matrix_x_sides(), DM_BOUNDARY_NONE, DMDA_STENCIL_STAR,
-                                    spec.cells[0], spec.cells[1], m, n, 1, 1, lx, ly, &matrix_dm_));
+                                    spec.cells[0], spec.cells[1], m, n, 1, 1, lx, ly, matrix_dm_.put()));
   PetscCallAbort(comm, DMSetUp(matrix_dm_));
   PetscInt xs, ys, xm, ym;
   PetscCallAbort(comm, DMDAGetCorners(field_dm_, &xs, &ys, nullptr, &xm, &ym, nullptr));
@@ -102,10 +102,7 @@ Grid::Grid(MPI_Comm comm, const GridSpec& spec) : comm_(comm), spec_(spec) {
   for (size_t k = 0; k < width_[0].size(); ++k) radius_face_[k] = centre_[0][k] + 0.5 * width_[0][k];
 }
 
-Grid::~Grid() {
-  DMDestroy(&matrix_dm_);
-  DMDestroy(&field_dm_);
-}
+Grid::~Grid() = default;
 
 double Grid::min_spacing() const {
   double h = 1e300;

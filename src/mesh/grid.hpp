@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "mesh/cell_box.hpp"
+#include "mesh/petsc_handle.hpp"
 
 namespace granflow {
 
@@ -111,8 +112,8 @@ class Grid {
  private:
   MPI_Comm comm_;
   GridSpec spec_;
-  DM field_dm_ = nullptr;
-  DM matrix_dm_ = nullptr;
+  OwnedDm field_dm_;
+  OwnedDm matrix_dm_;
   CellBox owned_;
   std::array<std::vector<double>, 2> width_, centre_;
   std::vector<double> radius_face_;  // x-face coordinates, east face of each (ghost) column

@@ -25,30 +25,22 @@ void FlowSolver::create_coupled_system() {
               nullptr, nullptr, nullptr);
   DMDAGetOwnershipRanges(grid_.field_dm(), &lx, &ly, nullptr);
   PetscCallAbort(comm, DMDACreate2d(comm, grid_.matrix_x_sides(), DM_BOUNDARY_NONE, DMDA_STENCIL_STAR, grid_.nx(),
-                                    grid_.ny(), m, n, 3, 1, lx, ly, &coupled_dm_));
+                                    grid_.ny(), m, n, 3, 1, lx, ly, coupled_dm_.put()));
   PetscCallAbort(comm, DMSetUp(coupled_dm_));
-  PetscCallAbort(comm, DMCreateGlobalVector(coupled_dm_, &coupled_solution_));
+  PetscCallAbort(comm, DMCreateGlobalVector(coupled_dm_, coupled_solution_.put()));
   // Over the soil and its air band (the region makes its own system), or over the whole domain.
   if (settings_.numerics.air_band > 0) {
     solve_region_ = std::make_unique<SolveRegion>(grid_, settings_.coupled_solver);
   } else {
-    PetscCallAbort(comm, DMCreateMatrix(coupled_dm_, &coupled_matrix_));
+    PetscCallAbort(comm, DMCreateMatrix(coupled_dm_, coupled_matrix_.put()));
     PetscCallAbort(comm, MatSetOption(coupled_matrix_, MAT_NEW_NONZERO_ALLOCATION_ERR, PETSC_TRUE));
-    PetscCallAbort(comm, VecDuplicate(coupled_solution_, &coupled_rhs_));
+    PetscCallAbort(comm, VecDuplicate(coupled_solution_, coupled_rhs_.put()));
     coupled_solver_ = std::make_unique<LinearSolver>(comm, "coupled", settings_.coupled_solver);
   }
   for (int a = 0; a < 2; ++a) {
     cell_force_[a] = std::make_unique<Field>(grid_);
     cell_force_[a]->set(0.0);
   }
-}
-
-void FlowSolver::destroy_coupled_system() {
-  solve_region_.reset();
-  MatDestroy(&coupled_matrix_);
-  VecDestroy(&coupled_rhs_);
-  VecDestroy(&coupled_solution_);
-  DMDestroy(&coupled_dm_);
 }
 
 bool FlowSolver::solve_region_covers(const Field& cells) const {

@@ -76,14 +76,14 @@ FlowSolver::FlowSolver(const Grid& grid, const FlowSettings& settings) : grid_(g
       hbya_[a] = make_field(grid);
       time_weight_[a] = make_field(grid);
       time_weight_[a]->set(0.0);  // stays zero under the projection coupling
-      PetscCallAbort(comm, DMCreateMatrix(grid.matrix_dm(), &momentum_matrix_[a]));
+      PetscCallAbort(comm, DMCreateMatrix(grid.matrix_dm(), momentum_matrix_[a].put()));
       momentum_solver_[a] = std::make_unique<LinearSolver>(comm, a == 0 ? "momentum_x" : "momentum_y",
                                                             settings.momentum_solver);
     }
     divergence_before_.assign(n, 0.0);
-    PetscCallAbort(comm, DMCreateMatrix(grid.matrix_dm(), &pressure_matrix_));
+    PetscCallAbort(comm, DMCreateMatrix(grid.matrix_dm(), pressure_matrix_.put()));
     pressure_solver_ = std::make_unique<LinearSolver>(comm, "pressure", settings.pressure_solver);
-    PetscCallAbort(comm, DMCreateGlobalVector(grid.field_dm(), &rhs_));
+    PetscCallAbort(comm, DMCreateGlobalVector(grid.field_dm(), rhs_.put()));
   }
 
   for (Side s : all_sides) {
@@ -97,7 +97,7 @@ FlowSolver::FlowSolver(const Grid& grid, const FlowSettings& settings) : grid_(g
   open_cells_ = grid.cell_count();
   update_boundary_heads();
   if (segregated && !has_pressure_boundary_) {
-    PetscCallAbort(comm, MatNullSpaceCreate(comm, PETSC_TRUE, 0, nullptr, &pressure_null_space_));
+    PetscCallAbort(comm, MatNullSpaceCreate(comm, PETSC_TRUE, 0, nullptr, pressure_null_space_.put()));
     PetscCallAbort(comm, MatSetNullSpace(pressure_matrix_, pressure_null_space_));
   }
 }
@@ -110,13 +110,7 @@ void FlowSolver::enable_body_force() {
     }
 }
 
-FlowSolver::~FlowSolver() {
-  destroy_coupled_system();
-  for (auto& m : momentum_matrix_) MatDestroy(&m);
-  MatDestroy(&pressure_matrix_);
-  MatNullSpaceDestroy(&pressure_null_space_);
-  VecDestroy(&rhs_);
-}
+FlowSolver::~FlowSolver() = default;
 
 // ---------------------------------------------------------------------------------------------
 // Ghosts: interior ghosts come from neighbouring ranks; ghosts outside the domain encode the

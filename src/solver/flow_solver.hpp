@@ -18,6 +18,7 @@
 #include "mesh/field.hpp"
 #include "mesh/field_snapshot.hpp"
 #include "mesh/grid.hpp"
+#include "mesh/petsc_handle.hpp"
 #include "solver/flow_settings.hpp"
 #include "solver/linear_solver.hpp"
 #include "solver/solve_region.hpp"
@@ -167,7 +168,6 @@ class FlowSolver {
   void compute_hbya();
   // Coupled velocity-pressure solve (coupled_step.cpp).
   void create_coupled_system();
-  void destroy_coupled_system();
   void store_cell_forces();
   // by_first_factorisation: numerics.later_iterations = "first_factorisation" in a later outer iteration.
   int solve_coupled(bool by_first_factorisation);  // one outer iteration of the coupled solve, from the pieces below
@@ -214,15 +214,15 @@ class FlowSolver {
   std::vector<double> divergence_before_;  // div of the velocity entering the projection, per owned cell
 
   // The segregated steps' systems (none under the coupled solve).
-  Mat momentum_matrix_[2] = {nullptr, nullptr};
-  Mat pressure_matrix_ = nullptr;
-  MatNullSpace pressure_null_space_ = nullptr;
-  Vec rhs_ = nullptr;
+  OwnedMat momentum_matrix_[2];
+  OwnedMat pressure_matrix_;
+  OwnedNullSpace pressure_null_space_;
+  OwnedVec rhs_;
   std::unique_ptr<LinearSolver> momentum_solver_[2];
   std::unique_ptr<LinearSolver> pressure_solver_;
-  DM coupled_dm_ = nullptr;  // (u, v, p) per cell, same layout as the grid
-  Mat coupled_matrix_ = nullptr;
-  Vec coupled_rhs_ = nullptr, coupled_solution_ = nullptr;
+  OwnedDm coupled_dm_;  // (u, v, p) per cell, same layout as the grid
+  OwnedMat coupled_matrix_;
+  OwnedVec coupled_rhs_, coupled_solution_;
   std::unique_ptr<LinearSolver> coupled_solver_;  // numerics.air_band = 0
   std::unique_ptr<SolveRegion> solve_region_;      // numerics.air_band > 0
   std::unique_ptr<Field> cell_force_[2];  // lagged balanced cell force of the Rhie-Chow flux

@@ -152,7 +152,7 @@ bool is_default_petsc_option(const std::string& name) { return defaults_set().co
 
 LinearSolver::LinearSolver(MPI_Comm comm, const std::string& prefix, const LinearSolverSettings& s)
     : prefix_(prefix), max_reuse_(std::max(1, s.max_reuse)) {
-  PetscCallAbort(comm, KSPCreate(comm, &ksp_));
+  PetscCallAbort(comm, KSPCreate(comm, ksp_.put()));
   PetscCallAbort(comm, KSPSetOptionsPrefix(ksp_, (prefix + "_").c_str()));
   PetscCallAbort(comm, KSPSetType(ksp_, s.ksp_type.c_str()));
   PC pc;
@@ -173,10 +173,7 @@ LinearSolver::LinearSolver(MPI_Comm comm, const std::string& prefix, const Linea
     set_default("P_max", "4");
   }
   PetscCallAbort(comm, KSPSetFromOptions(ksp_));
-  if (auto problem = tolerance_problem(ksp_, prefix); !problem.empty()) {
-    KSPDestroy(&ksp_);  // the destructor does not run for a constructor that throws
-    throw CaseError(problem);
-  }
+  if (auto problem = tolerance_problem(ksp_, prefix); !problem.empty()) throw CaseError(problem);
   // A direct solve (preonly) takes no initial guess; iterative ones start from the last solution.
   KSPType type;
   KSPGetType(ksp_, &type);
@@ -212,16 +209,16 @@ LinearSolver::~LinearSolver() {
   // Quietly: after a failed solve a library's state may be left half made (hypre's vectors), and
   // PETSc would print a second trace while the run is already stopping with its message.
   PetscPushErrorHandler(PetscReturnErrorHandler, nullptr);
-  KSPDestroy(&reuse_ksp_);
-  VecDestroy(&residual_);
-  VecDestroy(&correction_);
-  KSPDestroy(&ksp_);
+  reuse_ksp_.reset();
+  residual_.reset();
+  correction_.reset();
+  ksp_.reset();
   PetscPopErrorHandler();
 }
 
 int LinearSolver::solve_by_last_factorisation(Vec b, Vec x, int krylov_iterations) {
   MPI_Comm comm;
-  PetscObjectGetComm(reinterpret_cast<PetscObject>(ksp_), &comm);
+  PetscObjectGetComm(reinterpret_cast<PetscObject>(ksp_.get()), &comm);
   PC pc;
   Mat a;
   PetscCallAbort(comm, KSPGetPC(ksp_, &pc));
@@ -235,8 +232,8 @@ int LinearSolver::solve_by_last_factorisation(Vec b, Vec x, int krylov_iteration
     throw DivergenceError(fmt::format("linear solver '{}': a solve by the last factorisation needs an LU "
                                       "factorisation (pc_type lu or redundant) built by an earlier solve", prefix_));
   if (!residual_) {
-    PetscCallAbort(comm, VecDuplicate(b, &residual_));
-    PetscCallAbort(comm, VecDuplicate(b, &correction_));
+    PetscCallAbort(comm, VecDuplicate(b, residual_.put()));
+    PetscCallAbort(comm, VecDuplicate(b, correction_.put()));
   }
   // a's new values are not factorised: not by the LU, nor by a redundant solve's inner LU, which on
   // one rank factorises a itself and would see its values changed.
@@ -257,7 +254,7 @@ int LinearSolver::solve_by_last_factorisation(Vec b, Vec x, int krylov_iteration
   PetscCallAbort(comm, VecAXPY(x, 1.0, correction_));
   if (!reuse_ksp_) {
     // Flexible GMRES keeps the preconditioned vectors: no application of P after its last iteration.
-    PetscCallAbort(comm, KSPCreate(comm, &reuse_ksp_));
+    PetscCallAbort(comm, KSPCreate(comm, reuse_ksp_.put()));
     PetscCallAbort(comm, KSPSetType(reuse_ksp_, KSPFGMRES));
     // Its own prefix, for PETSc's monitors (-coupled_later_ksp_monitor_true_residual), set before the
     // shared preconditioner is attached, whose options stay the first solve's own.
@@ -321,7 +318,7 @@ int LinearSolver::solve(Vec b, Vec x) {
   last_iterations_ = int(its);
   if (reason == KSP_DIVERGED_ITS && solves_at_limit_++ == 0) {
     MPI_Comm comm;
-    PetscObjectGetComm(reinterpret_cast<PetscObject>(ksp_), &comm);
+    PetscObjectGetComm(reinterpret_cast<PetscObject>(ksp_.get()), &comm);
     int rank;
     MPI_Comm_rank(comm, &rank);
     PetscInt max_iterations;

@@ -5,6 +5,8 @@
 
 #include <string>
 
+#include "mesh/petsc_handle.hpp"
+
 namespace granflow {
 
 struct LinearSolverSettings {
@@ -67,9 +69,9 @@ class LinearSolver {
  private:
   // Warns (once per solver, rank 0) where preonly applies a preconditioner that does not factorise.
   void warn_if_inexact(MPI_Comm comm, const std::string& prefix) const;
-  KSP ksp_ = nullptr;
-  KSP reuse_ksp_ = nullptr;  // FGMRES on ksp_'s preconditioner (solve_by_last_factorisation)
-  Vec residual_ = nullptr, correction_ = nullptr;
+  OwnedKsp ksp_;
+  OwnedKsp reuse_ksp_;  // FGMRES on ksp_'s preconditioner (solve_by_last_factorisation)
+  OwnedVec residual_, correction_;
   std::string prefix_;
   int max_reuse_ = 1;
   bool built_ = false;

@@ -20,10 +20,7 @@ SolveRegion::SolveRegion(const Grid& grid, const LinearSolverSettings& solver)
 }
 
 SolveRegion::~SolveRegion() {
-  solver_.reset();
-  MatDestroy(&matrix_);
-  VecDestroy(&rhs_);
-  VecDestroy(&solution_);
+  solver_.reset();  // before the matrix it holds
 }
 
 bool SolveRegion::covers(const Field& needed) const {
@@ -77,9 +74,9 @@ long SolveRegion::prepare() {
 
   if (solver_) solves_at_limit_before_ = solver_->solves_at_iteration_limit();
   solver_.reset();
-  MatDestroy(&matrix_);
-  VecDestroy(&rhs_);
-  VecDestroy(&solution_);
+  matrix_.reset();
+  rhs_.reset();
+  solution_.reset();
   owned_ = std::move(owned);
   const long local = long(owned_.size());
   long first = 0;
@@ -101,14 +98,14 @@ long SolveRegion::prepare() {
   if (cell_count_ == 0) return 0;  // no soil left: nothing but air at rest
 
   const PetscInt rows = unknowns_per_cell * PetscInt(local);
-  PetscCallAbort(comm, MatCreate(comm, &matrix_));
+  PetscCallAbort(comm, MatCreate(comm, matrix_.put()));
   PetscCallAbort(comm, MatSetSizes(matrix_, rows, rows, PETSC_DETERMINE, PETSC_DETERMINE));
   PetscCallAbort(comm, MatSetType(matrix_, MATAIJ));
   PetscCallAbort(comm, MatSetBlockSize(matrix_, unknowns_per_cell));
   PetscCallAbort(comm, MatSeqAIJSetPreallocation(matrix_, entries_per_row, nullptr));
   PetscCallAbort(comm, MatMPIAIJSetPreallocation(matrix_, entries_per_row, nullptr, entries_per_row, nullptr));
   PetscCallAbort(comm, MatSetOption(matrix_, MAT_NO_OFF_PROC_ENTRIES, PETSC_TRUE));  // rows are set where owned
-  PetscCallAbort(comm, MatCreateVecs(matrix_, &solution_, &rhs_));
+  PetscCallAbort(comm, MatCreateVecs(matrix_, solution_.put(), rhs_.put()));
   // A new pattern needs a new factorisation analysis; a fresh solver also takes the new sizes.
   auto solver = std::make_unique<LinearSolver>(comm, "coupled", solver_settings_);
   solver->continue_count(solves_at_limit_before_);

@@ -115,8 +115,8 @@ class SolveRegion {
   std::vector<int> owned_;      // owned region cells as (j - ys) xm + (i - xs), of the last prepare()
   long cell_count_ = 0;
   PetscInt first_row_ = 0;      // the first of this rank's rows in the region's numbering
-  Mat matrix_ = nullptr;
-  Vec rhs_ = nullptr, solution_ = nullptr;
+  OwnedMat matrix_;
+  OwnedVec rhs_, solution_;
   std::unique_ptr<LinearSolver> solver_;
   long solves_at_limit_before_ = 0;  // of the solvers of earlier patterns
 };
