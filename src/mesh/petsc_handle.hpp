@@ -32,8 +32,11 @@ class PetscHandle {
     reset();
     return &handle_;
   }
+  // Destroys the object held, once: a destroy that failed part-way (a library's state left half made
+  // after a failed solve) is not tried again, which would read what it already freed.
   void reset() {
     if (handle_) destroy(&handle_);
+    handle_ = nullptr;
   }
 
  private:
