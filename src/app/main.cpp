@@ -262,6 +262,7 @@ int main(int argc, char** argv) {
         if (!c.obstacles.empty()) placed += fmt::format("; {} cells blocked by obstacles", laid_out.blocked_cells);
         fmt::print("{}: valid ({} x {} cells, t_end = {} s{})\n", case_file, c.mesh.cells[0], c.mesh.cells[1], c.time.end,
                    placed);
+        std::fflush(stdout);  // before the warnings on stderr, also where both go to one file
         for (const auto& line : granflow::case_advice(c)) fmt::print(stderr, "warning: {}\n", line);
       }
     } catch (const std::exception& e) {

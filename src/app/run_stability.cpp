@@ -8,6 +8,7 @@
 
 #include "app/run_case.hpp"
 #include "io/atomic_file.hpp"
+#include "io/case_advice.hpp"
 #include "io/case_error.hpp"
 #include "io/collective_failure.hpp"
 #include "io/run_directory.hpp"
@@ -89,11 +90,14 @@ int run_stability(const std::string& case_file, const std::vector<std::string>& 
     }
   }
   if (auto text = first_failure(PETSC_COMM_WORLD, problem); !text.empty()) throw CaseError(text);
+  std::vector<std::string> advice;  // warnings on the case's choices, which a failure may come from
   if (rank == 0) {
     fmt::print("granflow: factor of safety of {} by strength reduction (C / F, tan(phi) / F), each trial to t = {} s, "
                "output in {}\n",
                config.title, config.time.end, out_dir);
     std::fflush(stdout);
+    advice = case_advice(config);
+    for (const auto& line : advice) fmt::print(stderr, "warning: {}\n", line);
   }
   auto under_way = [&] {
     if (set_aside) discard_set_aside_run(out_dir);
@@ -129,8 +133,9 @@ int run_stability(const std::string& case_file, const std::vector<std::string>& 
                    r.stands_at, settings.largest_factor);
       else
         fmt::print(stderr, "error: the soil fails at every factor tried, down to F = {} (the search stops above {}): "
-                           "no factor of safety found; it does not stand even with its strength multiplied\n",
-                   r.fails_at, settings.smallest_factor);
+                           "no factor of safety found; it does not stand even with its strength multiplied{}\n",
+                   r.fails_at, settings.smallest_factor,
+                   advice.empty() ? "" : " (mind the warnings on the case's numerics above: they may be why)");
     }
     return 1;
   }

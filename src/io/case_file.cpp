@@ -30,6 +30,9 @@ constexpr double inf = std::numeric_limits<double>::infinity();
 // A case file is text of some kilobytes; a shape of a million points is some 30 MiB (and belongs in a
 // points_file).
 constexpr std::size_t case_file_limit = std::size_t(64) << 20;
+// A granular case's air band by default, in cells: the soil's pile is the whole domain's with it
+// (docs/method.md, "Air band").
+constexpr int default_air_band = 12;
 
 void apply_override(toml::table& root, const std::string& assignment) {
   // The case as run is recorded as TOML, which is UTF-8 throughout (a bare word would be kept as it is).
@@ -347,14 +350,17 @@ SoilSettings read_soil(TableReader& top, std::vector<std::string>& without_effec
       throw CaseError(fmt::format("soil.materials: {} materials, more than the {} a case may have besides the rheology's own",
                                   s.materials.size(), rheology::SoilMaterials::max_count - 1));
     s.displacement = so.boolean("displacement", s.rheology.has_value());
-    const std::string yp = so.choice("yield_pressure", "cell", {"cell", "face", "lithostatic_floor"});
+    // A granular soil's viscosity is taken on the faces by default, each choice defaulting to the one
+    // before it: the cells' evaluations let a pile next to air creep (docs/method.md).
+    const bool granular = s.rheology.has_value();
+    const std::string yp = so.choice("yield_pressure", granular ? "face" : "cell", {"cell", "face", "lithostatic_floor"});
     s.yield_pressure = yp == "face" ? YieldPressure::face
                        : yp == "lithostatic_floor" ? YieldPressure::lithostatic_floor : YieldPressure::cell;
-    const std::string sr = so.choice("strain_rate", "cell", {"cell", "face"});
+    const std::string sr = so.choice("strain_rate", granular && yp == "face" ? "face" : "cell", {"cell", "face"});
     s.strain_rate = sr == "face" ? StrainRateAt::face : StrainRateAt::cell;
     if (s.strain_rate == StrainRateAt::face && s.yield_pressure != YieldPressure::face)
       throw CaseError("soil.strain_rate = \"face\" needs soil.yield_pressure = \"face\" (the viscosity is then taken on faces)");
-    const std::string ff = so.choice("face_fraction", "cells", {"cells", "face"});
+    const std::string ff = so.choice("face_fraction", granular && sr == "face" ? "face" : "cells", {"cells", "face"});
     s.face_fraction = ff == "face" ? FaceFraction::face : FaceFraction::cells;
     if (s.face_fraction == FaceFraction::face && s.strain_rate != StrainRateAt::face)
       throw CaseError("soil.face_fraction = \"face\" needs soil.strain_rate = \"face\" (one evaluation on the face)");
@@ -538,12 +544,16 @@ BoundarySet read_boundaries(TableReader& top, const GridSpec& mesh, std::vector<
   return boundaries;
 }
 
-NumericsSettings read_numerics(TableReader& top, std::vector<std::string>& keys_without_effect) {
+// granular: the case's soil has a rheology, whose cases default to the coupled solve; band: the air
+// band that solve takes by default (0 where none may be laid).
+NumericsSettings read_numerics(TableReader& top, bool granular, int band,
+                               std::vector<std::string>& keys_without_effect) {
   NumericsSettings num;
   TableReader n = top.table("numerics");
   const std::string conv = n.choice("convection", "quick", {"upwind", "central", "blended", "quick"});
   parse_convection_scheme(conv, num.convection);
-  const std::string coupling = n.choice("pressure_coupling", "projection", {"projection", "piso", "coupled"});
+  const std::string coupling =
+      n.choice("pressure_coupling", granular ? "coupled" : "projection", {"projection", "piso", "coupled"});
   num.pressure_coupling = coupling == "projection" ? PressureCoupling::projection
                           : coupling == "piso"     ? PressureCoupling::piso
                                                    : PressureCoupling::coupled;
@@ -558,7 +568,7 @@ NumericsSettings read_numerics(TableReader& top, std::vector<std::string>& keys_
       n.choice("first_viscosity", "previous_step", {"previous_step", "look_ahead"}) == "look_ahead";
   num.mean_viscosity_pressure =
       n.choice("viscosity_pressure", "last_iterate", {"last_iterate", "mean_of_last_two"}) == "mean_of_last_two";
-  num.air_band = n.integer_in("air_band", num.air_band, 0, 1000000);
+  num.air_band = n.integer_in("air_band", coupling == "coupled" ? band : 0, 0, 1000000);
   num.reuse_first_factorisation =
       n.choice("later_iterations", "own_factorisation", {"own_factorisation", "first_factorisation"}) ==
       "first_factorisation";
@@ -820,7 +830,14 @@ CaseConfig read_case(const toml::table& root, const std::filesystem::path& sourc
   c.mesh.periodic_x = boundary(c.flow.boundaries, Side::west).kind == BoundaryKind::periodic;
   // Air at rest on a periodic slope: its weight along x is carried as by its hydrostatic pressure.
   if (c.mesh.periodic_x && c.soil) c.flow.periodic_ambient_density = c.soil->air_density;
-  c.flow.numerics = read_numerics(top, c.keys_without_effect);
+  // A granular case's coupled solve covers its soil and an air band by default, wide enough for the
+  // step's sweeps, where one may be laid (require_consistent): not across periodic sides, nor where
+  // the air beyond is not hydrostatic along y.
+  const bool granular = c.soil && c.soil->rheology;
+  const bool band_allowed = granular && !c.mesh.periodic_x && c.flow.gravity[0] == 0.0;
+  c.flow.numerics = read_numerics(top, granular,
+                                  band_allowed ? std::max(default_air_band, 2 * c.time.interface_substeps + 1) : 0,
+                                  c.keys_without_effect);
   read_solvers(top, c.flow);
   c.output = read_output(top, c.mesh, c.time.end);
   for (TableReader obstacle : top.tables("obstacle")) {

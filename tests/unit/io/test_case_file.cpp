@@ -160,13 +160,14 @@ TEST(CaseFile, RheologyParametersAreValidated) {
   EXPECT_NE(model.find("soil.rheology.model"), std::string::npos) << model;
   EXPECT_NO_THROW(parse_case(two_phase, {"soil.rheology.friction_angle=30"}));
   // The strain rate on faces belongs to the face viscosities, which only yield_pressure = face builds.
-  const std::string rate = error_of(two_phase, {"soil.rheology.friction_angle=30", "soil.strain_rate=face"});
+  const std::string rate =
+      error_of(two_phase, {"soil.rheology.friction_angle=30", "soil.yield_pressure=cell", "soil.strain_rate=face"});
   EXPECT_NE(rate.find("soil.strain_rate"), std::string::npos) << rate;
   EXPECT_NE(rate.find("yield_pressure"), std::string::npos) << rate;
   EXPECT_NO_THROW(parse_case(two_phase, {"soil.rheology.friction_angle=30", "soil.strain_rate=face", "soil.yield_pressure=face"}));
   // The face's own soil fraction needs the one evaluation on the face, which strain_rate = face makes.
   const std::string fraction = error_of(two_phase, {"soil.rheology.friction_angle=30", "soil.yield_pressure=face",
-                                                    "soil.face_fraction=face"});
+                                                    "soil.strain_rate=cell", "soil.face_fraction=face"});
   EXPECT_NE(fraction.find("soil.face_fraction"), std::string::npos) << fraction;
   EXPECT_NE(fraction.find("strain_rate"), std::string::npos) << fraction;
   EXPECT_NO_THROW(parse_case(two_phase, {"soil.rheology.friction_angle=30", "soil.strain_rate=face",
@@ -480,7 +481,7 @@ TEST(CaseFile, WallFrictionIsValidatedAndNeedsAGranularSoilOnFaces) {
                            "boundary.south.adhesion: 0 without a friction_angle leaves the wall no strength"},
                        Bad{with({"boundary.north={type = \"atmosphere\", friction_angle = 10.0}"}), "boundary.north.friction_angle"},
                        Bad{with({"boundary.east={type = \"slip\", friction_angle = 10.0}"}), "boundary.east.friction_angle"},
-                       Bad{{"soil.rheology.friction_angle=30", "boundary.south={type = \"wall\", friction_angle = 10.0}"},
+                       Bad{{"soil.rheology.friction_angle=30", "soil.yield_pressure=cell", "boundary.south={type = \"wall\", friction_angle = 10.0}"},
                            "boundary.south: a wall's friction (friction_angle, adhesion) needs soil.yield_pressure = \"face\""},
                        // a misspelt friction key: the known keys name the wall's friction keys too
                        Bad{with({"boundary.south={type = \"wall\", frction_angle = 15.0}"}),
@@ -501,7 +502,7 @@ TEST(CaseFile, WallFrictionIsValidatedAndNeedsAGranularSoilOnFaces) {
   const std::string steep = error_of(two_phase, with({"numerics.pressure_coupling=coupled", obstacles(", friction_angle = 95.0")}));
   EXPECT_NE(steep.find("obstacle[1].friction_angle: 95 is outside (0, 90)"), std::string::npos) << steep;
   const std::string cells = error_of(two_phase, {"soil.rheology.friction_angle=30", "numerics.pressure_coupling=coupled",
-                                                 obstacles(", adhesion = 10.0")});
+                                                 "soil.yield_pressure=cell", obstacles(", adhesion = 10.0")});
   EXPECT_NE(cells.find("obstacle[1]: a wall's friction (friction_angle, adhesion) needs soil.yield_pressure = \"face\""),
             std::string::npos) << cells;
   // Soil only, and granular soil.
@@ -513,6 +514,41 @@ TEST(CaseFile, WallFrictionIsValidatedAndNeedsAGranularSoilOnFaces) {
   EXPECT_NE(e.find("boundary.south: a wall's friction (friction_angle, adhesion) acts on a granular soil"), std::string::npos) << e;
 }
 
+// A granular soil takes the numerics a pile next to air needs by default: the viscosity on the faces,
+// the coupled solve over the soil and an air band wide enough for the step's sweeps where one may be
+// laid; a Newtonian soil keeps the projection and the cells' evaluations.
+TEST(CaseFile, GranularSoilDefaultsToTheFaceViscosityAndTheCoupledSolveOverAnAirBand) {
+  const CaseConfig granular = parse_case(two_phase, {"soil.rheology.friction_angle=30"});
+  EXPECT_EQ(granular.flow.numerics.pressure_coupling, PressureCoupling::coupled);
+  EXPECT_EQ(granular.flow.numerics.air_band, 12);
+  EXPECT_TRUE(granular.flow.numerics.conservative_momentum);
+  EXPECT_EQ(granular.soil->yield_pressure, YieldPressure::face);
+  EXPECT_EQ(granular.soil->strain_rate, StrainRateAt::face);
+  EXPECT_EQ(granular.soil->face_fraction, FaceFraction::face);
+  // Each evaluation defaults to the one before it.
+  const CaseConfig cells = parse_case(two_phase, {"soil.rheology.friction_angle=30", "soil.yield_pressure=cell"});
+  EXPECT_EQ(cells.soil->strain_rate, StrainRateAt::cell);
+  EXPECT_EQ(cells.soil->face_fraction, FaceFraction::cells);
+  // The band is wide enough for the sweeps (2 S + 1), and none where it may not be laid.
+  EXPECT_EQ(parse_case(two_phase, {"soil.rheology.friction_angle=30", "time.interface_substeps=7"}).flow.numerics.air_band, 15);
+  EXPECT_EQ(parse_case(two_phase, {"soil.rheology.friction_angle=30", "physics.gravity=[1.0, -9.81]"}).flow.numerics.air_band, 0);
+  EXPECT_EQ(parse_case(two_phase, {"soil.rheology.friction_angle=30", "boundary.west={type = \"periodic\"}",
+                                   "boundary.east={type = \"periodic\"}"})
+                .flow.numerics.air_band,
+            0);
+  const CaseConfig projection = parse_case(two_phase, {"soil.rheology.friction_angle=30", "numerics.pressure_coupling=projection"});
+  EXPECT_EQ(projection.flow.numerics.air_band, 0);
+  // A Newtonian soil: the projection, the cells' evaluations.
+  std::string newtonian(two_phase);
+  newtonian.erase(newtonian.find("[soil.rheology]"),
+                  std::string("[soil.rheology]\nmodel = \"drucker_prager_bingham\"\nfriction_angle = 95.0\n").size());
+  const CaseConfig water = parse_case(newtonian, {"soil.viscosity=1e-3"});
+  EXPECT_EQ(water.flow.numerics.pressure_coupling, PressureCoupling::projection);
+  EXPECT_EQ(water.flow.numerics.air_band, 0);
+  EXPECT_EQ(water.soil->yield_pressure, YieldPressure::cell);
+  EXPECT_EQ(water.soil->face_fraction, FaceFraction::cells);
+}
+
 TEST(CaseFile, AirBandNeedsTheCoupledSolveAndSoil) {
   const std::vector<std::string> valid{"soil.rheology.friction_angle=30", "numerics.pressure_coupling=coupled"};
   auto with = [&](const std::string& extra) {
@@ -520,8 +556,8 @@ TEST(CaseFile, AirBandNeedsTheCoupledSolveAndSoil) {
     o.push_back(extra);
     return o;
   };
-  EXPECT_EQ(parse_case(two_phase, with("numerics.air_band=12")).flow.numerics.air_band, 12);
-  EXPECT_EQ(parse_case(two_phase, valid).flow.numerics.air_band, 0);
+  EXPECT_EQ(parse_case(two_phase, with("numerics.air_band=0")).flow.numerics.air_band, 0);
+  EXPECT_EQ(parse_case(two_phase, with("numerics.air_band=20")).flow.numerics.air_band, 20);
   for (const char* bad : {"numerics.air_band=-1", "numerics.air_band=2.5"}) {
     const std::string e = error_of(two_phase, with(bad));
     EXPECT_NE(e.find("numerics.air_band"), std::string::npos) << bad << ": " << e;
@@ -773,7 +809,8 @@ TEST(CaseFile, ObstaclesTakeShapesAndNeedTheCoupledPlanarSolve) {
   ASSERT_EQ(c.obstacles.size(), 2u);
   EXPECT_TRUE(std::holds_alternative<interface::Circle>(c.obstacles[1]));
   EXPECT_TRUE(parse_case(two_phase, coupled).obstacles.empty());
-  const std::string projection = error_of(two_phase, {"soil.rheology.friction_angle=30", step});
+  const std::string projection =
+      error_of(two_phase, {"soil.rheology.friction_angle=30", "numerics.pressure_coupling=projection", step});
   EXPECT_NE(projection.find("obstacle"), std::string::npos) << projection;
   EXPECT_NE(projection.find("coupled"), std::string::npos) << projection;
   const std::string outside =
