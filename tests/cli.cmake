@@ -508,6 +508,15 @@ add_test(NAME cli_stability_stands_at_every_factor_and_keeps_its_analysis
                  $<TARGET_FILE:granflow> ${CMAKE_CURRENT_BINARY_DIR}/stability_stands ${CMAKE_SOURCE_DIR}/cases/bui2008_experiment.toml
                  --set "mesh.cells=[30,10]" --set time.end=0.02 --set soil.rheology.cohesion=1e5 --set output.progress_seconds=0 --set output.fields=false)
 set_tests_properties(cli_stability_stands_at_every_factor_and_keeps_its_analysis PROPERTIES LABELS cli)
+# A stability analysis where every factor fails names the case's numerics warned of above as a likely
+# cause: an embankment on the projection and the cells' evaluations, set by hand, leaks at its sides.
+file(WRITE ${CMAKE_CURRENT_BINARY_DIR}/embankment_half.toml "[mesh]\ncells = [20, 12]\nupper = [10.0, 6.0]\n[time]\nend = 2.0\n[physics]\ngravity = [0.0, -9.81]\n[air]\ndensity = 1.2\nviscosity = 1.8e-5\n[soil]\ndensity = 1900.0\n[soil.rheology]\nfriction_angle = 30.0\ncohesion = 5000.0\n[[initial.soil]]\nshape = \"polygon\"\npoints = [[0.0, 0.0], [8.0, 0.0], [2.0, 4.0], [0.0, 4.0]]\n[boundary]\nwest = { type = \"symmetry\" }\neast = { type = \"atmosphere\" }\nsouth = { type = \"wall\" }\nnorth = { type = \"atmosphere\" }\n[output]\nprogress_seconds = 0\nfields = false\n")
+add_test(NAME cli_stability_failing_everywhere_names_the_numerics_warned_of
+         COMMAND ${GRANFLOW_EXPECT_STATUS} 1 $<TARGET_FILE:granflow> stability ${CMAKE_CURRENT_BINARY_DIR}/embankment_half.toml
+                 -o ${CMAKE_CURRENT_BINARY_DIR}/stability_warned --overwrite --first 0.05 --tolerance 1 --displacement 0.02
+                 --set numerics.pressure_coupling=projection --set soil.yield_pressure=cell)
+set_tests_properties(cli_stability_failing_everywhere_names_the_numerics_warned_of PROPERTIES LABELS cli
+                     PASS_REGULAR_EXPRESSION "\nwarning: soil.rheology.regularisation = \"exponential\" with numerics.pressure_coupling = \"projection\"[^\n]*\n.*error: the soil fails at every factor tried, down to F = [^\n]*[(]mind the warnings on the case's numerics above: they may be why[)]\n")
 # The command line's numbers are finite and in range: "nan" passes no comparison, and was taken.
 add_test(NAME cli_stability_displacement_nan_refused
          COMMAND ${GRANFLOW_EXPECT_STATUS} 2 $<TARGET_FILE:granflow> stability ${CMAKE_SOURCE_DIR}/cases/bui2008_experiment.toml --displacement nan)

@@ -39,9 +39,14 @@ std::string materials_with(const CaseConfig& config, const std::vector<std::arra
   return "soil.materials=[" + out + "]";
 }
 
+// x to 15 significant digits: a reduced angle or a bisection's factor as a decimal reads (30 at F = 1,
+// not 29.999999999999996; F = 2.4, not 2.4000000000000004) in the trials' records, directories and
+// messages, and differs from x far below any tolerance of the analysis.
+double decimal(double x) { return std::stod(fmt::format("{:.15g}", x)); }
+
 // The friction angle of a wall (or obstacle) whose tan(delta) is divided by the factor, degrees.
 double reduced_wall_angle(const rheology::WallFriction& friction, double factor) {
-  return std::atan(friction.friction_coefficient / factor) / (std::numbers::pi / 180.0);
+  return decimal(std::atan(friction.friction_coefficient / factor) / (std::numbers::pi / 180.0));
 }
 
 // The case's text with each obstacle's own friction divided by the factor: --set cannot address one
@@ -74,7 +79,7 @@ CaseConfig reduced_strength(const CaseConfig& config, double factor) {
                                 "(use soil.rheology.friction = \"constant\")",
                                 config.source.string()));
   const double deg = std::numbers::pi / 180.0;
-  auto reduced_friction = [&](double phi) { return std::atan(std::tan(phi * deg) / factor) / deg; };
+  auto reduced_friction = [&](double phi) { return decimal(std::atan(std::tan(phi * deg) / factor) / deg); };
   const auto& num = config.flow.numerics;
   std::vector<std::string> keys{fmt::format("soil.rheology.friction_angle={}", reduced_friction(r.friction_angle_deg)),
                                 fmt::format("soil.rheology.cohesion={}", r.cohesion / factor),
@@ -182,7 +187,7 @@ StrengthReductionResult factor_of_safety(MPI_Comm comm, const CaseConfig& config
     trial(factor);
   }
   while (result.fails_at - result.stands_at > settings.tolerance) {
-    const double middle = 0.5 * (result.stands_at + result.fails_at);
+    const double middle = decimal(0.5 * (result.stands_at + result.fails_at));
     if (middle <= result.stands_at || middle >= result.fails_at) break;  // the factors' last bit
     trial(middle);
   }

@@ -49,6 +49,8 @@ TEST(StrengthReduction, DividesCohesionAndTheTangentOfFriction) {
     const auto& rheology = *r.soil->rheology;
     EXPECT_NEAR(rheology.cohesion, 5000.0 / factor, 1e-12 * 5000.0);
     EXPECT_NEAR(tan_deg(rheology.friction_angle_deg), tan_deg(30.0) / factor, 1e-14);
+    // As a decimal reads: the case's own 30 degrees at F = 1, not atan(tan(30 deg)) = 29.999999999999996.
+    if (factor == 1.0) EXPECT_EQ(rheology.friction_angle_deg, 30.0);
     // Converged outer iterations, whatever the case asked for.
     EXPECT_EQ(r.flow.numerics.outer_iterations, 10);
     EXPECT_LE(r.flow.numerics.outer_tolerance, 1e-6);
