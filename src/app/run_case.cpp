@@ -144,6 +144,8 @@ int run_case(const std::string& case_file, const std::vector<std::string>& overr
     fmt::print("done: t = {:.6g} s in {} steps ({} taken again with a smaller step), {:.2f} s wall ({:.3g} cell-steps/s){}\n",
                s.time, s.steps, s.retried_steps, s.wall_seconds, double(sim.grid().cell_count()) * s.steps / s.wall_seconds,
                s.reached_steady_state   ? ", steady state reached"
+               : s.soil_at_rest         ? fmt::format(", the soil at rest (slower than time.rest_speed = {} m/s everywhere)",
+                                                      sim.config().time.rest_speed)
                : s.stopped_at_max_steps ? fmt::format(", stopped at time.max_steps = {} before time.end = {} s",
                                                       sim.config().time.max_steps, sim.config().time.end)
                                         : std::string());

@@ -483,7 +483,7 @@ TimeSettings read_time(TableReader& top, double& time_interface_courant, std::ve
   time.adaptive = t.boolean("adaptive", true);
   time.courant = t.number("courant", 0.5);
   t.require_range("courant", time.courant, 1e-6, 1e3);
-  for (const char* key : {"courant_region", "interface_courant", "interface_substeps"})
+  for (const char* key : {"courant_region", "interface_courant", "interface_substeps", "rest_speed"})
     if (t.has(key)) two_phase_keys.push_back(t.key_path(key));
   time.courant_region = t.choice("courant_region", "all", {"all", "soil"}) == "soil" ? CourantRegion::soil : CourantRegion::all;
   time.max_dt = t.number("max_dt", inf);
@@ -495,6 +495,8 @@ TimeSettings read_time(TableReader& top, double& time_interface_courant, std::ve
   time.interface_substeps = t.integer_in("interface_substeps", 1, 1, 100);
   time.steady_tolerance = t.number("steady_tolerance", 0.0);
   t.require_range("steady_tolerance", time.steady_tolerance, 0.0, inf);
+  time.rest_speed = t.number("rest_speed", 0.0);
+  t.require_range("rest_speed", time.rest_speed, 0.0, inf);
   time.max_steps = t.integer("max_steps", time.max_steps);
   t.require_range("max_steps", double(time.max_steps), 1, 1e12);
   if (!time.adaptive)
@@ -779,6 +781,9 @@ void require_consistent(const CaseConfig& c) {
       throw CaseError("numerics.air_band: the air band's region does not reach across periodic sides; set "
                       "numerics.air_band = 0 (the whole domain is solved)");
   }
+  if (c.time.rest_speed > 0.0 && c.soil && !c.soil->displacement)
+    throw CaseError("time.rest_speed: needs soil.displacement = true (the soil must have moved before it can come to "
+                    "rest, which its displacement tells)");
   if (c.flow.numerics.air_band > 0) {
     // The air beyond the band is held at rest under the pressure of the air column above it.
     if (c.flow.numerics.pressure_coupling != PressureCoupling::coupled)

@@ -27,6 +27,9 @@ struct TimeSettings {
   // number of one sweep, and the advection sub-cycles. 1 sizes the step by one sweep.
   int interface_substeps = 1;
   double steady_tolerance = 0.0;  // > 0: stop when max|dv/dt| / max|v| falls below it (1/s)
+  // > 0: stop once the soil, having moved (its displacement past a tenth of the smallest cell), is
+  // slower than this everywhere (cells with c >= 0.5), m/s: a run to where a slide comes to rest.
+  double rest_speed = 0.0;
   long max_steps = 100000000;
 };
 

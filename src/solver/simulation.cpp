@@ -421,15 +421,20 @@ RunSummary Simulation::run(const StepObserver& after_step) {
       }
       steady = change / step_dt < tc.steady_tolerance * std::max(speed, 1e-300);
     }
+    // The soil at rest (time.rest_speed): slower than it everywhere, once it has moved.
+    const bool at_rest = tc.rest_speed > 0.0 && soil_ && soil_->largest_speed(*flow_) < tc.rest_speed &&
+                         soil_->largest_displacement() > 0.1 * grid_->min_spacing();
     const bool at_output = time_ >= t_out - 1e-12 * std::max(1.0, t_out);
     if (at_output && std::abs(time_ - t_out) <= 1e-12 * std::max(1.0, t_out)) time_ = t_out;
-    // The steady state is written where it is reached, its line samples marked as such.
+    // The steady state is written where it is reached, its line samples marked as such; so is the
+    // soil at rest.
     steady_state_reached_ = steady;
-    if (at_output || steady) write_output();
-    output_is_current = at_output || steady;
+    if (at_output || steady || at_rest) write_output();
+    output_is_current = at_output || steady || at_rest;
     checkpoint_is_current = false;
-    if (steady) {
-      summary.reached_steady_state = true;
+    if (steady || at_rest) {
+      summary.reached_steady_state = steady;
+      summary.soil_at_rest = at_rest;
       break;
     }
     const auto now = clock::now();
@@ -451,14 +456,14 @@ RunSummary Simulation::run(const StepObserver& after_step) {
   }
   // A run that stops before time.end (steady, or out of steps) writes where it stopped, once, with a
   // checkpoint to go on from.
-  if (summary.reached_steady_state || steps_ >= tc.max_steps) {
+  if (summary.reached_steady_state || summary.soil_at_rest || steps_ >= tc.max_steps) {
     if (!output_is_current) write_output();  // out of steps
     if (!checkpoint_is_current) write_checkpoint(dt);
   }
   if (soil_ && initial_soil_volume_ > 0.0)
     summary.soil_volume_error = soil_->budget(*flow_).soil_volume / initial_soil_volume_ - 1.0;
   summary.time = time_;
-  summary.stopped_at_max_steps = !summary.reached_steady_state && steps_ >= tc.max_steps && time_ < tc.end * (1 - 1e-12);
+  summary.stopped_at_max_steps = !summary.reached_steady_state && !summary.soil_at_rest && steps_ >= tc.max_steps && time_ < tc.end * (1 - 1e-12);
   summary.wall_seconds = std::chrono::duration<double>(clock::now() - start).count();
   summary.solves_at_iteration_limit = flow_->solves_at_iteration_limit();
   return summary;

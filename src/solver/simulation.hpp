@@ -28,6 +28,7 @@ struct RunSummary {
   long pressure_solves = 0;
   long solves_at_iteration_limit = 0;  // linear solves that stopped at max_iterations before rtol
   bool reached_steady_state = false;
+  bool soil_at_rest = false;          // stopped at time.rest_speed
   bool stopped_at_max_steps = false;  // before time.end
 };
 

@@ -16,6 +16,32 @@
 
 namespace granflow {
 
+namespace {
+// The largest of f(i, j) over the owned cells with c >= 0.5, over all ranks.
+template <class F>
+double largest_over_soil(const Grid& grid, const Field& c_field, F&& f) {
+  ConstFieldArray c(grid.field_dm(), c_field.global());
+  const auto& b = grid.owned();
+  double largest = 0.0;
+  for (int j = b.ys; j < b.ye(); ++j)
+    for (int i = b.xs; i < b.xe(); ++i)
+      if (c[j][i] >= 0.5) largest = std::max(largest, f(i, j));
+  double all = 0.0;
+  MPI_Allreduce(&largest, &all, 1, MPI_DOUBLE, MPI_MAX, grid.comm());
+  return all;
+}
+}  // namespace
+
+double SoilPhase::largest_displacement() const {
+  ConstFieldArray dx(grid_.field_dm(), disp_[0]->global()), dy(grid_.field_dm(), disp_[1]->global());
+  return largest_over_soil(grid_, *c_, [&](int i, int j) { return std::hypot(dx[j][i], dy[j][i]); });
+}
+
+double SoilPhase::largest_speed(const FlowSolver& flow) const {
+  ConstFieldArray u(grid_.field_dm(), flow.velocity(0).global()), v(grid_.field_dm(), flow.velocity(1).global());
+  return largest_over_soil(grid_, *c_, [&](int i, int j) { return std::hypot(u[j][i], v[j][i]); });
+}
+
 void SoilPhase::compute_diagnostics(const FlowSolver& flow) {
   const auto& b = grid_.owned();
   ConstFieldArray dx(grid_.field_dm(), disp_[0]->local()), dy(grid_.field_dm(), disp_[1]->local());

@@ -72,6 +72,10 @@ class SoilPhase {
   void accumulate_lode_energy(double dt);
   // Dissipated energy so far, binned by Lode angle ([YS] Fig. 17), summed over ranks (collective).
   rheology::LodeHistogram lode_energy() const;
+  // The soil's (cells with c >= 0.5) largest displacement and largest speed now, on every rank
+  // (collective); 0 where the grid holds no such cell.
+  double largest_displacement() const;
+  double largest_speed(const FlowSolver& flow) const;
 
   // Soil materials ([[soil.materials]]): how many besides the rheology's own, and the share of each
   // cell's soil that material k (1 .. material_count()) holds. None without materials.

@@ -85,7 +85,8 @@ CaseConfig reduced_strength(const CaseConfig& config, double factor) {
                                 fmt::format("soil.rheology.cohesion={}", r.cohesion / factor),
                                 fmt::format("numerics.outer_iterations={}", std::max(num.outer_iterations, 10)),
                                 fmt::format("numerics.outer_tolerance={}", std::min(num.outer_tolerance, 1e-6)),
-                                "soil.displacement=true"};
+                                "soil.displacement=true",
+                                "time.rest_speed=0"};  // each trial runs to time.end, or until it fails
   if (!config.soil->materials.empty()) {  // every soil material's strength too
     std::vector<std::array<double, 2>> strengths;
     for (const auto& m : config.soil->materials) {
@@ -118,25 +119,6 @@ std::filesystem::path trial_directory(const std::filesystem::path& out, double f
   return out.empty() ? out : out / fmt::format("F_{}", factor);  // the shortest form: distinct factors, distinct names
 }
 
-namespace {
-
-// The largest displacement of the soil (cells with c >= 0.5), on every rank.
-double largest_displacement(Simulation& sim) {
-  const Grid& g = sim.grid();
-  const SoilPhase& soil = *sim.soil();
-  ConstFieldArray c(g.field_dm(), soil.soil_fraction().global());
-  ConstFieldArray dx(g.field_dm(), soil.displacement(0).global()), dy(g.field_dm(), soil.displacement(1).global());
-  const auto& b = g.owned();
-  double largest = 0.0;
-  for (int j = b.ys; j < b.ye(); ++j)
-    for (int i = b.xs; i < b.xe(); ++i)
-      if (c[j][i] >= 0.5) largest = std::max(largest, std::hypot(dx[j][i], dy[j][i]));
-  double all = 0.0;
-  MPI_Allreduce(&largest, &all, 1, MPI_DOUBLE, MPI_MAX, g.comm());
-  return all;
-}
-
-}  // namespace
 
 StrengthTrial strength_trial(MPI_Comm comm, const CaseConfig& config, const std::filesystem::path& out, double factor,
                              double limit_setting) {
@@ -150,14 +132,14 @@ StrengthTrial strength_trial(MPI_Comm comm, const CaseConfig& config, const std:
     sim.run([&](Simulation& running, double) {
       ++trial.steps;
       if (!(running.last_step().velocity_change < running.config().flow.numerics.outer_tolerance)) ++trial.unconverged_steps;
-      if (largest_displacement(running) > limit) throw Moved{};
+      if (running.soil()->largest_displacement() > limit) throw Moved{};
     });
   } catch (const Moved&) {
     if (!out.empty()) sim.write_output();  // the state at which it was seen to fail
   } catch (const DivergenceError&) {
     trial.diverged = true;
   }
-  trial.largest_displacement = largest_displacement(sim);
+  trial.largest_displacement = sim.soil()->largest_displacement();
   trial.fails = trial.diverged || trial.largest_displacement > limit;
   trial.time = sim.time();
   trial.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

@@ -549,6 +549,19 @@ TEST(CaseFile, GranularSoilDefaultsToTheFaceViscosityAndTheCoupledSolveOverAnAir
   EXPECT_EQ(water.soil->face_fraction, FaceFraction::cells);
 }
 
+// time.rest_speed: soil cases only, whose soil carries its displacement (which tells that it moved).
+TEST(CaseFile, RestSpeedNeedsSoilThatCarriesItsDisplacement) {
+  EXPECT_EQ(parse_case(two_phase, {"soil.rheology.friction_angle=30", "time.rest_speed=1e-3"}).time.rest_speed, 1e-3);
+  EXPECT_EQ(parse_case(two_phase, {"soil.rheology.friction_angle=30"}).time.rest_speed, 0.0);
+  const std::string hidden =
+      error_of(two_phase, {"soil.rheology.friction_angle=30", "time.rest_speed=1e-3", "soil.displacement=false"});
+  EXPECT_NE(hidden.find("time.rest_speed: needs soil.displacement = true"), std::string::npos) << hidden;
+  const std::string negative = error_of(two_phase, {"soil.rheology.friction_angle=30", "time.rest_speed=-1"});
+  EXPECT_NE(negative.find("time.rest_speed: -1 is invalid"), std::string::npos) << negative;
+  const std::string fluid = error_of(minimal, {"time.rest_speed=1e-3"});
+  EXPECT_NE(fluid.find("time.rest_speed: applies to cases with soil only"), std::string::npos) << fluid;
+}
+
 TEST(CaseFile, AirBandNeedsTheCoupledSolveAndSoil) {
   const std::vector<std::string> valid{"soil.rheology.friction_angle=30", "numerics.pressure_coupling=coupled"};
   auto with = [&](const std::string& extra) {
