@@ -423,7 +423,7 @@ RunSummary Simulation::run(const StepObserver& after_step) {
     }
     // The soil at rest (time.rest_speed): slower than it everywhere, once it has moved.
     const bool at_rest = tc.rest_speed > 0.0 && soil_ && soil_->largest_speed(*flow_) < tc.rest_speed &&
-                         soil_->largest_displacement() > 0.1 * grid_->min_spacing();
+                         soil_->largest_displacement() > soil_->moved_distance();
     const bool at_output = time_ >= t_out - 1e-12 * std::max(1.0, t_out);
     if (at_output && std::abs(time_ - t_out) <= 1e-12 * std::max(1.0, t_out)) time_ = t_out;
     // The steady state is written where it is reached, its line samples marked as such; so is the

@@ -76,6 +76,9 @@ class SoilPhase {
   // (collective); 0 where the grid holds no such cell.
   double largest_displacement() const;
   double largest_speed(const FlowSolver& flow) const;
+  // The displacement past which the soil counts as having moved: a tenth of the smallest cell (the
+  // failure of a stability trial by default; where time.rest_speed starts to look for rest).
+  double moved_distance() const { return 0.1 * grid_.min_spacing(); }
 
   // Soil materials ([[soil.materials]]): how many besides the rheology's own, and the share of each
   // cell's soil that material k (1 .. material_count()) holds. None without materials.

@@ -126,7 +126,7 @@ StrengthTrial strength_trial(MPI_Comm comm, const CaseConfig& config, const std:
   trial.factor = factor;
   const auto start = std::chrono::steady_clock::now();
   Simulation sim(comm, reduced_strength(config, factor), trial_directory(out, factor));
-  const double limit = limit_setting > 0.0 ? limit_setting : 0.1 * sim.grid().min_spacing();
+  const double limit = limit_setting > 0.0 ? limit_setting : sim.soil()->moved_distance();
   struct Moved {};  // the soil has moved past the limit: the trial's verdict is in
   try {
     sim.run([&](Simulation& running, double) {
