@@ -174,8 +174,8 @@ Enum read_enum(TableReader& r, std::string_view key, Enum fallback, Parse parse,
 }
 
 // The keys of a rheology table over `p`, which holds their defaults. A soil material's (material)
-// shares the rheology's regularisation, whose keys are refused there, and a model of it that takes no
-// cohesion does not inherit the rheology's.
+// shares the rheology's regularisation, whose keys are refused there, and one whose friction is mu(I),
+// which takes no cohesion, does not inherit the rheology's.
 void read_rheology_keys(TableReader& r, rheology::RheologyParameters& p, bool material) {
   using namespace rheology;
   p.model = read_enum(r, "model", p.model, parse_model, model_names);
@@ -206,7 +206,7 @@ void read_rheology_keys(TableReader& r, rheology::RheologyParameters& p, bool ma
             "friction = \"constant\" (the default; under mu_of_I, mu_s, mu_2 and I_0 give the friction)");
   only_with({"matsuoka_nakai_fit"}, p.model == Model::matsuoka_nakai, "model = \"matsuoka_nakai\"");
   p.friction_angle_deg = r.number("friction_angle", p.friction_angle_deg);
-  p.cohesion = r.number("cohesion", material && p.model != Model::drucker_prager_bingham ? 0.0 : p.cohesion);
+  p.cohesion = r.number("cohesion", material && p.friction == FrictionSource::mu_of_I ? 0.0 : p.cohesion);
   if (!material) {
     p.regularisation_time = r.number("m", p.regularisation_time);
     p.min_dynamic_viscosity = r.number("mu_min", p.min_dynamic_viscosity);

@@ -21,6 +21,8 @@ GranularRheology::GranularRheology(const RheologyParameters& parameters)
       mn_fit_(parameters.matsuoka_nakai_fit),
       needs_lode_angle_(yield_surface_of(parameters.model) != YieldSurface::drucker_prager),
       sin_phi_(std::sin(degrees_to_radians(parameters.friction_angle_deg))),
+      cohesion_cos_phi_(parameters.cohesion * std::cos(degrees_to_radians(parameters.friction_angle_deg))),
+      attraction_(sin_phi_ > 0.0 ? cohesion_cos_phi_ / sin_phi_ : 0.0),  // Matsuoka-Nakai needs phi > 0
       bingham_(DruckerPragerBingham::from_friction_angle(
           degrees_to_radians(parameters.friction_angle_deg), parameters.cohesion)),
       matsuoka_nakai_(MatsuokaNakai::from_k(

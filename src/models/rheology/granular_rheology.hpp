@@ -120,15 +120,16 @@ class GranularRheology {
       case Model::drucker_prager_bingham:
         tau = bingham_.yield_stress(yield_pressure);  // [VoF] Eq. 7
         break;
+      // A cohesion comes with a constant friction angle only (validate), so friction = sin(phi).
       case Model::drucker_prager:
-        tau = drucker_prager_yield_stress(friction, yield_pressure);  // [YS] Eqs. 23-25
+        tau = drucker_prager_yield_stress(friction, yield_pressure, cohesion_cos_phi_);  // [YS] Eqs. 23-25
         break;
       case Model::mohr_coulomb:
         tau = mohr_coulomb_yield_stress(friction, lode_angle_from_sin3(sin_three_lode),
-                                        yield_pressure);  // [YS] Eq. 28
+                                        yield_pressure, cohesion_cos_phi_);  // [YS] Eqs. 26, 28
         break;
       case Model::matsuoka_nakai:
-        tau = matsuoka_nakai_for(friction).yield_stress(sin_three_lode, yield_pressure);  // Eq. 30
+        tau = matsuoka_nakai_for(friction).yield_stress(sin_three_lode, yield_pressure, attraction_);  // Eq. 30
         break;
     }
     return std::min(tau, max_yield_stress_);
@@ -168,6 +169,8 @@ class GranularRheology {
   MatsuokaNakaiFit mn_fit_;
   bool needs_lode_angle_;
   double sin_phi_;
+  double cohesion_cos_phi_;  // C cos(phi): the [YS] surfaces' yield stress at p = 0 in isochoric shear
+  double attraction_;        // C cot(phi): how far below p = 0 their apex lies (0 without cohesion)
   DruckerPragerBingham bingham_;
   MatsuokaNakai matsuoka_nakai_;
   MuOfI mu_of_i_;

@@ -67,6 +67,13 @@ struct MatsuokaNakai {
   [[nodiscard]] double yield_stress(double sin_three_lode, double yield_pressure) const noexcept {
     return stress_ratio(sin_three_lode) * yield_pressure;
   }
+
+  // With a cohesion C: the cone's apex moved from p = 0 to p = -attraction, attraction = C cot(phi),
+  // as Mohr-Coulomb's tau = C + sigma_n tan(phi) moves it (Eq. 29 of the stress T - attraction I).
+  [[nodiscard]] double yield_stress(double sin_three_lode, double yield_pressure,
+                                    double attraction) const noexcept {
+    return stress_ratio(sin_three_lode) * (yield_pressure + attraction);
+  }
 };
 
 // [YS] Eqs. 30-33 as printed, with the branch and gamma resolution described above: eta for the

@@ -78,19 +78,25 @@ std::optional<std::string> validate(const RheologyParameters& p) {
     return "rheology parameter matsuoka_nakai_fit has an invalid value";
   }
   // Negated comparisons so that NaN fails every check.
-  // phi = 0 with C > 0 is an undrained clay: the cone is then von Mises, in plane strain Tresca with
-  // c_u = C ([VoF] Eq. 9 with tan(phi) = 0). The other surfaces have no cohesion, so need phi > 0.
-  const bool undrained = p.model == Model::drucker_prager_bingham && p.cohesion > 0.0;
-  if (!((undrained ? p.friction_angle_deg >= 0.0 : p.friction_angle_deg > 0.0) && p.friction_angle_deg < 90.0)) {
-    return bad("friction_angle (phi)", p.friction_angle_deg,
-               undrained ? "must lie in [0, 90) degrees" : "must lie in (0, 90) degrees ([0, 90) with a cohesion)");
-  }
+  // phi = 0 with C > 0 is an undrained clay: the Drucker-Prager cones are then von Mises, Mohr-Coulomb
+  // is Tresca, each in plane strain with c_u = C ([VoF] Eq. 9 with tan(phi) = 0). Matsuoka-Nakai has
+  // no such limit (k_MN -> 9 leaves no deviatoric strength), so it keeps phi > 0.
   if (!(p.cohesion >= 0.0 && std::isfinite(p.cohesion))) {
     return bad("cohesion (C)", p.cohesion, "must be finite and >= 0 Pa");
   }
-  if (p.cohesion > 0.0 && p.model != Model::drucker_prager_bingham) {
+  const bool undrained = p.cohesion > 0.0 && p.model != Model::matsuoka_nakai;
+  if (!((undrained ? p.friction_angle_deg >= 0.0 : p.friction_angle_deg > 0.0) && p.friction_angle_deg < 90.0)) {
+    return bad("friction_angle (phi)", p.friction_angle_deg,
+               undrained ? "must lie in [0, 90) degrees"
+               : p.model == Model::matsuoka_nakai
+                   ? "must lie in (0, 90) degrees (with matsuoka_nakai, also with a cohesion)"
+                   : "must lie in (0, 90) degrees ([0, 90) with a cohesion)");
+  }
+  // The cohesion is carried to a surface through its friction angle (the apex at p = -C cot(phi));
+  // a friction from mu(I) has no angle to carry it.
+  if (p.cohesion > 0.0 && p.friction == FrictionSource::mu_of_I) {
     return bad("cohesion (C)", p.cohesion,
-               "is only used by model drucker_prager_bingham; set it to 0 or change the model");
+               "needs friction = \"constant\" (a friction angle); set it to 0 with friction = \"mu_of_I\"");
   }
   if (!(p.regularisation_time > 0.0 && std::isfinite(p.regularisation_time))) {
     return bad("m (regularisation time)", p.regularisation_time, "must be finite and > 0 s");

@@ -195,19 +195,22 @@ TEST(CaseFile, SoilMaterialsAreNamedValidatedAndUsed) {
   const std::string density = error_of(two_phase, {phi, "soil.materials=[{name = \"clay\", density = -1800.0}]", shapes});
   EXPECT_NE(density.find("soil.materials[0].density"), std::string::npos) << density;
   EXPECT_NE(density.find("positive"), std::string::npos) << density;
-  // A material's yield surface is the rheology's unless given; a model that takes no cohesion does
-  // not inherit the rheology's, and refuses one given.
+  // A material's yield surface and cohesion are the rheology's unless given; a material whose friction
+  // is mu(I), which takes no cohesion, does not inherit the rheology's, and refuses one given.
   EXPECT_EQ(c.soil->materials[0].rheology.model, c.soil->rheology->model);
   const std::string cohesive = "soil.rheology.cohesion=5000";
   const CaseConfig mc = parse_case(two_phase, {phi, cohesive, "soil.materials=[{name = \"clay\", model = \"mohr_coulomb\"}]", shapes});
   EXPECT_EQ(mc.soil->materials[0].rheology.model, rheology::Model::mohr_coulomb);
-  EXPECT_EQ(mc.soil->materials[0].rheology.cohesion, 0.0);
+  EXPECT_EQ(mc.soil->materials[0].rheology.cohesion, 5000.0);
   EXPECT_EQ(mc.soil->materials[0].rheology.friction_angle_deg, 30.0);
   const CaseConfig dpb = parse_case(two_phase, {phi, cohesive, "soil.materials=[{name = \"clay\", friction_angle = 25.0}]", shapes});
   EXPECT_EQ(dpb.soil->materials[0].rheology.cohesion, 5000.0);
-  const std::string mc_cohesion = error_of(two_phase, {phi, "soil.materials=[{name = \"clay\", model = \"mohr_coulomb\", cohesion = 1e3}]", shapes});
-  EXPECT_NE(mc_cohesion.find("soil.materials[0]"), std::string::npos) << mc_cohesion;
-  EXPECT_NE(mc_cohesion.find("cohesion"), std::string::npos) << mc_cohesion;
+  const CaseConfig sand_of_grains = parse_case(two_phase, {phi, cohesive, "soil.materials=[{name = \"clay\", model = \"drucker_prager\", friction = \"mu_of_I\"}]", shapes});
+  EXPECT_EQ(sand_of_grains.soil->materials[0].rheology.cohesion, 0.0);
+  const std::string grains_cohesion = error_of(two_phase, {phi, "soil.materials=[{name = \"clay\", model = \"mohr_coulomb\", friction = \"mu_of_I\", cohesion = 1e3}]", shapes});
+  EXPECT_NE(grains_cohesion.find("soil.materials[0]"), std::string::npos) << grains_cohesion;
+  EXPECT_NE(grains_cohesion.find("cohesion"), std::string::npos) << grains_cohesion;
+  EXPECT_NE(grains_cohesion.find("friction = \"constant\""), std::string::npos) << grains_cohesion;
   const std::string model = error_of(two_phase, {phi, "soil.materials=[{name = \"clay\", model = \"cam_clay\"}]", shapes});
   EXPECT_NE(model.find("soil.materials[0].model: 'cam_clay' is not one of"), std::string::npos) << model;
   // A key the material does not have; no strength at all (phi = 0 without cohesion); a name twice.

@@ -1,7 +1,9 @@
 // Parameter names as the case file spells them, and validation messages naming the culprit.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <limits>
+#include <numbers>
 #include <stdexcept>
 #include <string>
 
@@ -90,8 +92,16 @@ TEST(RheologyParameters, ValidationNamesTheBadParameter) {
   {
     RheologyParameters p;
     p.model = Model::mohr_coulomb;
-    p.cohesion = 5e3;  // only Drucker-Prager-Bingham has k_c
+    p.friction = FrictionSource::mu_of_I;
+    p.cohesion = 5e3;  // a cohesion is carried by a friction angle, which mu(I) has not
     expect_rejected(p, "cohesion");
+  }
+  {
+    RheologyParameters p;
+    p.model = Model::matsuoka_nakai;
+    p.cohesion = 5e3;
+    p.friction_angle_deg = 0.0;  // no undrained limit: k_MN = 9 has no deviatoric strength
+    expect_rejected(p, "friction_angle (phi)");
   }
   {
     RheologyParameters p;
@@ -158,15 +168,50 @@ namespace {
 
 // phi = 0 with a cohesion: the cone of [VoF] Eqs. 8-9 has alpha_phi = 0 and k_c = C, a yield stress C
 // at every pressure (Tresca's c_u in plane strain).
+// The same for the Drucker-Prager cone and Mohr-Coulomb of [YS] with a cohesion (von Mises and Tresca):
+// C in plane shear; Tresca's C / cos(theta) elsewhere, 2 C / sqrt3 in triaxial compression.
 TEST(RheologyParameters, UndrainedClayYieldsAtItsCohesionAtAnyPressure) {
-  RheologyParameters p;
-  p.friction_angle_deg = 0.0;
-  p.cohesion = 2.5e4;
-  ASSERT_FALSE(validate(p).has_value());
-  const GranularRheology clay(p);
   const StrainRate shear = planar_strain_rate(0.0, 0.0, 0.5);
-  for (double pressure : {0.0, 1e3, 1e6})
-    EXPECT_DOUBLE_EQ(clay.evaluate(shear, pressure).yield_stress, 2.5e4) << pressure;
+  const double a = 2.0 / std::numbers::sqrt3, b = 1.0 / std::numbers::sqrt3;
+  const StrainRate compression{-a, b, b, 0, 0, 0};
+  for (Model model : {Model::drucker_prager_bingham, Model::drucker_prager, Model::mohr_coulomb}) {
+    SCOPED_TRACE(std::string(to_string(model)));
+    RheologyParameters p;
+    p.model = model;
+    p.friction_angle_deg = 0.0;
+    p.cohesion = 2.5e4;
+    ASSERT_FALSE(validate(p).has_value());
+    const GranularRheology clay(p);
+    for (double pressure : {0.0, 1e3, 1e6}) {
+      EXPECT_DOUBLE_EQ(clay.evaluate(shear, pressure).yield_stress, 2.5e4) << pressure;
+      EXPECT_NEAR(clay.evaluate(compression, pressure).yield_stress,
+                  model == Model::mohr_coulomb ? 2.0 * 2.5e4 / std::numbers::sqrt3 : 2.5e4, 1e-9 * 2.5e4)
+          << pressure;
+    }
+  }
+}
+
+// A c-phi soil on the [YS] surfaces: in plane shear (theta = 0) each gives Mohr-Coulomb's
+// (sigma_1 - sigma_3) / 2 = p sin(phi) + C cos(phi), so the cohesion adds C cos(phi) at every pressure;
+// with the pressure clipped at zero what is left in tension is that cohesive part alone.
+TEST(RheologyParameters, CohesionAddsTheMohrCoulombStrengthInPlaneShear) {
+  const StrainRate shear = planar_strain_rate(0.3, -0.3, 0.2);
+  const double phi = 25.0 * std::numbers::pi / 180.0, cohesion = 5e3;
+  for (Model model : {Model::drucker_prager, Model::mohr_coulomb, Model::matsuoka_nakai}) {
+    SCOPED_TRACE(std::string(to_string(model)));
+    RheologyParameters p;
+    p.model = model;
+    p.friction_angle_deg = 25.0;
+    p.cohesion = cohesion;
+    ASSERT_FALSE(validate(p).has_value());
+    const GranularRheology soil(p);
+    for (double pressure : {0.0, 2e3, 1e5}) {
+      EXPECT_NEAR(soil.evaluate(shear, pressure).yield_stress,
+                  pressure * std::sin(phi) + cohesion * std::cos(phi), 1e-10 * (pressure + cohesion))
+          << pressure;
+    }
+    EXPECT_DOUBLE_EQ(soil.evaluate(shear, -3e3).yield_stress, soil.evaluate(shear, 0.0).yield_stress);
+  }
 }
 
 }  // namespace

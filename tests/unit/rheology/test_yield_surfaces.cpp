@@ -22,22 +22,30 @@ namespace {
 
 constexpr double kYieldTolerance = 1e-10;
 
-// Dimensionless yield function of the model at stress T, using the friction the rheology used.
+// Dimensionless yield function of the model at stress T, using the friction the rheology used. A
+// cohesion C moves the [YS] surfaces' apex to p = -C cot(phi): their yield function is then the
+// cohesionless one of the stress T - C cot(phi) I; Mohr-Coulomb's is written out with C instead
+// (Eq. 26 in stress units), which also holds at phi = 0 (Tresca).
 double yield_function_of(const GranularRheology& rheology, const SymmetricTensor& stress,
                          double friction, double pressure) {
   const RheologyParameters& p = rheology.parameters();
+  const double phi = p.friction_angle_deg * std::numbers::pi / 180.0;
+  const double cohesion_cos_phi = p.cohesion * std::cos(phi);
+  const double attraction = p.cohesion > 0.0 ? cohesion_cos_phi / std::sin(phi) : 0.0;
+  const SymmetricTensor shifted = stress - isotropic_tensor(attraction);
   switch (p.model) {
     case Model::drucker_prager_bingham:
       return rheology.drucker_prager_bingham().yield_function(stress) / pressure;
     case Model::drucker_prager:
-      return drucker_prager_yield_function(stress, friction) / pressure;
+      return drucker_prager_yield_function(shifted, friction) / pressure;
     case Model::mohr_coulomb:
+      if (p.cohesion > 0.0) return mohr_coulomb_yield_function(stress, friction, cohesion_cos_phi) / pressure;
       return mohr_coulomb_yield_function(stress, friction);
     case Model::matsuoka_nakai: {
       const double k = p.matsuoka_nakai_fit == MatsuokaNakaiFit::isochoric_shear
                            ? matsuoka_nakai_k_isochoric(friction)
                            : matsuoka_nakai_k_triaxial(friction);
-      return matsuoka_nakai_yield_function(stress, k);
+      return matsuoka_nakai_yield_function(shifted, k);
     }
   }
   return 1.0;
@@ -55,10 +63,16 @@ std::vector<RheologyParameters> all_model_variants() {
       p.friction_angle_deg = 36.5;
       p.density = 1430.0;
       variants.push_back(p);
-      if (model == Model::drucker_prager_bingham) {
+      if (friction == FrictionSource::constant) {
         p.cohesion = 5e3;  // [VoF] Fig. 7 case
         p.friction_angle_deg = 25.0;
         variants.push_back(p);
+        if (model == Model::mohr_coulomb) {  // Tresca
+          p.friction_angle_deg = 0.0;
+          variants.push_back(p);
+        }
+        p.cohesion = 0.0;
+        p.friction_angle_deg = 36.5;
       }
       if (model == Model::matsuoka_nakai) {
         p.matsuoka_nakai_fit = MatsuokaNakaiFit::triaxial;
