@@ -12,6 +12,7 @@
 #include <cstdio>
 #include <numbers>
 #include <string>
+#include <utility>
 
 #include "io/case_file.hpp"
 #include "solver/strength_reduction.hpp"
@@ -37,6 +38,24 @@ TEST(SlopeStability, GriffithsLaneExampleOneFactorOfSafety) {
     std::printf("Griffiths & Lane example 1 at 100 x 25: stands at F = %.4f, fails at %.4f: %.3f (published 1.4 and "
                 "Bishop's 1.38, for the model's cone 1.370 and 1.351)\n", r.stands_at, r.fails_at, factor);
   EXPECT_NEAR(factor, 1.36, 0.027);  // within 2 % of 1.351 and 1.370
+}
+
+// The same slope with their own criterion: model = "mohr_coulomb" takes the cohesion as tau = C +
+// sigma_n tan(phi), and in plane strain its yield stress is Mohr-Coulomb's without the cone's 1.0218
+// (docs/case_file.md). Measured by bisection at 100 x 25: stands at 1.375, fails at 1.3828, a factor of
+// 1.379 against Bishop's 1.38 and the finite elements' 1.4 (the cone of the test above: 1.355). Here two
+// trials: it stands at F = 1.365, where the cone fails, and fails at the finite elements' 1.4.
+TEST(SlopeStability, GriffithsLaneExampleOneWithMohrCoulombItself) {
+  const CaseConfig config = load_case(test::repo_path("cases/slope_griffiths_lane1999.toml"),
+                                      {"mesh.cells=[100,25]", "output.progress_seconds=0",
+                                       "soil.rheology.model=mohr_coulomb"});
+  for (const auto& [factor, fails] : {std::pair{1.365, false}, std::pair{1.4, true}}) {
+    const StrengthTrial t = strength_trial(PETSC_COMM_WORLD, config, "", factor);
+    if (test::is_root())
+      std::printf("Griffiths & Lane example 1, Mohr-Coulomb, F = %.3f: %s (largest displacement %.3g m at t = %.3g s)\n",
+                  factor, t.fails ? "fails" : "stands", t.largest_displacement, t.time);
+    EXPECT_EQ(t.fails, fails) << "F = " << factor;
+  }
 }
 
 // Griffiths & Lane's example 4: which mechanism fails depends on the foundation's strength, so the factor
