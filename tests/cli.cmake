@@ -562,3 +562,11 @@ add_test(NAME scripts_compare_axisymmetric_skips_another_block
 set_tests_properties(scripts_compare_axisymmetric_skips_another_block PROPERTIES LABELS cli
                      PASS_REGULAR_EXPRESSION "note: [^\n]*lube2004_a05_mohr_coulomb: skipped [(]InputError: [^\n]*the run's initial volume is 0[.]000498[0-9]*, not the 0[.]002 of the cylinder a = 0[.]5 of lube2004_a05[.]toml[^\n]*\n.*\nlube2004_a2 +drucker_prager +0[.]1 +0[.]12[0-9]+ "
                      FAIL_REGULAR_EXPRESSION "Traceback;error:")
+# Any field of a run to PNG: the outputs and fields listed, the output nearest a time, a log scale over
+# the soil; a misspelt field named with the run's fields, and no picture written.
+add_test(NAME scripts_plot_field
+         COMMAND sh -c "g=$0; p=$1; c=$2; d=$3; rm -rf \"$d\"; \"$g\" run \"$c\" -o \"$d\" --set 'mesh.cells=[30,10]' --set time.end=0.02 --set output.interval=0.01 --set output.progress_seconds=0 > /dev/null || exit 1; /usr/bin/python3 \"$p\" \"$d\" --time 0.012; /usr/bin/python3 \"$p\" \"$d\" --field viscosity --log --soil-only --png \"$d/v.png\" && test -s \"$d/v.png\" && echo drawn; /usr/bin/python3 \"$p\" \"$d\" --field velocty --png \"$d/x.png\" 2>&1; echo \"status $?\"; test ! -e \"$d/x.png\" && echo 'none written'"
+                 $<TARGET_FILE:granflow> ${CMAKE_SOURCE_DIR}/scripts/plot_field.py ${CMAKE_SOURCE_DIR}/cases/bui2008_experiment.toml ${CMAKE_CURRENT_BINARY_DIR}/plot_field_run)
+set_tests_properties(scripts_plot_field PROPERTIES LABELS cli
+                     PASS_REGULAR_EXPRESSION "^3 outputs: 0 [(]t = 0 s[)], 1 [(]t = 0[.]01 s[)], 2 [(]t = 0[.]02 s[)]\nfields of output 1: density, displacement [(]3 components[)], [^\n]*, viscosity\nwrote [^\n]*v[.]png [(]log10 viscosity [(]Pa s[)] from [^\n]*[)]\ndrawn\nerror: [^\n]*has no field velocty; it has [^\n]*velocity[^\n]*\nstatus 1\nnone written\n$"
+                     FAIL_REGULAR_EXPRESSION "Traceback")
