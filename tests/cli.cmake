@@ -274,6 +274,13 @@ add_test(NAME cli_check_says_what_it_laid_out
          COMMAND ${GRANFLOW_EXPECT_STATUS} 0 $<TARGET_FILE:granflow> check ${CMAKE_SOURCE_DIR}/cases/barrier_collapse.toml)
 set_tests_properties(cli_check_says_what_it_laid_out PROPERTIES LABELS cli
                      PASS_REGULAR_EXPRESSION "valid [(]150 x 50 cells, t_end = 2 s; initial soil 0[.]02 m\\^2 per metre of depth; 21 cells blocked by obstacles[)]")
+# ... and the part of the initial shapes that lies in obstacles and is left out: a box reaching 1 cm
+# into the barrier's 2.8 cm height (2.8e-4 m^2).
+add_test(NAME cli_check_says_what_obstacles_leave_out
+         COMMAND ${GRANFLOW_EXPECT_STATUS} 0 $<TARGET_FILE:granflow> check ${CMAKE_SOURCE_DIR}/cases/barrier_collapse.toml
+                 --set "initial.soil=[{shape='box', lower=[0.0,0.0], upper=[0.41,0.1]}]")
+set_tests_properties(cli_check_says_what_obstacles_leave_out PROPERTIES LABELS cli
+                     PASS_REGULAR_EXPRESSION "valid [(]150 x 50 cells, t_end = 2 s; initial soil 0[.]04072 m\\^2 per metre of depth; 21 cells blocked by obstacles, which leave out 0[.]00028 m\\^2 per metre of depth of the initial shapes' soil[)]")
 # ... and with soil materials, each one's soil; a material whose shapes all lie under later shapes
 # holds none, which check finds as a run does (exit 2, the message naming it).
 add_test(NAME cli_check_says_each_materials_soil

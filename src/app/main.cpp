@@ -259,7 +259,14 @@ int main(int argc, char** argv) {
         for (size_t k = 0; k < volumes.size(); ++k)
           placed += fmt::format("{}{} {:.6g}", k == 0 ? ", of which " : ", ",
                                 k == 0 ? std::string("the rheology's own soil") : c.soil->materials[k - 1].name, volumes[k]);
-        if (!c.obstacles.empty()) placed += fmt::format("; {} cells blocked by obstacles", laid_out.blocked_cells);
+        if (!c.obstacles.empty()) {
+          placed += fmt::format("; {} cells blocked by obstacles", laid_out.blocked_cells);
+          // A shape may reach into an obstacle on purpose (soil laid over terrain); the part inside is
+          // left out, and said, so that a shape placed there by mistake is seen.
+          if (c.soil && laid_out.soil_in_obstacles > 0.0)
+            placed += fmt::format(", which leave out {:.6g} {} of the initial shapes' soil", laid_out.soil_in_obstacles,
+                                  c.mesh.axisymmetric ? "m^3 per radian" : "m^2 per metre of depth");
+        }
         fmt::print("{}: valid ({} x {} cells, t_end = {} s{})\n", case_file, c.mesh.cells[0], c.mesh.cells[1], c.time.end,
                    placed);
         std::fflush(stdout);  // before the warnings on stderr, also where both go to one file

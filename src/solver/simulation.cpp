@@ -152,20 +152,25 @@ ObstacleLayout lay_out_obstacles(const Grid& g, const CaseConfig& config, Field&
   return layout;
 }
 
-// The soil volume the initial shapes place in open cells (all ranks' sum).
-double initial_soil_in_open_cells(const Grid& g, const CaseConfig& config, const Field* mask) {
+// The soil volume the initial shapes place in open cells, and what of them lies in blocked cells
+// and is left out (all ranks' sums).
+struct PlacedSoil {
+  double in_open_cells = 0.0;
+  double in_blocked_cells = 0.0;
+};
+PlacedSoil initial_soil_placed(const Grid& g, const CaseConfig& config, const Field* mask) {
   const BlockedView blocked(g, mask);
   const interface::ShapeUnion initial_soil(config.soil->initial_soil);
   const auto& b = g.owned();
-  double volume = 0.0;
+  double volumes[2] = {0.0, 0.0};
   for (int j = b.ys; j < b.ye(); ++j)
     for (int i = b.xs; i < b.xe(); ++i) {
-      if (is_blocked(blocked.data(), i, j)) continue;
       const double x0 = g.xc(i) - 0.5 * g.dx(i), y0 = g.yc(j) - 0.5 * g.dy(j);
-      volume += initial_soil.fraction(x0, x0 + g.dx(i), y0, y0 + g.dy(j), g.axisymmetric()) * g.volume(i, j);
+      volumes[is_blocked(blocked.data(), i, j) ? 1 : 0] +=
+          initial_soil.fraction(x0, x0 + g.dx(i), y0, y0 + g.dy(j), g.axisymmetric()) * g.volume(i, j);
     }
-  MPI_Allreduce(MPI_IN_PLACE, &volume, 1, MPI_DOUBLE, MPI_SUM, g.comm());
-  return volume;
+  MPI_Allreduce(MPI_IN_PLACE, volumes, 2, MPI_DOUBLE, MPI_SUM, g.comm());
+  return {volumes[0], volumes[1]};
 }
 }  // namespace
 
@@ -255,7 +260,9 @@ InitialState check_initial_state(MPI_Comm comm, const CaseConfig& config) {
     state.blocked_cells = lay_out_obstacles(grid, config, *blocked).blocked_cells;
   }
   if (!config.soil) return state;
-  state.soil_volume = initial_soil_in_open_cells(grid, config, blocked.get());
+  const PlacedSoil placed = initial_soil_placed(grid, config, blocked.get());
+  state.soil_volume = placed.in_open_cells;
+  state.soil_in_obstacles = placed.in_blocked_cells;
   if (!(state.soil_volume > 0.0)) throw no_initial_soil(config, grid, blocked != nullptr);
   if (!config.soil->materials.empty()) {  // the shares as a run lays them out
     SoilPhase soil(grid, config.flow, *config.soil);

@@ -40,6 +40,7 @@ struct RunSummary {
 struct InitialState {
   long blocked_cells = 0;    // by the obstacles
   double soil_volume = 0.0;  // in open cells: m^2 per metre of depth, or m^3 per radian if axisymmetric
+  double soil_in_obstacles = 0.0;  // what the initial shapes hold in blocked cells, left out (same units)
   std::vector<double> material_volumes;  // with [[soil.materials]]: the rheology's own soil's, then each material's
 };
 InitialState check_initial_state(MPI_Comm comm, const CaseConfig& config);
