@@ -2,6 +2,8 @@
 // Whole-domain copies of distributed fields: on rank 0 (for writers and samplers,
 // io/field_sample.hpp), or on every rank (for sums along whole columns, which cross ranks); and the
 // largest of a value over the ranks.
+#include <cmath>
+#include <limits>
 #include <vector>
 
 #include "mesh/field.hpp"
@@ -15,11 +17,13 @@ std::vector<double> gather_to_root(const Grid& grid, Vec global);
 // Every value of `field` in natural order, on every rank.
 std::vector<double> gather_to_all(const Grid& grid, const Field& field);
 
-// The largest of each rank's v, on every rank.
+// The largest of each rank's v, on every rank; NaN on every rank if any rank's v is NaN (MPI_MAX
+// leaves NaN undefined, and a NaN Courant number must reach the step's retry).
 inline double mpi_max(MPI_Comm comm, double v) {
-  double r = v;
-  MPI_Allreduce(&v, &r, 1, MPI_DOUBLE, MPI_MAX, comm);
-  return r;
+  const double mine[2] = {std::isnan(v) ? 1.0 : 0.0, std::isnan(v) ? -HUGE_VAL : v};
+  double all[2];
+  MPI_Allreduce(mine, all, 2, MPI_DOUBLE, MPI_MAX, comm);
+  return all[0] > 0.0 ? std::numeric_limits<double>::quiet_NaN() : all[1];
 }
 
 }  // namespace granflow

@@ -2,6 +2,7 @@
 
 #include "mesh/face_loop.hpp"
 #include "mesh/gather.hpp"
+#include "mesh/largest.hpp"
 #include "mesh/obstacles.hpp"
 
 #include <algorithm>
@@ -563,8 +564,8 @@ double FlowSolver::max_courant(double dt, const Field* region) const {
           for (int di = -1; di <= 1; ++di) m = std::max(m, (*mask)[j + dj][i + di]);
         if (m < 1e-6) continue;
       }
-      co = std::max(co, (std::abs(fx[j][i]) + std::abs(fx[j][i - 1])) * 0.5 * dt / grid_.dx(i) +
-                            (std::abs(fy[j][i]) + std::abs(fy[j - 1][i])) * 0.5 * dt / grid_.dy(j));
+      co = larger_or_nan(co, (std::abs(fx[j][i]) + std::abs(fx[j][i - 1])) * 0.5 * dt / grid_.dx(i) +
+                                 (std::abs(fy[j][i]) + std::abs(fy[j - 1][i])) * 0.5 * dt / grid_.dy(j));
     }
   return mpi_max(grid_.comm(), co);
 }

@@ -13,6 +13,7 @@
 #include "io/collective_failure.hpp"
 #include "mesh/face_loop.hpp"
 #include "mesh/gather.hpp"
+#include "mesh/largest.hpp"
 #include "mesh/obstacles.hpp"
 #include "models/interface/material_transport.hpp"
 #include "models/interface/vof_advection.hpp"
@@ -73,7 +74,7 @@ const Field& SoilPhase::soil_region(int reach, double floor) const {
 double SoilPhase::interface_courant(const FlowSolver& flow, double dt, int substeps) const {
   ConstFieldArray fx = local_read(grid_, flow.face_velocity(0)), fy = local_read(grid_, flow.face_velocity(1));
   ConstFieldArray region(grid_.field_dm(), soil_region(substeps).local());
-  const double co = std::max(
+  const double co = larger_or_nan(
       interface::max_sweep_courant(0, dt, fx.data(), grid_.dx_data(), grid_.dy_data(), grid_.owned(), radial_weights(),
                                    region.data()),
       interface::max_sweep_courant(1, dt, fy.data(), grid_.dx_data(), grid_.dy_data(), grid_.owned(), {},

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "mesh/largest.hpp"
 #include "models/interface/plic_geometry.hpp"
 
 namespace granflow::interface {
@@ -192,13 +193,13 @@ double max_sweep_courant(int axis, double dt, const double* const* u, const doub
         // the two (the inner cell's, whose centre lies at the smaller radius).
         if (radial.face != nullptr && radial.centre[i] > 0.0)
           h = std::min(dx[i] * radial.centre[i], dx[i + 1] * radial.centre[i + 1]) / radial.face[i];
-        cmax = std::max(cmax, std::abs(u[j][i]) * dt / h);
+        cmax = larger_or_nan(cmax, std::abs(u[j][i]) * dt / h);
       }
   } else {
     for (int j = o.ys - 1; j < o.ys + o.ym; ++j)
       for (int i = o.xs; i < o.xs + o.xm; ++i) {
         if (region != nullptr && region[j][i] == 0.0 && region[j + 1][i] == 0.0) continue;
-        cmax = std::max(cmax, std::abs(u[j][i]) * dt / std::min(dy[j], dy[j + 1]));
+        cmax = larger_or_nan(cmax, std::abs(u[j][i]) * dt / std::min(dy[j], dy[j + 1]));
       }
   }
   return cmax;

@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <limits>
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -249,6 +251,16 @@ TEST(VofSweep, UniformMixedFieldIsSteady) {
     EXPECT_NEAR(f.min_fraction(), value, 1e-14);
     EXPECT_NEAR(f.max_fraction(), value, 1e-14);
   }
+}
+
+// A face velocity that is NaN makes the Courant number NaN, so that the step's retry and divergence
+// checks see it (std::max would pass over it and report the other faces' 0.4).
+TEST(VofSweep, CourantOfANanVelocityIsNan) {
+  SerialVofField f(6, 5, 3.0, 5.0);
+  set_uniform_velocity(f, 2.0, -1.0);
+  f.ux()(3, 2) = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_TRUE(std::isnan(max_sweep_courant(0, 0.1, f.ux().rows(), f.dx(), f.dy(), f.owned())));
+  EXPECT_NEAR(max_sweep_courant(1, 0.1, f.uy().rows(), f.dx(), f.dy(), f.owned()), 0.1, 1e-14);
 }
 
 TEST(VofSweep, CourantAndIndicator) {
