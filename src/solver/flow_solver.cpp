@@ -68,8 +68,16 @@ FlowSolver::FlowSolver(const Grid& grid, const FlowSettings& settings) : grid_(g
   for (auto* v : {&a_east_, &a_west_, &a_north_, &a_south_, &a_centre_[0], &a_centre_[1], &source_[0], &source_[1]})
     v->assign(n, 0.0);
 
+  for (Side s : all_sides) {
+    if (boundary(settings.boundaries, s).kind == BoundaryKind::atmosphere) has_pressure_boundary_ = true;
+    if (boundary(settings.boundaries, s).kind == BoundaryKind::slip) shared_momentum_matrix_ = false;
+  }
+  // The hoop stress 2 mu u_r / r^2 is on the radial component's diagonal alone.
+  if (grid.axisymmetric()) shared_momentum_matrix_ = false;
+
   MPI_Comm comm = grid.comm();
-  // The segregated steps' matrices, solvers and fields; the coupled solve makes its own system
+  // The segregated steps' matrices, solvers and fields (the second momentum matrix only where u and v
+  // do not share one); the coupled solve makes its own system
   // (coupled_step.cpp), so it is spared their memory.
   const bool segregated = settings.numerics.pressure_coupling != PressureCoupling::coupled;
   if (segregated) {
@@ -77,6 +85,7 @@ FlowSolver::FlowSolver(const Grid& grid, const FlowSettings& settings) : grid_(g
       hbya_[a] = make_field(grid);
       time_weight_[a] = make_field(grid);
       time_weight_[a]->set(0.0);  // stays zero under the projection coupling
+      if (a == 1 && shared_momentum_matrix_) continue;
       PetscCallAbort(comm, DMCreateMatrix(grid.matrix_dm(), momentum_matrix_[a].put()));
       momentum_solver_[a] = std::make_unique<LinearSolver>(comm, a == 0 ? "momentum_x" : "momentum_y",
                                                             settings.momentum_solver);
@@ -87,12 +96,6 @@ FlowSolver::FlowSolver(const Grid& grid, const FlowSettings& settings) : grid_(g
     PetscCallAbort(comm, DMCreateGlobalVector(grid.field_dm(), rhs_.put()));
   }
 
-  for (Side s : all_sides) {
-    if (boundary(settings.boundaries, s).kind == BoundaryKind::atmosphere) has_pressure_boundary_ = true;
-    if (boundary(settings.boundaries, s).kind == BoundaryKind::slip) shared_momentum_matrix_ = false;
-  }
-  // The hoop stress 2 mu u_r / r^2 is on the radial component's diagonal alone.
-  if (grid.axisymmetric()) shared_momentum_matrix_ = false;
   if (!segregated) create_coupled_system();
   pin_j_ = grid.ny() - 1;  // the top-left cell, and every cell open, until set_blocked says otherwise
   open_cells_ = grid.cell_count();
