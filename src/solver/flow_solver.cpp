@@ -292,6 +292,9 @@ double atmosphere_pressure(const BoundaryCondition& bc, double hydrostatic_head,
 // in its column: soil leaving through it is not pushed back by a column of soil reaching to the top
 // (which the adjacent cell's density would imply), and a layer at rest across it stays at rest.
 void FlowSolver::update_boundary_heads() {
+  // Read at an atmosphere on the west or east side only; elsewhere the collective is skipped.
+  const auto open = [&](Side s) { return boundary(settings_.boundaries, s).kind == BoundaryKind::atmosphere; };
+  if (!open(Side::west) && !open(Side::east)) return;
   const int nx = grid_.nx(), ny = grid_.ny();
   const auto& b = grid_.owned();
   const double gy = settings_.gravity[1];
