@@ -60,15 +60,15 @@ void SolveRegion::assign(const Field& wanted) {
 long SolveRegion::prepare() {
   const MPI_Comm comm = grid_.comm();
   const auto& box = grid_.owned();
-  std::vector<int> owned;
+  candidate_.clear();
   {
     ConstFieldArray mine(grid_.field_dm(), cells_.global());
     for (int j = box.ys; j < box.ye(); ++j)
       for (int i = box.xs; i < box.xe(); ++i)
-        if (mine[j][i] != 0.0) owned.push_back((j - box.ys) * box.xm + (i - box.xs));
+        if (mine[j][i] != 0.0) candidate_.push_back((j - box.ys) * box.xm + (i - box.xs));
   }
   // The mask is compared rather than tracked: a retried step or a restart restores it directly.
-  int changed = (!matrix_ || owned != owned_) ? 1 : 0, any_changed = 0;
+  int changed = (!numbered_ || candidate_ != owned_) ? 1 : 0, any_changed = 0;
   MPI_Allreduce(&changed, &any_changed, 1, MPI_INT, MPI_MAX, comm);
   if (!any_changed) return cell_count_;
 
@@ -77,7 +77,8 @@ long SolveRegion::prepare() {
   matrix_.reset();
   rhs_.reset();
   solution_.reset();
-  owned_ = std::move(owned);
+  owned_.swap(candidate_);
+  numbered_ = true;
   const long local = long(owned_.size());
   long first = 0;
   MPI_Allreduce(&local, &cell_count_, 1, MPI_LONG, MPI_SUM, comm);

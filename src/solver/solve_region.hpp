@@ -113,6 +113,8 @@ class SolveRegion {
   Field index_;                 // region number of each cell (-1 outside), with ghosts
   const Field* blocked_ = nullptr;
   std::vector<int> owned_;      // owned region cells as (j - ys) xm + (i - xs), of the last prepare()
+  std::vector<int> candidate_;  // the same for the present mask, kept to reuse its memory
+  bool numbered_ = false;       // prepare() has numbered a region (an empty one has no matrix)
   long cell_count_ = 0;
   PetscInt first_row_ = 0;      // the first of this rank's rows in the region's numbering
   OwnedMat matrix_;
