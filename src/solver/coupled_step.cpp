@@ -21,9 +21,9 @@ void FlowSolver::create_coupled_system() {
   MPI_Comm comm = grid_.comm();
   PetscInt m, n;
   const PetscInt *lx, *ly;
-  DMDAGetInfo(grid_.field_dm(), nullptr, nullptr, nullptr, nullptr, &m, &n, nullptr, nullptr, nullptr, nullptr,
-              nullptr, nullptr, nullptr);
-  DMDAGetOwnershipRanges(grid_.field_dm(), &lx, &ly, nullptr);
+  PetscCallAbort(comm, DMDAGetInfo(grid_.field_dm(), nullptr, nullptr, nullptr, nullptr, &m, &n, nullptr, nullptr,
+                                   nullptr, nullptr, nullptr, nullptr, nullptr));
+  PetscCallAbort(comm, DMDAGetOwnershipRanges(grid_.field_dm(), &lx, &ly, nullptr));
   PetscCallAbort(comm, DMDACreate2d(comm, grid_.matrix_x_sides(), DM_BOUNDARY_NONE, DMDA_STENCIL_STAR, grid_.nx(),
                                     grid_.ny(), m, n, 3, 1, lx, ly, coupled_dm_.put()));
   PetscCallAbort(comm, DMSetUp(coupled_dm_));
@@ -286,7 +286,7 @@ void FlowSolver::fill_coupled_rows() {
   } else {
     pins_pressure_level_ = !has_pressure_boundary_;
     PetscScalar*** rhs;
-    DMDAVecGetArrayDOF(coupled_dm_, coupled_rhs_, &rhs);
+    PetscCallAbort(grid_.comm(), DMDAVecGetArrayDOF(coupled_dm_, coupled_rhs_, &rhs));
     auto emit = [&](int i, int j, int unknown, int n, const MatStencil* cols, const double* vals, double r) {
       const MatStencil row{0, j, i, unknown};
       PetscCallAbort(PETSC_COMM_SELF, MatSetValuesStencil(coupled_matrix_, 1, &row, n, cols, vals, INSERT_VALUES));
@@ -294,7 +294,7 @@ void FlowSolver::fill_coupled_rows() {
     };
     for (int j = b.ys; j < b.ye(); ++j)
       for (int i = b.xs; i < b.xe(); ++i) rows.cell(i, j, emit);
-    DMDAVecRestoreArrayDOF(coupled_dm_, coupled_rhs_, &rhs);
+    PetscCallAbort(grid_.comm(), DMDAVecRestoreArrayDOF(coupled_dm_, coupled_rhs_, &rhs));
     PetscCallAbort(grid_.comm(), MatAssemblyBegin(coupled_matrix_, MAT_FINAL_ASSEMBLY));
     PetscCallAbort(grid_.comm(), MatAssemblyEnd(coupled_matrix_, MAT_FINAL_ASSEMBLY));
   }
@@ -307,7 +307,7 @@ int FlowSolver::solve_coupled_rows(bool by_first_factorisation) {
   // Initial guess: the current state.
   {
     PetscScalar*** x;
-    DMDAVecGetArrayDOF(coupled_dm_, coupled_solution_, &x);
+    PetscCallAbort(grid_.comm(), DMDAVecGetArrayDOF(coupled_dm_, coupled_solution_, &x));
     ConstFieldArray u(grid_.field_dm(), vel_[0]->global()), v(grid_.field_dm(), vel_[1]->global()),
         p(grid_.field_dm(), p_->global());
     for (int j = b.ys; j < b.ye(); ++j)
@@ -316,21 +316,21 @@ int FlowSolver::solve_coupled_rows(bool by_first_factorisation) {
         x[j][i][V] = v[j][i];
         x[j][i][P] = p[j][i];
       }
-    DMDAVecRestoreArrayDOF(coupled_dm_, coupled_solution_, &x);
+    PetscCallAbort(grid_.comm(), DMDAVecRestoreArrayDOF(coupled_dm_, coupled_solution_, &x));
   }
   int iterations = 0;
   if (solve_region_) {
     // Outside the region: air at rest under the pressure of the air column above it.
     ConstFieldArray inside(grid_.field_dm(), solve_region_->cells().global()), rho(grid_.field_dm(), rho_->global());
     PetscScalar*** x;
-    DMDAVecGetArrayDOF(coupled_dm_, coupled_solution_, &x);
+    PetscCallAbort(grid_.comm(), DMDAVecGetArrayDOF(coupled_dm_, coupled_solution_, &x));
     for (int j = b.ys; j < b.ye(); ++j)
       for (int i = b.xs; i < b.xe(); ++i)
         if (inside[j][i] == 0.0) {
           x[j][i][U] = x[j][i][V] = 0.0;
           x[j][i][P] = pressure_at_rest(rho[j][i], j);
         }
-    DMDAVecRestoreArrayDOF(coupled_dm_, coupled_solution_, &x);
+    PetscCallAbort(grid_.comm(), DMDAVecRestoreArrayDOF(coupled_dm_, coupled_solution_, &x));
     if (solve_region_->cell_count() > 0)
       iterations = by_first_factorisation ? solve_region_->solve_by_last_factorisation(
                                                 coupled_dm_, coupled_solution_, settings_.numerics.krylov_iterations)
@@ -344,7 +344,7 @@ int FlowSolver::solve_coupled_rows(bool by_first_factorisation) {
   }
   {
     PetscScalar*** x;
-    DMDAVecGetArrayDOF(coupled_dm_, coupled_solution_, &x);
+    PetscCallAbort(grid_.comm(), DMDAVecGetArrayDOF(coupled_dm_, coupled_solution_, &x));
     FieldArray u(grid_.field_dm(), vel_[0]->global()), v(grid_.field_dm(), vel_[1]->global()),
         p(grid_.field_dm(), p_->global());
     for (int j = b.ys; j < b.ye(); ++j)
@@ -353,7 +353,7 @@ int FlowSolver::solve_coupled_rows(bool by_first_factorisation) {
         v[j][i] = x[j][i][V];
         p[j][i] = x[j][i][P];
       }
-    DMDAVecRestoreArrayDOF(coupled_dm_, coupled_solution_, &x);
+    PetscCallAbort(grid_.comm(), DMDAVecRestoreArrayDOF(coupled_dm_, coupled_solution_, &x));
   }
   return iterations;
 }

@@ -513,7 +513,7 @@ StepReport FlowSolver::step(double dt) {
   }
   const auto& num = settings_.numerics;
   for (int outer = 0; outer < num.outer_iterations; ++outer) {
-    for (int a = 0; a < 2; ++a) VecCopy(vel_[a]->global(), outer_start_[a]->global());
+    for (int a = 0; a < 2; ++a) PetscCallAbort(grid_.comm(), VecCopy(vel_[a]->global(), outer_start_[a]->global()));
     if (outer == 0 && look_ahead) update_properties_ahead();
     else if (outer > 0 && num.mean_viscosity_pressure) update_properties_at_mean_pressure();
     else update_properties();
@@ -542,11 +542,11 @@ StepReport FlowSolver::step(double dt) {
     double change = 0.0, scale = 0.0;
     for (int a = 0; a < 2; ++a) {
       double nv;
-      VecNorm(vel_[a]->global(), NORM_INFINITY, &nv);
+      PetscCallAbort(grid_.comm(), VecNorm(vel_[a]->global(), NORM_INFINITY, &nv));
       const Vec start = outer_start_[a]->global();
-      VecAXPY(start, -1.0, vel_[a]->global());
+      PetscCallAbort(grid_.comm(), VecAXPY(start, -1.0, vel_[a]->global()));
       double nd;
-      VecNorm(start, NORM_INFINITY, &nd);
+      PetscCallAbort(grid_.comm(), VecNorm(start, NORM_INFINITY, &nd));
       change = std::max(change, nd);
       scale = std::max(scale, nv);
     }
@@ -596,7 +596,7 @@ double FlowSolver::max_speed() const {
   double s = 0.0;
   for (int a = 0; a < 2; ++a) {
     double n;
-    VecNorm(vel_[a]->global(), NORM_INFINITY, &n);
+    PetscCallAbort(grid_.comm(), VecNorm(vel_[a]->global(), NORM_INFINITY, &n));
     s = std::max(s, n);
   }
   return s;

@@ -212,8 +212,8 @@ Simulation::Simulation(MPI_Comm comm, const CaseConfig& config, std::filesystem:
   } else {
     const PhaseSettings fluid = config.fluid;
     flow_->set_property_update([fluid](FlowSolver& f) {
-      VecSet(f.density().global(), fluid.density);
-      VecSet(f.viscosity().global(), fluid.viscosity);
+      PetscCallAbort(f.grid().comm(), VecSet(f.density().global(), fluid.density));
+      PetscCallAbort(f.grid().comm(), VecSet(f.viscosity().global(), fluid.viscosity));
     });
   }
   flow_->update_properties();
@@ -342,14 +342,8 @@ RunSummary Simulation::run(const StepObserver& after_step) {
   double dt = !restarted_ ? std::min(tc.dt, tc.max_dt)
                           : (tc.adaptive ? std::min(restart_dt_, tc.max_dt) : std::min(tc.dt, tc.max_dt));
   if (!restarted_) write_output();
-  Vec previous[2];
-  for (int a = 0; a < 2; ++a) VecDuplicate(flow_->velocity(a).global(), &previous[a]);
-  struct Freed {  // also when the loop ends in an exception (divergence, an observer that stops the run)
-    Vec* v;
-    ~Freed() {
-      for (int a = 0; a < 2; ++a) VecDestroy(&v[a]);
-    }
-  } freed{previous};
+  OwnedVec previous[2];  // freed also when the loop ends in an exception (divergence, an observer that stops the run)
+  for (int a = 0; a < 2; ++a) PetscCallAbort(grid_->comm(), VecDuplicate(flow_->velocity(a).global(), previous[a].put()));
   // Whether the state at hand has been written, and checkpointed: at the start it has been written
   // (just above, or by the run a restart continues), and checkpointed if this is a restart.
   bool output_is_current = true;
@@ -365,7 +359,7 @@ RunSummary Simulation::run(const StepObserver& after_step) {
     double step_dt = dt;
     if (time_ + step_dt > t_land * (1 - 1e-12)) step_dt = t_land - time_;
     else if (time_ + 1.5 * step_dt > t_land) step_dt = 0.5 * (t_land - time_);  // avoid a sliver step
-    for (int a = 0; a < 2; ++a) VecCopy(flow_->velocity(a).global(), previous[a]);
+    for (int a = 0; a < 2; ++a) PetscCallAbort(grid_->comm(), VecCopy(flow_->velocity(a).global(), previous[a]));
     // A step whose velocities come out far above the Courant limit it was sized for (a splash, a
     // sudden yield) is taken again from the saved state with a step sized for the velocities it
     // produced: the step size lags the flow by one step, and an implicit step can survive a Courant
@@ -421,9 +415,9 @@ RunSummary Simulation::run(const StepObserver& after_step) {
     if (tc.steady_tolerance > 0.0) {
       double change = 0.0;
       for (int a = 0; a < 2; ++a) {
-        VecAXPY(previous[a], -1.0, flow_->velocity(a).global());
+        PetscCallAbort(grid_->comm(), VecAXPY(previous[a], -1.0, flow_->velocity(a).global()));
         double n;
-        VecNorm(previous[a], NORM_INFINITY, &n);
+        PetscCallAbort(grid_->comm(), VecNorm(previous[a], NORM_INFINITY, &n));
         change = std::max(change, n);
       }
       steady = change / step_dt < tc.steady_tolerance * std::max(speed, 1e-300);

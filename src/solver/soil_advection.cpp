@@ -36,7 +36,7 @@ const Field& SoilPhase::soil_region(int reach, double floor) const {
     // them made the region differ between rank layouts. A wall's ghosts mirror cells whose own 3 x 3
     // boxes count them anyway; an open side's hold the soil coming in, and stay. The first pass reads
     // this copy (region_[1], free until the second pass).
-    VecCopy(c_->local(), region_[1]->local());
+    PetscCallAbort(grid_.comm(), VecCopy(c_->local(), region_[1]->local()));
     FieldArray a(grid_.field_dm(), region_[1]->local());
     const BlockedView mask(grid_, blocked_);
     const auto& b = grid_.owned();
@@ -141,7 +141,7 @@ void SoilPhase::advect(FlowSolver& flow, double dt) {
       interface::dilatation_indicator(c.data(), b, cc.data());
     }
     // The materials' shares at the start, held with the indicator over both sweeps.
-    for (size_t k = 0; k < share_.size(); ++k) VecCopy(share_[k]->global(), share_start_[k]->global());
+    for (size_t k = 0; k < share_.size(); ++k) PetscCallAbort(grid_.comm(), VecCopy(share_[k]->global(), share_start_[k]->global()));
     sweep(first, h, *c_, *c_tmp_, true, carry_mass ? soil_through[first]->data() : nullptr, mass_through(first),
           face[first]);
     sweep(second, h, *c_tmp_, *c_, false, carry_mass ? soil_through[second]->data() : nullptr, mass_through(second),
@@ -295,7 +295,7 @@ void SoilPhase::transport_displacement(const FlowSolver& flow, double dt) {
           dn[j][i] = d[j][i] + h * (c[j][i] * vel[a][j][i] - out / grid_.volume(i, j));
         }
     }
-    for (int a = 0; a < 2; ++a) VecCopy(disp_new_[a]->global(), disp_[a]->global());
+    for (int a = 0; a < 2; ++a) PetscCallAbort(grid_.comm(), VecCopy(disp_new_[a]->global(), disp_[a]->global()));
     // Every change of the displacement ends with its ghosts filled, as c's does: the next sweep reads
     // them, and a step's snapshot and a checkpoint copy the local vectors.
     fill_displacement_ghosts();

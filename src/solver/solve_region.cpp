@@ -121,7 +121,7 @@ SolveRegion::RowWriter::RowWriter(SolveRegion& region)
 
 SolveRegion::RowWriter::~RowWriter() {
   const MPI_Comm comm = region_.grid_.comm();
-  VecRestoreArray(region_.rhs_, &rhs_);
+  PetscCallAbort(region_.grid_.comm(), VecRestoreArray(region_.rhs_, &rhs_));
   PetscCallAbort(comm, MatAssemblyBegin(region_.matrix_, MAT_FINAL_ASSEMBLY));
   PetscCallAbort(comm, MatAssemblyEnd(region_.matrix_, MAT_FINAL_ASSEMBLY));
 }
@@ -131,8 +131,8 @@ void SolveRegion::copy_solution(DM coupled_dm, Vec x, bool into_region) {
   const auto& box = grid_.owned();
   PetscScalar*** full;
   PetscScalar* region;
-  DMDAVecGetArrayDOF(coupled_dm, x, &full);
-  VecGetArray(solution_, &region);
+  PetscCallAbort(grid_.comm(), DMDAVecGetArrayDOF(coupled_dm, x, &full));
+  PetscCallAbort(grid_.comm(), VecGetArray(solution_, &region));
   for (size_t k = 0; k < owned_.size(); ++k) {
     const int c = owned_[k];
     PetscScalar* cell = full[box.ys + c / box.xm][box.xs + c % box.xm];
@@ -141,8 +141,8 @@ void SolveRegion::copy_solution(DM coupled_dm, Vec x, bool into_region) {
       else cell[u] = region[unknowns_per_cell * k + u];
     }
   }
-  VecRestoreArray(solution_, &region);
-  DMDAVecRestoreArrayDOF(coupled_dm, x, &full);
+  PetscCallAbort(grid_.comm(), VecRestoreArray(solution_, &region));
+  PetscCallAbort(grid_.comm(), DMDAVecRestoreArrayDOF(coupled_dm, x, &full));
 }
 
 int SolveRegion::solve(DM coupled_dm, Vec x) {
