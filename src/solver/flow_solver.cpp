@@ -1,6 +1,7 @@
 #include "solver/flow_solver.hpp"
 
 #include "mesh/face_loop.hpp"
+#include "mesh/copied_ghosts.hpp"
 #include "mesh/gather.hpp"
 #include "mesh/largest.hpp"
 #include "mesh/obstacles.hpp"
@@ -142,25 +143,7 @@ void FlowSolver::set_blocked(const Field* mask) {
   pin_j_ = grid_.ny() - 1 - int(key / grid_.nx());
 }
 
-void FlowSolver::fill_scalar_ghosts(Field& f) {
-  f.scatter_to_local();
-  FieldArray a = local_array(grid_, f);
-  mirror_into_blocked(grid_, BlockedView(grid_, blocked_).data(), a.data(), 1.0);
-  const auto& b = grid_.owned();
-  const int nx = grid_.nx(), ny = grid_.ny();
-  for (int k = 1; k <= Grid::ghost_width; ++k) {
-    for (int j = b.ys - Grid::ghost_width; j < b.ye() + Grid::ghost_width; ++j) {
-      if (grid_.owns_boundary(Side::west)) a[j][-k] = a[j][0];
-      if (grid_.owns_boundary(Side::east)) a[j][nx - 1 + k] = a[j][nx - 1];
-    }
-  }
-  for (int k = 1; k <= Grid::ghost_width; ++k) {
-    for (int i = b.xs - Grid::ghost_width; i < b.xe() + Grid::ghost_width; ++i) {
-      if (b.ys == 0) a[-k][i] = a[0][i];
-      if (b.ye() == ny) a[ny - 1 + k][i] = a[ny - 1][i];
-    }
-  }
-}
+void FlowSolver::fill_scalar_ghosts(Field& f) { fill_copied_ghosts(grid_, blocked_, f); }
 
 void FlowSolver::fill_velocity_ghosts() {
   for (int a = 0; a < 2; ++a) vel_[a]->scatter_to_local();

@@ -2,6 +2,7 @@
 
 #include "io/checkpoint.hpp"
 #include "io/collective_failure.hpp"
+#include "mesh/copied_ghosts.hpp"
 #include "mesh/face_loop.hpp"
 #include "mesh/gather.hpp"
 #include "mesh/obstacles.hpp"
@@ -210,7 +211,7 @@ void SoilPhase::initialise_materials() {
 // through an atmosphere side is the rheology's own (share 0).
 void SoilPhase::fill_share_ghosts(Field& f) const {
   zero_blocked_cells(grid_, blocked_, f);
-  fill_copied_ghosts(f);
+  fill_copied_ghosts(grid_, blocked_, f);
   FieldArray a(grid_.field_dm(), f.local());
   const auto& b = grid_.owned();
   const int nx = grid_.nx(), ny = grid_.ny(), gw = Grid::ghost_width;
@@ -227,24 +228,6 @@ void SoilPhase::fill_share_ghosts(Field& f) const {
     }
 }
 
-// Ghosts that copy the nearest cell at the domain's sides and mirror the open cells in blocked ones.
-void SoilPhase::fill_copied_ghosts(Field& f) const {
-  f.scatter_to_local();
-  FieldArray a(grid_.field_dm(), f.local());
-  mirror_into_blocked(grid_, BlockedView(grid_, blocked_).data(), a.data(), 1.0);
-  const auto& b = grid_.owned();
-  const int nx = grid_.nx(), ny = grid_.ny(), gw = Grid::ghost_width;
-  for (int k = 1; k <= gw; ++k)
-    for (int j = b.ys - gw; j < b.ye() + gw; ++j) {
-      if (grid_.owns_boundary(Side::west)) a[j][-k] = a[j][0];
-      if (grid_.owns_boundary(Side::east)) a[j][nx - 1 + k] = a[j][nx - 1];
-    }
-  for (int k = 1; k <= gw; ++k)
-    for (int i = b.xs - gw; i < b.xe() + gw; ++i) {
-      if (b.ys == 0) a[-k][i] = a[0][i];
-      if (b.ye() == ny) a[ny - 1 + k][i] = a[ny - 1][i];
-    }
-}
 
 std::deque<ConstFieldArray> SoilPhase::share_arrays(bool ghosted) const {
   std::deque<ConstFieldArray> arrays;
@@ -283,7 +266,7 @@ void SoilPhase::fill_fraction_ghosts(Field& f) const {
 }
 
 void SoilPhase::fill_displacement_ghosts() {
-  for (auto& d : disp_) fill_copied_ghosts(*d);
+  for (auto& d : disp_) fill_copied_ghosts(grid_, blocked_, *d);
 }
 
 }  // namespace granflow

@@ -123,7 +123,6 @@ class SoilPhase {
   void fill_displacement_ghosts();
   std::vector<Field*> state_fields();  // what a step changes: c, the displacement, the materials' shares
   void fill_share_ghosts(Field& f) const;
-  void fill_copied_ghosts(Field& f) const;
   void initialise_materials();
   // One directional sweep of c (from -> to) and, with materials, of their shares (share_ / share_tmp_
   // as from_shares says); adds the soil each face carried to soil_through when given.
