@@ -65,12 +65,10 @@ CLI::Validator finite_in(double low, double high, const std::string& what) {
       what, "");
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
-  // Started with stdin, stdout or stderr closed (`>&-`), the first file MPI opens would take the
-  // descriptor, and the progress lines or warnings would be written into it, or fail: give each
-  // closed one to /dev/null instead.
+// Started with stdin, stdout or stderr closed (`>&-`), the first file MPI opens would take the
+// descriptor, and the progress lines or warnings would be written into it, or fail: give each
+// closed one to /dev/null instead.
+void give_closed_standard_streams_to_dev_null() {
   for (int fd : {STDIN_FILENO, STDOUT_FILENO, STDERR_FILENO})
     if (fcntl(fd, F_GETFD) == -1 && errno == EBADF) {
       const int null = open("/dev/null", fd == STDIN_FILENO ? O_RDONLY : O_WRONLY);
@@ -79,6 +77,107 @@ int main(int argc, char** argv) {
         close(null);
       }
     }
+}
+
+// Starts MPI, then PETSc with the options of --petsc as its command line; 0, or the exit status of a
+// start that failed (its message said).
+int start_mpi_and_petsc(int& argc, char**& argv, const std::vector<std::string>& petsc_options, bool petsc_trace) {
+  // PETSc sees only the options given through --petsc (and PETSC_OPTIONS from the environment), as
+  // its command line, so that those read at start-up (-log_view, -info, -malloc_debug) work too.
+  // Each --petsc is split at blanks; values cannot be quoted.
+  static std::vector<std::string> petsc_words;  // PETSc keeps the arguments it was started with
+  for (const auto& o : petsc_options) {
+    std::istringstream words(o);
+    for (std::string w; words >> w;) petsc_words.push_back(w);
+  }
+  // MPI is started before PETSc, so that rank 0 alone checks what PETSc would read on rank 0 alone
+  // (its options files) and every rank stops with it. PetscFinalize then leaves MPI_Finalize to us.
+  MPI_Init(&argc, &argv);
+  {
+    int world_rank = 0;
+    MPI_Comm_rank(MPI_COMM_WORLD, &world_rank);
+    std::string problem;
+    if (world_rank == 0) {
+      problem = granflow::unusable_petsc_file(petsc_words);
+      if (const char* env = std::getenv("PETSC_OPTIONS"); env && problem.empty()) {  // read by PETSc as well
+        std::vector<std::string> env_words;
+        std::istringstream words(env);
+        for (std::string w; words >> w;) env_words.push_back(w);
+        problem = granflow::unusable_petsc_file(env_words, "PETSC_OPTIONS");
+      }
+    }
+    int failed = problem.empty() ? 0 : 1;
+    MPI_Bcast(&failed, 1, MPI_INT, 0, MPI_COMM_WORLD);
+    if (failed) {
+      if (world_rank == 0) fmt::print(stderr, "error: {}\n", problem);
+      MPI_Finalize();
+      return 2;
+    }
+  }
+  static std::vector<char*> petsc_argv;
+  petsc_argv = {argv[0]};
+  for (auto& w : petsc_words) petsc_argv.push_back(w.data());
+  petsc_argv.push_back(nullptr);
+  int pargc = static_cast<int>(petsc_argv.size()) - 1;
+  char** pargv = petsc_argv.data();
+  if (!petsc_trace) PetscPushErrorHandler(granflow::keep_startup_petsc_error, nullptr);
+  if (PetscInitialize(&pargc, &pargv, nullptr, nullptr) != 0) {
+    int world_rank = 0, world_size = 1;
+    MPI_Comm_rank(MPI_COMM_WORLD, &world_rank);
+    MPI_Comm_size(MPI_COMM_WORLD, &world_size);
+    const std::string& why = granflow::startup_petsc_error_text();
+    if (world_rank == 0)
+      fmt::print(stderr, "error: PETSc could not start{}\n", why.empty() ? " (its message is above)" : ": " + why);
+    if (world_size > 1) MPI_Abort(MPI_COMM_WORLD, 2);  // PETSc may have failed on one rank alone
+    MPI_Finalize();
+    return 2;
+  }
+  return 0;
+}
+
+// granflow check: the case laid out as a run lays it out, what it holds said on one line, and the
+// warnings on its numerics; the exit status (`fail` gives that of an error).
+template <class Fail>
+int check_case(const std::string& case_file, const std::vector<std::string>& overrides, int rank, Fail fail) {
+  int status = 0;
+  try {
+    const auto c = granflow::load_case(case_file, overrides);
+    granflow::check_solver_options(c);
+    // What the case file alone cannot tell (the mesh's layout on these ranks, initial shapes that
+    // miss every cell's samples) is found where a run finds it: in laying out the initial state.
+    const auto laid_out = granflow::check_initial_state(PETSC_COMM_WORLD, c);
+    if (rank == 0) {  // every rank checks the same file alike; one says so
+      std::string placed;
+      if (c.soil)
+        placed += fmt::format("; initial soil {:.6g} {}", laid_out.soil_volume,
+                              c.mesh.axisymmetric ? "m^3 per radian" : "m^2 per metre of depth");
+      const auto& volumes = laid_out.material_volumes;
+      for (size_t k = 0; k < volumes.size(); ++k)
+        placed += fmt::format("{}{} {:.6g}", k == 0 ? ", of which " : ", ",
+                              k == 0 ? std::string("the rheology's own soil") : c.soil->materials[k - 1].name, volumes[k]);
+      if (!c.obstacles.empty()) {
+        placed += fmt::format("; {} cells blocked by obstacles", laid_out.blocked_cells);
+        // A shape may reach into an obstacle on purpose (soil laid over terrain); the part inside is
+        // left out, and said, so that a shape placed there by mistake is seen.
+        if (c.soil && laid_out.soil_in_obstacles > 0.0)
+          placed += fmt::format(", which leave out {:.6g} {} of the initial shapes' soil", laid_out.soil_in_obstacles,
+                                c.mesh.axisymmetric ? "m^3 per radian" : "m^2 per metre of depth");
+      }
+      fmt::print("{}: valid ({} x {} cells, t_end = {} s{})\n", case_file, c.mesh.cells[0], c.mesh.cells[1], c.time.end,
+                 placed);
+      std::fflush(stdout);  // before the warnings on stderr, also where both go to one file
+      for (const auto& line : granflow::case_advice(c)) fmt::print(stderr, "warning: {}\n", line);
+    }
+  } catch (const std::exception& e) {
+    status = fail(e);
+  }
+  return status;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  give_closed_standard_streams_to_dev_null();
   CLI::App app{"granflow: dense granular flows as a two-phase visco-plastic continuum"};
   app.set_version_flag("--version", fmt::format("granflow {}", GRANFLOW_VERSION));
   app.require_subcommand(1);
@@ -170,59 +269,11 @@ int main(int argc, char** argv) {
     }
   }
 
-  // PETSc sees only the options given through --petsc (and PETSC_OPTIONS from the environment), as
-  // its command line, so that those read at start-up (-log_view, -info, -malloc_debug) work too.
-  // Each --petsc is split at blanks; values cannot be quoted.
-  std::vector<std::string> petsc_words;
-  for (const auto& o : petsc_options) {
-    std::istringstream words(o);
-    for (std::string w; words >> w;) petsc_words.push_back(w);
-  }
-  // MPI is started before PETSc, so that rank 0 alone checks what PETSc would read on rank 0 alone
-  // (its options files) and every rank stops with it. PetscFinalize then leaves MPI_Finalize to us.
-  MPI_Init(&argc, &argv);
-  {
-    int world_rank = 0;
-    MPI_Comm_rank(MPI_COMM_WORLD, &world_rank);
-    std::string problem;
-    if (world_rank == 0) {
-      problem = granflow::unusable_petsc_file(petsc_words);
-      if (const char* env = std::getenv("PETSC_OPTIONS"); env && problem.empty()) {  // read by PETSc as well
-        std::vector<std::string> env_words;
-        std::istringstream words(env);
-        for (std::string w; words >> w;) env_words.push_back(w);
-        problem = granflow::unusable_petsc_file(env_words, "PETSC_OPTIONS");
-      }
-    }
-    int failed = problem.empty() ? 0 : 1;
-    MPI_Bcast(&failed, 1, MPI_INT, 0, MPI_COMM_WORLD);
-    if (failed) {
-      if (world_rank == 0) fmt::print(stderr, "error: {}\n", problem);
-      MPI_Finalize();
-      return 2;
-    }
-  }
-  std::vector<char*> petsc_argv{argv[0]};
-  for (auto& w : petsc_words) petsc_argv.push_back(w.data());
-  petsc_argv.push_back(nullptr);
-  int pargc = static_cast<int>(petsc_argv.size()) - 1;
-  char** pargv = petsc_argv.data();
   const bool petsc_trace = [] {
     const char* trace = std::getenv("GRANFLOW_PETSC_TRACE");
     return trace && std::string_view(trace) == "1";
   }();
-  if (!petsc_trace) PetscPushErrorHandler(granflow::keep_startup_petsc_error, nullptr);
-  if (PetscInitialize(&pargc, &pargv, nullptr, nullptr) != 0) {
-    int world_rank = 0, world_size = 1;
-    MPI_Comm_rank(MPI_COMM_WORLD, &world_rank);
-    MPI_Comm_size(MPI_COMM_WORLD, &world_size);
-    const std::string& why = granflow::startup_petsc_error_text();
-    if (world_rank == 0)
-      fmt::print(stderr, "error: PETSc could not start{}\n", why.empty() ? " (its message is above)" : ": " + why);
-    if (world_size > 1) MPI_Abort(MPI_COMM_WORLD, 2);  // PETSc may have failed on one rank alone
-    MPI_Finalize();
-    return 2;
-  }
+  if (const int status = start_mpi_and_petsc(argc, argv, petsc_options, petsc_trace); status != 0) return status;
   int rank = 0, size = 1;
   MPI_Comm_rank(PETSC_COMM_WORLD, &rank);
   MPI_Comm_size(PETSC_COMM_WORLD, &size);
@@ -243,38 +294,7 @@ int main(int argc, char** argv) {
   };
 
   if (*check) {
-    int status = 0;
-    try {
-      const auto c = granflow::load_case(case_file, overrides);
-      granflow::check_solver_options(c);
-      // What the case file alone cannot tell (the mesh's layout on these ranks, initial shapes that
-      // miss every cell's samples) is found where a run finds it: in laying out the initial state.
-      const auto laid_out = granflow::check_initial_state(PETSC_COMM_WORLD, c);
-      if (rank == 0) {  // every rank checks the same file alike; one says so
-        std::string placed;
-        if (c.soil)
-          placed += fmt::format("; initial soil {:.6g} {}", laid_out.soil_volume,
-                                c.mesh.axisymmetric ? "m^3 per radian" : "m^2 per metre of depth");
-        const auto& volumes = laid_out.material_volumes;
-        for (size_t k = 0; k < volumes.size(); ++k)
-          placed += fmt::format("{}{} {:.6g}", k == 0 ? ", of which " : ", ",
-                                k == 0 ? std::string("the rheology's own soil") : c.soil->materials[k - 1].name, volumes[k]);
-        if (!c.obstacles.empty()) {
-          placed += fmt::format("; {} cells blocked by obstacles", laid_out.blocked_cells);
-          // A shape may reach into an obstacle on purpose (soil laid over terrain); the part inside is
-          // left out, and said, so that a shape placed there by mistake is seen.
-          if (c.soil && laid_out.soil_in_obstacles > 0.0)
-            placed += fmt::format(", which leave out {:.6g} {} of the initial shapes' soil", laid_out.soil_in_obstacles,
-                                  c.mesh.axisymmetric ? "m^3 per radian" : "m^2 per metre of depth");
-        }
-        fmt::print("{}: valid ({} x {} cells, t_end = {} s{})\n", case_file, c.mesh.cells[0], c.mesh.cells[1], c.time.end,
-                   placed);
-        std::fflush(stdout);  // before the warnings on stderr, also where both go to one file
-        for (const auto& line : granflow::case_advice(c)) fmt::print(stderr, "warning: {}\n", line);
-      }
-    } catch (const std::exception& e) {
-      status = fail(e);
-    }
+    const int status = check_case(case_file, overrides, rank, fail);
     PetscFinalize();
     MPI_Finalize();
     return status;
