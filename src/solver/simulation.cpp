@@ -330,6 +330,68 @@ double Simulation::choose_dt(double dt_previous) const {
   return dt;
 }
 
+// One step of [VoF] Algorithm 1: the interface moved explicitly, then the flow's outer iterations,
+// then the displacement carried with the new velocity. A step whose velocities come out far above
+// the Courant limit it was sized for (a splash, a sudden yield) is taken again from the saved state
+// with a step sized for the velocities it produced: the step size lags the flow by one step, and an
+// implicit step can survive a Courant number of a few but not of hundreds. step_dt becomes the length
+// of the step taken; each step taken again counts in `retried`.
+StepReport Simulation::take_step(double& step_dt, long& retried) {
+  const auto& tc = config_.time;
+  StepReport r;
+  const bool may_retry = tc.adaptive;
+  if (may_retry) {
+    flow_->save_state();
+    if (soil_) soil_->save_state();
+  }
+  for (int attempt = 0;; ++attempt) {
+    if (soil_) {  // explicit interface, then the implicit flow step
+      soil_->advect(*flow_, step_dt);
+      soil_->refresh(*flow_);
+      update_solve_region();
+    }
+    r = flow_->step(step_dt);
+    if (!may_retry || attempt == max_step_retries) break;
+    const double co = courant_after(step_dt);
+    if (std::isfinite(co) && co <= retry_courant_factor * tc.courant) break;
+    flow_->restore_state();
+    if (soil_) soil_->restore_state();
+    const double smaller = std::isfinite(co) ? step_dt * tc.courant / co : 0.1 * step_dt;
+    step_dt = std::clamp(smaller, 1e-3 * step_dt, 0.5 * step_dt);
+    ++retried;
+  }
+  if (soil_) soil_->transport_displacement(*flow_, step_dt);
+  return r;
+}
+
+// Stops the run (DivergenceError) where the largest speed is not finite or beyond 1e6 m/s, saying
+// where, with the history up to then.
+void Simulation::stop_if_diverged(double speed, long steps) {
+  if (std::isfinite(speed) && speed <= 1e6) return;
+  if (soil_) write_history();  // the steps up to the failure, for finding where it began
+  const auto f = flow_->fastest_cell();
+  const long at_limit = flow_->solves_at_iteration_limit();
+  throw DivergenceError(fmt::format("the solution diverged at t = {:.6g} s (step {}): largest speed {:.3g} m/s "
+                                    "at x = {:.4g} m, y = {:.4g} m; {}{}",
+                                    time_, steps, f.speed, f.x, f.y, last_output_kept,
+                                    at_limit > 0 ? fmt::format(" ({} linear solves had stopped at their "
+                                                               "max_iterations)", at_limit)
+                                                 : std::string()));
+}
+
+// max|dv/dt| / max|v| below time.steady_tolerance, from the velocities before the step (`before`,
+// overwritten with the change).
+bool Simulation::is_steady(OwnedVec (&before)[2], double step_dt, double speed) const {
+  double change = 0.0;
+  for (int a = 0; a < 2; ++a) {
+    PetscCallAbort(grid_->comm(), VecAXPY(before[a], -1.0, flow_->velocity(a).global()));
+    double n;
+    PetscCallAbort(grid_->comm(), VecNorm(before[a], NORM_INFINITY, &n));
+    change = std::max(change, n);
+  }
+  return change / step_dt < config_.time.steady_tolerance * std::max(speed, 1e-300);
+}
+
 RunSummary Simulation::run(const StepObserver& after_step) {
   using clock = std::chrono::steady_clock;
   const auto start = clock::now();
@@ -360,33 +422,7 @@ RunSummary Simulation::run(const StepObserver& after_step) {
     if (time_ + step_dt > t_land * (1 - 1e-12)) step_dt = t_land - time_;
     else if (time_ + 1.5 * step_dt > t_land) step_dt = 0.5 * (t_land - time_);  // avoid a sliver step
     for (int a = 0; a < 2; ++a) PetscCallAbort(grid_->comm(), VecCopy(flow_->velocity(a).global(), previous[a]));
-    // A step whose velocities come out far above the Courant limit it was sized for (a splash, a
-    // sudden yield) is taken again from the saved state with a step sized for the velocities it
-    // produced: the step size lags the flow by one step, and an implicit step can survive a Courant
-    // number of a few but not of hundreds.
-    StepReport r;
-    const bool may_retry = tc.adaptive;
-    if (may_retry) {
-      flow_->save_state();
-      if (soil_) soil_->save_state();
-    }
-    for (int attempt = 0;; ++attempt) {
-      if (soil_) {  // explicit interface, then the implicit flow step
-        soil_->advect(*flow_, step_dt);
-        soil_->refresh(*flow_);
-        update_solve_region();
-      }
-      r = flow_->step(step_dt);
-      if (!may_retry || attempt == max_step_retries) break;
-      const double co = courant_after(step_dt);
-      if (std::isfinite(co) && co <= retry_courant_factor * tc.courant) break;
-      flow_->restore_state();
-      if (soil_) soil_->restore_state();
-      const double smaller = std::isfinite(co) ? step_dt * tc.courant / co : 0.1 * step_dt;
-      step_dt = std::clamp(smaller, 1e-3 * step_dt, 0.5 * step_dt);
-      ++summary.retried_steps;
-    }
-    if (soil_) soil_->transport_displacement(*flow_, step_dt);
+    const StepReport r = take_step(step_dt, summary.retried_steps);
     time_ += step_dt;
     if (soil_) record_history(step_dt);
     ++summary.steps;
@@ -399,29 +435,9 @@ RunSummary Simulation::run(const StepObserver& after_step) {
     summary.pressure_solves += r.pressure_solves;
 
     const double speed = flow_->max_speed();
-    if (!std::isfinite(speed) || speed > 1e6) {
-      if (soil_) write_history();  // the steps up to the failure, for finding where it began
-      const auto f = flow_->fastest_cell();
-      const long at_limit = flow_->solves_at_iteration_limit();
-      throw DivergenceError(fmt::format("the solution diverged at t = {:.6g} s (step {}): largest speed {:.3g} m/s "
-                                        "at x = {:.4g} m, y = {:.4g} m; {}{}",
-                                        time_, summary.steps, f.speed, f.x, f.y, last_output_kept,
-                                        at_limit > 0 ? fmt::format(" ({} linear solves had stopped at their "
-                                                                   "max_iterations)", at_limit)
-                                                     : std::string()));
-    }
+    stop_if_diverged(speed, summary.steps);
     if (after_step) after_step(*this, step_dt);  // an accepted step: one that did not diverge
-    bool steady = false;  // max|dv/dt| / max|v| below time.steady_tolerance
-    if (tc.steady_tolerance > 0.0) {
-      double change = 0.0;
-      for (int a = 0; a < 2; ++a) {
-        PetscCallAbort(grid_->comm(), VecAXPY(previous[a], -1.0, flow_->velocity(a).global()));
-        double n;
-        PetscCallAbort(grid_->comm(), VecNorm(previous[a], NORM_INFINITY, &n));
-        change = std::max(change, n);
-      }
-      steady = change / step_dt < tc.steady_tolerance * std::max(speed, 1e-300);
-    }
+    const bool steady = tc.steady_tolerance > 0.0 && is_steady(previous, step_dt, speed);
     // The soil at rest (time.rest_speed): slower than it everywhere, once it has moved.
     const bool at_rest = tc.rest_speed > 0.0 && soil_ && soil_->largest_speed(*flow_) < tc.rest_speed &&
                          soil_->largest_displacement() > soil_->moved_distance();

@@ -81,6 +81,9 @@ class Simulation {
   void write_line_samples(const std::vector<double>& u, const std::vector<double>& v,
                           const std::vector<double>& p) const;
   double choose_dt(double dt_previous) const;
+  StepReport take_step(double& step_dt, long& retried);
+  void stop_if_diverged(double speed, long steps);
+  bool is_steady(OwnedVec (&before)[2], double step_dt, double speed) const;
   double courant_after(double dt) const;  // flow Courant number of the current velocities over dt
   std::vector<Field*> checkpoint_fields();
   std::string checkpoint_field_names();
