@@ -44,7 +44,7 @@ double FlowSolver::max_speed() const {
   for (int a = 0; a < 2; ++a) {
     double n;
     PetscCallAbort(grid_.comm(), VecNorm(vel_[a]->global(), NORM_INFINITY, &n));
-    s = std::max(s, n);
+    s = larger_or_nan(s, n);  // a NaN velocity must reach the divergence check
   }
   return s;
 }

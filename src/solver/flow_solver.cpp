@@ -3,6 +3,7 @@
 #include "mesh/face_loop.hpp"
 #include "mesh/copied_ghosts.hpp"
 #include "mesh/gather.hpp"
+#include "mesh/largest.hpp"
 #include "mesh/obstacles.hpp"
 
 #include <algorithm>
@@ -362,8 +363,8 @@ StepReport FlowSolver::step(double dt) {
       PetscCallAbort(grid_.comm(), VecAXPY(start, -1.0, vel_[a]->global()));
       double nd;
       PetscCallAbort(grid_.comm(), VecNorm(start, NORM_INFINITY, &nd));
-      change = std::max(change, nd);
-      scale = std::max(scale, nv);
+      change = larger_or_nan(change, nd);  // a NaN iterate is not converged
+      scale = larger_or_nan(scale, nv);
     }
     report.velocity_change = scale > 0.0 ? change / scale : change;
     if (report.velocity_change < num.outer_tolerance) break;

@@ -12,6 +12,7 @@
 #include "io/case_error.hpp"
 #include "io/collective_failure.hpp"
 #include "mesh/gather.hpp"
+#include "mesh/largest.hpp"
 #include "io/run_directory.hpp"
 #include "mesh/obstacles.hpp"
 #include "models/interface/initial_shapes.hpp"
@@ -320,11 +321,13 @@ double Simulation::choose_dt(double dt_previous) const {
   if (!t.adaptive) return std::min(t.dt, t.max_dt);
   const bool soil_only = soil_ && t.courant_region == CourantRegion::soil;
   const double co = flow_->max_courant(dt_previous, soil_only ? &soil_->soil_fraction() : nullptr);
-  double dt = co > 0.0 ? dt_previous * t.courant / co : dt_previous * t.max_growth;
+  // A NaN Courant number (the flow broke down where the speed check did not see it) shrinks the step.
+  double dt = std::isnan(co) ? 0.1 * dt_previous : co > 0.0 ? dt_previous * t.courant / co : dt_previous * t.max_growth;
   if (soil_) {
     const double ci = soil_->interface_courant(*flow_, dt_previous, t.interface_substeps);
     const double limit = t.interface_substeps * soil_->settings().interface_courant;
-    if (ci > 0.0) dt = std::min(dt, dt_previous * limit / ci);
+    if (std::isnan(ci)) dt = std::min(dt, 0.1 * dt_previous);
+    else if (ci > 0.0) dt = std::min(dt, dt_previous * limit / ci);
   }
   dt = std::min({dt, dt_previous * t.max_growth, t.max_dt});
   return dt;
@@ -387,7 +390,7 @@ bool Simulation::is_steady(OwnedVec (&before)[2], double step_dt, double speed) 
     PetscCallAbort(grid_->comm(), VecAXPY(before[a], -1.0, flow_->velocity(a).global()));
     double n;
     PetscCallAbort(grid_->comm(), VecNorm(before[a], NORM_INFINITY, &n));
-    change = std::max(change, n);
+    change = larger_or_nan(change, n);  // NaN is not steady
   }
   return change / step_dt < config_.time.steady_tolerance * std::max(speed, 1e-300);
 }

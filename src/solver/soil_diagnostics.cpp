@@ -7,6 +7,8 @@
 #include <cmath>
 #include <numbers>
 
+#include "mesh/gather.hpp"
+#include "mesh/largest.hpp"
 #include "mesh/obstacles.hpp"
 #include "models/rheology/invariants.hpp"
 #include "models/strain/euler_almansi.hpp"
@@ -25,10 +27,8 @@ double largest_over_soil(const Grid& grid, const Field& c_field, F&& f) {
   double largest = 0.0;
   for (int j = b.ys; j < b.ye(); ++j)
     for (int i = b.xs; i < b.xe(); ++i)
-      if (c[j][i] >= 0.5) largest = std::max(largest, f(i, j));
-  double all = 0.0;
-  MPI_Allreduce(&largest, &all, 1, MPI_DOUBLE, MPI_MAX, grid.comm());
-  return all;
+      if (c[j][i] >= 0.5) largest = larger_or_nan(largest, f(i, j));  // a NaN soil is not at rest
+  return mpi_max(grid.comm(), largest);
 }
 }  // namespace
 

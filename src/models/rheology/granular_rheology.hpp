@@ -81,15 +81,17 @@ class GranularRheology {
 
   // The model's yield stress over Drucker-Prager's at the same strain rate and pressure: the stress
   // ratio of [YS] Figs. 8, 11 and 15. It depends on the Lode angle and the friction (1 at theta = 0,
-  // where all surfaces are calibrated); exactly 1 for the Drucker-Prager models and at rest. The
-  // surfaces are linear in p, so their ratio is taken at unit pressure, with the friction of the given
-  // state: mu(I) depends on the pressure, and the Mohr-Coulomb and Matsuoka-Nakai ratios on mu.
+  // where all surfaces are calibrated); exactly 1 for the Drucker-Prager models and at rest. Each
+  // surface, a cohesion included, is its cohesionless cone at p + C cot(phi), so the ratio is that of
+  // the cones, at the friction of the given state (mu(I) depends on the pressure).
   [[nodiscard]] double stress_ratio_to_drucker_prager(const StrainRate& strain_rate, double pressure) const noexcept {
     if (yield_surface_of(model_) == YieldSurface::drucker_prager) return 1.0;
     const DeformationState state = deformation_state(strain_rate);
     if (!(state.strain_rate_norm > 0.0)) return 1.0;
     const double friction = friction_coefficient(state.strain_rate_norm, yield_pressure(pressure));
-    return yield_stress(friction, state.sin_three_lode, 1.0) / drucker_prager_yield_stress(friction, 1.0);
+    if (model_ == Model::mohr_coulomb)  // [YS] Eq. 28 over Eq. 24; 1 / cos(theta) at phi = 0 (Tresca)
+      return mohr_coulomb_ratio_to_drucker_prager(friction, lode_angle_from_sin3(state.sin_three_lode));
+    return matsuoka_nakai_for(friction).stress_ratio(state.sin_three_lode) / friction;  // phi > 0 (validate)
   }
 
   // sin(phi) for a constant friction angle, mu(I) otherwise ([YS] Eq. 25).

@@ -17,6 +17,12 @@ inline double mohr_coulomb_stress_ratio(double friction, double lode_angle) noex
          (std::numbers::sqrt3 * std::cos(lode_angle) + std::sin(lode_angle) * friction);
 }
 
+// The same over Drucker-Prager's friction p ([YS] Eq. 24): the stress ratio of [YS] Fig. 8,
+// sqrt3 / (sqrt3 cos(theta) + sin(theta) friction), also at friction = 0.
+inline double mohr_coulomb_ratio_to_drucker_prager(double friction, double lode_angle) noexcept {
+  return std::numbers::sqrt3 / (std::numbers::sqrt3 * std::cos(lode_angle) + std::sin(lode_angle) * friction);
+}
+
 inline double mohr_coulomb_yield_stress(double friction, double lode_angle,
                                         double yield_pressure) noexcept {
   return mohr_coulomb_stress_ratio(friction, lode_angle) * yield_pressure;

@@ -79,8 +79,9 @@ std::optional<std::string> validate(const RheologyParameters& p) {
   }
   // Negated comparisons so that NaN fails every check.
   // phi = 0 with C > 0 is an undrained clay: the Drucker-Prager cones are then von Mises, Mohr-Coulomb
-  // is Tresca, each in plane strain with c_u = C ([VoF] Eq. 9 with tan(phi) = 0). Matsuoka-Nakai has
-  // no such limit (k_MN -> 9 leaves no deviatoric strength), so it keeps phi > 0.
+  // is Tresca, each in plane strain with c_u = C ([VoF] Eq. 9 with tan(phi) = 0). Matsuoka-Nakai takes
+  // its cohesion as C cot(phi) on a cone of slope sin(phi), which at phi = 0 is infinity times zero
+  // (its limit is von Mises, the drucker_prager model), so it keeps phi > 0.
   if (!(p.cohesion >= 0.0 && std::isfinite(p.cohesion))) {
     return bad("cohesion (C)", p.cohesion, "must be finite and >= 0 Pa");
   }
@@ -89,7 +90,7 @@ std::optional<std::string> validate(const RheologyParameters& p) {
     return bad("friction_angle (phi)", p.friction_angle_deg,
                undrained ? "must lie in [0, 90) degrees"
                : p.model == Model::matsuoka_nakai
-                   ? "must lie in (0, 90) degrees (with matsuoka_nakai, also with a cohesion)"
+                   ? "must lie in (0, 90) degrees (with matsuoka_nakai also with a cohesion; at phi = 0 it is drucker_prager)"
                    : "must lie in (0, 90) degrees ([0, 90) with a cohesion)");
   }
   // The cohesion is carried to a surface through its friction angle (the apex at p = -C cot(phi));

@@ -38,7 +38,7 @@ struct RheologyParameters {
   MatsuokaNakaiFit matsuoka_nakai_fit = MatsuokaNakaiFit::isochoric_shear;
 
   double friction_angle_deg = 30.0;         // phi, degrees, in (0, 90); 0 too with a cohesion
-  double cohesion = 0.0;                    // C, Pa ([VoF] Eq. 9; Drucker-Prager-Bingham only)
+  double cohesion = 0.0;                    // C, Pa ([VoF] Eq. 9; on the [YS] surfaces tau = C + sigma_n tan(phi)); constant friction only
   double regularisation_time = 1e5;         // m, s ([VoF] Eq. 12)
   double min_dynamic_viscosity = 1e-3;      // mu_min, Pa s ([VoF] Sec. 2)
   double min_kinematic_viscosity = 1e-5;    // nu_min, m^2/s ([YS] Sec. 4)

@@ -100,7 +100,7 @@ TEST(RheologyParameters, ValidationNamesTheBadParameter) {
     RheologyParameters p;
     p.model = Model::matsuoka_nakai;
     p.cohesion = 5e3;
-    p.friction_angle_deg = 0.0;  // no undrained limit: k_MN = 9 has no deviatoric strength
+    p.friction_angle_deg = 0.0;  // its cohesion C cot(phi) on a cone of slope sin(phi): 0 times infinity
     expect_rejected(p, "friction_angle (phi)");
   }
   {

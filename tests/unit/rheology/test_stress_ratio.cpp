@@ -48,6 +48,32 @@ TEST(StressRatio, AxisymmetricDeformationsMatchTable1) {
               1e-12);
 }
 
+// With a cohesion each surface is its cohesionless cone at p + C cot(phi), so the ratio is the
+// cones' and does not depend on C; at phi = 0 Mohr-Coulomb is Tresca, 2 / sqrt3 of von Mises in
+// triaxial compression. It is still the ratio of the viscosities at the same state.
+TEST(StressRatio, ACohesionLeavesTheRatioOfTheCones) {
+  const StrainRate compression = axisymmetric_strain_rate(0.577, -1.155, 0.0, 0.577);
+  auto with = [](Model model, double phi, double cohesion) {
+    RheologyParameters q;
+    q.model = model;
+    q.friction_angle_deg = phi;
+    q.cohesion = cohesion;
+    q.regularisation = Regularisation::clip;
+    q.density = 1430.0;
+    return GranularRheology(q);
+  };
+  for (Model model : {Model::mohr_coulomb, Model::matsuoka_nakai}) {
+    const double cohesionless = with(model, 36.5, 0.0).stress_ratio_to_drucker_prager(compression, 100.0);
+    EXPECT_NEAR(with(model, 36.5, 5e3).stress_ratio_to_drucker_prager(compression, 100.0), cohesionless, 1e-12);
+    EXPECT_NEAR(with(model, 36.5, 5e3).stress_ratio_to_drucker_prager(compression, 0.0), cohesionless, 1e-12);
+  }
+  const auto tresca = with(Model::mohr_coulomb, 0.0, 5e3), von_mises = with(Model::drucker_prager, 0.0, 5e3);
+  EXPECT_NEAR(tresca.stress_ratio_to_drucker_prager(compression, 100.0), 2.0 / std::sqrt(3.0), 1e-3);
+  const StrainRate fast = 1e3 * compression;  // above the clip's smallest viscosity
+  EXPECT_NEAR(tresca.dynamic_viscosity(fast, 100.0) / von_mises.dynamic_viscosity(fast, 100.0),
+              tresca.stress_ratio_to_drucker_prager(fast, 100.0), 1e-12);
+}
+
 // With mu(I) friction the Mohr-Coulomb and Matsuoka-Nakai ratios depend on mu, which depends on the
 // pressure through I: the ratio is the viscosities' ratio at the cell's own state, not at 1 Pa.
 TEST(StressRatio, MuOfIAtTheCellsPressure) {

@@ -77,6 +77,10 @@ std::vector<RheologyParameters> all_model_variants() {
       if (model == Model::matsuoka_nakai) {
         p.matsuoka_nakai_fit = MatsuokaNakaiFit::triaxial;
         variants.push_back(p);
+        if (friction == FrictionSource::constant) {
+          p.cohesion = 5e3;
+          variants.push_back(p);
+        }
       }
     }
   }
