@@ -13,6 +13,58 @@
 
 namespace granflow {
 
+namespace {
+
+// The viscous stress on a boundary face (a side or an obstacle), by the two-point gradient from the
+// cell centre to the wall: a wall holds both components at its velocity, a slip wall the normal one at zero,
+// an atmosphere neither (zero-gradient velocity; its lagged transpose part stays, side_force.cpp).
+// normal_conductance is stress_factor mu A and tangential mu A, both without the half cell width.
+void add_boundary_face_stress(const Grid& grid, const NumericsSettings& num, const BoundaryCondition& bc,
+                              const double* const* const vel[2], int i, int j, const FaceGeometry& fg,
+                              double normal_conductance, double tangential_conductance, double extra[2],
+                              double src[2]) {
+  const double d_half = 0.5 * (fg.axis == 0 ? grid.dx(i) : grid.dy(j));
+  const double coeff = normal_conductance / d_half;  // the implicit share, applied to both components
+  if (bc.kind == BoundaryKind::wall) {
+    for (int c = 0; c < 2; ++c) {
+      extra[c] += coeff;
+      src[c] += coeff * (c == fg.axis ? 0.0 : bc.wall_velocity[c]);
+    }
+  } else if (bc.kind == BoundaryKind::slip) {
+    extra[fg.axis] += coeff;  // impermeable: normal component zero; no shear
+  }
+  if (!num.quadratic_wall_gradient || bc.kind == BoundaryKind::atmosphere) return;
+  // Deferred correction from the two-point wall gradient to the quadratic one (cell_faces.hpp). The net
+  // two-point stress is mu per tangential and stress_factor mu for the normal component.
+  for (int c = 0; c < 2; ++c) {
+    if (bc.kind == BoundaryKind::slip && c != fg.axis) continue;  // no shear at a slip wall
+    const double uw = c == fg.axis ? 0.0 : bc.wall_velocity[c];
+    const double quadratic = wall_gradient(grid, vel[c], i, j, fg, uw, true);
+    const double two_point = wall_gradient(grid, vel[c], i, j, fg, uw, false);
+    src[c] -= (c == fg.axis ? normal_conductance : tangential_conductance) * (quadratic - two_point);
+  }
+}
+
+// Deferred correction from the upwind face value to the higher-order one, times the outward flux
+// (lagged in the outer iterations): what the source loses for the face of cell (i, j) on fg.
+double deferred_convection_correction(const NumericsSettings& num, const double* const* q, int i, int j,
+                                      const FaceGeometry& fg, double flux) {
+  const int in = i + fg.di, jn = j + fg.dj;
+  double uu, up, dn;
+  if (flux >= 0.0) {
+    up = q[j][i];
+    dn = q[jn][in];
+    uu = q[j - fg.dj][i - fg.di];
+  } else {
+    up = q[jn][in];
+    dn = q[j][i];
+    uu = q[jn + fg.dj][in + fg.di];
+  }
+  return flux * (face_value(num.convection, num.blending, uu, up, dn) - up);
+}
+
+}  // namespace
+
 // Momentum ([VoF] Eq. 27): a_P v_P - sum a_nb v_nb = source + V f_P.
 
 void FlowSolver::assemble_momentum(double dt) {
@@ -46,7 +98,7 @@ void FlowSolver::assemble_momentum(double dt) {
   for (int j = b.ys; j < b.ye(); ++j)
     for (int i = b.xs; i < b.xe(); ++i) {
       const size_t k = size_t(j - b.ys) * b.xm + (i - b.xs);
-      const double dx = grid_.dx(i), dy = grid_.dy(j), V = grid_.volume(i, j);
+      const double V = grid_.volume(i, j);
       const double rhoP = rho[j][i], muP = mu[j][i];
       const double a_time = (rho0 ? (*rho0)[j][i] : rhoP) * V / dt;
       double a_nb[4] = {0, 0, 0, 0};
@@ -75,30 +127,8 @@ void FlowSolver::assemble_momentum(double dt) {
         }
         if (is_boundary) {
           const auto& bc = is_obstacle ? obstacle_wall : boundary(settings_.boundaries, fg.side);
-          const double d_half = 0.5 * (fg.axis == 0 ? dx : dy);
-          const double coeff = stress_factor * mu_face * area / d_half;
-          if (bc.kind == BoundaryKind::wall) {
-            for (int c = 0; c < 2; ++c) {
-              extra[c] += coeff;
-              src[c] += coeff * (c == fg.axis ? 0.0 : bc.wall_velocity[c]);
-            }
-          } else if (bc.kind == BoundaryKind::slip) {
-            extra[fg.axis] += coeff;  // impermeable: normal component zero; no shear
-          }
-          if (num.quadratic_wall_gradient && bc.kind != BoundaryKind::atmosphere) {
-            // Deferred correction from the two-point wall gradient to the quadratic one (cell_faces.hpp).
-            // The net two-point stress is mu per tangential and stress_factor mu for the normal component.
-            for (int c = 0; c < 2; ++c) {
-              if (bc.kind == BoundaryKind::slip && c != fg.axis) continue;  // no shear at a slip wall
-              const double uw = c == fg.axis ? 0.0 : bc.wall_velocity[c];
-              const double quadratic = wall_gradient(grid_, vel[c], i, j, fg, uw, true);
-              const double two_point = wall_gradient(grid_, vel[c], i, j, fg, uw, false);
-              const double factor = c == fg.axis ? stress_factor : 1.0;
-              src[c] -= factor * mu_face * area * (quadratic - two_point);
-            }
-          }
-          // atmosphere: zero-gradient velocity, so no implicit viscous flux (the lagged transpose part
-          // above stays: the side's shear traction mu dv_n/dt, side_force.cpp); convection has no correction
+          add_boundary_face_stress(grid_, num, bc, vel, i, j, fg, stress_factor * mu_face * area, mu_face * area,
+                                   extra, src);
           continue;
         }
         // Outward face velocity and flux.
@@ -106,27 +136,10 @@ void FlowSolver::assemble_momentum(double dt) {
             rho0 ? fg.sign * area * on_face(mfx->data(), mfy->data(), i, j, fg)
                  : rhoP * (fg.sign * on_face(fx.data(), fy.data(), i, j, fg) * area);
         const double d = fg.axis == 0 ? std::abs(grid_.xc(in) - grid_.xc(i)) : std::abs(grid_.yc(jn) - grid_.yc(j));
-        const double mu_f = mu_face;
-        const double conv = std::max(-flux, 0.0);
-        a_nb[f] = stress_factor * mu_f * area / d + conv;
+        a_nb[f] = stress_factor * mu_face * area / d + std::max(-flux, 0.0);
         diag += a_nb[f];
-        // Deferred correction to the higher-order face value (lagged in the outer iterations).
-        if (num.convection != ConvectionScheme::upwind) {
-          for (int c = 0; c < 2; ++c) {
-            const double* const* q = vel[c];
-            double uu, up, dn;
-            if (flux >= 0.0) {
-              up = q[j][i];
-              dn = q[jn][in];
-              uu = q[j - fg.dj][i - fg.di];
-            } else {
-              up = q[jn][in];
-              dn = q[j][i];
-              uu = q[jn + fg.dj][in + fg.di];
-            }
-            src[c] -= flux * (face_value(num.convection, num.blending, uu, up, dn) - up);
-          }
-        }
+        if (num.convection != ConvectionScheme::upwind)
+          for (int c = 0; c < 2; ++c) src[c] -= deferred_convection_correction(num, vel[c], i, j, fg, flux);
       }
       // Hoop stress of the radial momentum, -2 mu u_r / r^2 per volume ([YS] Sec. 4), implicit.
       if (grid_.axisymmetric()) extra[0] += 2.0 * muP * V / (grid_.xc(i) * grid_.xc(i));
