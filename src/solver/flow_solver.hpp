@@ -186,7 +186,10 @@ class FlowSolver {
   double local_min_viscosity(const double* const* mu, int i, int j) const;
   double face_coefficient(const double* const* rau, const double* const* rho, int i, int j, int in, int jn) const;
   void assemble_pressure_matrix();
-  int solve_pressure();
+  int solve_pressure();  // one pressure step, from the pieces below
+  void assemble_pressure_rhs();
+  void correct_velocities();
+  void apply_rotational_correction();
   void hold_pressure_at_top();  // closed domains: the pressure level
 
   const Grid& grid_;
