@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
 #include <vector>
 
 #include "io/case_error.hpp"
@@ -127,7 +128,7 @@ std::string TableReader::required_string(std::string_view key) {
 
 std::string TableReader::choice(std::string_view key, std::string fallback,
                                 std::initializer_list<std::string_view> allowed) {
-  std::string v = string(key, fallback);
+  std::string v = string(key, std::move(fallback));
   for (auto a : allowed)
     if (v == a) return v;
   std::string list;

@@ -65,7 +65,7 @@ void check_ranks_can_share(MPI_Comm comm, std::array<int, 2> cells) {
   MPI_Comm_size(comm, &size);
   const long M = cells[0], N = cells[1];
   long m = std::max(1L, long(0.5 + std::sqrt(double(M) * size / double(N))));
-  while (m > 0 && size % m != 0) --m;
+  while (size % m != 0) --m;  // stops at 1 at the latest
   long n = size / m;
   if (M > N && m < n) std::swap(m, n);
   auto fits = [](long cells_along, long parts) { return parts == 1 || (cells_along >= parts && cells_along / parts >= Grid::ghost_width); };
