@@ -577,3 +577,12 @@ add_test(NAME scripts_plot_field
 set_tests_properties(scripts_plot_field PROPERTIES LABELS cli
                      PASS_REGULAR_EXPRESSION "^3 outputs: 0 [(]t = 0 s[)], 1 [(]t = 0[.]01 s[)], 2 [(]t = 0[.]02 s[)]\nfields of output 1: density, displacement [(]3 components[)], [^\n]*, viscosity\nwrote [^\n]*v[.]png [(]log10 viscosity [(]Pa s[)] from [^\n]*[)]\ndrawn\nerror: [^\n]*has no field velocty; it has [^\n]*velocity[^\n]*\nstatus 1\nnone written\n$"
                      FAIL_REGULAR_EXPRESSION "Traceback")
+
+# A case file named so that out/NAME would be out/ itself or its parent ("..toml", "...toml") is
+# refused without -o, before anything is written.
+file(MAKE_DIRECTORY ${CMAKE_CURRENT_BINARY_DIR}/dots)
+file(COPY_FILE ${CMAKE_SOURCE_DIR}/cases/lid_driven_cavity_re100.toml ${CMAKE_CURRENT_BINARY_DIR}/dots/...toml)
+add_test(NAME cli_default_output_directory_stays_under_out
+         COMMAND sh -c "cd \"$1\" && out=$($0 run ...toml --set 'mesh.cells=[8,8]' 2>&1); status=$?; echo \"$out\"; test $status -eq 2 && echo \"$out\" | grep -q '^error: [.][.][.]toml: the case file.s name gives no directory under out/' && test ! -e out && ! ls | grep -q fields"
+                 $<TARGET_FILE:granflow> ${CMAKE_CURRENT_BINARY_DIR}/dots)
+set_tests_properties(cli_default_output_directory_stays_under_out PROPERTIES LABELS cli)

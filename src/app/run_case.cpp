@@ -43,7 +43,7 @@ int run_case(const std::string& case_file, const std::vector<std::string>& overr
              bool restart, bool overwrite) {
   CaseConfig config = load_case(case_file, overrides);
   check_solver_options(config);
-  if (out_dir.empty()) out_dir = (std::filesystem::path("out") / std::filesystem::path(case_file).stem()).string();
+  if (out_dir.empty()) out_dir = default_output_directory(case_file, "").string();
   int rank;
   MPI_Comm_rank(PETSC_COMM_WORLD, &rank);
   // Checked before the simulation makes the output directory, so a mistyped one is not left behind.

@@ -56,8 +56,7 @@ int run_stability(const std::string& case_file, const std::vector<std::string>& 
   // directory is touched: it checks what the case file alone cannot, and PETSc, which refuses an
   // option it does not know by ending the process, reads the solvers' options there (as a run's does).
   Simulation(PETSC_COMM_WORLD, reduced_strength(config, settings.first_factor), "");
-  if (out_dir.empty())
-    out_dir = (std::filesystem::path("out") / (std::filesystem::path(case_file).stem().string() + "_stability")).string();
+  if (out_dir.empty()) out_dir = default_output_directory(case_file, "_stability").string();
   int rank;
   MPI_Comm_rank(PETSC_COMM_WORLD, &rank);
   // One analysis (or run) at a time in the directory, held by rank 0 for the whole analysis

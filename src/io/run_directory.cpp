@@ -8,9 +8,18 @@
 #include <system_error>
 
 #include "io/atomic_file.hpp"
+#include "io/case_error.hpp"
 #include "io/utf8_text.hpp"
 
 namespace granflow {
+
+std::filesystem::path default_output_directory(const std::filesystem::path& case_file, const std::string& suffix) {
+  const std::string name = case_file.stem().string() + suffix;
+  if (name.empty() || name == "." || name == "..")
+    throw CaseError(fmt::format("{}: the case file's name gives no directory under out/ to write into; name one "
+                                "with -o", case_file.string()));
+  return std::filesystem::path("out") / name;
+}
 
 namespace {
 // NAME_NNNNN.EXT with five or more digits: the stem NAME, or "" if `name` is not of that form.

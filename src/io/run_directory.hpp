@@ -6,6 +6,7 @@
 // The run's fixed files and series are known by name; its line samples are named in the case, so
 // the run records their names in the directory (run_record_name) for a later run to find them.
 #include <filesystem>
+#include <string>
 #include <vector>
 
 #include "io/case_file.hpp"
@@ -13,6 +14,11 @@
 namespace granflow {
 
 inline constexpr const char* run_record_name = "granflow_run.txt";
+
+// Where a run writes without -o: out/NAME, NAME the case file's name without its extension, followed
+// by `suffix`. A name that would point back into out/ or above it ("..toml", "...toml") is refused
+// (CaseError), as -o must then say where.
+std::filesystem::path default_output_directory(const std::filesystem::path& case_file, const std::string& suffix);
 // The case as the run took it (CaseConfig::as_run), with how it was run in comment lines.
 inline constexpr const char* case_record_name = "granflow_case.toml";
 

@@ -50,7 +50,9 @@ const Field& SoilPhase::soil_region(int reach, double floor) const {
       }
     in = region_[1].get();
   }
-  for (int k = 0; k < std::max(reach, 1); ++k) {
+  // Beyond the mesh's longer side a wider reach covers no more cells (each pass widens by one).
+  const int passes = std::clamp(reach, 1, std::max(grid_.nx(), grid_.ny()));
+  for (int k = 0; k < passes; ++k) {
     Field& out = *region_[k % 2];
     {
       ConstFieldArray a(grid_.field_dm(), in->local());
