@@ -586,3 +586,10 @@ add_test(NAME cli_default_output_directory_stays_under_out
          COMMAND sh -c "cd \"$1\" && out=$($0 run ...toml --set 'mesh.cells=[8,8]' 2>&1); status=$?; echo \"$out\"; test $status -eq 2 && echo \"$out\" | grep -q '^error: [.][.][.]toml: the case file.s name gives no directory under out/' && test ! -e out && ! ls | grep -q fields"
                  $<TARGET_FILE:granflow> ${CMAKE_CURRENT_BINARY_DIR}/dots)
 set_tests_properties(cli_default_output_directory_stays_under_out PROPERTIES LABELS cli)
+
+# A factorisation that runs out of memory (here under an 800 MB address-space limit) is said as such,
+# with status 1 and no retried steps, not as a linear solver that failed (DIVERGED_PC_FAILED, status 3).
+add_test(NAME cli_factorisation_out_of_memory
+         COMMAND sh -c "ulimit -v 800000 && out=$($0 run \"$1\" -o \"$2\" --overwrite --set 'mesh.cells=[500,500]' --set time.end=0.01 2>&1); status=$?; echo \"$out\"; test $status -eq 1 && echo \"$out\" | grep -q \"^error: linear solver 'coupled': out of memory in its factorisation\""
+                 $<TARGET_FILE:granflow> ${CMAKE_SOURCE_DIR}/cases/bui2008_experiment.toml ${CMAKE_CURRENT_BINARY_DIR}/out_of_memory)
+set_tests_properties(cli_factorisation_out_of_memory PROPERTIES LABELS cli TIMEOUT 120)

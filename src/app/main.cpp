@@ -24,6 +24,7 @@
 #include "io/checkpoint.hpp"
 #include "models/rheology/element_test.hpp"
 #include "solver/divergence_error.hpp"
+#include "solver/out_of_memory_error.hpp"
 #include "solver/simulation.hpp"
 
 namespace {
@@ -40,6 +41,7 @@ int report_shared_error(const std::exception& e, const std::string& case_file, i
   if (dynamic_cast<const granflow::GridError*>(&e)) return report(fmt::format("{}: {}", case_file, e.what()), 2);
   if (dynamic_cast<const granflow::CheckpointError*>(&e)) return report(e.what(), 1);
   if (dynamic_cast<const granflow::DivergenceError*>(&e)) return report(e.what(), 3);
+  if (dynamic_cast<const granflow::OutOfMemoryError*>(&e)) return report(e.what(), 1);
   return 0;
 }
 

@@ -13,6 +13,7 @@
 
 #include "io/case_error.hpp"
 #include "solver/divergence_error.hpp"
+#include "solver/out_of_memory_error.hpp"
 
 namespace granflow {
 
@@ -205,6 +206,25 @@ void LinearSolver::warn_if_inexact(MPI_Comm comm, const std::string& prefix) con
 }
 
 
+namespace {
+// A preconditioner that failed (KSP_DIVERGED_PC_FAILED): a factorisation out of memory is said as
+// such, and not retried. The reason may be one rank's alone (MUMPS's), so it is reduced over the ranks
+// first, the largest (PC_FACTOR_OUTMEMORY over the zero pivots) winning.
+void stop_if_out_of_memory(KSP ksp, const std::string& prefix) {
+  MPI_Comm comm;
+  PetscObjectGetComm(reinterpret_cast<PetscObject>(ksp), &comm);
+  PC pc;
+  KSPGetPC(ksp, &pc);
+  PCFailedReason local = PC_NOERROR;
+  PCGetFailedReasonRank(pc, &local);
+  int reason = int(local), largest = 0;
+  MPI_Allreduce(&reason, &largest, 1, MPI_INT, MPI_MAX, comm);
+  if (largest == int(PC_FACTOR_OUTMEMORY))
+    throw OutOfMemoryError(fmt::format("linear solver '{}': out of memory in its factorisation (a coarser mesh, a "
+                                       "narrower numerics.air_band or more ranks may do)", prefix));
+}
+}  // namespace
+
 LinearSolver::~LinearSolver() {
   // Quietly: after a failed solve a library's state may be left half made (hypre's vectors), and
   // PETSc would print a second trace while the run is already stopping with its message.
@@ -279,6 +299,7 @@ int LinearSolver::solve_by_last_factorisation(Vec b, Vec x, int krylov_iteration
   // Stopping at the iteration count is the plan; a breakdown or a NaN is not (the same on every rank).
   KSPConvergedReason reason;
   KSPGetConvergedReason(reuse_ksp_, &reason);
+  if (reason == KSP_DIVERGED_PC_FAILED) stop_if_out_of_memory(reuse_ksp_, prefix_);
   if (reason < 0 && reason != KSP_DIVERGED_ITS)
     throw DivergenceError(fmt::format("linear solver '{}' failed in a solve by its last factorisation: {}", prefix_,
                                       KSPConvergedReasons[reason]));
@@ -330,6 +351,7 @@ int LinearSolver::solve(Vec b, Vec x) {
                  prefix_, solver_table_name(prefix_), max_iterations);
   }
   // The converged reason is the same on every rank, so all stop together, as for a diverged flow.
+  if (reason == KSP_DIVERGED_PC_FAILED) stop_if_out_of_memory(ksp_, prefix_);
   if (reason < 0 && reason != KSP_DIVERGED_ITS)
     throw DivergenceError(fmt::format("linear solver '{}' failed: {}", prefix_, KSPConvergedReasons[reason]));
   return int(its);
