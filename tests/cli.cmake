@@ -593,3 +593,10 @@ add_test(NAME cli_factorisation_out_of_memory
          COMMAND sh -c "ulimit -v 800000 && out=$($0 run \"$1\" -o \"$2\" --overwrite --set 'mesh.cells=[500,500]' --set time.end=0.01 2>&1); status=$?; echo \"$out\"; test $status -eq 1 && echo \"$out\" | grep -q \"^error: linear solver 'coupled': out of memory in its factorisation\""
                  $<TARGET_FILE:granflow> ${CMAKE_SOURCE_DIR}/cases/bui2008_experiment.toml ${CMAKE_CURRENT_BINARY_DIR}/out_of_memory)
 set_tests_properties(cli_factorisation_out_of_memory PROPERTIES LABELS cli TIMEOUT 120)
+
+# A strength reduction whose every trial diverges (here under an absurd gravity) says that the solution
+# broke down, with the first trial's divergence, and status 3; not that the soil cannot stand.
+add_test(NAME cli_stability_every_trial_diverged
+         COMMAND sh -c "out=$($0 stability \"$1\" -o \"$2\" --overwrite --set 'mesh.cells=[30,10]' --set 'physics.gravity=[0,-1e30]' 2>&1); status=$?; echo \"$out\"; test $status -eq 3 && echo \"$out\" | grep -q '^error: every trial diverged, down to F = .*the first trial, F = 1: the solution diverged at .*largest speed NaN m/s'"
+                 $<TARGET_FILE:granflow> ${CMAKE_SOURCE_DIR}/cases/bui2008_experiment.toml ${CMAKE_CURRENT_BINARY_DIR}/every_trial_diverged)
+set_tests_properties(cli_stability_every_trial_diverged PROPERTIES LABELS cli TIMEOUT 120)

@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 #include <petscsys.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 
@@ -125,6 +126,17 @@ int run_stability(const std::string& case_file, const std::vector<std::string>& 
   under_way();  // a search of no trial
   if (rank == 0) write_table(std::filesystem::path(out_dir) / table_name, r);
   if (!r.bracketed()) {
+    // Trials that all diverged say nothing of the soil's strength: the solution broke down at every
+    // factor, down to the strongest soil tried, and the first trial's message says where.
+    const bool all_diverged = !r.trials.empty() && std::all_of(r.trials.begin(), r.trials.end(),
+                                                               [](const StrengthTrial& t) { return t.diverged; });
+    if (all_diverged) {
+      if (rank == 0)
+        fmt::print(stderr, "error: every trial diverged, down to F = {}: no factor of safety found, as the solution "
+                           "broke down before the soil's strength could decide (the first trial, F = {}: {})\n",
+                   r.fails_at, r.trials.front().factor, r.trials.front().divergence);
+      return 3;
+    }
     if (rank == 0) {
       if (r.stands_at > 0.0)
         fmt::print(stderr, "error: the soil stands at every factor tried, up to F = {} (the search stops below {}): no "

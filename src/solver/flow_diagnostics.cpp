@@ -58,7 +58,7 @@ FlowSolver::FastestCell FlowSolver::fastest_cell() const {
     for (int i = b.xs; i < b.xe(); ++i) {
       if (is_blocked(mask.data(), i, j)) continue;
       const double s = std::hypot(u[j][i], v[j][i]);
-      if (!(s <= f.speed)) f = {s, grid_.xc(i), grid_.yc(j)};  // NaN wins, so it is found
+      if (takes_the_lead(s, f.speed)) f = {s, grid_.xc(i), grid_.yc(j)};  // the first NaN wins, so it is found
     }
   struct {
     double speed;

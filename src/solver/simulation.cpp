@@ -374,9 +374,10 @@ void Simulation::stop_if_diverged(double speed, long steps) {
   if (soil_) write_history();  // the steps up to the failure, for finding where it began
   const auto f = flow_->fastest_cell();
   const long at_limit = flow_->solves_at_iteration_limit();
-  throw DivergenceError(fmt::format("the solution diverged at t = {:.6g} s (step {}): largest speed {:.3g} m/s "
+  throw DivergenceError(fmt::format("the solution diverged at t = {:.6g} s (step {}): largest speed {} m/s "
                                     "at x = {:.4g} m, y = {:.4g} m; {}{}",
-                                    time_, steps, f.speed, f.x, f.y, last_output_kept,
+                                    time_, steps, std::isnan(f.speed) ? "NaN" : fmt::format("{:.3g}", f.speed), f.x,
+                                    f.y, last_output_kept,
                                     at_limit > 0 ? fmt::format(" ({} linear solves had stopped at their "
                                                                "max_iterations)", at_limit)
                                                  : std::string()));

@@ -136,8 +136,9 @@ StrengthTrial strength_trial(MPI_Comm comm, const CaseConfig& config, const std:
     });
   } catch (const Moved&) {
     if (!out.empty()) sim.write_output();  // the state at which it was seen to fail
-  } catch (const DivergenceError&) {
+  } catch (const DivergenceError& e) {
     trial.diverged = true;
+    trial.divergence = e.what();
   }
   trial.largest_displacement = sim.soil()->largest_displacement();
   trial.fails = trial.diverged || trial.largest_displacement > limit;

@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <functional>
 #include <limits>
+#include <string>
 #include <vector>
 
 #include "io/case_file.hpp"
@@ -26,6 +27,7 @@ struct StrengthTrial {
   double factor = 0.0;
   bool fails = false;
   bool diverged = false;              // the run stopped on divergence (counted as failing)
+  std::string divergence;             // its message, when it diverged
   double largest_displacement = 0.0;  // m, of the soil (cells with c >= 0.5) when the trial ended
   double time = 0.0;                  // s, when it ended: time.end, or earlier once the soil moved past the limit
   long steps = 0;

@@ -23,5 +23,22 @@ TEST(Largest, LargerOrNanIsTheLargerOrNan) {
   EXPECT_TRUE(std::isnan(running));  // a later, larger value does not hide it
 }
 
+// The search for the fastest cell: a NaN takes the lead and keeps it, so the divergence message
+// names where the NaN is, not the last cell searched.
+TEST(Largest, TheFirstNanKeepsTheLead) {
+  const double speeds[] = {0.5, 2.0, nan, 3.0, 0.0, nan};
+  int lead = -1;
+  double running = 0.0;
+  for (int k = 0; k < 6; ++k)
+    if (takes_the_lead(speeds[k], running)) {
+      running = speeds[k];
+      lead = k;
+    }
+  EXPECT_EQ(lead, 2);
+  EXPECT_TRUE(takes_the_lead(2.0, 1.0));
+  EXPECT_FALSE(takes_the_lead(1.0, 1.0));
+  EXPECT_FALSE(takes_the_lead(0.5, 1.0));
+}
+
 }  // namespace
 }  // namespace granflow
