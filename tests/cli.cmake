@@ -600,3 +600,11 @@ add_test(NAME cli_stability_every_trial_diverged
          COMMAND sh -c "out=$($0 stability \"$1\" -o \"$2\" --overwrite --set 'mesh.cells=[30,10]' --set 'physics.gravity=[0,-1e30]' 2>&1); status=$?; echo \"$out\"; test $status -eq 3 && echo \"$out\" | grep -q '^error: every trial diverged, down to F = .*the first trial, F = 1: the solution diverged at .*largest speed NaN m/s'"
                  $<TARGET_FILE:granflow> ${CMAKE_SOURCE_DIR}/cases/bui2008_experiment.toml ${CMAKE_CURRENT_BINARY_DIR}/every_trial_diverged)
 set_tests_properties(cli_stability_every_trial_diverged PROPERTIES LABELS cli TIMEOUT 120)
+
+# PETSc's memory tracing (-malloc_debug, -malloc_dump) finds no corrupted block and no leak: the error
+# handler pushed before PETSc starts is not freed by PETSc's tracing allocator afterwards.
+add_test(NAME cli_petsc_memory_tracing_is_clean
+         COMMAND $<TARGET_FILE:granflow> run ${CMAKE_SOURCE_DIR}/cases/bui2008_experiment.toml -o ${CMAKE_CURRENT_BINARY_DIR}/malloc_debug
+                 --overwrite --set "mesh.cells=[30,10]" --set time.end=0.01 --set output.progress_seconds=0 "--petsc=-malloc_debug -malloc_dump")
+set_tests_properties(cli_petsc_memory_tracing_is_clean PROPERTIES LABELS cli TIMEOUT 120
+                     FAIL_REGULAR_EXPRESSION "PETSC ERROR;\\[ *[0-9]+\\] [0-9]+ bytes")

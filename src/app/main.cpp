@@ -122,7 +122,7 @@ int start_mpi_and_petsc(int& argc, char**& argv, const std::vector<std::string>&
   petsc_argv.push_back(nullptr);
   int pargc = static_cast<int>(petsc_argv.size()) - 1;
   char** pargv = petsc_argv.data();
-  if (!petsc_trace) PetscPushErrorHandler(granflow::keep_startup_petsc_error, nullptr);
+  if (!petsc_trace) PetscPushErrorHandler(granflow::granflow_petsc_error, nullptr);
   if (PetscInitialize(&pargc, &pargv, nullptr, nullptr) != 0) {
     int world_rank = 0, world_size = 1;
     MPI_Comm_rank(MPI_COMM_WORLD, &world_rank);
@@ -279,10 +279,7 @@ int main(int argc, char** argv) {
   int rank = 0, size = 1;
   MPI_Comm_rank(PETSC_COMM_WORLD, &rank);
   MPI_Comm_size(PETSC_COMM_WORLD, &size);
-  if (!petsc_trace) {
-    PetscPopErrorHandler();  // the start-up's
-    PetscPushErrorHandler(granflow::one_line_petsc_error, nullptr);
-  }
+  granflow::petsc_has_started();  // PETSc's errors from here on end the run with one line
 
   // Errors met by every rank alike (the case, the checkpoint's agreed verdict, the global speed):
   // rank 0 reports them and all ranks stop in order. Any other error may be one rank's alone while the

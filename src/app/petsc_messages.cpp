@@ -52,6 +52,9 @@ void say_error_once(const std::string& what) {
   std::fflush(stderr);
 }
 
+namespace {
+bool petsc_started = false;
+
 PetscErrorCode one_line_petsc_error(MPI_Comm, int line, const char* function, const char* file, PetscErrorCode code,
                                     PetscErrorType type, const char* message, void*) {
   if (type != PETSC_ERROR_INITIAL) return code;
@@ -70,9 +73,7 @@ PetscErrorCode one_line_petsc_error(MPI_Comm, int line, const char* function, co
   return code;
 }
 
-namespace {
 std::string startup_error;
-}
 
 PetscErrorCode keep_startup_petsc_error(MPI_Comm, int, const char*, const char*, PetscErrorCode code,
                                         PetscErrorType type, const char* message, void*) {
@@ -83,6 +84,16 @@ PetscErrorCode keep_startup_petsc_error(MPI_Comm, int, const char*, const char*,
   }
   return code;
 }
+
+}  // namespace
+
+PetscErrorCode granflow_petsc_error(MPI_Comm comm, int line, const char* function, const char* file,
+                                    PetscErrorCode code, PetscErrorType type, const char* message, void* context) {
+  return petsc_started ? one_line_petsc_error(comm, line, function, file, code, type, message, context)
+                       : keep_startup_petsc_error(comm, line, function, file, code, type, message, context);
+}
+
+void petsc_has_started() { petsc_started = true; }
 
 const std::string& startup_petsc_error_text() { return startup_error; }
 

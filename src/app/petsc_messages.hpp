@@ -16,16 +16,15 @@ void warn_unused_petsc_options(int rank);
 // another rank only if the abort has not come two seconds later, with its rank.
 void say_error_once(const std::string& what);
 
-// PETSc's error handler: the error as one line (PETSc would print its whole trace), then the end of
-// the run with status 1. Pushed with PetscPushErrorHandler.
-PetscErrorCode one_line_petsc_error(MPI_Comm, int line, const char* function, const char* file, PetscErrorCode code,
+// PETSc's error handler, pushed once with PetscPushErrorHandler before PetscInitialize: while PETSc
+// starts, its first error (in an options file: a line it cannot parse) is kept as one line for the
+// message that PETSc could not start (`startup_petsc_error_text`); once `petsc_has_started` has been
+// called, an error is said as one line (PETSc would print its whole trace) and ends the run with status
+// 1. One handler for both, never popped: a handler pushed before PetscInitialize is allocated before
+// PETSc's memory tracing (-malloc_debug) starts, and freeing it after would be reported as corruption.
+PetscErrorCode granflow_petsc_error(MPI_Comm, int line, const char* function, const char* file, PetscErrorCode code,
                                     PetscErrorType type, const char* message, void*);
-
-// PETSc's first error while it starts (in an options file: a line it cannot parse), kept as one line
-// for the message that PETSc could not start, instead of PETSc's trace. Pushed with
-// PetscPushErrorHandler before PetscInitialize; `startup_petsc_error_text` returns what it kept.
-PetscErrorCode keep_startup_petsc_error(MPI_Comm, int line, const char* function, const char* file, PetscErrorCode code,
-                                        PetscErrorType type, const char* message, void*);
+void petsc_has_started();
 const std::string& startup_petsc_error_text();
 
 // The first options file PETSc could not read, or -log_view file it could not write, among the
