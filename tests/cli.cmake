@@ -608,3 +608,11 @@ add_test(NAME cli_petsc_memory_tracing_is_clean
                  --overwrite --set "mesh.cells=[30,10]" --set time.end=0.01 --set output.progress_seconds=0 "--petsc=-malloc_debug -malloc_dump")
 set_tests_properties(cli_petsc_memory_tracing_is_clean PROPERTIES LABELS cli TIMEOUT 120
                      FAIL_REGULAR_EXPRESSION "PETSC ERROR;\\[ *[0-9]+\\] [0-9]+ bytes")
+
+# A factorisation that PETSc's options ask for and PETSc would accept but could not carry out is bad
+# input found by check: a Cholesky factor of the coupled system (which the case file refuses as
+# pc_type), a factorisation package this PETSc does not have.
+add_test(NAME cli_check_petsc_factorisation_it_cannot_do
+         COMMAND sh -c "a=$($0 check \"$1\" '--petsc=-coupled_pc_type cholesky' 2>&1); sa=$?; b=$($0 check \"$1\" '--petsc=-coupled_pc_factor_mat_solver_type nosuch' 2>&1); sb=$?; echo \"$a\"; echo \"$b\"; test $sa -eq 2 && test $sb -eq 2 && echo \"$a\" | grep -q \"^error: linear solver 'coupled': PETSc's options make its pc_type 'cholesky', which needs a symmetric\" && echo \"$b\" | grep -q \"^error: linear solver 'coupled': PETSc's options name the factorisation package 'nosuch', which this PETSc does not have\""
+                 $<TARGET_FILE:granflow> ${CMAKE_SOURCE_DIR}/cases/bui2008_experiment.toml)
+set_tests_properties(cli_check_petsc_factorisation_it_cannot_do PROPERTIES LABELS cli)

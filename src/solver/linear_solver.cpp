@@ -90,6 +90,34 @@ PetscOptions options_without_viewers() {
 }
 }  // namespace
 
+namespace {
+// What PETSc's options (--petsc, an options file, PETSC_OPTIONS) make of a solver's factorisation that
+// PETSc accepts there but cannot carry out: a Cholesky factor of a matrix that is not symmetric (the
+// case file refuses it as pc_type), a factorisation package PETSc does not have. Empty if neither.
+std::string factorisation_problem(PC pc, const std::string& prefix) {
+  PCType type = nullptr;
+  PCGetType(pc, &type);
+  if (!type) return {};
+  const std::string_view t(type);
+  const bool symmetric_matrix = prefix == "pressure";
+  if (!symmetric_matrix && (t == PCCHOLESKY || t == PCICC))
+    return fmt::format("linear solver '{}': PETSc's options make its pc_type '{}', which needs a symmetric positive "
+                       "definite matrix, and the {} is not symmetric (use lu)",
+                       prefix, t, prefix == "coupled" ? "coupled velocity-pressure system" : "momentum matrix");
+  if (t != PCLU && t != PCCHOLESKY && t != PCILU && t != PCICC) return {};
+  MatSolverType package = nullptr;
+  PCFactorGetMatSolverType(pc, &package);
+  if (!package) return {};
+  MatInitializePackage();
+  PetscBool found = PETSC_FALSE, found_for_type = PETSC_FALSE;
+  MatSolverTypeGet(package, MATAIJ, MAT_FACTOR_LU, &found, &found_for_type, nullptr);
+  if (!found)
+    return fmt::format("linear solver '{}': PETSc's options name the factorisation package '{}', which this PETSc "
+                       "does not have (mumps, petsc, superlu and umfpack are the usual ones)", prefix, package);
+  return {};
+}
+}  // namespace
+
 std::string petsc_options_problem(const std::string& prefix, const LinearSolverSettings& s) {
   PetscOptions options = options_without_viewers();
   KSP ksp;
@@ -112,7 +140,8 @@ std::string petsc_options_problem(const std::string& prefix, const LinearSolverS
     problem = fmt::format("linear solver '{}': PETSc refuses its options: {}", prefix,
                           specific && *specific ? std::string(specific) : petsc_error_text(error));
   } else {
-    problem = tolerance_problem(ksp, prefix);
+    problem = factorisation_problem(pc, prefix);
+    if (problem.empty()) problem = tolerance_problem(ksp, prefix);
   }
   KSPDestroy(&ksp);
   PetscOptionsDestroy(&options);
