@@ -239,15 +239,17 @@ interface::Polygon polygon_of(std::vector<std::array<double, 2>> points, const s
   if (v.size() < 3) throw CaseError(fmt::format("{}: the polygon needs at least 3 distinct points", where));
   if (interface::self_intersecting(polygon))
     throw CaseError(fmt::format("{}: the polygon crosses itself (two of its edges meet)", where));
-  // Points on one line (to round-off of their extent) enclose nothing.
-  double twice_area = 0.0, extent = 0.0;
+  // Points on one line enclose nothing: their area is the round-off of the products it sums (a long,
+  // thin polygon's area is small against its extent squared, not against those products).
+  double twice_area = 0.0, products = 0.0;
   for (std::size_t k = 0; k < v.size(); ++k) {
     const auto& p = v[k];
     const auto& q = v[(k + 1) % v.size()];
-    twice_area += (p[0] - v[0][0]) * (q[1] - v[0][1]) - (q[0] - v[0][0]) * (p[1] - v[0][1]);
-    extent = std::max({extent, std::abs(p[0] - v[0][0]), std::abs(p[1] - v[0][1])});
+    const double a = (p[0] - v[0][0]) * (q[1] - v[0][1]), b = (q[0] - v[0][0]) * (p[1] - v[0][1]);
+    twice_area += a - b;
+    products += std::abs(a) + std::abs(b);
   }
-  if (!(std::abs(twice_area) > 1e-12 * extent * extent))
+  if (!(std::abs(twice_area) > 1e-12 * products))
     throw CaseError(fmt::format("{}: the polygon encloses no area (its points lie on one line)", where));
   return polygon;
 }

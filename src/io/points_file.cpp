@@ -9,6 +9,7 @@
 #include <string_view>
 
 #include "io/case_error.hpp"
+#include "io/table_reader.hpp"
 #include "io/text_file.hpp"
 
 namespace granflow {
@@ -110,6 +111,9 @@ std::vector<std::array<double, 2>> read_points_file(const std::filesystem::path&
     if (!parsed || numbers.size() != 2 || !std::isfinite(numbers[0]) || !std::isfinite(numbers[1]))
       throw CaseError(fmt::format("{}: {}:{}: expected two numbers, x and y in m, found '{}'", key_path, file.string(),
                                   number, shown(line)));
+    for (const double x : {numbers[0], numbers[1]})
+      if (auto problem = magnitude_problem(x); !problem.empty())
+        throw CaseError(fmt::format("{}: {}:{}: {}", key_path, file.string(), number, problem));
     points.push_back({numbers[0], numbers[1]});
   }
   return points;

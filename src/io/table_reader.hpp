@@ -13,6 +13,13 @@
 
 namespace granflow {
 
+// Inputs beyond these magnitudes overflow or underflow in the products the solver forms (a pressure
+// rho g L, a viscous coefficient mu dt / h^2), and the first solve would fail without naming the key.
+inline constexpr double largest_magnitude = 1e30;
+inline constexpr double smallest_magnitude = 1e-30;
+// What a value beyond them is said to be, after the key (and file) it came from; empty within them.
+std::string magnitude_problem(double value);
+
 class TableReader {
  public:
   TableReader(const toml::table* table, std::string path) : table_(table), path_(std::move(path)) {}

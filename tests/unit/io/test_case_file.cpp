@@ -269,6 +269,7 @@ TEST(CaseFile, PolygonPointsFromAFile) {
     std::ofstream(dir / "terrain" / "exported.csv") << "\xEF\xBB\xBF-1;-1\r\n2;-1\r\n2;0.3\r\n-1;0.1\r\n";
     std::ofstream(dir / "terrain" / "typo.csv") << "-1,-1x\n2,-1\n2,0.3\n-1,0.1\n";  // a first line with a typo is no header
     std::ofstream(dir / "terrain" / "two.csv") << "x,y\n0,0\n1,0\n";
+    std::ofstream(dir / "terrain" / "far.csv") << "0,0\n1e100,0\n0.2,0.1\n";  // as points = [...] would be refused
     // A column left empty would shift the numbers after it: "0.2,,0" is not the point (0.2, 0).
     std::ofstream(dir / "terrain" / "gap.csv") << "-1,-1\n2,-1\n0.2 ,, 0\n-1,0.1\n";
     std::ofstream(dir / "terrain" / "trailing.csv") << "-1,-1,\n2,-1,\n2,0.3,\n";
@@ -301,6 +302,9 @@ TEST(CaseFile, PolygonPointsFromAFile) {
   const std::string two = error(obstacle("points_file = \"terrain/two.csv\""));
   EXPECT_NE(two.find("obstacle[0].points_file ('"), std::string::npos) << two;
   EXPECT_NE(two.find("two.csv'): the polygon needs at least 3 distinct points"), std::string::npos) << two;
+  const std::string far = error(obstacle("points_file = \"terrain/far.csv\""));
+  EXPECT_NE(far.find("obstacle[0].points_file: "), std::string::npos) << far;
+  EXPECT_NE(far.find("far.csv:2: 1e+100 is beyond the magnitudes granflow computes with"), std::string::npos) << far;
   const std::string missing = error(obstacle("points_file = \"terrain/none.csv\""));
   EXPECT_NE(missing.find("obstacle[0].points_file: cannot open"), std::string::npos) << missing;
   EXPECT_NE(missing.find("none.csv"), std::string::npos) << missing;
@@ -652,6 +656,9 @@ TEST(CaseFile, PolygonsMayCloseTheirOutlineButNotCrossIt) {
   };
   const CaseConfig closed = parse_case(two_phase, with_polygon("[[0,0],[0.2,0],[0.2,0.1],[0,0.1],[0,0]]"));
   EXPECT_EQ(std::get<interface::Polygon>(closed.soil->initial_soil[0]).vertices.size(), 4u);
+  // A long, thin triangle (1e12 m by 0.1 m) encloses an area, though a small one against its length squared.
+  const CaseConfig thin = parse_case(two_phase, with_polygon("[[0,0],[1e12,0],[0.2,0.1]]"));
+  EXPECT_EQ(std::get<interface::Polygon>(thin.soil->initial_soil[0]).vertices.size(), 3u);
   // Each outline refused with its own message.
   const std::pair<const char*, const char*> refused[] = {
       {"[[0,0],[0.2,0.1],[0.2,0],[0,0.1]]", "crosses itself"},
