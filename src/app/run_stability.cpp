@@ -139,12 +139,12 @@ int run_stability(const std::string& case_file, const std::vector<std::string>& 
     }
     if (rank == 0) {
       if (r.stands_at > 0.0)
-        fmt::print(stderr, "error: the soil stands at every factor tried, up to F = {} (the search stops below {}): no "
-                           "factor of safety found; a longer time.end gives weakened soil the time to move\n",
+        fmt::print(stderr, "error: the soil stands at every factor tried, up to F = {} (the search goes no higher "
+                           "than {}): no factor of safety found; a longer time.end gives weakened soil the time to move\n",
                    r.stands_at, settings.largest_factor);
       else
-        fmt::print(stderr, "error: the soil fails at every factor tried, down to F = {} (the search stops above {}): "
-                           "no factor of safety found; it does not stand even with its strength multiplied{}\n",
+        fmt::print(stderr, "error: the soil fails at every factor tried, down to F = {} (the search goes no lower "
+                           "than {}): no factor of safety found; it does not stand even with its strength multiplied{}\n",
                    r.fails_at, settings.smallest_factor,
                    advice.empty() ? "" : " (mind the warnings on the case's numerics above: they may be why)");
     }

@@ -46,12 +46,13 @@ void apply_override(toml::table& root, const std::string& assignment) {
   for (char ch : assignment.substr(0, eq))
     if (ch != ' ' && ch != '\t') key += ch;
   if (key.empty()) throw CaseError(fmt::format("--set '{}': expected KEY=VALUE", assignment));
-  const auto whole_array_only = [&] {
-    return CaseError(fmt::format("--set '{}': an element of an array of tables cannot be set alone; set the whole "
-                                 "array, e.g. --set 'initial.soil=[{{shape = \"box\", lower = [0, 0], upper = [0.2, 0.1]}}]'",
-                                 assignment));
+  const auto whole_array_only = [&](const std::string& array) {
+    return CaseError(fmt::format("--set '{}': an element of an array cannot be set alone; set the whole array, "
+                                 "--set '{}=[...]' (an array of tables as --set 'initial.soil=[{{shape = \"box\", "
+                                 "lower = [0, 0], upper = [0.2, 0.1]}}]')",
+                                 assignment, array.empty() ? "KEY" : array));
   };
-  if (key.find_first_of("[]") != std::string::npos) throw whole_array_only();
+  if (key.find_first_of("[]") != std::string::npos) throw whole_array_only(key.substr(0, key.find_first_of("[]")));
   // Keys are read as dotted bare words; a quoted part would be taken with its quotes.
   if (key.find_first_of("\"'") != std::string::npos)
     throw CaseError(fmt::format("--set '{}': write the key without quotes (e.g. mesh.cells)", assignment));
@@ -86,7 +87,7 @@ void apply_override(toml::table& root, const std::string& assignment) {
       t->insert(part, toml::table{});
       n = t->get(part);
     }
-    if (n->is_array_of_tables()) throw whole_array_only();
+    if (n->is_array_of_tables()) throw whole_array_only(key.substr(0, key.size() - rest.size() + part.size()));
     if (!n->is_table()) throw CaseError(fmt::format("--set '{}': '{}' is not a table", assignment, part));
     t = n->as_table();
     rest = rest.substr(dot + 1);
@@ -931,7 +932,8 @@ void read_points_files(toml::table& root, const std::filesystem::path& source) {
       if (!shape || !shape->contains("points_file")) continue;
       const std::string key = fmt::format("{}[{}].points_file", path, k);
       const auto name = shape->get("points_file")->value<std::string>();
-      if (!name || name->empty()) throw CaseError(key + ": expected the name of a file of points (a string)");
+      if (!name) throw CaseError(key + ": expected the name of a file of points (a string)");
+      if (name->empty()) throw CaseError(key + ": empty; name a file of points (x and y in m, a point per line)");
       const auto kind = shape->contains("shape") ? shape->get("shape")->value<std::string>() : std::nullopt;
       if (kind != "polygon") throw CaseError(key + ": used only with shape = \"polygon\"");
       if (shape->contains("points"))

@@ -11,6 +11,16 @@
 
 namespace granflow {
 
+namespace {
+// A TOML number as a double: an integer too large for a double to hold exactly (toml++ then gives
+// none) is still the number it says, for the range checks to name.
+std::optional<double> number_of(const toml::node& n) {
+  if (auto v = n.value<double>()) return v;
+  if (const auto* i = n.as_integer()) return double(i->get());
+  return std::nullopt;
+}
+}  // namespace
+
 std::string TableReader::key_path(std::string_view key) const {
   return path_.empty() ? std::string(key) : path_ + "." + std::string(key);
 }
@@ -77,7 +87,7 @@ std::string TableReader::misspelling_of(std::string_view key) const {
 std::optional<double> TableReader::optional_number(std::string_view key) {
   const toml::node* n = get(key);
   if (!n) return std::nullopt;
-  if (auto v = n->value<double>()) {
+  if (auto v = number_of(*n)) {
     if (!std::isfinite(*v)) type_error(key, "a finite number");
     require_magnitude(key, *v);
     return *v;
@@ -146,7 +156,7 @@ std::vector<double> TableReader::numbers(std::string_view key, std::vector<doubl
   if (!arr) type_error(key, "an array of numbers");
   std::vector<double> out;
   for (const auto& e : *arr) {
-    auto v = e.value<double>();
+    auto v = number_of(e);
     if (!v) type_error(key, "an array of numbers");
     if (!std::isfinite(*v)) type_error(key, "an array of finite numbers");
     require_magnitude(key, *v);
@@ -180,7 +190,7 @@ std::vector<std::array<double, 2>> TableReader::pairs(std::string_view key, size
   for (const auto& e : *arr) {
     const toml::array* pt = e.as_array();
     if (!pt || pt->size() != 2) type_error(key, "a list of [x, y] points");
-    auto x = (*pt)[0].value<double>(), y = (*pt)[1].value<double>();
+    auto x = number_of((*pt)[0]), y = number_of((*pt)[1]);
     if (!x || !y) type_error(key, "a list of [x, y] points");
     if (!std::isfinite(*x) || !std::isfinite(*y)) type_error(key, "a list of [x, y] points of finite numbers");
     require_magnitude(key, *x);

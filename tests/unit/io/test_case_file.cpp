@@ -366,6 +366,8 @@ TEST(CaseFile, RheologyConstantsTheModelDoesNotReadAreRefused) {
 TEST(CaseFile, MessagesStateTheRuleBroken) {
   EXPECT_NE(error_of(minimal, {"mesh.upper=[1.0, nan]"}).find("finite"), std::string::npos);
   EXPECT_NE(error_of(minimal, {"mesh.cells=[100000001, 1]"}).find("more than 1e8"), std::string::npos);
+  // An integer beyond what a double holds exactly is still the number it says.
+  EXPECT_NE(error_of(minimal, {"mesh.cells=[9223372036854775807, 1]"}).find("more than 1e8"), std::string::npos);
   EXPECT_NE(error_of(minimal, {"mesh.cells=[8, 8, 8]"}).find("3D is not implemented"), std::string::npos);
   // A step below a nanosecond fails in the solve (V / a_P underflows), so it is refused here.
   for (const char* key : {"time.end=1e-20", "time.dt=1e-12", "time.max_dt=0", "time.end=-1"}) {
@@ -711,10 +713,17 @@ TEST(CaseFile, MissingKeyNamesItsMisspelling) {
 // with more keys on further lines (which would be dropped) is refused.
 TEST(CaseFile, SetRefusesArrayElementsAndValuesOverSeveralLines) {
   const std::string element = error_of(two_phase, {"soil.rheology.friction_angle=30", "initial.soil[0].upper=[0.3, 0.1]"});
-  EXPECT_NE(element.find("an element of an array of tables cannot be set alone"), std::string::npos) << element;
+  EXPECT_NE(element.find("an element of an array cannot be set alone; set the whole array, --set 'initial.soil=[...]'"),
+            std::string::npos)
+      << element;
   // So is a key under one (initial.soil is an array of tables, not a table).
   const std::string under = error_of(two_phase, {"soil.rheology.friction_angle=30", "initial.soil.upper=[0.3, 0.1]"});
-  EXPECT_NE(under.find("an element of an array of tables cannot be set alone"), std::string::npos) << under;
+  EXPECT_NE(under.find("an element of an array cannot be set alone; set the whole array, --set 'initial.soil=[...]'"),
+            std::string::npos)
+      << under;
+  // An array of numbers likewise, named as such.
+  const std::string cells = error_of(minimal, {"mesh.cells[0]=5"});
+  EXPECT_NE(cells.find("set the whole array, --set 'mesh.cells=[...]'"), std::string::npos) << cells;
   // A quoted key would be taken with its quotes; text that is not UTF-8 could not be recorded as TOML.
   const std::string quoted = error_of(minimal, {"\"mesh\".cells=[3, 3]"});
   EXPECT_NE(quoted.find("write the key without quotes"), std::string::npos) << quoted;
