@@ -616,3 +616,10 @@ add_test(NAME cli_check_petsc_factorisation_it_cannot_do
          COMMAND sh -c "a=$($0 check \"$1\" '--petsc=-coupled_pc_type cholesky' 2>&1); sa=$?; b=$($0 check \"$1\" '--petsc=-coupled_pc_factor_mat_solver_type nosuch' 2>&1); sb=$?; echo \"$a\"; echo \"$b\"; test $sa -eq 2 && test $sb -eq 2 && echo \"$a\" | grep -q \"^error: linear solver 'coupled': PETSc's options make its pc_type 'cholesky', which needs a symmetric\" && echo \"$b\" | grep -q \"^error: linear solver 'coupled': PETSc's options name the factorisation package 'nosuch', which this PETSc does not have\""
                  $<TARGET_FILE:granflow> ${CMAKE_SOURCE_DIR}/cases/bui2008_experiment.toml)
 set_tests_properties(cli_check_petsc_factorisation_it_cannot_do PROPERTIES LABELS cli)
+
+# A restart whose case adds soil materials the checkpoint's run did not have is told so, by name, not as
+# a checkpoint of other numerics with two lists of fields.
+add_test(NAME cli_restart_with_other_soil_materials
+         COMMAND sh -c "$0 run \"$1\" -o \"$2\" --overwrite --set 'mesh.cells=[30,10]' --set time.end=0.02 --set output.interval=0.01 --set output.progress_seconds=0 > /dev/null || exit 1; out=$($0 run \"$1\" -o \"$2\" --restart --set 'mesh.cells=[30,10]' --set time.end=0.03 --set 'soil.materials=[{name=\"clay\", friction_angle=25}]' --set 'initial.soil=[{shape=\"box\", lower=[0,0], upper=[0.2,0.1], material=\"clay\"}]' 2>&1); status=$?; echo \"$out\"; test $status -eq 1 && echo \"$out\" | grep -q '^error: the checkpoint.s run had other soil materials (none besides the rheology.s soil) than the case has (clay)'"
+                 $<TARGET_FILE:granflow> ${CMAKE_SOURCE_DIR}/cases/bui2008_experiment.toml ${CMAKE_CURRENT_BINARY_DIR}/restart_materials)
+set_tests_properties(cli_restart_with_other_soil_materials PROPERTIES LABELS cli TIMEOUT 120)

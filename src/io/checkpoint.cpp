@@ -25,6 +25,20 @@ namespace granflow {
 
 namespace {
 
+// A checkpoint's field names split into the soil materials' shares (share_NAME: the materials, by
+// name) and the rest (the numerics'), each space-separated as the list is.
+std::pair<std::string, std::string> materials_and_other_fields(const std::string& field_names) {
+  std::string materials, rest;
+  for (std::size_t k = 0, end; k < field_names.size(); k = end + 1) {
+    end = std::min(field_names.find(' ', k), field_names.size());
+    const std::string name = field_names.substr(k, end - k);
+    if (name.empty()) continue;
+    std::string& to = name.starts_with("share_") ? materials : rest;
+    to += (to.empty() ? "" : " ") + (&to == &materials ? name.substr(6) : name);
+  }
+  return {materials, rest};
+}
+
 // The format's version is the magic's last character: "GRNFCKT3" since the fields are one file over
 // the whole mesh; version 2 held one file per rank, version 1 a history without the side forces.
 constexpr std::uint64_t magic = 0x33544b43464e5247ull;  // "GRNFCKT3"
@@ -546,9 +560,17 @@ RunCheckpoint read_checkpoint(MPI_Comm comm, const std::filesystem::path& dir, i
     }
     // Other numerics may keep as many fields, of other meanings (cell forces where the look-ahead
     // keeps the last step's velocity): the names tell.
-    if (problem.empty() && !run.fields.empty() && run.fields != field_names)
-      problem = fmt::format("the checkpoint holds the fields of other numerics ({}); this case's are {}", run.fields,
-                            field_names);
+    if (problem.empty() && !run.fields.empty() && run.fields != field_names) {
+      const auto [had, had_rest] = materials_and_other_fields(run.fields);
+      const auto [has, has_rest] = materials_and_other_fields(field_names);
+      problem = had_rest == has_rest
+                    ? fmt::format("the checkpoint's run had other soil materials ({}) than the case has ({}); a restart "
+                                  "goes on with the materials it stopped with",
+                                  had.empty() ? "none besides the rheology's soil" : had,
+                                  has.empty() ? "none besides the rheology's soil" : has)
+                    : fmt::format("the checkpoint holds the fields of other numerics ({}); this case's are {}",
+                                  run.fields, field_names);
+    }
   }
   agree(comm, problem);
   if (!std::filesystem::exists(from / fields_file) && std::filesystem::exists(from / "rank_0.bin")) {
