@@ -623,3 +623,11 @@ add_test(NAME cli_restart_with_other_soil_materials
          COMMAND sh -c "$0 run \"$1\" -o \"$2\" --overwrite --set 'mesh.cells=[30,10]' --set time.end=0.02 --set output.interval=0.01 --set output.progress_seconds=0 > /dev/null || exit 1; out=$($0 run \"$1\" -o \"$2\" --restart --set 'mesh.cells=[30,10]' --set time.end=0.03 --set 'soil.materials=[{name=\"clay\", friction_angle=25}]' --set 'initial.soil=[{shape=\"box\", lower=[0,0], upper=[0.2,0.1], material=\"clay\"}]' 2>&1); status=$?; echo \"$out\"; test $status -eq 1 && echo \"$out\" | grep -q '^error: the checkpoint.s run had other soil materials (none besides the rheology.s soil) than the case has (clay)'"
                  $<TARGET_FILE:granflow> ${CMAKE_SOURCE_DIR}/cases/bui2008_experiment.toml ${CMAKE_CURRENT_BINARY_DIR}/restart_materials)
 set_tests_properties(cli_restart_with_other_soil_materials PROPERTIES LABELS cli TIMEOUT 120)
+
+# A strength reduction killed midway keeps the table of the trials it finished: stability.csv is
+# written after each trial (here killed after 5 s of an analysis of some 11 s; the rows are the trials
+# it said it finished, or one more if the kill fell between the table and the line).
+add_test(NAME cli_stability_killed_keeps_its_table
+         COMMAND sh -c "rm -rf \"$2\"; timeout -s KILL 5 $0 stability \"$1\" -o \"$2\" --set 'mesh.cells=[40,10]' --set time.end=5 --set output.progress_seconds=0 > \"$2.log\" 2>&1; n=$(grep -c '^F = ' \"$2.log\"); r=$(($(wc -l < \"$2/stability.csv\") - 1)); echo \"$n trials said, $r rows\"; test $n -ge 1 && test $r -ge $n && test $r -le $((n + 1)) && ! grep -q '^factor of safety' \"$2.log\""
+                 $<TARGET_FILE:granflow> ${CMAKE_SOURCE_DIR}/cases/slope_griffiths_lane1999.toml ${CMAKE_CURRENT_BINARY_DIR}/stability_killed)
+set_tests_properties(cli_stability_killed_keeps_its_table PROPERTIES LABELS cli TIMEOUT 60)

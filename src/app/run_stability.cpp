@@ -37,10 +37,12 @@ std::vector<std::filesystem::path> earlier_analysis(const std::filesystem::path&
   return found;
 }
 
-void write_table(const std::filesystem::path& path, const StrengthReductionResult& r) {
+// The trials so far, rewritten whole after each one, so that an analysis stopped or killed keeps the
+// table of the trials it finished.
+void write_table(const std::filesystem::path& path, const std::vector<StrengthTrial>& trials) {
   write_file_atomically(path, [&](std::ostream& out) {
     out << "factor,fails,diverged,largest_displacement_m,time_s,steps,unconverged_steps,wall_seconds,directory\n";
-    for (const auto& t : r.trials)
+    for (const auto& t : trials)
       out << fmt::format("{},{},{},{:.6g},{:.6g},{},{},{:.3f},{}\n", t.factor, int(t.fails), int(t.diverged),
                          t.largest_displacement, t.time, t.steps, t.unconverged_steps, t.wall_seconds,
                          trial_directory(".", t.factor).filename().string());
@@ -104,10 +106,13 @@ int run_stability(const std::string& case_file, const std::vector<std::string>& 
     set_aside = false;
   };
   StrengthReductionResult r;
+  std::vector<StrengthTrial> finished;
   try {
     r = factor_of_safety(PETSC_COMM_WORLD, config, out_dir, settings, [&](const StrengthTrial& t) {
         if (rank != 0) return;
         under_way();
+        finished.push_back(t);
+        write_table(std::filesystem::path(out_dir) / table_name, finished);
         fmt::print("F = {}: {} (largest displacement {:.3g} m at t = {:.4g} s; {} steps{}, {:.1f} s)\n", t.factor,
                    t.diverged ? "fails (diverged)" : t.fails ? "fails" : "stands", t.largest_displacement, t.time,
                    t.steps,
@@ -124,7 +129,7 @@ int run_stability(const std::string& case_file, const std::vector<std::string>& 
     throw;
   }
   under_way();  // a search of no trial
-  if (rank == 0) write_table(std::filesystem::path(out_dir) / table_name, r);
+  if (rank == 0) write_table(std::filesystem::path(out_dir) / table_name, r.trials);
   if (!r.bracketed()) {
     // Trials that all diverged say nothing of the soil's strength: the solution broke down at every
     // factor, down to the strongest soil tried, and the first trial's message says where.
