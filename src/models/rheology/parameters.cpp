@@ -85,6 +85,12 @@ std::optional<std::string> validate(const RheologyParameters& p) {
   if (!(p.cohesion >= 0.0 && std::isfinite(p.cohesion))) {
     return bad("cohesion (C)", p.cohesion, "must be finite and >= 0 Pa");
   }
+  // Beyond any rock's; the viscosity of a block that stands grows with it, and at 1e15 Pa its ratio to
+  // the air's passes what the solve can resolve in double precision (steps taken again by the thousand).
+  if (p.cohesion > max_cohesion) {
+    return bad("cohesion (C)", p.cohesion,
+               "must be at most 1e9 Pa (beyond the cohesion of any rock; a block that must not move needs far less)");
+  }
   const bool undrained = p.cohesion > 0.0 && p.model != Model::matsuoka_nakai;
   if (!((undrained ? p.friction_angle_deg >= 0.0 : p.friction_angle_deg > 0.0) && p.friction_angle_deg < 90.0)) {
     return bad("friction_angle (phi)", p.friction_angle_deg,

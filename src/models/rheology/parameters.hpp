@@ -50,6 +50,9 @@ struct RheologyParameters {
   double reference_inertial_number = 0.279; // I_0
 };
 
+// The largest cohesion accepted, Pa (validate).
+inline constexpr double max_cohesion = 1e9;
+
 // An error message naming the first bad parameter, or nullopt if the set is usable.
 std::optional<std::string> validate(const RheologyParameters& parameters);
 

@@ -84,10 +84,15 @@ TEST(RheologyParameters, ValidationNamesTheBadParameter) {
     p.density = -1430.0;
     expect_rejected(p, "density");
   }
+  for (double cohesion : {-1.0, 1.0000001e9, 1e20}) {  // at most 1e9 Pa, beyond any rock
+    RheologyParameters p;
+    p.cohesion = cohesion;
+    expect_rejected(p, "cohesion");
+  }
   {
     RheologyParameters p;
-    p.cohesion = -1.0;
-    expect_rejected(p, "cohesion");
+    p.cohesion = 1e9;
+    EXPECT_FALSE(validate(p).has_value()) << *validate(p);
   }
   {
     RheologyParameters p;
