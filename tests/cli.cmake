@@ -133,10 +133,10 @@ add_test(NAME cli_overwrite_keeps_the_run_when_petsc_refuses_an_option
                  $<TARGET_FILE:granflow> ${CMAKE_CURRENT_BINARY_DIR}/overwrite_bad_petsc ${CMAKE_SOURCE_DIR}/cases/bui2008_experiment.toml)
 set_tests_properties(cli_overwrite_keeps_the_run_when_petsc_refuses_an_option PROPERTIES LABELS cli)
 # --overwrite keeps the earlier run when the new run fails before its first step is taken (here its
-# solver cannot factorise: incomplete Cholesky on the coupled system): the earlier run's files, set
-# aside, come back, and none of the new run's is left.
+# coupled solve diverges at every length of step: an over-relaxed Richardson iteration): the earlier
+# run's files, set aside, come back, and none of the new run's is left.
 add_test(NAME cli_overwrite_keeps_the_run_when_the_first_step_fails
-         COMMAND sh -c "g=$0; d=$1; c=$2; rm -rf \"$d\"; \"$g\" run \"$c\" -o \"$d\" --set 'mesh.cells=[30,10]' --set time.end=0.02 --set output.interval=0.01 --set output.progress_seconds=0 > /dev/null || exit 1; cp \"$d/history.csv\" /tmp/granflow_kept_$$; ls -a \"$d\" > /tmp/granflow_list_$$; \"$g\" run \"$c\" -o \"$d\" --overwrite --set 'mesh.cells=[30,10]' --set time.end=0.01 '--petsc=-coupled_pc_type icc' > /dev/null 2>&1; status=$?; ls -a \"$d\" | cmp -s - /tmp/granflow_list_$$ && cmp -s \"$d/history.csv\" /tmp/granflow_kept_$$; same=$?; rm -f /tmp/granflow_kept_$$ /tmp/granflow_list_$$; test $status -eq 3 && test $same -eq 0 && test -f \"$d/surface_00002.csv\" && test -f \"$d/checkpoint/run.txt\""
+         COMMAND sh -c "g=$0; d=$1; c=$2; rm -rf \"$d\"; \"$g\" run \"$c\" -o \"$d\" --set 'mesh.cells=[30,10]' --set time.end=0.02 --set output.interval=0.01 --set output.progress_seconds=0 > /dev/null || exit 1; cp \"$d/history.csv\" /tmp/granflow_kept_$$; ls -a \"$d\" > /tmp/granflow_list_$$; \"$g\" run \"$c\" -o \"$d\" --overwrite --set 'mesh.cells=[30,10]' --set time.end=0.01 '--petsc=-coupled_ksp_type richardson -coupled_ksp_richardson_scale 1000 -coupled_pc_type none' > /dev/null 2>&1; status=$?; ls -a \"$d\" | cmp -s - /tmp/granflow_list_$$ && cmp -s \"$d/history.csv\" /tmp/granflow_kept_$$; same=$?; rm -f /tmp/granflow_kept_$$ /tmp/granflow_list_$$; test $status -eq 3 && test $same -eq 0 && test -f \"$d/surface_00002.csv\" && test -f \"$d/checkpoint/run.txt\""
                  $<TARGET_FILE:granflow> ${CMAKE_CURRENT_BINARY_DIR}/overwrite_first_step_fails ${CMAKE_SOURCE_DIR}/cases/bui2008_experiment.toml)
 set_tests_properties(cli_overwrite_keeps_the_run_when_the_first_step_fails PROPERTIES LABELS cli)
 # The same when the first step diverges (a lid at 1e8 m/s): the step is not an accepted one.
@@ -611,9 +611,10 @@ set_tests_properties(cli_petsc_memory_tracing_is_clean PROPERTIES LABELS cli TIM
 
 # A factorisation that PETSc's options ask for and PETSc would accept but could not carry out is bad
 # input found by check: a Cholesky factor of the coupled system (which the case file refuses as
-# pc_type), a factorisation package this PETSc does not have.
+# pc_type), a factorisation package this PETSc does not have, an ILU asked of MUMPS (the package the
+# case's lu sets).
 add_test(NAME cli_check_petsc_factorisation_it_cannot_do
-         COMMAND sh -c "a=$($0 check \"$1\" '--petsc=-coupled_pc_type cholesky' 2>&1); sa=$?; b=$($0 check \"$1\" '--petsc=-coupled_pc_factor_mat_solver_type nosuch' 2>&1); sb=$?; echo \"$a\"; echo \"$b\"; test $sa -eq 2 && test $sb -eq 2 && echo \"$a\" | grep -q \"^error: linear solver 'coupled': PETSc's options make its pc_type 'cholesky', which needs a symmetric\" && echo \"$b\" | grep -q \"^error: linear solver 'coupled': PETSc's options name the factorisation package 'nosuch', which this PETSc does not have\""
+         COMMAND sh -c "a=$($0 check \"$1\" '--petsc=-coupled_pc_type cholesky' 2>&1); sa=$?; b=$($0 check \"$1\" '--petsc=-coupled_pc_factor_mat_solver_type nosuch' 2>&1); sb=$?; c=$($0 check \"$1\" '--petsc=-coupled_pc_type ilu' 2>&1); sc=$?; echo \"$a\"; echo \"$b\"; echo \"$c\"; test $sa -eq 2 && test $sb -eq 2 && test $sc -eq 2 && echo \"$c\" | grep -q \"^error: linear solver 'coupled': its factorisation package 'mumps' does not do pc_type 'ilu'\" && echo \"$a\" | grep -q \"^error: linear solver 'coupled': PETSc's options make its pc_type 'cholesky', which needs a symmetric\" && echo \"$b\" | grep -q \"^error: linear solver 'coupled': PETSc's options name the factorisation package 'nosuch', which this PETSc does not have\""
                  $<TARGET_FILE:granflow> ${CMAKE_SOURCE_DIR}/cases/bui2008_experiment.toml)
 set_tests_properties(cli_check_petsc_factorisation_it_cannot_do PROPERTIES LABELS cli)
 
@@ -631,3 +632,13 @@ add_test(NAME cli_stability_killed_keeps_its_table
          COMMAND sh -c "rm -rf \"$2\"; timeout -s KILL 5 $0 stability \"$1\" -o \"$2\" --set 'mesh.cells=[40,10]' --set time.end=5 --set output.progress_seconds=0 > \"$2.log\" 2>&1; n=$(grep -c '^F = ' \"$2.log\"); r=$(($(wc -l < \"$2/stability.csv\") - 1)); echo \"$n trials said, $r rows\"; test $n -ge 1 && test $r -ge $n && test $r -le $((n + 1)) && ! grep -q '^factor of safety' \"$2.log\""
                  $<TARGET_FILE:granflow> ${CMAKE_SOURCE_DIR}/cases/slope_griffiths_lane1999.toml ${CMAKE_CURRENT_BINARY_DIR}/stability_killed)
 set_tests_properties(cli_stability_killed_keeps_its_table PROPERTIES LABELS cli TIMEOUT 60)
+
+# A linear solve that diverges (here a pressure solve by an over-relaxed Richardson iteration, whose
+# residual grows) is taken again with a shorter step when the step is adaptive, and the run ends; with
+# a fixed step it stops with the time, step and solver named, status 3.
+set(GRANFLOW_DIVERGING_PRESSURE_SOLVE "--petsc=-pressure_ksp_type richardson -pressure_ksp_richardson_scale 1000 -pressure_pc_type none")
+add_test(NAME cli_diverged_linear_solve_takes_the_step_again
+         COMMAND sh -c "out=$($0 run \"$1\" -o \"$2\" --overwrite --set 'mesh.cells=[16,16]' --set time.end=0.02 --set output.progress_seconds=0 \"$3\" 2>&1); status=$?; echo \"$out\"; test $status -eq 0 && echo \"$out\" | grep -qE '^done: t = 0.02 s in [0-9]+ steps \\([1-9][0-9]* taken again'; a=$?; out=$($0 run \"$1\" -o \"$2\" --overwrite --set 'mesh.cells=[16,16]' --set time.end=0.02 --set time.adaptive=false \"$3\" 2>&1); status=$?; echo \"$out\"; test $a -eq 0 && test $status -eq 3 && echo \"$out\" | grep -q \"^error: at t = 0 s (step 1, dt = 0.01 s): linear solver 'pressure' failed: DIVERGED_DTOL; \""
+                 $<TARGET_FILE:granflow> ${CMAKE_SOURCE_DIR}/cases/lid_driven_cavity_re100.toml ${CMAKE_CURRENT_BINARY_DIR}/diverged_linear_solve
+                 ${GRANFLOW_DIVERGING_PRESSURE_SOLVE})
+set_tests_properties(cli_diverged_linear_solve_takes_the_step_again PROPERTIES LABELS cli TIMEOUT 120)

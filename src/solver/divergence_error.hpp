@@ -12,4 +12,10 @@ inline constexpr const char* last_output_kept = "the last good output is kept";
 struct DivergenceError : std::runtime_error {
   using std::runtime_error::runtime_error;
 };
+
+// A linear solve that ended without converging (a breakdown, a residual that grew or became NaN; not
+// one that stopped at its iteration count): a shorter step may solve, so the step is taken again.
+struct LinearSolveFailure : DivergenceError {
+  using DivergenceError::DivergenceError;
+};
 }  // namespace granflow

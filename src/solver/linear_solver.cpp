@@ -94,7 +94,8 @@ namespace {
 // What PETSc's options (--petsc, an options file, PETSC_OPTIONS) make of a solver's factorisation that
 // PETSc accepts there but cannot carry out: a Cholesky factor of a matrix that is not symmetric (the
 // case file refuses it as pc_type), a factorisation package PETSc does not have. Empty if neither.
-std::string factorisation_problem(PC pc, const std::string& prefix) {
+// case_pc_type: the case file's, whose "lu" makes MUMPS the package unless the options name another.
+std::string factorisation_problem(PC pc, const std::string& prefix, const std::string& case_pc_type) {
   PCType type = nullptr;
   PCGetType(pc, &type);
   if (!type) return {};
@@ -104,16 +105,31 @@ std::string factorisation_problem(PC pc, const std::string& prefix) {
     return fmt::format("linear solver '{}': PETSc's options make its pc_type '{}', which needs a symmetric positive "
                        "definite matrix, and the {} is not symmetric (use lu)",
                        prefix, t, prefix == "coupled" ? "coupled velocity-pressure system" : "momentum matrix");
-  if (t != PCLU && t != PCCHOLESKY && t != PCILU && t != PCICC) return {};
+  const MatFactorType factor = t == PCLU ? MAT_FACTOR_LU : t == PCCHOLESKY ? MAT_FACTOR_CHOLESKY
+                             : t == PCILU ? MAT_FACTOR_ILU : t == PCICC ? MAT_FACTOR_ICC : MAT_FACTOR_NONE;
+  if (factor == MAT_FACTOR_NONE) return {};
   MatSolverType package = nullptr;
   PCFactorGetMatSolverType(pc, &package);
+  if (!package && case_pc_type == "lu") package = MATSOLVERMUMPS;  // as the solver will set it (below)
   if (!package) return {};
   MatInitializePackage();
-  PetscBool found = PETSC_FALSE, found_for_type = PETSC_FALSE;
-  MatSolverTypeGet(package, MATAIJ, MAT_FACTOR_LU, &found, &found_for_type, nullptr);
+  int ranks = 1;
+  MPI_Comm_size(PETSC_COMM_WORLD, &ranks);
+  PetscBool found = PETSC_FALSE, takes_the_matrix = PETSC_FALSE;
+  MatSolverFunction make_factor = nullptr;  // none where the package does not make this factor
+  MatSolverTypeGet(package, ranks == 1 ? MATSEQAIJ : MATMPIAIJ, factor, &found, &takes_the_matrix, &make_factor);
+  const bool does_this = takes_the_matrix && make_factor;
   if (!found)
     return fmt::format("linear solver '{}': PETSc's options name the factorisation package '{}', which this PETSc "
                        "does not have (mumps, petsc, superlu and umfpack are the usual ones)", prefix, package);
+  if (!does_this) {
+    const bool incomplete = factor == MAT_FACTOR_ILU || factor == MAT_FACTOR_ICC;
+    const std::string other = ranks == 1 ? fmt::format("name another with -{}_pc_factor_mat_solver_type, e.g. petsc", prefix)
+                              : incomplete ? std::string("on several ranks an incomplete factor is pc_type bjacobi's, on each rank's block")
+                                           : fmt::format("name a parallel one with -{}_pc_factor_mat_solver_type, mumps or superlu_dist", prefix);
+    return fmt::format("linear solver '{}': its factorisation package '{}' does not do pc_type '{}'{} ({})", prefix,
+                       package, t, ranks == 1 ? "" : fmt::format(" on {} ranks", ranks), other);
+  }
   return {};
 }
 }  // namespace
@@ -140,7 +156,7 @@ std::string petsc_options_problem(const std::string& prefix, const LinearSolverS
     problem = fmt::format("linear solver '{}': PETSc refuses its options: {}", prefix,
                           specific && *specific ? std::string(specific) : petsc_error_text(error));
   } else {
-    problem = factorisation_problem(pc, prefix);
+    problem = factorisation_problem(pc, prefix, s.pc_type);
     if (problem.empty()) problem = tolerance_problem(ksp, prefix);
   }
   KSPDestroy(&ksp);
@@ -330,8 +346,8 @@ int LinearSolver::solve_by_last_factorisation(Vec b, Vec x, int krylov_iteration
   KSPGetConvergedReason(reuse_ksp_, &reason);
   if (reason == KSP_DIVERGED_PC_FAILED) stop_if_out_of_memory(reuse_ksp_, prefix_);
   if (reason < 0 && reason != KSP_DIVERGED_ITS)
-    throw DivergenceError(fmt::format("linear solver '{}' failed in a solve by its last factorisation: {}", prefix_,
-                                      KSPConvergedReasons[reason]));
+    throw LinearSolveFailure(fmt::format("linear solver '{}' failed in a solve by its last factorisation: {}",
+                                         prefix_, KSPConvergedReasons[reason]));
   PetscInt its;
   KSPGetIterationNumber(reuse_ksp_, &its);
   return 1 + int(its);
@@ -381,8 +397,10 @@ int LinearSolver::solve(Vec b, Vec x) {
   }
   // The converged reason is the same on every rank, so all stop together, as for a diverged flow.
   if (reason == KSP_DIVERGED_PC_FAILED) stop_if_out_of_memory(ksp_, prefix_);
-  if (reason < 0 && reason != KSP_DIVERGED_ITS)
-    throw DivergenceError(fmt::format("linear solver '{}' failed: {}", prefix_, KSPConvergedReasons[reason]));
+  if (reason < 0 && reason != KSP_DIVERGED_ITS) {
+    built_ = false;  // a step taken again builds its preconditioner anew
+    throw LinearSolveFailure(fmt::format("linear solver '{}' failed: {}", prefix_, KSPConvergedReasons[reason]));
+  }
   return int(its);
 }
 

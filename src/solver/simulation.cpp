@@ -353,7 +353,21 @@ StepReport Simulation::take_step(double& step_dt, long& retried) {
       soil_->refresh(*flow_);
       update_solve_region();
     }
-    r = flow_->step(step_dt);
+    try {
+      r = flow_->step(step_dt);
+    } catch (const LinearSolveFailure& e) {
+      // A shorter step makes the systems better conditioned (the time term grows on the diagonal).
+      if (!may_retry || attempt == max_step_retries) {
+        if (soil_) write_history();
+        throw DivergenceError(fmt::format("at t = {:.6g} s (step {}, dt = {:.3g} s): {}; {}", time_, steps_ + 1, step_dt,
+                                          e.what(), last_output_kept));
+      }
+      flow_->restore_state();
+      if (soil_) soil_->restore_state();
+      step_dt *= 0.1;
+      ++retried;
+      continue;
+    }
     if (!may_retry || attempt == max_step_retries) break;
     const double co = courant_after(step_dt);
     if (std::isfinite(co) && co <= retry_courant_factor * tc.courant) break;
