@@ -17,6 +17,8 @@ import argparse
 
 import numpy as np
 
+from granflow_files import positive
+
 
 def smallest_factor(lam, H, cot, D, c1, crest, ahead, gamma_ratio=1.0):
     gamma = 1.0  # F is independent of gamma_1 once c_u is given as a fraction of gamma_1 H
@@ -56,14 +58,14 @@ def smallest_factor(lam, H, cot, D, c1, crest, ahead, gamma_ratio=1.0):
 
 def main():
     ap = argparse.ArgumentParser()
-    ap.add_argument("--lambda", dest="lam", type=float, default=2.0, help="c_u2 / c_u1 of the foundation")
-    ap.add_argument("--gamma-ratio", type=float, default=1.0, help="the foundation's unit weight over the slope's")
-    ap.add_argument("--H", type=float, default=10.0)
-    ap.add_argument("--cot", type=float, default=2.0, help="cot(beta) of the slope")
-    ap.add_argument("--D", type=float, default=2.0, help="depth to the rigid base over H, from the crest")
-    ap.add_argument("--c1", type=float, default=0.25, help="c_u1 / (gamma H)")
-    ap.add_argument("--crest", type=float, default=30.0)
-    ap.add_argument("--ahead", type=float, default=40.0)
+    ap.add_argument("--lambda", dest="lam", type=positive, default=2.0, help="c_u2 / c_u1 of the foundation")
+    ap.add_argument("--gamma-ratio", type=positive, default=1.0, help="the foundation's unit weight over the slope's")
+    ap.add_argument("--H", type=positive, default=10.0)
+    ap.add_argument("--cot", type=positive, default=2.0, help="cot(beta) of the slope")
+    ap.add_argument("--D", type=positive, default=2.0, help="depth to the rigid base over H, from the crest")
+    ap.add_argument("--c1", type=positive, default=0.25, help="c_u1 / (gamma H)")
+    ap.add_argument("--crest", type=positive, default=30.0)
+    ap.add_argument("--ahead", type=positive, default=40.0)
     a = ap.parse_args()
     f, circle = smallest_factor(a.lam, a.H, a.cot, a.D, a.c1, a.crest, a.ahead, a.gamma_ratio)
     print(f"lambda = {a.lam:g}, gamma_2 / gamma_1 = {a.gamma_ratio:g}: F = {f:.3f} on the circle of centre ({circle[0]:g}, {circle[1]:g}) m above the base's "

@@ -25,8 +25,8 @@ import sys
 
 import numpy as np
 
-from granflow_files import (InputError, main_with_errors, one_cell_columns, one_cell_toe, read_csv, read_vtr,
-                            require_initial_volume)
+from granflow_files import (InputError, json_file, main_with_errors, one_cell_columns, one_cell_toe,
+                            read_csv, read_vtr, require_initial_volume)
 
 MODELS = {"drucker_prager": ("Drucker-Prager", "C0", "-"), "mohr_coulomb": ("Mohr-Coulomb", "C3", "--"),
           "matsuoka_nakai": ("Matsuoka-Nakai", "C2", ":")}  # label, colour, line style (lode_dissipation.png)
@@ -288,7 +288,7 @@ def figures(out, runs, times, results):
 def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("out", help="directory holding <case>_<model>/ runs; the PNGs go here")
-    ap.add_argument("--json", help="default OUT/axisymmetric.json")
+    ap.add_argument("--json", type=json_file, help="default OUT/axisymmetric.json")
     a = ap.parse_args()
     runs, times, results, columns = {}, {}, {}, {}
     for case in CASES:

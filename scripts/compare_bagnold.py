@@ -28,7 +28,8 @@ import tomllib
 
 import numpy as np
 
-from granflow_files import InputError, main_with_errors, read_csv, require_columns, sample_time
+from granflow_files import (InputError, main_with_errors, picture_file, read_csv, require_columns,
+                            require_rows, sample_time)
 
 
 def read_case(run_dir):
@@ -83,7 +84,7 @@ def steady_profile(m, z, model):
 
 def read_profile(run_dir):
     path = os.path.join(run_dir, "profile.csv")
-    table = read_csv(path)
+    table = require_rows(read_csv(path), path)
     require_columns(table, path, ["y", "u"])
     with open(path) as f:
         first = f.readline().strip()
@@ -107,7 +108,7 @@ def last_change(run_dir, depth):
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("run_dir")
-    ap.add_argument("--png")
+    ap.add_argument("--png", type=picture_file)
     ap.add_argument("--also", action="append", default=[], metavar="DIR=LABEL")
     ap.add_argument("--label", help="the run's label in the figure (default: its directory's name)")
     args = ap.parse_args()

@@ -22,8 +22,8 @@ import tomllib
 
 import numpy as np
 
-from granflow_files import (InputError, main_with_errors, one_cell_toe, read_csv, require_columns, require_initial_volume,
-                            sample_time)
+from granflow_files import (InputError, json_file, main_with_errors, one_cell_toe, picture_file, read_csv,
+                            require_columns, require_initial_volume, require_rows, sample_time)
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 REFDATA = os.path.join(HERE, "..", "validation", "refdata")
@@ -73,7 +73,7 @@ def metrics(run_dir):
     require_columns(history, history_path, ["soil_volume", "soil_outflow", "kinetic_energy", "potential_energy",
                                             "dissipated_energy"])
     require_initial_volume(history, history_path, BLOCK_AREA, "the bui2008_experiment block")
-    cols = read_csv(cols_path)
+    cols = require_rows(read_csv(cols_path), cols_path)
     surf = read_csv(files["surface"])
     fail = read_csv(files["failure_line"]) if files["failure_line"] else {"x0": np.array([]), "y0": np.array([]),
                                                                           "x1": np.array([]), "y1": np.array([])}
@@ -127,8 +127,8 @@ def metrics(run_dir):
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("run_dir")
-    ap.add_argument("--png")
-    ap.add_argument("--json")
+    ap.add_argument("--png", type=picture_file)
+    ap.add_argument("--json", type=json_file)
     a = ap.parse_args()
     m, (x, h, surf, fail, exp_s, exp_f) = metrics(a.run_dir)
     for k, v in m.items():

@@ -22,7 +22,8 @@ import os
 
 import numpy as np
 
-from granflow_files import InputError, main_with_errors, one_cell_toe, read_csv, require_initial_volume, sample_time
+from granflow_files import (InputError, json_file, main_with_errors, one_cell_toe, picture_file, read_csv,
+                            require_initial_volume, sample_time)
 
 # Which figure of [VoF] a case is drawn for, from the run directory's name.
 FIGURES = {"bui2008_sph_phi25_c5": "Fig. 7", "bui2008_sph_phi25": "Fig. 4", "bui2008_sph_phi45": "Fig. 5",
@@ -148,8 +149,8 @@ def measure(run_dir, stamp, t):
 def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("run_dir")
-    ap.add_argument("--png", help="write the figure to this file")
-    ap.add_argument("--json", help="write the numbers to this file")
+    ap.add_argument("--png", type=picture_file, help="write the figure to this file")
+    ap.add_argument("--json", type=json_file, help="write the numbers to this file")
     ap.add_argument("--times", default="0.8,1.1,1.4,2.5",
                     help="comma-separated times in s (default: the paper's 0.8,1.1,1.4 and 2.5)")
     a = ap.parse_args()

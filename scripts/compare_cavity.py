@@ -13,7 +13,7 @@ import sys
 
 import numpy as np
 
-from granflow_files import InputError, main_with_errors, read_csv
+from granflow_files import InputError, main_with_errors, picture_file, read_csv, require_rows
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 REFDATA = os.path.join(HERE, "..", "validation", "refdata")
@@ -23,12 +23,12 @@ def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("run_dir")
     ap.add_argument("re", type=int)
-    ap.add_argument("--png")
+    ap.add_argument("--png", type=picture_file)
     ap.add_argument("--refdata", default=os.environ.get("GRANFLOW_REFDATA", REFDATA))
     a = ap.parse_args()
     ref = read_csv(os.path.join(a.refdata, f"ghia1982_cavity_re{a.re}.csv"))
     ucl_path = os.path.join(a.run_dir, "u_vertical_centreline.csv")
-    ucl = read_csv(ucl_path)
+    ucl = require_rows(read_csv(ucl_path), ucl_path)
     # The shipped cavities have a unit lid speed, side and density, so their viscosity is 1 / Re.
     if "viscosity" in ucl and len(ucl["viscosity"]) and not np.allclose(ucl["viscosity"], 1.0 / a.re, rtol=1e-6):
         raise InputError(f"{ucl_path}: the viscosity is {ucl['viscosity'][0]:g} Pa s, not the 1/{a.re} of a cavity "

@@ -37,7 +37,7 @@ import sys
 
 import numpy as np
 
-from granflow_files import main_with_errors, read_csv, require_initial_volume
+from granflow_files import finite, main_with_errors, picture_file, positive, read_csv, require_initial_volume
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 REFDATA = os.path.join(HERE, "..", "validation", "refdata")
@@ -120,12 +120,12 @@ def compare(run_dir, a=A, g=G, tmax=3.0, shift=RELEASE_SHIFT):
 def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("run_dir")
-    ap.add_argument("--png", help="write the comparison plot to this file")
+    ap.add_argument("--png", type=picture_file, help="write the comparison plot to this file")
     ap.add_argument("--also", action="append", default=[], metavar="DIR=LABEL",
                     help="plot a further run (with --png), e.g. a finer grid; repeatable")
-    ap.add_argument("--tmax", type=float, default=3.0, help="compare experiment points with T <= TMAX (default 3)")
-    ap.add_argument("--a", type=float, default=A, help=f"column width a in m (default {A})")
-    ap.add_argument("--release-shift", type=float, default=RELEASE_SHIFT,
+    ap.add_argument("--tmax", type=positive, default=3.0, help="compare experiment points with T <= TMAX (default 3)")
+    ap.add_argument("--a", type=positive, default=A, help=f"column width a in m (default {A})")
+    ap.add_argument("--release-shift", type=finite, default=RELEASE_SHIFT,
                     help=f"shift in T of the second front table (default {RELEASE_SHIFT}, see above)")
     ap.add_argument("--koshizuka", action="store_true",
                     help="RUN_DIR is cases/water_dam_break_koshizuka.toml: compare its front with Koshizuka & Oka (1996)")

@@ -3,6 +3,9 @@
 A missing or malformed file is an InputError naming the file; `main_with_errors` turns it (and any
 unreadable file) into one line `error: ...` and exit status 1 instead of a traceback.
 """
+import argparse
+import math
+import os
 import re
 import sys
 import zlib
@@ -33,6 +36,57 @@ def read_csv(path):
     except ValueError:
         raise InputError(f"{path}: not a table of numbers under the header {rows[0]}")
     return {h: data[:, k] for k, h in enumerate(header)}
+
+
+def require_rows(table, path):
+    """A table with rows under its header (a run stopped before writing any has none)."""
+    if not table or len(next(iter(table.values()))) == 0:
+        raise InputError(f"{path}: no rows under its header (the run stopped before it wrote any?)")
+    return table
+
+
+def positive(text):
+    """argparse type: a finite number above zero."""
+    try:
+        value = float(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"'{text}' is not a number")
+    if not (math.isfinite(value) and value > 0):
+        raise argparse.ArgumentTypeError(f"'{text}' is not a finite number above zero")
+    return value
+
+
+def finite(text):
+    """argparse type: a finite number."""
+    try:
+        value = float(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"'{text}' is not a number")
+    if not math.isfinite(value):
+        raise argparse.ArgumentTypeError(f"'{text}' is not a finite number")
+    return value
+
+
+PICTURE_SUFFIXES = (".png", ".pdf", ".svg")
+
+
+def picture_file(text):
+    """argparse type for --png: a file name ending in .png (or .pdf, .svg); without a suffix, .png is
+    added, as matplotlib would, so that the name said is the file written."""
+    suffix = os.path.splitext(text)[1].lower()
+    if not suffix:
+        return text + ".png"
+    if suffix not in PICTURE_SUFFIXES:
+        raise argparse.ArgumentTypeError(f"'{text}': a picture ends in {', '.join(PICTURE_SUFFIXES)}")
+    return text
+
+
+def json_file(text):
+    """argparse type for --json: a file name ending in .json, so that a slip of the keyboard does not
+    write the numbers over a run's own file (its history.csv, say)."""
+    if not text.lower().endswith(".json"):
+        raise argparse.ArgumentTypeError(f"'{text}': the numbers go to a file ending in .json")
+    return text
 
 
 def sample_time(path):
@@ -87,6 +141,15 @@ def read_vtr(path):
             raw = f.read()
     except OSError as e:
         raise InputError(f"cannot read {path}: {e.strerror}")
+    try:
+        return _parse_vtr(raw, path)
+    except InputError:
+        raise
+    except (ValueError, KeyError, IndexError, AttributeError, UnicodeDecodeError, zlib.error) as e:
+        raise InputError(f"{path}: not a whole fields file (damaged, or cut short)") from e
+
+
+def _parse_vtr(raw, path):
     head, _, appended = raw.partition(b'<AppendedData encoding="raw">')
     text = head.decode()
     blob = appended[appended.index(b"_") + 1:] if appended else b""

@@ -17,7 +17,7 @@ import re
 
 import numpy as np
 
-from granflow_files import InputError, main_with_errors, read_csv, read_vtr
+from granflow_files import InputError, finite, main_with_errors, picture_file, read_csv, read_vtr
 
 UNITS = {"velocity": "m/s", "pressure": "Pa", "density": "kg/m^3", "viscosity": "Pa s",
          "displacement": "m", "strain_rate_norm": "1/s", "lode_angle": "degrees"}
@@ -53,13 +53,13 @@ def main():
     ap.add_argument("out", help="the run's output directory")
     ap.add_argument("--field", help="the field to draw (listed without --png)")
     when = ap.add_mutually_exclusive_group()
-    when.add_argument("--time", type=float, help="the output nearest this time, s")
+    when.add_argument("--time", type=finite, help="the output nearest this time, s")
     when.add_argument("--output", type=int, help="the output of this number (0 the initial state)")
     ap.add_argument("--component", choices=("x", "y", "magnitude"), default="magnitude",
                     help="of a vector field (default magnitude)")
     ap.add_argument("--soil-only", action="store_true", help="leave out cells with c < 0.5")
     ap.add_argument("--log", action="store_true", help="draw log10 of the absolute value")
-    ap.add_argument("--png", help="the picture to write")
+    ap.add_argument("--png", type=picture_file, help="the picture to write")
     a = ap.parse_args()
 
     runs = outputs(a.out)

@@ -17,13 +17,13 @@ import os
 
 import numpy as np
 
-from granflow_files import InputError, main_with_errors, read_vtr
+from granflow_files import InputError, main_with_errors, picture_file, read_vtr
 
 
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("out")
-    ap.add_argument("--png")
+    ap.add_argument("--png", type=picture_file)
     a = ap.parse_args()
     path = os.path.join(a.out, "stability.csv")
     try:
@@ -80,8 +80,9 @@ def main():
     ax.set_aspect("equal")
     ax.set_xlabel("x (m)")
     ax.set_ylabel("y (m)")
-    ax.set_title(f"strength reduction: stands at F = {stands_at:.4f}, fails at F = {fails_at:.4f} "
-                 f"(displacement at F = {fails_at:.4f})", fontsize=10)
+    bracket = f"stands at F = {stands_at:.4f}, fails" if stood else "fails at every factor tried, down"
+    ax.set_title(f"strength reduction: {bracket} at F = {fails_at:.4f} (displacement at F = {fails_at:.4f})",
+                 fontsize=10)
     fig.tight_layout()
     fig.savefig(a.png, dpi=120)
     print(f"wrote {a.png}")

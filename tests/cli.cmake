@@ -642,3 +642,12 @@ add_test(NAME cli_diverged_linear_solve_takes_the_step_again
                  $<TARGET_FILE:granflow> ${CMAKE_SOURCE_DIR}/cases/lid_driven_cavity_re100.toml ${CMAKE_CURRENT_BINARY_DIR}/diverged_linear_solve
                  ${GRANFLOW_DIVERGING_PRESSURE_SOLVE})
 set_tests_properties(cli_diverged_linear_solve_takes_the_step_again PROPERTIES LABELS cli TIMEOUT 120)
+
+# The scripts refuse what they cannot read or write with one line, never a traceback: a fields file cut
+# short, --json onto a run's own file (it would replace history.csv), a picture of a kind not drawn.
+add_test(NAME scripts_refuse_damaged_files_and_bad_names
+         COMMAND sh -c "g=$0; s=$1; c=$2; d=$3; rm -rf \"$d\"; \"$g\" run \"$c\" -o \"$d\" --set 'mesh.cells=[30,10]' --set time.end=0.02 --set output.interval=0.01 --set output.progress_seconds=0 > /dev/null || exit 1; head -c 3000 \"$d/fields_00002.vtr\" > \"$d/cut.vtr\" && mv \"$d/cut.vtr\" \"$d/fields_00002.vtr\"; /usr/bin/python3 \"$s/plot_field.py\" \"$d\" --field viscosity --png \"$d/v.png\" 2>&1; echo \"status $?\"; cp \"$d/history.csv\" \"$d/kept.csv\"; /usr/bin/python3 \"$s/compare_bui2008.py\" \"$d\" --json \"$d/history.csv\" 2>&1; echo \"status $?\"; cmp -s \"$d/history.csv\" \"$d/kept.csv\" && echo kept; /usr/bin/python3 \"$s/plot_field.py\" \"$d\" --png \"$d/x.xyz\" 2>&1 | tail -1; test ! -e \"$d/v.png\" && test ! -e \"$d/x.xyz\" && echo 'none written'"
+                 $<TARGET_FILE:granflow> ${CMAKE_SOURCE_DIR}/scripts ${CMAKE_SOURCE_DIR}/cases/bui2008_experiment.toml ${CMAKE_CURRENT_BINARY_DIR}/scripts_damaged)
+set_tests_properties(scripts_refuse_damaged_files_and_bad_names PROPERTIES LABELS cli
+                     PASS_REGULAR_EXPRESSION "^error: [^\n]*fields_00002[.]vtr: not a whole fields file [(]damaged, or cut short[)]\nstatus 1\nusage: [^\n]*\n[^\n]*argument --json: [^\n]*the numbers go to a file ending in [.]json\nstatus 2\nkept\n[^\n]*argument --png: [^\n]*a picture ends in [.]png, [.]pdf, [.]svg\nnone written\n$"
+                     FAIL_REGULAR_EXPRESSION "Traceback")
