@@ -9,6 +9,7 @@ shipped cases stop there, `time.steady_tolerance`) is compared with a warning.
 """
 import argparse
 import os
+import re
 import sys
 
 import numpy as np
@@ -26,7 +27,13 @@ def main():
     ap.add_argument("--png", type=picture_file)
     ap.add_argument("--refdata", default=os.environ.get("GRANFLOW_REFDATA", REFDATA))
     a = ap.parse_args()
-    ref = read_csv(os.path.join(a.refdata, f"ghia1982_cavity_re{a.re}.csv"))
+    ref_path = os.path.join(a.refdata, f"ghia1982_cavity_re{a.re}.csv")
+    if not os.path.exists(ref_path):
+        have = sorted(int(m.group(1)) for f in os.listdir(a.refdata)
+                      if (m := re.fullmatch(r"ghia1982_cavity_re(\d+)\.csv", f)))
+        raise InputError(f"no data of Ghia et al. (1982) for Re = {a.re} in {a.refdata}; it has Re = "
+                         + ", ".join(str(r) for r in have))
+    ref = read_csv(ref_path)
     ucl_path = os.path.join(a.run_dir, "u_vertical_centreline.csv")
     ucl = require_rows(read_csv(ucl_path), ucl_path)
     # The shipped cavities have a unit lid speed, side and density, so their viscosity is 1 / Re.

@@ -7,6 +7,7 @@ Reads each run's history.csv (column toe_contour, linear between steps) and prin
 the toe in metres at each time, '-' past the run's end.
 """
 import argparse
+import math
 import os
 
 import numpy as np
@@ -23,6 +24,8 @@ def main():
         times = [float(t) for t in args.times.split(",")]
     except ValueError:
         raise InputError(f"--times: not a list of numbers: {args.times}")
+    if not all(math.isfinite(t) and t >= 0 for t in times):
+        raise InputError(f"--times: not a list of finite times of at least 0 s: {args.times}")
     histories = []
     for run in args.runs:  # all read before anything is printed: a bad run is one error line
         path = os.path.join(run, "history.csv")

@@ -21,9 +21,16 @@ def read_csv(path):
     """Columns of a CSV file with one header line; lines starting with '#' are comments."""
     try:
         with open(path) as f:
-            lines = f.read().splitlines()
+            text = f.read()
     except OSError as e:
         raise InputError(f"cannot read {path}: {e.strerror}")
+    except UnicodeDecodeError:
+        raise InputError(f"{path}: not a text file")
+    # granflow writes whole files, each line ended: a last line without its end was cut short, and its
+    # last number may be only the start of one (-8.17 of -8.17e-16).
+    if text and not text.endswith("\n"):
+        raise InputError(f"{path}: its last line has no line end (the file was cut short?)")
+    lines = text.splitlines()
     rows = [l.strip() for l in lines if l.strip() and not l.startswith("#")]
     if not rows:
         raise InputError(f"{path}: no header line")

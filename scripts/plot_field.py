@@ -75,7 +75,7 @@ def main():
     x, y, cells = read_vtr(os.path.join(a.out, name))
 
     if not a.png:
-        print(f"{len(runs)} outputs: " + ", ".join(f"{k} (t = {t:g} s)" for k, (t, _) in enumerate(runs)))
+        print(f"{len(runs)} output{'' if len(runs) == 1 else 's'}: " + ", ".join(f"{k} (t = {t:g} s)" for k, (t, _) in enumerate(runs)))
         print(f"fields of output {index}: " + ", ".join(
             f"{k} ({v.shape[2]} components)" if v.ndim == 3 else k for k, v in sorted(cells.items())))
         if a.field:
@@ -105,6 +105,8 @@ def main():
     if a.soil_only:
         if c is None:
             raise InputError(f"{name}: no soil_fraction, so --soil-only has no soil to keep")
+        if not (c >= 0.5).any():
+            raise InputError(f"{name}: no cell holds soil (c >= 0.5), so --soil-only leaves nothing to draw")
         value = np.ma.masked_where(c < 0.5, value)
 
     import matplotlib

@@ -32,9 +32,15 @@ def main():
     except OSError as e:
         raise InputError(f"cannot read {path}: {e.strerror}")
     try:
-        trials = [(float(r["factor"]), r["fails"] == "1", r["directory"]) for r in rows]
+        trials = [(float(r["factor"]), r["fails"], r["directory"]) for r in rows]
     except (KeyError, TypeError, ValueError):
         raise InputError(f"{path}: not a table of trials (factor, fails, ..., directory)")
+    # A row cut short (a damaged table) must not pass for a trial that stood.
+    if not trials:
+        raise InputError(f"{path}: no trials (the analysis ended before its first?)")
+    if any(f not in ("0", "1") or not d for _, f, d in trials):
+        raise InputError(f"{path}: a row without its verdict or directory (the table is damaged)")
+    trials = [(factor, fails == "1", d) for factor, fails, d in trials]
     failed = [t for t in trials if t[1]]
     stood = [t for t in trials if not t[1]]
     if not failed:
@@ -50,6 +56,8 @@ def main():
         return 0
     trial = os.path.join(a.out, directory)
     files = sorted(glob.glob(os.path.join(trial, "fields_*.vtr")))
+    if not os.path.isdir(trial):
+        raise InputError(f"{trial}: the trial's directory is missing")
     if not files:
         raise InputError(f"{trial}: no fields_*.vtr (run the analysis with output.fields = true)")
     x, y, cells = read_vtr(files[-1])
