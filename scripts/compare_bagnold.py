@@ -113,6 +113,13 @@ def main():
     ap.add_argument("--label", help="the run's label in the figure (default: its directory's name)")
     args = ap.parse_args()
     m = read_case(args.run_dir)
+    # A steady flow needs mu_s < tan(theta) < mu_2: below, the layer stands; above, it accelerates.
+    slope = math.tan(m["theta"])
+    if not m["mu_s"] < slope < m["mu_2"]:
+        low, high = (math.degrees(math.atan(v)) for v in (m["mu_s"], m["mu_2"]))
+        raise InputError(f"{args.run_dir}: the chute's slope, {math.degrees(m['theta']):.4g} deg, has no steady mu(I) "
+                         f"flow to compare with: that needs a slope between atan(mu_s) = {low:.4g} and atan(mu_2) = "
+                         f"{high:.4g} deg")
     table, when = read_profile(args.run_dir)
     inside = table["y"] < m["depth"]
     z, u = table["y"][inside], table["u"][inside]
