@@ -52,17 +52,6 @@ def require_rows(table, path):
     return table
 
 
-def positive(text):
-    """argparse type: a finite number above zero."""
-    try:
-        value = float(text)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"'{text}' is not a number")
-    if not (math.isfinite(value) and value > 0):
-        raise argparse.ArgumentTypeError(f"'{text}' is not a finite number above zero")
-    return value
-
-
 def finite(text):
     """argparse type: a finite number."""
     try:
@@ -71,6 +60,14 @@ def finite(text):
         raise argparse.ArgumentTypeError(f"'{text}' is not a number")
     if not math.isfinite(value):
         raise argparse.ArgumentTypeError(f"'{text}' is not a finite number")
+    return value
+
+
+def positive(text):
+    """argparse type: a finite number above zero."""
+    value = finite(text)
+    if not value > 0:
+        raise argparse.ArgumentTypeError(f"'{text}' is not a finite number above zero")
     return value
 
 
