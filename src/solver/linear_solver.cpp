@@ -88,12 +88,11 @@ PetscOptions options_without_viewers() {
   PetscOptionsInsertString(options, kept.c_str());
   return options;
 }
-}  // namespace
 
-namespace {
 // What PETSc's options (--petsc, an options file, PETSC_OPTIONS) make of a solver's factorisation that
 // PETSc accepts there but cannot carry out: a Cholesky factor of a matrix that is not symmetric (the
-// case file refuses it as pc_type), a factorisation package PETSc does not have. Empty if neither.
+// case file refuses it as pc_type), a factorisation package PETSc does not have, or one that does not
+// make this factor of this matrix (MUMPS no ILU, a serial package on several ranks). Empty if none.
 // case_pc_type: the case file's, whose "lu" makes MUMPS the package unless the options name another.
 std::string factorisation_problem(PC pc, const std::string& prefix, const std::string& case_pc_type) {
   PCType type = nullptr;
@@ -124,9 +123,11 @@ std::string factorisation_problem(PC pc, const std::string& prefix, const std::s
                        "does not have (mumps, petsc, superlu and umfpack are the usual ones)", prefix, package);
   if (!does_this) {
     const bool incomplete = factor == MAT_FACTOR_ILU || factor == MAT_FACTOR_ICC;
-    const std::string other = ranks == 1 ? fmt::format("name another with -{}_pc_factor_mat_solver_type, e.g. petsc", prefix)
-                              : incomplete ? std::string("on several ranks an incomplete factor is pc_type bjacobi's, on each rank's block")
-                                           : fmt::format("name a parallel one with -{}_pc_factor_mat_solver_type, mumps or superlu_dist", prefix);
+    const std::string option = fmt::format("-{}_pc_factor_mat_solver_type", prefix);
+    const std::string other =
+        ranks == 1   ? fmt::format("name another with {}, e.g. petsc", option)
+        : incomplete ? std::string("on several ranks an incomplete factor is pc_type bjacobi's, on each rank's block")
+                     : fmt::format("name a parallel one with {}, mumps or superlu_dist", option);
     return fmt::format("linear solver '{}': its factorisation package '{}' does not do pc_type '{}'{} ({})", prefix,
                        package, t, ranks == 1 ? "" : fmt::format(" on {} ranks", ranks), other);
   }
