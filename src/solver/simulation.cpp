@@ -347,6 +347,12 @@ StepReport Simulation::take_step(double& step_dt, long& retried) {
     flow_->save_state();
     if (soil_) soil_->save_state();
   }
+  auto take_again = [&](double shorter_dt) {  // from the state the step started from
+    flow_->restore_state();
+    if (soil_) soil_->restore_state();
+    step_dt = shorter_dt;
+    ++retried;
+  };
   for (int attempt = 0;; ++attempt) {
     if (soil_) {  // explicit interface, then the implicit flow step
       soil_->advect(*flow_, step_dt);
@@ -362,20 +368,14 @@ StepReport Simulation::take_step(double& step_dt, long& retried) {
         throw DivergenceError(fmt::format("at t = {:.6g} s (step {}, dt = {:.3g} s): {}; {}", time_, steps_ + 1, step_dt,
                                           e.what(), last_output_kept));
       }
-      flow_->restore_state();
-      if (soil_) soil_->restore_state();
-      step_dt *= 0.1;
-      ++retried;
+      take_again(0.1 * step_dt);
       continue;
     }
     if (!may_retry || attempt == max_step_retries) break;
     const double co = courant_after(step_dt);
     if (std::isfinite(co) && co <= retry_courant_factor * tc.courant) break;
-    flow_->restore_state();
-    if (soil_) soil_->restore_state();
     const double smaller = std::isfinite(co) ? step_dt * tc.courant / co : 0.1 * step_dt;
-    step_dt = std::clamp(smaller, 1e-3 * step_dt, 0.5 * step_dt);
-    ++retried;
+    take_again(std::clamp(smaller, 1e-3 * step_dt, 0.5 * step_dt));
   }
   if (soil_) soil_->transport_displacement(*flow_, step_dt);
   return r;
