@@ -25,14 +25,21 @@ namespace granflow {
 
 namespace {
 
+// The names of a checkpoint's list of fields, which separates them by spaces.
+std::vector<std::string> field_name_list(const std::string& field_names) {
+  std::vector<std::string> names;
+  for (std::size_t k = 0, end; k < field_names.size(); k = end + 1) {
+    end = std::min(field_names.find(' ', k), field_names.size());
+    if (end > k) names.push_back(field_names.substr(k, end - k));
+  }
+  return names;
+}
+
 // A checkpoint's field names split into the soil materials' shares (share_NAME: the materials, by
 // name) and the rest (the numerics'), each space-separated as the list is.
 std::pair<std::string, std::string> materials_and_other_fields(const std::string& field_names) {
   std::string materials, rest;
-  for (std::size_t k = 0, end; k < field_names.size(); k = end + 1) {
-    end = std::min(field_names.find(' ', k), field_names.size());
-    const std::string name = field_names.substr(k, end - k);
-    if (name.empty()) continue;
+  for (const std::string& name : field_name_list(field_names)) {
     std::string& to = name.starts_with("share_") ? materials : rest;
     to += (to.empty() ? "" : " ") + (&to == &materials ? name.substr(6) : name);
   }
@@ -352,11 +359,7 @@ std::string read_fields(MPI_Comm comm, const std::filesystem::path& path, int nx
 // solve, where the cause no longer shows.
 std::string non_finite_value(std::span<Field* const> fields, const std::string& field_names,
                              const CheckpointScalars& scalars) {
-  std::vector<std::string> names;
-  for (std::size_t k = 0, end; k < field_names.size(); k = end + 1) {
-    end = std::min(field_names.find(' ', k), field_names.size());
-    if (end > k) names.push_back(field_names.substr(k, end - k));
-  }
+  const std::vector<std::string> names = field_name_list(field_names);
   for (std::size_t k = 0; k < fields.size(); ++k) {
     PetscInt xs, ys, xm, ym;
     DMDAGetCorners(fields[k]->dm(), &xs, &ys, nullptr, &xm, &ym, nullptr);
