@@ -28,7 +28,10 @@ def smallest_factor(lam, H, cot, D, c1, crest, ahead, gamma_ratio=1.0):
     right = toe + ahead
     xs = np.linspace(0.0, right, int(right / 0.02) + 1)
     dx = xs[1] - xs[0]
-    ground = np.where(xs < crest, H, np.where(xs < toe, H - (xs - crest) / cot, 0.0))
+    # the slope's face only where it lies, so that a steep slope (cot near 0) divides nothing outside it
+    ground = np.where(xs < crest, H, 0.0)
+    face = (xs >= crest) & (xs < toe)
+    ground[face] = H - (xs[face] - crest) / cot
     best = (np.inf, None)
     for xc in np.arange(crest - H, right, 1.0):
         for yc in np.arange(H, H + 6.0 * H, 1.0):

@@ -130,10 +130,17 @@ def main():
     ap.add_argument("--koshizuka", action="store_true",
                     help="RUN_DIR is cases/water_dam_break_koshizuka.toml: compare its front with Koshizuka & Oka (1996)")
     args = ap.parse_args()
+    if args.also and not args.png:
+        ap.error("--also adds runs to the plot: give --png FILE too")
     if args.koshizuka:
         compare_koshizuka(args.run_dir, args.tmax)
         return
     r = compare(args.run_dir, a=args.a, tmax=args.tmax, shift=args.release_shift)
+    # the further runs are read before anything is printed, so that a bad one stops the script at once
+    others = []
+    for k, spec in enumerate(args.also):
+        d, _, label = spec.partition("=")
+        others.append((compare(d, a=args.a, tmax=args.tmax), label or d, f"C{k + 1}"))
 
     Te, Ze, Zs, dz, lead = r["front_points"]
     print(f"surge front, T = t sqrt(2g/a), Z = toe_contour / a, experiment points with T <= {args.tmax:g}:")
@@ -175,10 +182,6 @@ def main():
         fig, (ax1, ax2) = plt.subplots(1, 2, figsize=(10, 4))
         fr, rs = r["front"], r["resid"]
         T_end = r["T_sim"][-1]
-        others = []
-        for k, spec in enumerate(args.also):
-            d, _, label = spec.partition("=")
-            others.append((compare(d, a=args.a, tmax=args.tmax), label or d, f"C{k + 1}"))
         ax1.plot(r["T_sim"], r["Z_sim"], "-", color="C0", label="granflow (c = 0.5 contour)")
         ax1.plot(r["T_sim"] + r["shift"], r["Z_sim"], ":", color="C0",
                  label=f"granflow, T + {r['shift']:g} (release shift)")

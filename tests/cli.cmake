@@ -328,6 +328,12 @@ add_test(NAME scripts_compare_missing_run
          COMMAND ${GRANFLOW_EXPECT_STATUS} 1 /usr/bin/python3 ${CMAKE_SOURCE_DIR}/scripts/compare_dam_break.py ${CMAKE_CURRENT_BINARY_DIR}/no_such_run)
 set_tests_properties(scripts_compare_missing_run PROPERTIES LABELS cli
                      PASS_REGULAR_EXPRESSION "^error: cannot read [^\n]*no_such_run/history.csv: No such file or directory\n$")
+# A further run for the dam break's plot is read before the report is printed (a missing one stops
+# the script at once), and asking for one without a plot is refused instead of ignored.
+add_test(NAME scripts_compare_dam_break_further_runs
+         COMMAND sh -c "out=$(/usr/bin/python3 \"$0\" \"$1\" --also \"$1\" 2>&1); a=$?; echo \"$out\"; test $a -eq 2 && echo \"$out\" | grep -q 'error: --also adds runs to the plot: give --png FILE too'"
+                 ${CMAKE_SOURCE_DIR}/scripts/compare_dam_break.py ${CMAKE_CURRENT_BINARY_DIR}/no_such_run)
+set_tests_properties(scripts_compare_dam_break_further_runs PROPERTIES LABELS cli)
 add_test(NAME scripts_compare_malformed_refdata
          COMMAND ${GRANFLOW_EXPECT_STATUS} 1 /usr/bin/python3 ${CMAKE_SOURCE_DIR}/scripts/compare_cavity.py ${CMAKE_CURRENT_BINARY_DIR}/no_such_run 100
                  --refdata ${CMAKE_CURRENT_BINARY_DIR}/bad_refdata)
