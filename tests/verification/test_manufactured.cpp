@@ -1,7 +1,7 @@
 // Order of accuracy on a manufactured steady Navier-Stokes solution whose viscosity varies smoothly
-// by a factor 1e4 across the domain (full stress, so the transpose term matters).
+// by a factor 1e4 (or 1e8) across the domain (full stress, so the transpose term matters).
 //   psi = sin^2(pi x) sin^2(pi y), u = dpsi/dy, v = -dpsi/dx (zero on all walls),
-//   p = cos(pi x) cos(pi y), mu = 10^(2 (x + y)), rho = 1,
+//   p = cos(pi x) cos(pi y), mu = 10^(D (x + y) / 2) with D decades of contrast, rho = 1,
 //   f = rho (v.grad) v - div(mu (grad v + grad v^T)) + grad p.
 #include <gtest/gtest.h>
 
@@ -19,7 +19,9 @@ constexpr double pi = std::numbers::pi;
 double u_exact(double x, double y) { return pi * std::pow(std::sin(pi * x), 2) * std::sin(2 * pi * y); }
 double v_exact(double x, double y) { return -pi * std::sin(2 * pi * x) * std::pow(std::sin(pi * y), 2); }
 double p_exact(double x, double y) { return std::cos(pi * x) * std::cos(pi * y); }
-double mu_exact(double x, double y) { return std::pow(10.0, 2.0 * (x + y)); }
+// Decades of viscosity contrast between the corners (0, 0) and (1, 1); a test that changes it puts it back.
+double contrast_decades = 4.0;
+double mu_exact(double x, double y) { return std::pow(10.0, 0.5 * contrast_decades * (x + y)); }
 double ux(double x, double y) { return pi * pi * std::sin(2 * pi * x) * std::sin(2 * pi * y); }
 double uy(double x, double y) { return 2 * pi * pi * std::pow(std::sin(pi * x), 2) * std::cos(2 * pi * y); }
 double vx(double x, double y) { return -2 * pi * pi * std::cos(2 * pi * x) * std::pow(std::sin(pi * y), 2); }
@@ -42,11 +44,13 @@ double fy(double x, double y) {
   return conv - div - pi * std::cos(pi * x) * std::sin(pi * y);
 }
 
-test::VelocityPressureErrors solve_on(int n) {
+// mesh_extra and numerics_extra: further lines of [mesh] and [numerics].
+test::VelocityPressureErrors solve_on(int n, const std::string& mesh_extra = "", const std::string& numerics_extra = "") {
   const std::string text = fmt::format(R"(
 [mesh]
 cells = [{0}, {0}]
 upper = [1.0, 1.0]
+{1}
 [time]
 end = 1e6
 dt = 2e-3
@@ -65,12 +69,13 @@ north = {{ type = "wall" }}
 convection = "central"
 outer_iterations = 1
 pressure_correctors = 2
+{2}
 [solver.momentum]
 pc_type = "hypre"
 [output]
 progress_seconds = 0
 )",
-                                       n);
+                                       n, mesh_extra, numerics_extra);
   return test::run_manufactured(text, {mu_exact, fx, fy, u_exact, v_exact, p_exact});
 }
 
@@ -79,6 +84,47 @@ TEST(ManufacturedSolution, SecondOrderWithViscosityContrast1e4) {
   test::VelocityPressureErrors e[3];
   for (int k = 0; k < 3; ++k) e[k] = solve_on(sizes[k]);
   test::expect_second_order("manufactured", sizes, e, "u", "v");
+}
+
+// The coupled solve of velocity and pressure (the granular collapses' solver, one LU per outer
+// iteration) at the contrast of a soil at rest next to air: 1e8. The pressure reaches second order on
+// the finer meshes (1.74, then 1.91); on 16 cells it is 1.28 from 16 to 32.
+TEST(ManufacturedSolution, CoupledSolveSecondOrderWithViscosityContrast1e8) {
+  const int sizes[3] = {32, 64, 128};
+  test::VelocityPressureErrors e[3];
+  contrast_decades = 8.0;
+  for (int k = 0; k < 3; ++k) e[k] = solve_on(sizes[k], "", "pressure_coupling = \"coupled\"");
+  contrast_decades = 4.0;
+  test::expect_second_order("coupled, contrast 1e8", sizes, e, "u", "v");
+}
+
+// Graded cells: widths growing 3-fold from west to east and halving from south to north (the same
+// grading on every mesh, so neighbouring cells differ by 7 % on 16 cells and 1.7 % on 64).
+TEST(ManufacturedSolution, CoupledSolveSecondOrderOnAGradedMesh) {
+  const int sizes[3] = {16, 32, 64};
+  test::VelocityPressureErrors e[3];
+  for (int k = 0; k < 3; ++k) e[k] = solve_on(sizes[k], "grading = [3.0, 0.5]", "pressure_coupling = \"coupled\"");
+  test::expect_second_order("coupled, graded", sizes, e, "u", "v");
+}
+
+// The projection on the same graded mesh: the velocity is second order, the pressure only about 1.2-1.3
+// (1.45-1.65 with dt = 2e-4). Its steady state depends on dt, since the Rhie-Chow term of the
+// incremental projection is scaled by dt / rho (docs/method.md), and on graded cells that term's
+// error falls more slowly than the discretisation's. The granular cases use the coupled solve (above).
+// Not in the suite (about a minute, most of it the 64-cell run to steady state); run it with
+// --gtest_also_run_disabled_tests --gtest_filter='ManufacturedSolution.*Projection*'.
+TEST(ManufacturedSolution, DISABLED_ProjectionOnAGradedMeshVelocitySecondOrderPressureFirst) {
+  const int sizes[3] = {16, 32, 64};
+  test::VelocityPressureErrors e[3];
+  for (int k = 0; k < 3; ++k) e[k] = solve_on(sizes[k], "grading = [3.0, 0.5]");
+  for (int k = 1; k < 3; ++k) {
+    const double ou = std::log2(e[k - 1].u / e[k].u), ov = std::log2(e[k - 1].v / e[k].v),
+                 op = std::log2(e[k - 1].p / e[k].p);
+    std::printf("projection, graded, observed order %d -> %d: u %.2f  v %.2f  p %.2f\n", sizes[k - 1], sizes[k], ou, ov, op);
+    EXPECT_GE(ou, 1.75);
+    EXPECT_GE(ov, 1.75);
+    EXPECT_GE(op, 1.1);
+  }
 }
 
 }  // namespace
