@@ -48,7 +48,8 @@ double force_z(double r, double z) {
   return conv + d_z(p_exact, r, z) - div;
 }
 
-test::VelocityPressureErrors solve_on(int n) {
+// numerics_extra: further lines of [numerics].
+test::VelocityPressureErrors solve_on(int n, const std::string& numerics_extra = "") {
   const std::string text = fmt::format(R"(
 [mesh]
 geometry = "axisymmetric"
@@ -71,12 +72,13 @@ north = {{ type = "wall" }}
 [numerics]
 convection = "central"
 outer_iterations = 1
+{1}
 [solver.momentum]
 pc_type = "hypre"
 [output]
 progress_seconds = 0
 )",
-                                       n);
+                                       n, numerics_extra);
   return test::run_manufactured(text, {mu_exact, force_r, force_z, ur, uz, p_exact});
 }
 
@@ -85,6 +87,14 @@ TEST(ManufacturedSolution, AxisymmetricSecondOrderWithViscosityContrast100) {
   test::VelocityPressureErrors e[3];
   for (int k = 0; k < 3; ++k) e[k] = solve_on(sizes[k]);
   test::expect_second_order("axisymmetric manufactured", sizes, e, "u_r", "u_z");
+}
+
+// The coupled solve of velocity and pressure, as the axisymmetric collapses of [YS] Sec. 4 use it.
+TEST(ManufacturedSolution, AxisymmetricCoupledSolveSecondOrder) {
+  const int sizes[3] = {16, 32, 64};
+  test::VelocityPressureErrors e[3];
+  for (int k = 0; k < 3; ++k) e[k] = solve_on(sizes[k], "pressure_coupling = \"coupled\"");
+  test::expect_second_order("axisymmetric, coupled", sizes, e, "u_r", "u_z");
 }
 
 }  // namespace
