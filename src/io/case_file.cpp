@@ -98,7 +98,7 @@ LinearSolverSettings read_linear_solver(TableReader r, LinearSolverSettings d) {
   d.ksp_type = r.string("ksp_type", d.ksp_type);
   d.pc_type = r.string("pc_type", d.pc_type);
   d.rtol = r.number("rtol", d.rtol);
-  r.require_range("rtol", d.rtol, 0.0, 1.0);
+  r.require_range("rtol", d.rtol, 0.0, std::nextafter(1.0, 0.0), "in [0, 1)");  // PETSc refuses 1 itself
   d.atol = r.number("atol", d.atol);
   r.require_range("atol", d.atol, 0.0, inf);
   d.max_iterations = r.integer_in("max_iterations", d.max_iterations, 1, 1000000000);

@@ -109,7 +109,13 @@ long TableReader::integer(std::string_view key, long fallback) {
   const toml::node* n = get(key);
   if (!n) return fallback;
   if (auto v = n->value_exact<int64_t>()) return long(*v);
-  type_error(key, "an integer");
+  // A whole number written as a float (1e5, 100.0) is the integer it says, as in mesh.cells; the
+  // bound keeps it exact in a double, and each key's own range check follows.
+  if (const auto* f = n->as_floating_point()) {
+    const double x = f->get();
+    if (std::isfinite(x) && x == std::floor(x) && std::abs(x) <= 9.0e15) return long(x);
+  }
+  type_error(key, "an integer (a whole number)");
 }
 
 int TableReader::integer_in(std::string_view key, int fallback, long lo, long hi) {

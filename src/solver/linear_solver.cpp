@@ -56,7 +56,7 @@ std::string tolerance_problem(KSP ksp, const std::string& prefix) {
     return fmt::format("linear solver '{}': {} = {} (solver.{}.{}, or PETSc's -{}_ksp_{}) must be {}", prefix, key,
                        value, table, key, prefix, option, range);
   };
-  if (!(rtol >= 0 && rtol <= 1)) return outside("rtol", "rtol", rtol, "within [0, 1]");
+  if (!(rtol >= 0 && rtol < 1)) return outside("rtol", "rtol", rtol, "within [0, 1)");
   if (!(atol >= 0 && std::isfinite(atol))) return outside("atol", "atol", atol, "zero or positive");
   if (max_it < 1) return outside("max_iterations", "max_it", double(max_it), "at least 1");
   if (!(divtol >= 1))

@@ -395,6 +395,22 @@ TEST(CaseFile, InterfaceSubstepsMustBeAPositiveWholeNumber) {
   }
 }
 
+// An integer key takes a whole number written as a float (1e5), as mesh.cells does; not 1.5 or 1e300.
+TEST(CaseFile, IntegersMayBeWrittenAsWholeFloats) {
+  EXPECT_EQ(parse_case(minimal, {"time.max_steps=1e5"}).time.max_steps, 100000);
+  EXPECT_EQ(parse_case(minimal, {"solver.pressure.max_iterations=250.0"}).flow.pressure_solver.max_iterations, 250);
+  for (const char* bad : {"time.max_steps=1.5", "time.max_steps=1e300", "time.max_steps=nan"}) {
+    const std::string e = error_of(minimal, {bad});
+    EXPECT_NE(e.find("time.max_steps: expected an integer (a whole number)"), std::string::npos) << bad << ": " << e;
+  }
+}
+
+// A relative tolerance of 1 is refused as PETSc refuses it, naming the key, not by PETSc at the solver's set-up.
+TEST(CaseFile, RelativeToleranceBelowOne) {
+  EXPECT_EQ(error_of(minimal, {"solver.pressure.rtol=1"}), "solver.pressure.rtol: 1 is invalid, must be in [0, 1)");
+  EXPECT_EQ(error_of(minimal, {"solver.pressure.rtol=0.999"}), "");
+}
+
 // Keys that only a case with soil reads are refused in a single-phase case, not ignored.
 TEST(CaseFile, TwoPhaseKeysRefusedWithoutSoil) {
   for (const char* key : {"time.interface_substeps=3", "time.interface_courant=0.3", "time.courant_region=\"soil\"",
