@@ -534,13 +534,17 @@ set_tests_properties(cli_stability_failing_everywhere_names_the_numerics_warned_
 add_test(NAME cli_stability_displacement_nan_refused
          COMMAND ${GRANFLOW_EXPECT_STATUS} 2 $<TARGET_FILE:granflow> stability ${CMAKE_SOURCE_DIR}/cases/bui2008_experiment.toml --displacement nan)
 set_tests_properties(cli_stability_displacement_nan_refused PROPERTIES LABELS cli
-                     PASS_REGULAR_EXPRESSION "^error: --displacement: 'nan' is not a length from 1e-12 to 1e12 m [(]see granflow --help[)]\n")
+                     PASS_REGULAR_EXPRESSION "^error: --displacement: 'nan' is not a length from 1e-12 to 1e12 m [(]see granflow stability --help[)]\n")
 add_test(NAME cli_element_test_phi_message COMMAND ${GRANFLOW_EXPECT_STATUS} 2 $<TARGET_FILE:granflow> element-test --phi 0)
 set_tests_properties(cli_element_test_phi_message PROPERTIES LABELS cli
-                     PASS_REGULAR_EXPRESSION "^error: --phi: '0' is not an angle from 0.001 to 89.999 degrees [(]see granflow --help[)]\n")
+                     PASS_REGULAR_EXPRESSION "^error: --phi: '0' is not an angle from 0.001 to 89.999 degrees [(]see granflow element-test --help[)]\n")
+# Arguments a command does not take are named in the order given, with the command's own help.
+add_test(NAME cli_check_takes_no_output COMMAND ${GRANFLOW_EXPECT_STATUS} 2 $<TARGET_FILE:granflow> check ${CMAKE_SOURCE_DIR}/cases/bui2008_experiment.toml -o somewhere)
+set_tests_properties(cli_check_takes_no_output PROPERTIES LABELS cli
+                     PASS_REGULAR_EXPRESSION "^error: check does not take: -o somewhere; it writes no output directory [(]see granflow check --help[)]\n")
 add_test(NAME cli_stability_first_nan_message COMMAND ${GRANFLOW_EXPECT_STATUS} 2 $<TARGET_FILE:granflow> stability ${CMAKE_SOURCE_DIR}/cases/bui2008_experiment.toml --first nan)
 set_tests_properties(cli_stability_first_nan_message PROPERTIES LABELS cli
-                     PASS_REGULAR_EXPRESSION "^error: --first: 'nan' is not a number from 0.01 to 100 [(]see granflow --help[)]\n")
+                     PASS_REGULAR_EXPRESSION "^error: --first: 'nan' is not a number from 0.01 to 100 [(]see granflow stability --help[)]\n")
 # --overwrite keeps the earlier analysis while the new one fails before its first trial has ended: on an
 # option PETSc refuses (read before the directory is touched), and where the first trial cannot make
 # its directory (a file named F_3 stands there); then it replaces it.

@@ -57,7 +57,7 @@ set_tests_properties(cli_check_2_ranks_says_once PROPERTIES LABELS parallel
 
 # A command line refused before MPI starts is said once, not by every rank.
 add_test(NAME cli_command_line_error_2_ranks_says_once
-         COMMAND sh -c "out=$(\"$0\" -np 2 --oversubscribe \"$1\" frob 2>&1); test $? -eq 2 && test $(echo \"$out\" | grep -c '^error: unknown command') -eq 1 && out=$(\"$0\" -np 2 --oversubscribe \"$1\" run x.toml --bogus 2>&1); test $? -eq 2 && test $(echo \"$out\" | grep -c 'not expected: --bogus') -eq 1"
+         COMMAND sh -c "out=$(\"$0\" -np 2 --oversubscribe \"$1\" frob 2>&1); test $? -eq 2 && test $(echo \"$out\" | grep -c '^error: unknown command') -eq 1 && out=$(\"$0\" -np 2 --oversubscribe \"$1\" run x.toml --bogus 2>&1); test $? -eq 2 && test $(echo \"$out\" | grep -c '^error: run does not take: --bogus (see granflow run --help)') -eq 1"
                  ${MPIRUN} $<TARGET_FILE:granflow>)
 set_tests_properties(cli_command_line_error_2_ranks_says_once PROPERTIES LABELS parallel
   ENVIRONMENT "OMPI_ALLOW_RUN_AS_ROOT=1;OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1")

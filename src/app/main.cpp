@@ -5,6 +5,7 @@
 #include <petscsys.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <cmath>
 #include <cstdio>
@@ -191,8 +192,13 @@ int main(int argc, char** argv) {
   auto* run = app.add_subcommand("run", "run a case");
   run->add_option("case", case_file, "case file (TOML)")->required();
   run->add_option("-o,--output", out_dir, "output directory (default out/<case name>)");
-  run->add_option("--set", overrides, "override a case key: KEY=VALUE (repeatable)")->allow_extra_args(false);
-  run->add_option("--petsc", petsc_options, "options passed to PETSc, e.g. --petsc=-pressure_ksp_monitor")
+  run->add_option("--set", overrides, "override a case key, one KEY=VALUE per --set (repeatable)")
+      ->type_name("KEY=VALUE")
+      ->allow_extra_args(false);
+  run->add_option("--petsc", petsc_options,
+                  "options passed to PETSc, quoted as one value per --petsc (repeatable), e.g. "
+                  "--petsc=\"-pressure_ksp_monitor -log_view\"")
+      ->type_name("OPTIONS")
       ->allow_extra_args(false);
   auto* restart_flag = run->add_flag("--restart", restart,
                 "continue from the checkpoint in the output directory (written at each output time; same case "
@@ -206,8 +212,12 @@ int main(int argc, char** argv) {
                    "between standing and failing within time.end");
   stability->add_option("case", case_file, "case file (TOML)")->required();
   stability->add_option("-o,--output", out_dir, "output directory (default out/<case name>_stability)");
-  stability->add_option("--set", overrides, "override a case key: KEY=VALUE (repeatable)")->allow_extra_args(false);
-  stability->add_option("--petsc", petsc_options, "options passed to PETSc")->allow_extra_args(false);
+  stability->add_option("--set", overrides, "override a case key, one KEY=VALUE per --set (repeatable)")
+      ->type_name("KEY=VALUE")
+      ->allow_extra_args(false);
+  stability->add_option("--petsc", petsc_options, "options passed to PETSc, as for run")
+      ->type_name("OPTIONS")
+      ->allow_extra_args(false);
   stability->add_option("--first", strength.first_factor, "the first factor tried (default 1)")
       ->check(finite_in(0.01, 100.0, "a number from 0.01 to 100"));
   stability->add_option("--tolerance", strength.tolerance, "bisect until the factors that stand and fail are this close (default 0.01)")
@@ -219,17 +229,20 @@ int main(int argc, char** argv) {
 
   auto* check = app.add_subcommand("check", "validate a case file without running it");
   check->add_option("case", case_file, "case file (TOML)")->required();
-  check->add_option("--set", overrides, "override a case key: KEY=VALUE (repeatable)")->allow_extra_args(false);
+  check->add_option("--set", overrides, "override a case key, one KEY=VALUE per --set (repeatable)")
+      ->type_name("KEY=VALUE")
+      ->allow_extra_args(false);
   check->add_option("--petsc", petsc_options,
                     "the run's PETSc options, so that a run's command line can be checked as it is (their form, "
                     "options files and the solvers' options are checked; monitors and viewers are the run's)")
+      ->type_name("OPTIONS")
       ->allow_extra_args(false);
 
   double phi_deg = 36.5;
   bool csv = false;
   auto* element = app.add_subcommand("element-test",
                                      "print the element test of the yield-surface viscosities (Table 1 of Rauter et al. 2020)");
-  element->add_option("--phi", phi_deg, "friction angle in degrees")->check(finite_in(0.001, 89.999, "an angle from 0.001 to 89.999 degrees"));
+  element->add_option("--phi", phi_deg, "friction angle in degrees (default 36.5, the paper's)")->check(finite_in(0.001, 89.999, "an angle from 0.001 to 89.999 degrees"));
   element->add_flag("--csv", csv, "print CSV instead of a table");
 
   // Errors of the command line, said by the first process of a launch alone.
@@ -253,7 +266,23 @@ int main(int argc, char** argv) {
     // The help or the version (status 0) as CLI11 writes them; a command line it refuses is one error
     // line, as other bad input, and status 2, as a case is.
     if (e.get_exit_code() == 0) return app.exit(e, first ? std::cout : silent, first ? std::cerr : silent);
-    return refuse(fmt::format("{} (see granflow --help)", e.what()));
+    // The help to see is the command's, which lists its options; arguments it does not take are named in
+    // the order given (CLI11's message lists them backwards).
+    const CLI::App* given = nullptr;
+    for (const CLI::App* sub : {run, stability, check, element})
+      if (sub->parsed()) given = sub;
+    const std::string help = given ? fmt::format("granflow {} --help", given->get_name()) : "granflow --help";
+    if (dynamic_cast<const CLI::ExtrasError*>(&e) && given) {
+      const auto extra = given->remaining();
+      std::string said;
+      for (const auto& a : extra) said += (said.empty() ? "" : " ") + a;
+      const bool output = std::find(extra.begin(), extra.end(), "-o") != extra.end() ||
+                          std::find(extra.begin(), extra.end(), "--output") != extra.end();
+      return refuse(fmt::format("{} does not take: {}{} (see {})", given->get_name(), said,
+                                output && (given == check || given == element) ? "; it writes no output directory" : "",
+                                help));
+    }
+    return refuse(fmt::format("{} (see {})", e.what(), help));
   }
   if ((run->count("--output") || stability->count("--output")) && out_dir.empty())
     return refuse("-o/--output: the output directory is empty");
