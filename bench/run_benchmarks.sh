@@ -31,7 +31,7 @@ run() {  # name ranks case overrides...
     local steps its peak
     steps=$(grep -oP 'in \K[0-9]+(?= steps)' "$log")
     peak=$(grep -oP '^peak memory \K[0-9]+(?= MB)' "$log")
-    its=$(grep -oP 'outer iterations \K.*(?= iterations each)' "$log" | sed -E 's/ \([0-9]+ of [0-9]+ steps[^)]*\)//; s/momentum iterations //; s/(pressure|coupled \(velocity and pressure\)) solves //; s/ \(/, /')
+    its=$(grep -oP 'outer iterations \K.*(?= iterations each)' "$log" | sed -E 's/ \(numerics\.outer_iterations[^)]*\)//; s/momentum iterations //; s/(pressure|coupled \(velocity and pressure\)) solves //; s/ \(/, /')
     printf "| %s | %d | %.1f | %s | %s | %s |\n" "$name" "$ranks" "$(awk -v a="$start" -v b="$end" 'BEGIN { print b - a }')" "$steps" "$peak" "$its"
     rm -rf "$out"
   done
