@@ -115,6 +115,8 @@ def metrics(run_dir):
         "surface_rms_m": rms,
         "failure_line_mean_distance_m": mean_dist,
         "soil_speed_bound_m_s": float(speed_bound),
+        # the largest speed over the cells with c >= 0.5 at the last step (NaN from a run before the column)
+        "soil_speed_m_s": float(history["soil_speed"][-1]) if "soil_speed" in history else float("nan"),
         # what the domain holds and what left it, against the first step's
         "soil_volume_change": float((history["soil_volume"][-1] + history["soil_outflow"][-1]) / history["soil_volume"][0] - 1),
         # the share of the soil that left through the open sides
@@ -132,20 +134,31 @@ def main():
     a = ap.parse_args()
     m, (x, h, surf, fail, exp_s, exp_f) = metrics(a.run_dir)
     for k, v in m.items():
-        if k in ("soil_volume_change", "soil_outflow_fraction", "soil_speed_bound_m_s"):
+        if k in ("soil_volume_change", "soil_outflow_fraction", "soil_speed_bound_m_s", "soil_speed_m_s"):
             print(f"{k} = {v:.3g}")
         elif k.endswith("_m") and k.startswith(("surface_rms", "failure_line")):  # to 0.01 mm, as the docs quote them
             print(f"{k} = {v:.5f}")
         else:
             print(f"{k} = {v:.4f}" if isinstance(v, float) else f"{k} = {v}")
     end = case_value(a.run_dir, "time", "end")
+    rest_speed = case_value(a.run_dir, "time", "rest_speed") or 0.0
+    # A run stopped by time.rest_speed ends before time.end with its soil slower than that: its final pile.
+    at_rest = rest_speed > 0 and m["soil_speed_m_s"] < rest_speed  # False for NaN
     if end is not None and m["time"] < end * (1 - 1e-9):
-        print(f"warning: the last output is at t = {m['time']:.6g} s, before the case's time.end = {end:g} s: "
-              "the run stopped early, and this is not its final pile", file=sys.stderr)
-    if m["soil_speed_bound_m_s"] > REST_SPEED:  # the experiment's surface is its deposit at rest
-        print(f"warning: the pile may still move at t = {m['time']:.6g} s (the kinetic energy in the soil's mass "
-              f"is a root-mean-square speed of {m['soil_speed_bound_m_s']:.3g} m/s): the experiment's surface is "
-              "its deposit at rest", file=sys.stderr)
+        if at_rest:
+            print(f"the run stopped at t = {m['time']:.6g} s with the soil at rest (slower than time.rest_speed = "
+                  f"{rest_speed:g} m/s)")
+        else:
+            print(f"warning: the last output is at t = {m['time']:.6g} s, before the case's time.end = {end:g} s: "
+                  "the run stopped early, and this is not its final pile", file=sys.stderr)
+    # The experiment's surface is its deposit at rest: the largest soil speed where the history has it,
+    # else the bound from the kinetic energy (which the moving air's counts in).
+    speed = m["soil_speed_m_s"] if np.isfinite(m["soil_speed_m_s"]) else m["soil_speed_bound_m_s"]
+    if speed > REST_SPEED:
+        how = ("its largest speed is" if np.isfinite(m["soil_speed_m_s"]) else
+               "the kinetic energy in the soil's mass is a root-mean-square speed of")
+        print(f"warning: the pile may still move at t = {m['time']:.6g} s ({how} {speed:.3g} m/s): the "
+              "experiment's surface is its deposit at rest", file=sys.stderr)
     if m["soil_outflow_fraction"] > 1e-10:
         print(f"warning: {100 * m['soil_outflow_fraction']:.3g} % of the soil left the domain; the run-out and the "
               "surface are of the soil that stayed (a longer domain is needed)", file=sys.stderr)

@@ -69,7 +69,7 @@ def compare_koshizuka(run_dir, tmax):
     ko = read_csv(os.path.join(REFDATA, "koshizuka_oka1996_surge_front_pysph.csv"))
     mm = read_csv(os.path.join(REFDATA, "martin_moyce1952_n2_2_surge_front.csv"))
     if T_sim[-1] < tmax * (1 - 1e-6):
-        sys.exit(f"error: {run_dir}: the run ends at T = {T_sim[-1]:.3f}, before T = {tmax}")
+        sys.exit(f"error: {run_dir}: the run ends at T = {T_sim[-1]:.3f}, before T = {tmax} (compare up to where it ends with --tmax)")
     sel = (ko["T"] > 0) & (ko["T"] <= tmax + 1e-12)  # the table's (0, 1) is the initial column
     Te, Ze = ko["T"][sel], ko["Z"][sel]
     Zs, dev = front_deviation(T_sim, z_sim, Te, Ze)
@@ -100,7 +100,7 @@ def compare(run_dir, a=A, g=G, tmax=3.0, shift=RELEASE_SHIFT):
     resid = read_csv(os.path.join(REFDATA, "martin_moyce1952_n2_2_residual_height.csv"))
     out = {"T_sim": T_sim, "Z_sim": z_sim, "tau_sim": tau_sim, "H_sim": h_sim, "front": front, "resid": resid}
     if T_sim[-1] < tmax * (1 - 1e-6):
-        sys.exit(f"error: {run_dir}: the run ends at T = {T_sim[-1]:.3f}, before T = {tmax}")
+        sys.exit(f"error: {run_dir}: the run ends at T = {T_sim[-1]:.3f}, before T = {tmax} (compare up to where it ends with --tmax)")
     sel = front["T"] <= tmax + 1e-12
     Te, Ze = front["T"][sel], front["Z"][sel]
     Zs, dev = front_deviation(T_sim, z_sim, Te, Ze)

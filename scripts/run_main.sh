@@ -5,16 +5,20 @@
 # If the run stops early (divergence keeps the last good output), the comparison is drawn for the
 # last output it wrote, the job says so and exits with the run's status; a run that wrote nothing
 # (an earlier run's files put back) is not compared. See docs/validation.md for where the case stands.
-# Usage: scripts/run_main.sh [CASE]; CASE = bui2008_experiment (default, the paper's rheology) or
-# bui2008_experiment_mu_of_i (the same collapse with mu(I) friction).
+# Usage: scripts/run_main.sh [CASE [OUT]]; CASE = bui2008_experiment (default, the paper's rheology) or
+# bui2008_experiment_mu_of_i (the same collapse with mu(I) friction); OUT, the output directory
+# (default out/CASE in the repository; an earlier run there is replaced).
 set -uo pipefail
-cd "$(dirname "$0")/.."
 case_name=${1:-bui2008_experiment}
 case $case_name in
   bui2008_experiment | bui2008_experiment_mu_of_i) ;;
   *) echo "error: run_main.sh takes bui2008_experiment or bui2008_experiment_mu_of_i, not '$case_name'" >&2; exit 2 ;;
 esac
-out=out/$case_name
+if [ $# -gt 2 ]; then echo "error: run_main.sh takes a case and an output directory, not more" >&2; exit 2; fi
+out=${2:-}
+if [ -n "$out" ] && [ "${out#/}" = "$out" ]; then out=$PWD/$out; fi  # as given, from where it was given
+cd "$(dirname "$0")/.."
+out=${out:-out/$case_name}
 # Two ranks where there are two cores: the run is a little faster on two (1.08 times to t = 1 s,
 # docs/benchmarks.md), and the result is the one-rank result to round-off (docs/validation.md).
 ranks=$(( $(nproc) >= 2 ? 2 : 1 ))

@@ -195,7 +195,13 @@ void read_rheology_keys(TableReader& r, rheology::RheologyParameters& p, bool ma
   auto only_with = [&](std::initializer_list<std::string_view> keys, bool applies, std::string_view what) {
     if (applies) return;
     for (auto k : keys)
-      if (r.has(k)) throw CaseError(fmt::format("{}: used only with {}; this case does not use it", r.key_path(k), what));
+      if (r.has(k)) {
+        // An entry of an array of tables (soil.materials[0]) is replaced with its whole array.
+        const bool entry = r.path().find('[') != std::string::npos;
+        throw CaseError(fmt::format("{}: used only with {}; this case does not use it, so remove it{}", r.key_path(k), what,
+                                    entry ? "" : fmt::format(" (on the command line, --set '{}={{...}}' replaces the "
+                                                             "whole table)", r.path())));
+      }
   };
   const bool exponential = p.regularisation == Regularisation::exponential;
   if (!material) {
@@ -362,11 +368,14 @@ SoilSettings read_soil(TableReader& top, std::vector<std::string>& without_effec
     const std::string sr = so.choice("strain_rate", granular && yp == "face" ? "face" : "cell", {"cell", "face"});
     s.strain_rate = sr == "face" ? StrainRateAt::face : StrainRateAt::cell;
     if (s.strain_rate == StrainRateAt::face && s.yield_pressure != YieldPressure::face)
-      throw CaseError("soil.strain_rate = \"face\" needs soil.yield_pressure = \"face\" (the viscosity is then taken on faces)");
+      throw CaseError("soil.strain_rate = \"face\" needs soil.yield_pressure = \"face\" (the viscosity is then taken on "
+                      "faces); for the cells' evaluations throughout, set soil.strain_rate = \"cell\" and "
+                      "soil.face_fraction = \"cells\" too");
     const std::string ff = so.choice("face_fraction", granular && sr == "face" ? "face" : "cells", {"cells", "face"});
     s.face_fraction = ff == "face" ? FaceFraction::face : FaceFraction::cells;
     if (s.face_fraction == FaceFraction::face && s.strain_rate != StrainRateAt::face)
-      throw CaseError("soil.face_fraction = \"face\" needs soil.strain_rate = \"face\" (one evaluation on the face)");
+      throw CaseError("soil.face_fraction = \"face\" needs soil.strain_rate = \"face\" (one evaluation on the face); "
+                      "with the cells' strain rates, set soil.face_fraction = \"cells\" too");
     s.failure_strain = so.number("failure_strain", s.failure_strain);
     so.require_range("failure_strain", s.failure_strain, 1e-6, 10.0);
     if (so.has("failure_strain") && !s.displacement)

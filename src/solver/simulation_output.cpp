@@ -202,12 +202,14 @@ void Simulation::record_history(double dt) {
   const auto c = gather_to_root(*grid_, soil_->soil_fraction());
   const auto force = flow_->side_forces();
   const auto obstacle = blocked_ ? flow_->obstacle_force() : std::array<double, 2>{};
+  const double soil_speed = soil_->largest_speed(*flow_);  // what time.rest_speed and the rest test read
   if (rank_ != 0) return;
   const PileShape shape = pile_shape(*grid_, c, wall_column_);
   const double toe_contour = toe_of(iso_line(*grid_, c, 0.5, open_square()));
-  std::string row = fmt::format("{:.12g},{:.12g},{:.15g},{:.15g},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g},{:.12g},{:.15g}", time_, dt,
-                                b.soil_volume, b.air_volume, b.kinetic_energy, b.potential_energy, dissipated_energy_,
-                                toe_contour, shape.toe_thickness, shape.wall_height, b.mixture_mass, b.soil_outflow);
+  std::string row = fmt::format("{:.12g},{:.12g},{:.15g},{:.15g},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g},{:.12g},{:.15g},{:.6g}",
+                                time_, dt, b.soil_volume, b.air_volume, b.kinetic_energy, b.potential_energy,
+                                dissipated_energy_, toe_contour, shape.toe_thickness, shape.wall_height, b.mixture_mass,
+                                b.soil_outflow, soil_speed);
   for (const auto& f : force) row += fmt::format(",{:.12g},{:.12g}", f[0], f[1]);
   if (blocked_) row += fmt::format(",{:.12g},{:.12g}", obstacle[0], obstacle[1]);
   history_.push_back(std::move(row));
@@ -217,7 +219,7 @@ void Simulation::write_history() const {
   if (rank_ != 0) return;
   write_file_atomically(out_ / "history.csv", [&](std::ostream& out) {
     fmt::print(out, "time,dt,soil_volume,air_volume,kinetic_energy,potential_energy,dissipated_energy,"
-                    "toe_contour,toe_one_cell,wall_height,mixture_mass,soil_outflow");
+                    "toe_contour,toe_one_cell,wall_height,mixture_mass,soil_outflow,soil_speed");
     for (Side side : all_sides) fmt::print(out, ",force_{0}_x,force_{0}_y", side_name(side));
     if (blocked_) fmt::print(out, ",force_obstacle_x,force_obstacle_y");
     fmt::print(out, "\n");
