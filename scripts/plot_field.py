@@ -9,7 +9,8 @@ Without --png it lists the run's output times and the fields of the chosen outpu
 output nearest T, --output N the N-th (from 0, the initial state); the default is the last. A vector
 field (velocity, displacement) is drawn as its magnitude unless --component says x or y. --soil-only
 leaves out the cells with c < 0.5; --log draws log10 of the absolute value (for the viscosity, which
-spans ten decades). Fields and units: docs/output.md.
+spans ten decades). Blocked cells (obstacles, terrain) and left-out cells are drawn grey. Fields and
+units: docs/output.md.
 """
 import argparse
 import os
@@ -88,6 +89,8 @@ def main():
 
     value = cells[a.field]
     label = a.field
+    if value.ndim != 3 and a.component != "magnitude":
+        raise InputError(f"--component {a.component}: {a.field} is a scalar field; --component is for vector fields")
     if value.ndim == 3:
         if a.component == "magnitude":
             value = np.hypot(value[..., 0], value[..., 1])
@@ -108,6 +111,10 @@ def main():
         if not (c >= 0.5).any():
             raise InputError(f"{name}: no cell holds soil (c >= 0.5), so --soil-only leaves nothing to draw")
         value = np.ma.masked_where(c < 0.5, value)
+    # Blocked cells (obstacles, terrain) hold no flow: drawn grey, outside the colour scale.
+    blocked = cells.get("obstacle")
+    if blocked is not None and a.field != "obstacle" and (blocked > 0.5).any():
+        value = np.ma.masked_where(np.asarray(blocked) > 0.5, value)
 
     import matplotlib
     matplotlib.use("Agg")
@@ -116,6 +123,9 @@ def main():
 
     width, height = x[-1] - x[0], y[-1] - y[0]
     fig, ax = plt.subplots(figsize=(9, max(2.5, min(9, 9 * height / width + 1.0))))
+    if np.ma.count(value) == 0:
+        raise InputError(f"{name}: no cell of {a.field} is left to draw")
+    ax.set_facecolor("0.6")  # where cells are left out: grey
     m = ax.pcolormesh(x, y, value, cmap="viridis", shading="flat")
     fig.colorbar(m, ax=ax, label=label)
     stem = os.path.splitext(name)[0].replace("fields_", "")
