@@ -1,6 +1,7 @@
 // Checkpoints: what a run writes to be continued exactly, and the restart that reads it back.
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <span>
 
 #include "io/checkpoint.hpp"
@@ -158,6 +159,18 @@ void Simulation::restart() {
   dissipated_energy_ = run.dissipated_energy;
   initial_soil_volume_ = run.initial_soil_volume;
   history_ = std::move(run.history);
+  // A checkpoint's history written before the soil_speed column (the 13th) has one field fewer: the
+  // column is left empty there (NaN), so that each row stays under its header.
+  constexpr std::size_t fields_with_speed = 13;
+  for (auto& row : history_) {
+    const std::size_t fields = 1 + std::count(row.begin(), row.end(), ',');
+    const std::size_t expected = fields_with_speed + 2 * all_sides.size() + (blocked_ ? 2 : 0);
+    if (fields + 1 == expected) {
+      std::size_t at = 0;
+      for (std::size_t k = 0; k + 1 < fields_with_speed; ++k) at = row.find(',', at) + 1;
+      row.insert(at, "nan,");
+    }
+  }
   if (series_) series_->restore_entries(std::move(run.series));
   if (soil_) soil_->refresh(*flow_);
   flow_->update_properties();  // density and viscosity of the restored state, for observers and output
