@@ -456,8 +456,9 @@ RunSummary Simulation::run(const StepObserver& after_step) {
     stop_if_diverged(speed, summary.steps);
     if (after_step) after_step(*this, step_dt);  // an accepted step: one that did not diverge
     const bool steady = tc.steady_tolerance > 0.0 && is_steady(previous, step_dt, speed);
-    // The soil at rest (time.rest_speed): slower than it everywhere, once it has moved.
-    const bool at_rest = tc.rest_speed > 0.0 && soil_ && soil_->largest_speed(*flow_) < tc.rest_speed &&
+    // The soil at rest (time.rest_speed): slower than it everywhere, once it has moved (the speed the
+    // history recorded for this step).
+    const bool at_rest = tc.rest_speed > 0.0 && soil_ && soil_speed_ < tc.rest_speed &&
                          soil_->largest_displacement() > soil_->moved_distance();
     const bool at_output = time_ >= t_out - 1e-12 * std::max(1.0, t_out);
     if (at_output && std::abs(time_ - t_out) <= 1e-12 * std::max(1.0, t_out)) time_ = t_out;

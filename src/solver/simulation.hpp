@@ -110,6 +110,7 @@ class Simulation {
   std::unique_ptr<VtkSeries> series_;
   std::vector<std::string> history_;  // rows of history.csv, rewritten whole at each output
   double dissipated_energy_ = 0.0;
+  double soil_speed_ = 0.0;  // largest speed over the soil (c >= 0.5) at the end of the last step, as recorded
   double initial_soil_volume_ = 0.0;
   double time_ = 0.0;
   double restart_dt_ = 0.0;  // the step to continue with after restart()

@@ -202,14 +202,14 @@ void Simulation::record_history(double dt) {
   const auto c = gather_to_root(*grid_, soil_->soil_fraction());
   const auto force = flow_->side_forces();
   const auto obstacle = blocked_ ? flow_->obstacle_force() : std::array<double, 2>{};
-  const double soil_speed = soil_->largest_speed(*flow_);  // what time.rest_speed and the rest test read
+  soil_speed_ = soil_->largest_speed(*flow_);  // what time.rest_speed reads, once per step
   if (rank_ != 0) return;
   const PileShape shape = pile_shape(*grid_, c, wall_column_);
   const double toe_contour = toe_of(iso_line(*grid_, c, 0.5, open_square()));
   std::string row = fmt::format("{:.12g},{:.12g},{:.15g},{:.15g},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g},{:.12g},{:.15g},{:.6g}",
                                 time_, dt, b.soil_volume, b.air_volume, b.kinetic_energy, b.potential_energy,
                                 dissipated_energy_, toe_contour, shape.toe_thickness, shape.wall_height, b.mixture_mass,
-                                b.soil_outflow, soil_speed);
+                                b.soil_outflow, soil_speed_);
   for (const auto& f : force) row += fmt::format(",{:.12g},{:.12g}", f[0], f[1]);
   if (blocked_) row += fmt::format(",{:.12g},{:.12g}", obstacle[0], obstacle[1]);
   history_.push_back(std::move(row));
