@@ -25,6 +25,8 @@
 #include "io/checkpoint.hpp"
 #include "models/rheology/element_test.hpp"
 #include "solver/divergence_error.hpp"
+#include "solver/flow_settings.hpp"
+#include "solver/linear_solver.hpp"
 #include "solver/out_of_memory_error.hpp"
 #include "solver/simulation.hpp"
 
@@ -171,6 +173,9 @@ int check_case(const std::string& case_file, const std::vector<std::string>& ove
       std::fflush(stdout);  // before the warnings on stderr, also where both go to one file
       for (const auto& line : granflow::case_advice(c)) fmt::print(stderr, "warning: {}\n", line);
     }
+    // PETSc's options that the run's solvers would not read, as the run would warn of them at its end.
+    const auto left = granflow::options_left_by_solvers(granflow::solvers_made(c.flow, c.mesh.axisymmetric));
+    granflow::warn_unused_petsc_options(rank, &left);
   } catch (const std::exception& e) {
     status = fail(e);
   }
@@ -234,7 +239,7 @@ int main(int argc, char** argv) {
       ->allow_extra_args(false);
   check->add_option("--petsc", petsc_options,
                     "the run's PETSc options, so that a run's command line can be checked as it is (their form, "
-                    "options files and the solvers' options are checked; monitors and viewers are the run's)")
+                    "options files and the solvers' options are checked, and options no solver would read are warned of; monitors and viewers are the run's)")
       ->type_name("OPTIONS")
       ->allow_extra_args(false);
 

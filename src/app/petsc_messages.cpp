@@ -8,6 +8,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
+#include <set>
 #include <sstream>
 #include <string>
 #include <string_view>
@@ -19,7 +20,7 @@
 
 namespace granflow {
 
-void warn_unused_petsc_options(int rank) {
+void warn_unused_petsc_options(int rank, const std::set<std::string>* judged) {
   PetscInt n = 0;
   char **names = nullptr, **values = nullptr;
   PetscOptionsLeftGet(nullptr, &n, &names, &values);
@@ -29,7 +30,7 @@ void warn_unused_petsc_options(int rank) {
   if (rank == 0)
     for (PetscInt k = 0; k < n; ++k)
       if (std::find(std::begin(at_finalize), std::end(at_finalize), std::string_view(names[k])) == std::end(at_finalize) &&
-          !is_default_petsc_option(names[k]))
+          !is_default_petsc_option(names[k]) && (!judged || judged->count(names[k])))
         fmt::print(stderr, "warning: PETSc option -{} was given but not used (misspelt, or no such solver)\n", names[k]);
   PetscOptionsLeftRestore(nullptr, &n, &names, &values);
 }

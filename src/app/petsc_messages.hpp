@@ -3,14 +3,16 @@
 // options name that it could not use, each found before PETSc would stop with its own trace.
 #include <petscsys.h>
 
+#include <set>
 #include <string>
 #include <vector>
 
 namespace granflow {
 
 // Options given to PETSc that nothing read (a misspelt name, a solver prefix that does not exist),
-// one warning each on rank 0: PETSc itself ignores them silently.
-void warn_unused_petsc_options(int rank);
+// one warning each on rank 0: PETSc itself ignores them silently. With `judged`, only those among it
+// (`granflow check`, which makes no solver of the run's: options_left_by_solvers).
+void warn_unused_petsc_options(int rank, const std::set<std::string>* judged = nullptr);
 
 // An error that ends the run and that every rank may meet alike (and abort on): said by rank 0, and by
 // another rank only if the abort has not come two seconds later, with its rank.

@@ -1,6 +1,9 @@
 #pragma once
 // Settings of the incompressible flow solver, filled from the case file.
 #include <array>
+#include <string>
+#include <utility>
+#include <vector>
 
 #include "operators/convection_scheme.hpp"
 #include "operators/face_interpolation.hpp"
@@ -66,5 +69,25 @@ struct FlowSettings {
   LinearSolverSettings pressure_solver{"cg", "hypre", 1e-10, 1e-14, 2000};
   LinearSolverSettings coupled_solver{"preonly", "lu", 1e-10, 1e-14, 1};
 };
+
+// Whether u and v share one momentum matrix in the segregated steps: not beside a slip wall (its
+// condition differs by component), nor on the axis (the hoop stress is on the radial one's diagonal).
+inline bool momentum_matrix_shared(const FlowSettings& s, bool axisymmetric) {
+  if (axisymmetric) return false;
+  for (Side side : all_sides)
+    if (boundary(s.boundaries, side).kind == BoundaryKind::slip) return false;
+  return true;
+}
+
+// The linear solvers a flow solver makes, by their PETSc options prefix: the coupled system's, or the
+// segregated steps' momentum solvers (one where u and v share a matrix) and pressure solver.
+inline std::vector<std::pair<std::string, LinearSolverSettings>> solvers_made(const FlowSettings& s,
+                                                                             bool axisymmetric) {
+  if (s.numerics.pressure_coupling == PressureCoupling::coupled) return {{"coupled", s.coupled_solver}};
+  std::vector<std::pair<std::string, LinearSolverSettings>> made{{"momentum_x", s.momentum_solver}};
+  if (!momentum_matrix_shared(s, axisymmetric)) made.emplace_back("momentum_y", s.momentum_solver);
+  made.emplace_back("pressure", s.pressure_solver);
+  return made;
+}
 
 }  // namespace granflow

@@ -61,12 +61,9 @@ FlowSolver::FlowSolver(const Grid& grid, const FlowSettings& settings) : grid_(g
   for (auto* v : {&a_east_, &a_west_, &a_north_, &a_south_, &a_centre_[0], &a_centre_[1], &source_[0], &source_[1]})
     v->assign(n, 0.0);
 
-  for (Side s : all_sides) {
+  for (Side s : all_sides)
     if (boundary(settings.boundaries, s).kind == BoundaryKind::atmosphere) has_pressure_boundary_ = true;
-    if (boundary(settings.boundaries, s).kind == BoundaryKind::slip) shared_momentum_matrix_ = false;
-  }
-  // The hoop stress 2 mu u_r / r^2 is on the radial component's diagonal alone.
-  if (grid.axisymmetric()) shared_momentum_matrix_ = false;
+  shared_momentum_matrix_ = momentum_matrix_shared(settings, grid.axisymmetric());
 
   MPI_Comm comm = grid.comm();
   // The segregated steps' matrices, solvers and fields (the second momentum matrix only where u and v

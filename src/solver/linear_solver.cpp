@@ -70,7 +70,7 @@ namespace {
 // A copy of PETSc's options without those that open a file or print (-..._monitor..., -..._view...):
 // checking the options must not write, or empty, what the run would write. A name starts with '-' and a
 // letter; a value may start with '-' and a digit (-5).
-PetscOptions options_without_viewers() {
+PetscOptions options_without_viewers(std::vector<std::string>* left_out = nullptr) {
   char* all = nullptr;
   PetscOptionsGetAll(nullptr, &all);
   std::istringstream words(all ? all : "");
@@ -78,9 +78,11 @@ PetscOptions options_without_viewers() {
   std::string kept, word;
   bool keep = true;
   while (words >> word) {
-    if (word.size() > 1 && word[0] == '-' && std::isalpha(static_cast<unsigned char>(word[1])))
+    if (word.size() > 1 && word[0] == '-' && std::isalpha(static_cast<unsigned char>(word[1]))) {
       keep = word.find("_monitor") == std::string::npos && word.find("_view") == std::string::npos &&
              word.rfind("-monitor", 0) != 0 && word.rfind("-view", 0) != 0;
+      if (!keep && left_out) left_out->push_back(word.substr(1));
+    }
     if (keep) kept += word + " ";
   }
   PetscOptions options;
@@ -163,6 +165,61 @@ std::string petsc_options_problem(const std::string& prefix, const LinearSolverS
   KSPDestroy(&ksp);
   PetscOptionsDestroy(&options);
   return problem;
+}
+
+std::set<std::string> options_left_by_solvers(const std::vector<std::pair<std::string, LinearSolverSettings>>& made) {
+  std::vector<std::string> viewers;
+  PetscOptions options = options_without_viewers(&viewers);
+  std::set<std::string> defaults;  // set here as the run sets them: no mistake of the user's if left unread
+  bool all_set_up = true;
+  PetscPushErrorHandler(PetscReturnErrorHandler, nullptr);  // a solver that cannot be set up judges nothing
+  for (const auto& [prefix, s] : made) {
+    KSP ksp;
+    PC pc;
+    Mat matrix = nullptr;
+    const PetscInt block = prefix == "coupled" ? 3 : 1;  // u, v, p per cell, as the coupled system's
+    PetscErrorCode error = KSPCreate(PETSC_COMM_SELF, &ksp);
+    if (!error) error = PetscObjectSetOptions(reinterpret_cast<PetscObject>(ksp), options);
+    if (!error) error = KSPSetOptionsPrefix(ksp, (prefix + "_").c_str());
+    if (!error) error = KSPSetType(ksp, s.ksp_type.c_str());
+    if (!error) error = KSPGetPC(ksp, &pc);
+    if (!error) error = PetscObjectSetOptions(reinterpret_cast<PetscObject>(pc), options);
+    if (!error) error = PCSetType(pc, s.pc_type.c_str());
+    if (!error && s.pc_type == "lu") {  // the run's default package (LinearSolver), unless the options name another
+      const std::string package = "-" + prefix + "_pc_factor_mat_solver_type";
+      PetscBool given = PETSC_FALSE;
+      PetscOptionsHasName(options, nullptr, package.c_str(), &given);
+      if (!given && !PetscOptionsSetValue(options, package.c_str(), "mumps")) defaults.insert(package.substr(1));
+    }
+    if (!error) error = KSPSetFromOptions(ksp);
+    // Set up on a small diagonal matrix: a factorisation package and AMG read their own options there.
+    if (!error) error = MatCreateSeqAIJ(PETSC_COMM_SELF, 2 * block, 2 * block, 1, nullptr, &matrix);
+    if (!error) error = MatSetBlockSize(matrix, block);
+    for (PetscInt i = 0; !error && i < 2 * block; ++i) error = MatSetValue(matrix, i, i, 1.0, INSERT_VALUES);
+    if (!error) error = MatAssemblyBegin(matrix, MAT_FINAL_ASSEMBLY);
+    if (!error) error = MatAssemblyEnd(matrix, MAT_FINAL_ASSEMBLY);
+    if (!error) error = KSPSetOperators(ksp, matrix, matrix);
+    if (!error) error = KSPSetUp(ksp);
+    if (error) all_set_up = false;
+    MatDestroy(&matrix);
+    KSPDestroy(&ksp);
+  }
+  PetscPopErrorHandler();
+  std::set<std::string> left;
+  if (all_set_up) {
+    PetscInt n = 0;
+    char **names = nullptr, **values = nullptr;
+    PetscOptionsLeftGet(options, &n, &names, &values);
+    for (PetscInt k = 0; k < n; ++k)
+      if (!defaults.count(names[k])) left.insert(names[k]);
+    PetscOptionsLeftRestore(options, &n, &names, &values);
+    // A monitor or viewer is not made here; one under no made solver's prefix would be read by none.
+    for (const auto& name : viewers)
+      if (std::none_of(made.begin(), made.end(), [&](const auto& m) { return name.rfind(m.first + "_", 0) == 0; }))
+        left.insert(name);
+  }
+  PetscOptionsDestroy(&options);
+  return left;
 }
 
 std::string unknown_method(const LinearSolverSettings& s) {
