@@ -112,10 +112,10 @@ struct RankLayout {
 
 RankLayout rank_layout(DM dm, int nx, int ny) {
   PetscInt xs, ys, xm, ym, gxs, gys, gxm, gym, g;
-  DMDAGetCorners(dm, &xs, &ys, nullptr, &xm, &ym, nullptr);
-  DMDAGetGhostCorners(dm, &gxs, &gys, nullptr, &gxm, &gym, nullptr);
-  DMDAGetInfo(dm, nullptr, nullptr, nullptr, nullptr, nullptr, nullptr, nullptr, nullptr, &g, nullptr, nullptr,
-              nullptr, nullptr);
+  PetscCallAbort(PETSC_COMM_WORLD, DMDAGetCorners(dm, &xs, &ys, nullptr, &xm, &ym, nullptr));
+  PetscCallAbort(PETSC_COMM_WORLD, DMDAGetGhostCorners(dm, &gxs, &gys, nullptr, &gxm, &gym, nullptr));
+  PetscCallAbort(PETSC_COMM_WORLD, DMDAGetInfo(dm, nullptr, nullptr, nullptr, nullptr, nullptr, nullptr, nullptr, nullptr, &g, nullptr, nullptr,
+                                   nullptr, nullptr));
   const int w = int(g);
   const int x0 = xs == 0 ? 0 : int(xs) + w, x1 = xs + xm == nx ? nx + 2 * w : int(xs + xm) + w;
   const int y0 = ys == 0 ? 0 : int(ys) + w, y1 = ys + ym == ny ? ny + 2 * w : int(ys + ym) + w;
@@ -196,13 +196,13 @@ std::uint64_t checksum_part(MPI_Comm comm, const FieldsHeader& h, std::span<Fiel
   const RankLayout l = rank_layout(fields[0]->dm(), int(h.nx), int(h.ny));
   for (std::size_t k = 0; k < fields.size(); ++k) {
     const PetscScalar* a;
-    VecGetArrayRead(fields[k]->local(), &a);
+    PetscCallAbort(PETSC_COMM_WORLD, VecGetArrayRead(fields[k]->local(), &a));
     for (int y = 0; y < l.own.height; ++y) {
       const PetscScalar* line = a + size_t(l.own.y0 - l.window.y0 + y) * size_t(l.window.width) + (l.own.x0 - l.window.x0);
       const std::uint64_t place = header_words + full * k + std::uint64_t(l.own.y0 + y) * full_x + std::uint64_t(l.own.x0);
       for (int x = 0; x < l.own.width; ++x) sum += hash_at(place + std::uint64_t(x), line[x]);
     }
-    VecRestoreArrayRead(fields[k]->local(), &a);
+    PetscCallAbort(PETSC_COMM_WORLD, VecRestoreArrayRead(fields[k]->local(), &a));
   }
   return sum;
 }
@@ -233,9 +233,9 @@ std::string send_fields(MPI_Comm comm, const std::filesystem::path& path, const 
       file.agreed(MPI_File_set_view(file.get(), field_offset(h, std::int64_t(k)), MPI_DOUBLE, in_file.type, "native",
                                     MPI_INFO_NULL), "write");
       const PetscScalar* a;
-      VecGetArrayRead(fields[k]->local(), &a);
+      PetscCallAbort(PETSC_COMM_WORLD, VecGetArrayRead(fields[k]->local(), &a));
       file.agreed(MPI_File_write_all(file.get(), a, 1, in_memory.type, &status), "write");
-      VecRestoreArrayRead(fields[k]->local(), &a);
+      PetscCallAbort(PETSC_COMM_WORLD, VecRestoreArrayRead(fields[k]->local(), &a));
     }
   }
   return file.problem();
@@ -269,12 +269,12 @@ std::string verify_fields(MPI_Comm comm, const std::filesystem::path& path, cons
                                     MPI_INFO_NULL), "read back");
       file.agreed(MPI_File_read_all(file.get(), buffer.data(), int(buffer.size()), MPI_DOUBLE, &status), "read back");
       const PetscScalar* a;
-      VecGetArrayRead(fields[k]->local(), &a);
+      PetscCallAbort(PETSC_COMM_WORLD, VecGetArrayRead(fields[k]->local(), &a));
       for (int y = 0; y < l.own.height && same; ++y) {
         const PetscScalar* line = a + size_t(l.own.y0 - l.window.y0 + y) * size_t(l.window.width) + (l.own.x0 - l.window.x0);
         same = std::memcmp(line, buffer.data() + size_t(y) * size_t(l.own.width), size_t(l.own.width) * sizeof(double)) == 0;
       }
-      VecRestoreArrayRead(fields[k]->local(), &a);
+      PetscCallAbort(PETSC_COMM_WORLD, VecRestoreArrayRead(fields[k]->local(), &a));
     }
   }
   if (!file.problem().empty()) return file.problem();
@@ -341,9 +341,9 @@ std::string read_fields(MPI_Comm comm, const std::filesystem::path& path, int nx
       file.agreed(MPI_File_set_view(file.get(), field_offset(h, std::int64_t(k)), MPI_DOUBLE, in_file.type, "native",
                                     MPI_INFO_NULL), "read");
       PetscScalar* a;
-      VecGetArray(fields[k]->local(), &a);
+      PetscCallAbort(PETSC_COMM_WORLD, VecGetArray(fields[k]->local(), &a));
       file.agreed(MPI_File_read_all(file.get(), a, l.window.width * l.window.height, MPI_DOUBLE, &status), "read");
-      VecRestoreArray(fields[k]->local(), &a);
+      PetscCallAbort(PETSC_COMM_WORLD, VecRestoreArray(fields[k]->local(), &a));
       fields[k]->gather_from_local();
     }
   }
@@ -362,7 +362,7 @@ std::string non_finite_value(std::span<Field* const> fields, const std::string& 
   const std::vector<std::string> names = field_name_list(field_names);
   for (std::size_t k = 0; k < fields.size(); ++k) {
     PetscInt xs, ys, xm, ym;
-    DMDAGetCorners(fields[k]->dm(), &xs, &ys, nullptr, &xm, &ym, nullptr);
+    PetscCallAbort(PETSC_COMM_WORLD, DMDAGetCorners(fields[k]->dm(), &xs, &ys, nullptr, &xm, &ym, nullptr));
     const ConstFieldArray a(fields[k]->dm(), fields[k]->global());
     for (PetscInt j = ys; j < ys + ym; ++j)
       for (PetscInt i = xs; i < xs + xm; ++i)

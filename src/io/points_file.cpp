@@ -43,7 +43,7 @@ bool parse_numbers(std::string_view line, std::vector<double>& out, bool& any) {
     while (end < line.size() && !blank(line[end]) && !delimiter(line[end])) ++end;
     const std::string_view field = line.substr(k, end - k);
     double value = 0.0;
-    const char* first = field.data() + (field.front() == '+' ? 1 : 0);
+    const char* first = field.data() + (!field.empty() && field.front() == '+' ? 1 : 0);  // empty: ',,'
     const auto [ptr, ec] = std::from_chars(first, field.data() + field.size(), value);
     if (ec != std::errc() || ptr != field.data() + field.size())
       all = false;

@@ -40,22 +40,22 @@ class Field {
     PetscCallAbort(PETSC_COMM_WORLD, DMDAVecRestoreArray(dm_, global_, &g));
   }
   void set(double value) {
-    VecSet(global_, value);
-    VecSet(local_, value);
+    PetscCallAbort(PETSC_COMM_WORLD, VecSet(global_, value));
+    PetscCallAbort(PETSC_COMM_WORLD, VecSet(local_, value));
   }
   void copy_from(const Field& other) {
-    VecCopy(other.global_, global_);
-    VecCopy(other.local_, local_);
+    PetscCallAbort(PETSC_COMM_WORLD, VecCopy(other.global_, global_));
+    PetscCallAbort(PETSC_COMM_WORLD, VecCopy(other.local_, local_));
   }
   // this = alpha a + beta b
   void combine(double alpha, const Field& a, double beta, const Field& b) {
-    VecAXPBYPCZ(global_, alpha, beta, 0.0, a.global_, b.global_);
-    VecAXPBYPCZ(local_, alpha, beta, 0.0, a.local_, b.local_);
+    PetscCallAbort(PETSC_COMM_WORLD, VecAXPBYPCZ(global_, alpha, beta, 0.0, a.global_, b.global_));
+    PetscCallAbort(PETSC_COMM_WORLD, VecAXPBYPCZ(local_, alpha, beta, 0.0, a.local_, b.local_));
   }
   // this = max(this, other), value by value
   void max_with(const Field& other) {
-    VecPointwiseMax(global_, global_, other.global_);
-    VecPointwiseMax(local_, local_, other.local_);
+    PetscCallAbort(PETSC_COMM_WORLD, VecPointwiseMax(global_, global_, other.global_));
+    PetscCallAbort(PETSC_COMM_WORLD, VecPointwiseMax(local_, local_, other.local_));
   }
 
  private:

@@ -16,14 +16,14 @@ class FieldSnapshot {
   void save(std::span<Field* const> fields) {
     size_t k = 0;
     for (const Field* f : fields) {
-      if (k == copies_.size()) VecDuplicate(f->local(), copies_.emplace_back().put());
-      VecCopy(f->local(), copies_[k++]);  // local vectors hold the ghosts (boundary conditions) too
+      if (k == copies_.size()) PetscCallAbort(PETSC_COMM_WORLD, VecDuplicate(f->local(), copies_.emplace_back().put()));
+      PetscCallAbort(PETSC_COMM_WORLD, VecCopy(f->local(), copies_[k++]));  // local vectors hold the ghosts (boundary conditions) too
     }
   }
   void restore(std::span<Field* const> fields) const {
     size_t k = 0;
     for (Field* f : fields) {
-      VecCopy(copies_.at(k++), f->local());
+      PetscCallAbort(PETSC_COMM_WORLD, VecCopy(copies_.at(k++), f->local()));
       f->gather_from_local();
     }
   }

@@ -16,16 +16,16 @@ std::vector<double> gather(const Grid& grid, Vec global, bool to_all) {
   PetscCallAbort(comm, VecScatterEnd(scatter, natural, gathered, INSERT_VALUES, SCATTER_FORWARD));
   std::vector<double> out;
   PetscInt n;
-  VecGetLocalSize(gathered, &n);
+  PetscCallAbort(comm, VecGetLocalSize(gathered, &n));
   if (n > 0) {
     const double* a;
-    VecGetArrayRead(gathered, &a);
+    PetscCallAbort(comm, VecGetArrayRead(gathered, &a));
     out.assign(a, a + n);
-    VecRestoreArrayRead(gathered, &a);
+    PetscCallAbort(comm, VecRestoreArrayRead(gathered, &a));
   }
-  VecScatterDestroy(&scatter);
-  VecDestroy(&gathered);
-  VecDestroy(&natural);
+  PetscCallAbort(comm, VecScatterDestroy(&scatter));
+  PetscCallAbort(comm, VecDestroy(&gathered));
+  PetscCallAbort(comm, VecDestroy(&natural));
   return out;
 }
 }  // namespace

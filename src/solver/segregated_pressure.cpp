@@ -83,7 +83,7 @@ void FlowSolver::assemble_pressure_matrix() {
 // pressure solve, the corrected face and cell velocities, and the rotational correction.
 int FlowSolver::solve_pressure() {
   assemble_pressure_rhs();
-  if (pressure_null_space_) MatNullSpaceRemove(pressure_null_space_, rhs_);
+  if (pressure_null_space_) PetscCallAbort(grid_.comm(), MatNullSpaceRemove(pressure_null_space_, rhs_));
   const int iterations = pressure_solver_->solve(rhs_, p_->global());
   fill_scalar_ghosts(*p_);
   correct_velocities();
@@ -226,7 +226,7 @@ void FlowSolver::hold_pressure_at_top() {
   }
   MPI_Allreduce(MPI_IN_PLACE, sums, 2, MPI_DOUBLE, MPI_SUM, grid_.comm());
   if (sums[1] == 0.0) return;  // the top blocked all along: the pinned row's level stands
-  VecShift(p_->global(), -sums[0] / sums[1]);
+  PetscCallAbort(grid_.comm(), VecShift(p_->global(), -sums[0] / sums[1]));
   fill_scalar_ghosts(*p_);
 }
 

@@ -453,7 +453,7 @@ RunSummary Simulation::run(const StepObserver& after_step) {
     summary.pressure_solves += r.pressure_solves;
 
     const double speed = flow_->max_speed();
-    stop_if_diverged(speed, summary.steps);
+    stop_if_diverged(speed, steps_);  // numbered over the whole run, restarts included
     if (after_step) after_step(*this, step_dt);  // an accepted step: one that did not diverge
     const bool steady = tc.steady_tolerance > 0.0 && is_steady(previous, step_dt, speed);
     // The soil at rest (time.rest_speed): slower than it everywhere, once it has moved (the speed the
@@ -484,7 +484,9 @@ RunSummary Simulation::run(const StepObserver& after_step) {
         fmt::print(stderr, "t = {:.5g} / {:.5g} s  dt = {:.3g} s  step {}  {:.1f} steps/s  {:.0f} s left\n", time_,
                    tc.end, step_dt, summary.steps, rate, eta);
     }
-    dt = choose_dt(step_dt == dt ? dt : std::max(dt, step_dt));
+    // Sized from the step as planned, not as cut short to land on an output time or taken again
+    // shorter: the Courant numbers set the next step, the short one does not hold back its growth.
+    dt = choose_dt(dt);
     if (at_output) {
       write_checkpoint(dt);
       checkpoint_is_current = true;

@@ -41,7 +41,7 @@ bool SolveRegion::covers(const Field& needed) const {
 
 bool SolveRegion::laid() const {
   double most = 0.0;
-  VecMax(cells_.global(), nullptr, &most);
+  PetscCallAbort(PETSC_COMM_WORLD, VecMax(cells_.global(), nullptr, &most));
   return most > 0.0;
 }
 
