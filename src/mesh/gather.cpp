@@ -30,8 +30,6 @@ std::vector<double> gather(const Grid& grid, Vec global, bool to_all) {
 }
 }  // namespace
 
-std::vector<double> gather_to_root(const Grid& grid, Vec global) { return gather(grid, global, false); }
-
 std::vector<double> gather_to_root(const Grid& grid, const Field& field) { return gather(grid, field.global(), false); }
 
 std::vector<double> gather_to_all(const Grid& grid, const Field& field) { return gather(grid, field.global(), true); }

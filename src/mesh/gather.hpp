@@ -12,8 +12,6 @@ namespace granflow {
 
 // Owned values of `field` in natural order (index j * nx + i) on rank 0; empty on other ranks.
 std::vector<double> gather_to_root(const Grid& grid, const Field& field);
-// The same from a global vector of the grid's field layout.
-std::vector<double> gather_to_root(const Grid& grid, Vec global);
 // Every value of `field` in natural order, on every rank.
 std::vector<double> gather_to_all(const Grid& grid, const Field& field);
 

@@ -201,23 +201,6 @@ void FlowSolver::face_viscosity_from_cells() {
       [&](int, int i, int j, int) { return mu[j][i]; }, BlockedView(grid_, blocked_).data());
 }
 
-void FlowSolver::sync_velocity_from_cells() {
-  fill_velocity_ghosts();
-  const auto& b = grid_.owned();
-  ConstFieldArray u = local_read(grid_, *vel_[0]), v = local_read(grid_, *vel_[1]);
-  FieldArray fx = local_array(grid_, *face_[0]), fy = local_array(grid_, *face_[1]);
-  const BlockedView mask(grid_, blocked_);
-  for (int j = b.ys - 1; j < b.ye(); ++j)
-    for (int i = b.xs - 1; i < b.xe(); ++i) {
-      const bool x_boundary = grid_.outside(i, j) || grid_.outside(i + 1, j) || is_blocked(mask.data(), i, j) ||
-                              is_blocked(mask.data(), i + 1, j);
-      const bool y_boundary = (j == -1 || j == grid_.ny() - 1) || is_blocked(mask.data(), i, j) ||
-                              is_blocked(mask.data(), i, j + 1);
-      if (j >= b.ys) fx[j][i] = x_boundary ? 0.0 : 0.5 * (u[j][i] + u[j][i + 1]);
-      if (i >= b.xs) fy[j][i] = y_boundary ? 0.0 : 0.5 * (v[j][i] + v[j + 1][i]);
-    }
-}
-
 // ---------------------------------------------------------------------------------------------
 
 std::vector<std::pair<const char*, Field*>> FlowSolver::named_state_fields() {

@@ -93,9 +93,6 @@ class FlowSolver {
   // top with the trapezoidal rule between cell centres, which is exactly what the face forces
   // balance. Requires a closed or atmosphere top; uses the top boundary's pressure as reference.
   void set_hydrostatic_pressure();
-  // Velocities given as owned values: refresh ghosts and make face velocities consistent (linear
-  // interpolation; not divergence-free unless the field is).
-  void sync_velocity_from_cells();
   void refresh_ghosts();
 
   StepReport step(double dt);
@@ -142,10 +139,16 @@ class FlowSolver {
   std::array<std::array<double, 2>, 4> side_forces() const;
   // Force of the flow on the obstacles, all together (N/m), as on a static no-slip wall. Collective.
   std::array<double, 2> obstacle_force() const;
+  // Both at once, in one pass over the faces and one reduction (the history's, every step).
+  struct WallForces {
+    std::array<std::array<double, 2>, 4> sides;
+    std::array<double, 2> obstacle;
+  };
+  WallForces wall_forces() const;
 
  private:
   void fill_velocity_ghosts();
-  std::array<double, 10> wall_forces() const;  // side_forces, then obstacle_force (side_force.cpp)
+  std::array<double, 10> wall_force_sums() const;  // side_forces, then obstacle_force (side_force.cpp)
   std::vector<Field*> state_fields();  // what a step starts from: velocities, face velocities and forces, p
   std::vector<std::pair<const char*, Field*>> named_state_fields();
   void update_boundary_heads();

@@ -25,7 +25,7 @@ namespace granflow {
 //     of the viscous stress; the momentum carried through the side is not a force on it.
 //   - On an obstacle (mesh/obstacles.hpp): each face between an open and a blocked cell, as a
 //     static no-slip wall.
-std::array<double, 10> FlowSolver::wall_forces() const {
+std::array<double, 10> FlowSolver::wall_force_sums() const {
   const auto& b = grid_.owned();
   const int nx = grid_.nx(), ny = grid_.ny();
   const auto& g = settings_.gravity;
@@ -92,16 +92,16 @@ std::array<double, 10> FlowSolver::wall_forces() const {
   return force;
 }
 
-std::array<std::array<double, 2>, 4> FlowSolver::side_forces() const {
-  const auto force = wall_forces();
-  std::array<std::array<double, 2>, 4> out;
-  for (int s = 0; s < 4; ++s) out[s] = {force[2 * s], force[2 * s + 1]};
+FlowSolver::WallForces FlowSolver::wall_forces() const {
+  const auto force = wall_force_sums();
+  WallForces out;
+  for (int s = 0; s < 4; ++s) out.sides[s] = {force[2 * s], force[2 * s + 1]};
+  out.obstacle = {force[8], force[9]};
   return out;
 }
 
-std::array<double, 2> FlowSolver::obstacle_force() const {
-  const auto force = wall_forces();
-  return {force[8], force[9]};
-}
+std::array<std::array<double, 2>, 4> FlowSolver::side_forces() const { return wall_forces().sides; }
+
+std::array<double, 2> FlowSolver::obstacle_force() const { return wall_forces().obstacle; }
 
 }  // namespace granflow

@@ -200,8 +200,7 @@ void Simulation::record_history(double dt) {
   dissipated_energy_ += b.dissipation_rate * dt;
   soil_->accumulate_lode_energy(dt);
   const auto c = gather_to_root(*grid_, soil_->soil_fraction());
-  const auto force = flow_->side_forces();
-  const auto obstacle = blocked_ ? flow_->obstacle_force() : std::array<double, 2>{};
+  const auto [force, obstacle] = flow_->wall_forces();
   soil_speed_ = soil_->largest_speed(*flow_);  // what time.rest_speed reads, once per step
   if (rank_ != 0) return;
   const PileShape shape = pile_shape(*grid_, c, wall_column_);
