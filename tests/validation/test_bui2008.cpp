@@ -116,9 +116,9 @@ TEST(Bui2008Experiment, HalfResolutionVolumeEnergyRestAndPile) {
   if (!test::is_root()) return;
   EXPECT_LT(r.volume_error, 1e-10);
   EXPECT_EQ(r.outflow, 0.0);
-  EXPECT_LT(std::abs(r.accounted / r.released - 1.0), 0.10);
+  EXPECT_LT(std::abs(r.accounted / r.released - 1.0), 0.07);  // the issue's 5 % is for 300 x 100
   EXPECT_LT(r.contour_drift, r.dx);  // between t = 1 s and the end
-  EXPECT_LT(r.soil_speed, 1e-3);
+  EXPECT_LT(r.soil_speed, 1e-5);  // the issue asks 1e-3; measured 1.3e-6, a pile that creeps would fail
   EXPECT_LT(std::abs(r.toe_cell / experiment_runout - 1), 0.08);
   EXPECT_LT(r.rms, 0.005);
   EXPECT_LT(r.failure_line, 0.011);  // 8.4 mm
@@ -127,7 +127,7 @@ TEST(Bui2008Experiment, HalfResolutionVolumeEnergyRestAndPile) {
   // At rest the sides carry the weight (measured: to 1e-7 of it, and a net horizontal force of
   // 4e-6 of it). The wall's thrust lies between Rankine's active K_a = (1 - sin phi)/(1 + sin phi) =
   // 0.49 and a fluid's 1 (measured K = 0.64, near Jaky's K_0 = 1 - sin phi = 0.66 for a soil at rest).
-  EXPECT_NEAR(-r.sides_vertical / r.weight, 1.0, 1e-5);
+  EXPECT_NEAR(-r.sides_vertical / r.weight, 1.0, 1e-6);
   EXPECT_LT(std::abs(r.sides_horizontal), 1e-5 * r.weight);
   EXPECT_GT(r.earth_pressure_coefficient, 0.49);
   EXPECT_LT(r.earth_pressure_coefficient, 1.0);
@@ -162,6 +162,26 @@ TEST(Bui2008Experiment, WallGradientDoesNotChangeTheFloorsFriction) {
   EXPECT_GT(two_point.first, 0.4);
   EXPECT_LE(std::abs(quadratic.first - two_point.first), cell * (1 + 1e-9));
   EXPECT_LT(std::abs(quadratic.second - two_point.second), cell);
+}
+
+// The shipped case at the paper's resolution, the main job's run (on one rank here): the targets it
+// meets held to them (soil volume, energy budget within 5 %, the pile at rest between t = 1 and 2 s),
+// and those it does not (run-out within 5 %, RMS at most 4 mm; the test below) held where the model
+// puts them, so that a change that moves the pile shows: measured one-cell toe 0.518 m, contour
+// 0.555 m, RMS 4.34 mm, failure line 7.2 mm, energy +2.8 %, soil speed 1e-6 m/s. About 40 s.
+TEST(Bui2008Experiment, PaperResolutionAsMeasured) {
+  const Bui2008Run r = run_bui2008(300);
+  if (!test::is_root()) return;
+  EXPECT_LT(r.volume_error, 1e-10);
+  EXPECT_EQ(r.outflow, 0.0);
+  EXPECT_LT(std::abs(r.accounted / r.released - 1.0), 0.05);
+  EXPECT_LT(r.contour_drift, r.dx);
+  EXPECT_LT(r.cell_drift, r.dx);
+  EXPECT_LT(r.soil_speed, 1e-5);
+  EXPECT_NEAR(r.toe_cell, 0.518, 2 * r.dx);
+  EXPECT_NEAR(r.toe_contour, 0.555, 3 * r.dx);
+  EXPECT_NEAR(r.rms, 0.00434, 0.0003);
+  EXPECT_LT(r.failure_line, 0.008);
 }
 
 // Every validation target at the paper's resolution. Not met (docs/validation.md): one-cell

@@ -100,7 +100,10 @@ TEST(RestingSoil, CohesiveBlockThatCannotFailStaysPut) {
   }
   std::printf("cohesive block after 1 s: largest surface displacement %.3e cells, max |v| %.3e m/s\n", worst,
               sim.flow().max_speed());
-  EXPECT_LT(worst, 0.1);
+  // Required: under 0.1 cell. Measured 1.9e-5 cells and 1.1e-8 m/s; the bounds below catch a
+  // regression that creep at the regularisation's floor or a stray flux would bring, long before 0.1.
+  EXPECT_LT(worst, 1e-3);
+  EXPECT_LT(sim.flow().max_speed(), 1e-6);
 }
 
 // A low mound of the Bui et al. soil on the floor, 5 mm high (1.25 cells) and sloping at 4.8 degrees,
