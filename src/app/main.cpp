@@ -26,7 +26,7 @@
 #include "models/rheology/element_test.hpp"
 #include "solver/divergence_error.hpp"
 #include "solver/flow_settings.hpp"
-#include "solver/linear_solver.hpp"
+#include "solver/solver_options_check.hpp"
 #include "solver/out_of_memory_error.hpp"
 #include "solver/simulation.hpp"
 

@@ -18,7 +18,7 @@
 #include "io/run_directory.hpp"
 #include "io/run_lock.hpp"
 #include "solver/divergence_error.hpp"
-#include "solver/linear_solver.hpp"
+#include "solver/solver_options_check.hpp"
 #include "solver/simulation.hpp"
 
 namespace granflow {

@@ -3,10 +3,7 @@
 // under a prefix (e.g. -pressure_ksp_type cg -pressure_pc_type gamg).
 #include <petscksp.h>
 
-#include <set>
 #include <string>
-#include <utility>
-#include <vector>
 
 #include "mesh/petsc_handle.hpp"
 
@@ -23,24 +20,6 @@ struct LinearSolverSettings {
   // after the last rebuild. AMG set-up is most of the cost of a solve.
   int max_reuse = 1;
 };
-
-// What is wrong with the settings' method names ("" if PETSc knows both): a misspelt ksp_type or
-// pc_type is found before a run starts, not as a PETSc error trace inside it. Needs PETSc initialised.
-std::string unknown_method(const LinearSolverSettings& settings);
-
-// What in PETSc's options (--petsc, PETSC_OPTIONS, options files) would stop the run's solver `prefix`
-// from being made with `settings` ("" if nothing): an option PETSc refuses (an unknown
-// -PREFIX_pc_type), or a tolerance outside the case file's range. So `granflow check` finds what
-// `granflow run` refuses before it starts. Needs PETSc initialised and the methods known.
-std::string petsc_options_problem(const std::string& prefix, const LinearSolverSettings& settings);
-
-// PETSc's options (without their '-') that none of the solvers `made` (prefix and settings, as a run
-// makes them) reads when made and set up on a small matrix, where a factorisation package and AMG read
-// theirs: what `granflow check` warns of as `run` does at its end. Monitors and viewers are not made
-// (checking must not write): among them are only those under no made solver's prefix. Nothing is among
-// them if a solver cannot be set up there. Options that PETSc itself reads elsewhere (-log_view) are.
-// Needs PETSc initialised.
-std::set<std::string> options_left_by_solvers(const std::vector<std::pair<std::string, LinearSolverSettings>>& made);
 
 // Whether granflow itself set the PETSc option `name` (without its '-') as a solver's default:
 // the user's --petsc may make another preconditioner read none of them, which is no mistake.
