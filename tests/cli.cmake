@@ -187,6 +187,12 @@ add_test(NAME cli_check_lays_out_the_obstacles
          COMMAND sh -c "for bad in \"obstacle=[{shape='box', lower=[0.401,0.0], upper=[0.402,0.01]}]|the shape holds no cell centre on this 30 x 10 mesh\" \"obstacle=[{shape='box', lower=[-1,-1], upper=[1,1]}]|the obstacles block every cell\" \"obstacle=[{shape='box', lower=[-1,-1], upper=[0.3,0.15]}]|the shapes place no soil in any open cell\" \"obstacle=[{shape='box', lower=[0.41,0.0], upper=[0.42,0.1]}]|is a wall one cell thick\" \"obstacle=[{shape='box', lower=[0.3,0.1], upper=[0.5,0.16]}, {shape='box', lower=[0.3,0.0], upper=[0.34,0.1]}, {shape='box', lower=[0.46,0.0], upper=[0.5,0.1]}]|are closed off by the obstacles\"; do out=$(\"$0\" check \"$1\" --set 'mesh.cells=[30,10]' --set \"\${bad%%|*}\" 2>&1); test $? -eq 2 && echo \"$out\" | grep -q \"^error: $1: .*\${bad#*|}\" || { echo \"$out\"; exit 1; }; done"
                  $<TARGET_FILE:granflow> ${CMAKE_SOURCE_DIR}/cases/barrier_collapse.toml)
 set_tests_properties(cli_check_lays_out_the_obstacles PROPERTIES LABELS cli)
+# The overburden of soil.yield_pressure = "lithostatic_floor" would be taken through an obstacle: refused.
+add_test(NAME cli_check_lithostatic_floor_with_obstacles_refused
+         COMMAND ${GRANFLOW_EXPECT_STATUS} 2 $<TARGET_FILE:granflow> check ${CMAKE_SOURCE_DIR}/cases/barrier_collapse.toml
+                 --set soil.yield_pressure=lithostatic_floor --set soil.strain_rate=cell --set soil.face_fraction=cells)
+set_tests_properties(cli_check_lithostatic_floor_with_obstacles_refused PROPERTIES LABELS cli
+                     PASS_REGULAR_EXPRESSION "^error: [^\n]*barrier_collapse.toml: obstacle: soil.yield_pressure = \"lithostatic_floor\" takes the soil above each cell up to the top, through any obstacle. use \"face\" or \"cell\" with obstacles\n$")
 # check lays out the initial state as a run does, and finds what only that shows: exit 2 and the message.
 add_test(NAME cli_check_lays_out_the_initial_state
          COMMAND sh -c "out=$(\"$0\" check \"$1\" --set 'mesh.cells=[30,10]' --set \"$2\" 2>&1); test $? -eq 2 && echo \"$out\" | grep -q \"^error: $1: initial.soil: the shapes cover no part of any cell's samples on this 30 x 10 mesh\""
