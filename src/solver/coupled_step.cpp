@@ -85,12 +85,12 @@ void FlowSolver::compute_mobilities() {
   const auto& b = grid_.owned();
   {
     for (int c = 0; c < 2; ++c) {
-      FieldArray r(grid_.field_dm(), rau_[c]->global());
+      FieldArray r(grid_.field_dm(), pressure_mobility_[c]->global());
       for (int j = b.ys; j < b.ye(); ++j)
         for (int i = b.xs; i < b.xe(); ++i)
           r[j][i] = grid_.volume(i, j) / a_centre_[c][size_t(j - b.ys) * b.xm + (i - b.xs)];
     }
-    for (int c = 0; c < 2; ++c) rau_[c]->scatter_to_local();
+    for (int c = 0; c < 2; ++c) pressure_mobility_[c]->scatter_to_local();
   }
 }
 
@@ -110,8 +110,8 @@ class FlowSolver::CoupledRows {
         v_(local_read(grid_, *flow.vel_[1])),
         fxv_(local_read(grid_, *flow.face_[0])),
         fyv_(local_read(grid_, *flow.face_[1])),
-        rx_(local_read(grid_, *flow.rau_[0])),
-        ry_(local_read(grid_, *flow.rau_[1])),
+        rx_(local_read(grid_, *flow.pressure_mobility_[0])),
+        ry_(local_read(grid_, *flow.pressure_mobility_[1])),
         fcx_(local_read(grid_, *flow.cell_force_[0])),
         fcy_(local_read(grid_, *flow.cell_force_[1])),
         p_now_(local_read(grid_, *flow.p_)),
@@ -393,7 +393,7 @@ void FlowSolver::update_coupled_face_velocities() {
   }
   {
     ConstFieldArray u = local_read(grid_, *vel_[0]), v = local_read(grid_, *vel_[1]);
-    ConstFieldArray rx = local_read(grid_, *rau_[0]), ry = local_read(grid_, *rau_[1]);
+    ConstFieldArray rx = local_read(grid_, *pressure_mobility_[0]), ry = local_read(grid_, *pressure_mobility_[1]);
     ConstFieldArray fcx = local_read(grid_, *cell_force_[0]), fcy = local_read(grid_, *cell_force_[1]);
     ConstFieldArray ffx = local_read(grid_, *face_force_[0]), ffy = local_read(grid_, *face_force_[1]);
     FieldArray fxv = local_array(grid_, *face_[0]), fyv = local_array(grid_, *face_[1]);

@@ -29,7 +29,7 @@ FlowSolver::FlowSolver(const Grid& grid, const FlowSettings& settings) : grid_(g
     face_[a] = make_field(grid);
     face_old_[a] = make_field(grid);
     face_force_[a] = make_field(grid);
-    rau_[a] = make_field(grid);
+    pressure_mobility_[a] = make_field(grid);
     vel_[a]->set(0.0);
     face_[a]->set(0.0);
     face_force_[a]->set(0.0);
@@ -72,9 +72,9 @@ FlowSolver::FlowSolver(const Grid& grid, const FlowSettings& settings) : grid_(g
   const bool segregated = settings.numerics.pressure_coupling != PressureCoupling::coupled;
   if (segregated) {
     for (int a = 0; a < 2; ++a) {
-      hbya_[a] = make_field(grid);
-      time_weight_[a] = make_field(grid);
-      time_weight_[a]->set(0.0);  // stays zero under the projection coupling
+      velocity_without_pressure_[a] = make_field(grid);
+      old_time_share_[a] = make_field(grid);
+      old_time_share_[a]->set(0.0);  // stays zero under the projection coupling
       if (a == 1 && shared_momentum_matrix_) continue;
       PetscCallAbort(comm, DMCreateMatrix(grid.matrix_dm(), momentum_matrix_[a].put()));
       momentum_solver_[a] = std::make_unique<LinearSolver>(comm, a == 0 ? "momentum_x" : "momentum_y",
@@ -321,14 +321,14 @@ StepReport FlowSolver::step(double dt) {
     } else {
       const bool projection = num.pressure_coupling == PressureCoupling::projection;
       if (num.momentum_predictor || projection) report.momentum_iterations += solve_momentum();
-      compute_hbya();
+      compute_velocity_without_pressure();
       // The projection's pressure operator has coefficients dt / rho_f, which the outer iterations do
       // not change: one assembly and one preconditioner set-up per step. PISO's hold 1 / a_P.
       if (!projection || outer == 0) assemble_pressure_matrix();
       // The projection is exact in one solve; PISO repeats the correction with updated neighbours.
       const int correctors = projection ? 1 : num.pressure_correctors;
       for (int corr = 0; corr < correctors; ++corr) {
-        if (corr > 0) compute_hbya();
+        if (corr > 0) compute_velocity_without_pressure();
         report.pressure_iterations += solve_pressure();
         ++report.pressure_solves;
       }

@@ -168,7 +168,7 @@ class FlowSolver {
   // Momentum equation (momentum_equation.cpp).
   void assemble_momentum(double dt);
   int solve_momentum();
-  void compute_hbya();
+  void compute_velocity_without_pressure();
   // Coupled velocity-pressure solve (coupled_step.cpp).
   void create_coupled_system();
   void store_cell_forces();
@@ -210,8 +210,12 @@ class FlowSolver {
   std::unique_ptr<Field> body_force_[2];
   std::unique_ptr<Field> start_density_, mass_flux_[2];  // enable_mass_transport
   FieldSnapshot saved_;  // save_state()
-  std::unique_ptr<Field> rau_[2];
-  std::unique_ptr<Field> hbya_[2], time_weight_[2];  // segregated steps only
+  // The velocity per unit of force density a cell's momentum row gives (OpenFOAM's rAU): V / a_P under
+  // PISO and the coupled solve ([VoF] Eq. 28's A_i d_i / A_P, a cell's V / a_P), dt / rho under the projection.
+  std::unique_ptr<Field> pressure_mobility_[2];
+  // Segregated steps only: the velocity without the pressure force (OpenFOAM's HbyA), and the share of
+  // the old time level in a_P, rho V / (dt a_P).
+  std::unique_ptr<Field> velocity_without_pressure_[2], old_time_share_[2];
 
   // Momentum coefficients of the owned cells (row-major over the owned box). Off-diagonal
   // coefficients are stored positive (matrix entry = -a_nb) and shared by both components.

@@ -199,15 +199,15 @@ int FlowSolver::solve_momentum() {
 }
 
 // HbyA = (source + sum a_nb v_nb) / a_P, rAU = V / a_P, and the share of the old time level in it.
-void FlowSolver::compute_hbya() {
+void FlowSolver::compute_velocity_without_pressure() {
   const auto& b = grid_.owned();
   ConstFieldArray rho = local_read(grid_, *rho_);
   if (settings_.numerics.pressure_coupling == PressureCoupling::projection) {
     // Incremental projection: HbyA = v* - (dt/rho) f_old, so that the new velocity is HbyA + (dt/rho) f_new.
     for (int c = 0; c < 2; ++c) {
       ConstFieldArray q = local_read(grid_, *vel_[c]), ff = local_read(grid_, *face_force_[c]);
-      FieldArray h(grid_.field_dm(), hbya_[c]->global());
-      FieldArray r(grid_.field_dm(), rau_[c]->global());
+      FieldArray h(grid_.field_dm(), velocity_without_pressure_[c]->global());
+      FieldArray r(grid_.field_dm(), pressure_mobility_[c]->global());
       for (int j = b.ys; j < b.ye(); ++j)
         for (int i = b.xs; i < b.xe(); ++i) {
           r[j][i] = dt_ / rho[j][i];
@@ -215,16 +215,16 @@ void FlowSolver::compute_hbya() {
         }
     }
     for (int c = 0; c < 2; ++c) {
-      hbya_[c]->scatter_to_local();
-      rau_[c]->scatter_to_local();
+      velocity_without_pressure_[c]->scatter_to_local();
+      pressure_mobility_[c]->scatter_to_local();
     }
     return;
   }
   for (int c = 0; c < 2; ++c) {
     ConstFieldArray q = local_read(grid_, *vel_[c]);
-    FieldArray h(grid_.field_dm(), hbya_[c]->global());
-    FieldArray r(grid_.field_dm(), rau_[c]->global());
-    FieldArray w(grid_.field_dm(), time_weight_[c]->global());
+    FieldArray h(grid_.field_dm(), velocity_without_pressure_[c]->global());
+    FieldArray r(grid_.field_dm(), pressure_mobility_[c]->global());
+    FieldArray w(grid_.field_dm(), old_time_share_[c]->global());
     const int ny = grid_.ny();
     for (int j = b.ys; j < b.ye(); ++j)
       for (int i = b.xs; i < b.xe(); ++i) {
@@ -241,9 +241,9 @@ void FlowSolver::compute_hbya() {
       }
   }
   for (int c = 0; c < 2; ++c) {
-    hbya_[c]->scatter_to_local();
-    rau_[c]->scatter_to_local();
-    time_weight_[c]->scatter_to_local();
+    velocity_without_pressure_[c]->scatter_to_local();
+    pressure_mobility_[c]->scatter_to_local();
+    old_time_share_[c]->scatter_to_local();
   }
 }
 }  // namespace granflow

@@ -44,7 +44,7 @@ double FlowSolver::local_min_viscosity(const double* const* mu, int i, int j) co
 // Pressure equation ([VoF] Eqs. 28-30): sum_f K_f (p_P - p_N) = -sum_f (predicted outward flux).
 void FlowSolver::assemble_pressure_matrix() {
   const auto& b = grid_.owned();
-  ConstFieldArray rx = local_read(grid_, *rau_[0]), ry = local_read(grid_, *rau_[1]);
+  ConstFieldArray rx = local_read(grid_, *pressure_mobility_[0]), ry = local_read(grid_, *pressure_mobility_[1]);
   ConstFieldArray rho = local_read(grid_, *rho_);
   for (int j = b.ys; j < b.ye(); ++j)
     for (int i = b.xs; i < b.xe(); ++i) {
@@ -100,9 +100,9 @@ int FlowSolver::solve_pressure() {
 void FlowSolver::assemble_pressure_rhs() {
   const auto& b = grid_.owned();
   const auto& g = settings_.gravity;
-  ConstFieldArray hx = local_read(grid_, *hbya_[0]), hy = local_read(grid_, *hbya_[1]);
-  ConstFieldArray rx = local_read(grid_, *rau_[0]), ry = local_read(grid_, *rau_[1]);
-  ConstFieldArray wx = local_read(grid_, *time_weight_[0]), wy = local_read(grid_, *time_weight_[1]);
+  ConstFieldArray hx = local_read(grid_, *velocity_without_pressure_[0]), hy = local_read(grid_, *velocity_without_pressure_[1]);
+  ConstFieldArray rx = local_read(grid_, *pressure_mobility_[0]), ry = local_read(grid_, *pressure_mobility_[1]);
+  ConstFieldArray wx = local_read(grid_, *old_time_share_[0]), wy = local_read(grid_, *old_time_share_[1]);
   ConstFieldArray u0 = local_read(grid_, *vel_old_[0]), v0 = local_read(grid_, *vel_old_[1]);
   ConstFieldArray fx0 = local_read(grid_, *face_old_[0]), fy0 = local_read(grid_, *face_old_[1]);
   ConstFieldArray fxv = local_read(grid_, *face_[0]), fyv = local_read(grid_, *face_[1]);
@@ -153,9 +153,9 @@ void FlowSolver::assemble_pressure_rhs() {
 void FlowSolver::correct_velocities() {
   const auto& b = grid_.owned();
   compute_face_forces();
-  ConstFieldArray hx = local_read(grid_, *hbya_[0]), hy = local_read(grid_, *hbya_[1]);
-  ConstFieldArray rx = local_read(grid_, *rau_[0]), ry = local_read(grid_, *rau_[1]);
-  ConstFieldArray wx = local_read(grid_, *time_weight_[0]), wy = local_read(grid_, *time_weight_[1]);
+  ConstFieldArray hx = local_read(grid_, *velocity_without_pressure_[0]), hy = local_read(grid_, *velocity_without_pressure_[1]);
+  ConstFieldArray rx = local_read(grid_, *pressure_mobility_[0]), ry = local_read(grid_, *pressure_mobility_[1]);
+  ConstFieldArray wx = local_read(grid_, *old_time_share_[0]), wy = local_read(grid_, *old_time_share_[1]);
   ConstFieldArray u0 = local_read(grid_, *vel_old_[0]), v0 = local_read(grid_, *vel_old_[1]);
   ConstFieldArray fx0 = local_read(grid_, *face_old_[0]), fy0 = local_read(grid_, *face_old_[1]);
   ConstFieldArray rho = local_read(grid_, *rho_);
