@@ -184,9 +184,11 @@ std::set<std::string> options_left_by_solvers(const std::vector<std::pair<std::s
     for (PetscInt k = 0; k < n; ++k)
       if (!defaults.count(names[k])) left.insert(names[k]);
     PetscOptionsLeftRestore(options, &n, &names, &values);
-    // A monitor or viewer is not made here; one under no made solver's prefix would be read by none.
+    // A monitor or viewer is not made here. One of a solver (ksp_, pc_) under no made solver's prefix
+    // would be read by none; others (-mat_view, -dm_view) are read by the run's matrices and grid.
     for (const auto& name : viewers)
-      if (std::none_of(made.begin(), made.end(), [&](const auto& m) { return name.rfind(m.first + "_", 0) == 0; }))
+      if ((name.find("ksp_") != std::string::npos || name.find("pc_") != std::string::npos) &&
+          std::none_of(made.begin(), made.end(), [&](const auto& m) { return name.rfind(m.first + "_", 0) == 0; }))
         left.insert(name);
   }
   PetscOptionsDestroy(&options);

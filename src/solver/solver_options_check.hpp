@@ -26,7 +26,7 @@ std::string petsc_options_problem(const std::string& prefix, const LinearSolverS
 // PETSc's options (without their '-') that none of the solvers `made` (prefix and settings, as a run
 // makes them) reads when made and set up on a small matrix, where a factorisation package and AMG read
 // theirs: what `granflow check` warns of as `run` does at its end. Monitors and viewers are not made
-// (checking must not write): among them are only those under no made solver's prefix. Nothing is among
+// (checking must not write): among them are only a solver's (ksp_, pc_) under no made solver's prefix. Nothing is among
 // them if a solver cannot be set up there. Options that PETSc itself reads elsewhere (-log_view) are.
 // Needs PETSc initialised.
 std::set<std::string> options_left_by_solvers(const std::vector<std::pair<std::string, LinearSolverSettings>>& made);
