@@ -145,8 +145,8 @@ std::set<std::string> options_left_by_solvers(const std::vector<std::pair<std::s
   bool all_set_up = true;
   PetscPushErrorHandler(PetscReturnErrorHandler, nullptr);  // a solver that cannot be set up judges nothing
   for (const auto& [prefix, s] : made) {
-    KSP ksp;
-    PC pc;
+    KSP ksp = nullptr;  // destroyed below however far the set-up came
+    PC pc = nullptr;
     Mat matrix = nullptr;
     const PetscInt block = prefix == "coupled" ? 3 : 1;  // u, v, p per cell, as the coupled system's
     PetscErrorCode error = KSPCreate(PETSC_COMM_SELF, &ksp);
