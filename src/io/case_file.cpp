@@ -571,8 +571,11 @@ NumericsSettings read_numerics(TableReader& top, bool granular, int band,
   num.pressure_coupling = coupling == "projection" ? PressureCoupling::projection
                           : coupling == "piso"     ? PressureCoupling::piso
                                                    : PressureCoupling::coupled;
-  num.rotational_coefficient = n.number("rotational_coefficient", num.rotational_coefficient);
-  n.require_range("rotational_coefficient", num.rotational_coefficient, 0.0, 2.0);
+  if (n.has("rotational_coefficient"))
+    throw CaseError(fmt::format("{}: removed; the projection's rotational pressure correction diverged wherever the "
+                                "step is above about rho h^2 / mu, even at a constant viscosity, and sped nothing up "
+                                "below it (docs/method.md). Leave the key out",
+                                n.key_path("rotational_coefficient")));
   num.blending = n.number("blending", num.blending);
   n.require_range("blending", num.blending, 0.0, 1.0);
   num.outer_iterations = n.integer_in("outer_iterations", num.outer_iterations, 1, 1000);
@@ -617,8 +620,6 @@ NumericsSettings read_numerics(TableReader& top, bool granular, int band,
                  "used only with numerics.later_iterations = \"first_factorisation\", the coupled solve and more "
                  "than one outer iteration");
   num.reuse_first_factorisation = num.reuse_first_factorisation && coupled;
-  without_effect("rotational_coefficient", num.pressure_coupling == PressureCoupling::projection,
-                 "used only with numerics.pressure_coupling = \"projection\"");
   without_effect("pressure_correctors", num.pressure_coupling == PressureCoupling::piso,
                  "used only with numerics.pressure_coupling = \"piso\"");
   without_effect("momentum_predictor", num.pressure_coupling == PressureCoupling::piso,

@@ -17,9 +17,6 @@ enum class PressureCoupling { projection, piso, coupled };
 
 struct NumericsSettings {
   PressureCoupling pressure_coupling = PressureCoupling::projection;
-  // chi of the rotational correction p -= chi mu div(v*) (projection). Speeds up the pressure where
-  // viscosity dominates, but is stable only for mild viscosity variations (contrast of a few), so off by default.
-  double rotational_coefficient = 0.0;
   ConvectionScheme convection = ConvectionScheme::quick;
   double blending = 0.7;        // central share of the blended scheme
   int outer_iterations = 3;     // PIMPLE outer iterations per step (properties updated in each)

@@ -80,7 +80,6 @@ FlowSolver::FlowSolver(const Grid& grid, const FlowSettings& settings) : grid_(g
       momentum_solver_[a] = std::make_unique<LinearSolver>(comm, a == 0 ? "momentum_x" : "momentum_y",
                                                             settings.momentum_solver);
     }
-    divergence_before_.assign(n, 0.0);
     PetscCallAbort(comm, DMCreateMatrix(grid.matrix_dm(), pressure_matrix_.put()));
     pressure_solver_ = std::make_unique<LinearSolver>(comm, "pressure", settings.pressure_solver);
     PetscCallAbort(comm, DMCreateGlobalVector(grid.field_dm(), rhs_.put()));

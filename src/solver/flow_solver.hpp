@@ -186,13 +186,11 @@ class FlowSolver {
   double ambient_weight(int axis) const { return axis == 0 ? settings_.periodic_ambient_density * settings_.gravity[0] : 0.0; }
   double cell_force(int axis, int i, int j, const double* const* ff, const double* const* rho) const;
   // Segregated pressure step (segregated_pressure.cpp).
-  double local_min_viscosity(const double* const* mu, int i, int j) const;
   double face_coefficient(const double* const* rau, const double* const* rho, int i, int j, int in, int jn) const;
   void assemble_pressure_matrix();
   int solve_pressure();  // one pressure step, from the pieces below
   void assemble_pressure_rhs();
   void correct_velocities();
-  void apply_rotational_correction();
   void hold_pressure_at_top();  // closed domains: the pressure level
 
   const Grid& grid_;
@@ -221,7 +219,6 @@ class FlowSolver {
   // coefficients are stored positive (matrix entry = -a_nb) and shared by both components.
   std::vector<double> a_east_, a_west_, a_north_, a_south_;
   std::vector<double> a_centre_[2], source_[2];
-  std::vector<double> divergence_before_;  // div of the velocity entering the projection, per owned cell
 
   // The segregated steps' systems (none under the coupled solve).
   OwnedMat momentum_matrix_[2];

@@ -29,18 +29,6 @@ double FlowSolver::face_coefficient(const double* const* rau, const double* cons
   return dt_ / (0.5 * (rho[j][i] + rho[jn][in]));
 }
 
-// The viscosity that sets the rotational correction of a cell: the smallest among it and its
-// neighbours. Where viscosity jumps, the divergence in a stiff cell comes from flow on its soft
-// side, and multiplying it by the stiff viscosity would overshoot by the contrast.
-double FlowSolver::local_min_viscosity(const double* const* mu, int i, int j) const {
-  double m = mu[j][i];
-  if (!grid_.outside(i - 1, j)) m = std::min(m, mu[j][i - 1]);
-  if (!grid_.outside(i + 1, j)) m = std::min(m, mu[j][i + 1]);
-  if (!grid_.outside(i, j - 1)) m = std::min(m, mu[j - 1][i]);
-  if (!grid_.outside(i, j + 1)) m = std::min(m, mu[j + 1][i]);
-  return m;
-}
-
 // Pressure equation ([VoF] Eqs. 28-30): sum_f K_f (p_P - p_N) = -sum_f (predicted outward flux).
 void FlowSolver::assemble_pressure_matrix() {
   const auto& b = grid_.owned();
@@ -80,7 +68,7 @@ void FlowSolver::assemble_pressure_matrix() {
 }
 
 // One pressure step ([VoF] Eqs. 28-30): the right-hand side from the predicted face fluxes, the
-// pressure solve, the corrected face and cell velocities, and the rotational correction.
+// pressure solve, the corrected face and cell velocities.
 int FlowSolver::solve_pressure() {
   assemble_pressure_rhs();
   if (pressure_null_space_) PetscCallAbort(grid_.comm(), MatNullSpaceRemove(pressure_null_space_, rhs_));
@@ -88,15 +76,12 @@ int FlowSolver::solve_pressure() {
   fill_scalar_ghosts(*p_);
   correct_velocities();
   fill_velocity_ghosts();
-  if (settings_.numerics.pressure_coupling == PressureCoupling::projection && settings_.numerics.rotational_coefficient > 0.0)
-    apply_rotational_correction();
   if (!has_pressure_boundary_) hold_pressure_at_top();
   return iterations;
 }
 
 // The pressure equation's right-hand side: minus the net outflow of the predicted face velocities,
-// with the atmosphere's pressure on its faces; and the divergence of the predicted cell velocity for
-// the rotational correction.
+// with the atmosphere's pressure on its faces.
 void FlowSolver::assemble_pressure_rhs() {
   const auto& b = grid_.owned();
   const auto& g = settings_.gravity;
@@ -111,10 +96,6 @@ void FlowSolver::assemble_pressure_rhs() {
   for (int j = b.ys; j < b.ye(); ++j)
     for (int i = b.xs; i < b.xe(); ++i) {
       double rhs = 0.0;
-      // Net outflow of the predicted cell velocity v*, linearly interpolated: its divergence feeds
-      // the rotational correction. (Not the Rhie-Chow flux: its pressure-smoothing part is what
-      // the projection itself corrects, and feeding it back would amplify pressure checkerboards.)
-      double outflow = 0.0;
       for (const auto& fg : faces_of_cell) {
         const int in = i + fg.di, jn = j + fg.dj;
         const double area = grid_.face_area(fg.axis, i, j, fg.sign);
@@ -128,7 +109,6 @@ void FlowSolver::assemble_pressure_rhs() {
           const double K = ra[j][i] * area / d_half;
           rhs -= fg.sign * (h[j][i] + ra[j][i] * rho[j][i] * g[fg.axis]) * area;
           rhs += K * pb;
-          outflow += fg.sign * (fg.axis == 0 ? u[j][i] : v[j][i]) * area;
           continue;
         }
         const double* const* w = fg.axis == 0 ? wx.data() : wy.data();
@@ -139,10 +119,8 @@ void FlowSolver::assemble_pressure_rhs() {
         const double rA = face_coefficient(ra, rho.data(), i, j, in, jn);
         const double rho_f = 0.5 * (rho[j][i] + rho[jn][in]);
         rhs -= fg.sign * (ustar + rA * rho_f * g[fg.axis] - rA * ambient_weight(fg.axis)) * area;
-        outflow += fg.sign * 0.5 * (fg.axis == 0 ? u[j][i] + u[jn][in] : v[j][i] + v[jn][in]) * area;
       }
       r[j][i] = rhs;
-      divergence_before_[size_t(j - b.ys) * b.xm + (i - b.xs)] = outflow / grid_.volume(i, j);
     }
 }
 
@@ -186,23 +164,6 @@ void FlowSolver::correct_velocities() {
       u[j][i] = hx[j][i] + rx[j][i] * cell_force(0, i, j, ffx.data(), rho.data());
       v[j][i] = hy[j][i] + ry[j][i] * cell_force(1, i, j, ffy.data(), rho.data());
     }
-}
-
-// Rotational pressure correction (Timmermans, Minev & Van De Vosse 1996): p -= chi mu div(v*).
-// With the projection's dt/rho this makes the pressure step the Cahouet-Chabard approximation of
-// the Stokes Schur complement, so viscous-dominated regions converge in a few steps, not thousands.
-void FlowSolver::apply_rotational_correction() {
-  const auto& b = grid_.owned();
-  const double chi = settings_.numerics.rotational_coefficient;
-  {
-    ConstFieldArray mu = local_read(grid_, *mu_);
-    FieldArray p(grid_.field_dm(), p_->global());
-    for (int j = b.ys; j < b.ye(); ++j)
-      for (int i = b.xs; i < b.xe(); ++i)
-        p[j][i] -= chi * local_min_viscosity(mu.data(), i, j) * divergence_before_[size_t(j - b.ys) * b.xm + (i - b.xs)];
-  }
-  fill_scalar_ghosts(*p_);
-  compute_face_forces();
 }
 
 // A closed domain fixes its pressure only up to a constant, which the Krylov solve leaves wherever

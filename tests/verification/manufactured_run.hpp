@@ -21,6 +21,7 @@ struct ManufacturedFlow {
 
 struct VelocityPressureErrors {
   double u, v, p;  // L2 errors; the pressure's without its mean
+  long steps = 0;  // time steps to the steady state
 };
 
 inline VelocityPressureErrors run_manufactured(const std::string& case_text, const ManufacturedFlow& flow_fields) {
@@ -37,7 +38,7 @@ inline VelocityPressureErrors run_manufactured(const std::string& case_text, con
   const RunSummary s = sim.run();
   EXPECT_TRUE(s.reached_steady_state) << g.nx() << " cells: not steady after " << s.steps << " steps";
   return {l2_error(g, flow.velocity(0), flow_fields.u), l2_error(g, flow.velocity(1), flow_fields.v),
-          l2_error(g, flow.pressure(), flow_fields.p, true)};
+          l2_error(g, flow.pressure(), flow_fields.p, true), s.steps};
 }
 
 // Prints the errors and the observed orders between successive meshes, and expects at least 1.8 for

@@ -73,9 +73,9 @@ TEST(CaseAdvice, LikelySlipsOfUnitsAndSignsAreNamed) {
 // A key the case gives to no effect is a warning, naming the key and what would use it.
 TEST(CaseAdvice, KeysWithoutEffect) {
   const auto bui = std::string(GRANFLOW_SOURCE_DIR) + "/cases/bui2008_experiment.toml";
-  const auto advice = case_advice(load_case(bui, {"numerics.rotational_coefficient=1.5"}));
+  const auto advice = case_advice(load_case(bui, {"numerics.pressure_correctors=3"}));
   ASSERT_EQ(advice.size(), 1u);
-  EXPECT_EQ(advice[0], "numerics.rotational_coefficient: used only with numerics.pressure_coupling = \"projection\"; "
+  EXPECT_EQ(advice[0], "numerics.pressure_correctors: used only with numerics.pressure_coupling = \"piso\"; "
                        "this case gives it to no effect");
 }
 

@@ -58,6 +58,16 @@ TEST(CaseFile, MisspeltKeyIsNamed) {
   EXPECT_NE(e.find("unknown key"), std::string::npos) << e;
 }
 
+// A key granflow once read and no longer does is named with why, not listed as unknown.
+TEST(CaseFile, RemovedKeyIsNamedWithWhy) {
+  const std::string e = error_of(std::string(minimal) + "[numerics]\nrotational_coefficient = 1.0\n");
+  EXPECT_EQ(e.find("numerics.rotational_coefficient: removed; the projection's rotational pressure correction "
+                   "diverged"),
+            0u)
+      << e;
+  EXPECT_NE(e.find("Leave the key out"), std::string::npos) << e;
+}
+
 TEST(CaseFile, UnknownTableIsNamed) {
   const std::string e = error_of(std::string(minimal) + "[numerix]\n");
   EXPECT_NE(e.find("numerix"), std::string::npos) << e;
