@@ -70,3 +70,11 @@ add_test(NAME cli_petsc_error_2_ranks_once
                  ${MPIRUN} $<TARGET_FILE:granflow> ${CMAKE_SOURCE_DIR}/cases/lid_driven_cavity_re100.toml ${CMAKE_CURRENT_BINARY_DIR}/petsc_error_2_ranks)
 set_tests_properties(cli_petsc_error_2_ranks_once PROPERTIES LABELS parallel TIMEOUT 120
   ENVIRONMENT "OMPI_ALLOW_RUN_AS_ROOT=1;OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1;OMPI_MCA_rmaps_base_oversubscribe=1")
+
+# The lithostatic floor's overburden sums each column over the ranks that share it (4 x 20 cells on
+# 2 ranks are split across the columns).
+add_test(NAME lithostatic_floor_2_ranks
+         COMMAND ${MPIRUN} -np 2 --oversubscribe $<TARGET_FILE:verification_tests> --gtest_filter=LithostaticFloor.*)
+set_tests_properties(lithostatic_floor_2_ranks PROPERTIES
+  LABELS parallel TIMEOUT 120
+  ENVIRONMENT "OMPI_ALLOW_RUN_AS_ROOT=1;OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1;OMPI_MCA_rmaps_base_oversubscribe=1")
