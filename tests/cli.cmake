@@ -397,13 +397,13 @@ set_tests_properties(scripts_compare_bui2008_other_case PROPERTIES LABELS cli
 # that stood and the smallest that failed; where every trial failed, the smallest tried (its mechanism
 # is still the one to draw); where every trial stood, nothing to draw (status 1).
 set(GRANFLOW_STABILITY_FIXTURE ${CMAKE_CURRENT_BINARY_DIR}/stability_fixture)
-set(GRANFLOW_STABILITY_HEADER "factor,fails,diverged,largest_displacement_m,time_s,steps,unconverged_steps,wall_seconds,directory")
+set(GRANFLOW_STABILITY_HEADER "factor,fails,diverged,largest_displacement_m,displacement_limit_m,time_s,steps,unconverged_steps,wall_seconds,directory")
 file(WRITE ${GRANFLOW_STABILITY_FIXTURE}/bracket/stability.csv
-     "${GRANFLOW_STABILITY_HEADER}\n1,0,0,0.001,1,100,0,1,F_1\n2,1,0,0.2,0.5,50,0,1,F_2\n1.5,0,0,0.002,1,100,0,1,F_1.5\n1.75,1,0,0.1,0.6,60,0,1,F_1.75\n")
+     "${GRANFLOW_STABILITY_HEADER}\n1,0,0,0.001,0.01,1,100,0,1,F_1\n2,1,0,0.2,0.01,0.5,50,0,1,F_2\n1.5,0,0,0.002,0.01,1,100,0,1,F_1.5\n1.75,1,0,0.1,0.01,0.6,60,0,1,F_1.75\n")
 file(WRITE ${GRANFLOW_STABILITY_FIXTURE}/fails/stability.csv
-     "${GRANFLOW_STABILITY_HEADER}\n1,1,0,0.2,0.5,50,0,1,F_1\n0.5,1,0,0.1,0.6,60,0,1,F_0.5\n")
+     "${GRANFLOW_STABILITY_HEADER}\n1,1,0,0.2,0.01,0.5,50,0,1,F_1\n0.5,1,0,0.1,0.01,0.6,60,0,1,F_0.5\n")
 file(WRITE ${GRANFLOW_STABILITY_FIXTURE}/stands/stability.csv
-     "${GRANFLOW_STABILITY_HEADER}\n1,0,0,0.001,1,100,0,1,F_1\n")
+     "${GRANFLOW_STABILITY_HEADER}\n1,0,0,0.001,0.01,1,100,0,1,F_1\n")
 add_test(NAME scripts_plot_stability_bracket
          COMMAND sh -c "for k in bracket fails stands; do /usr/bin/python3 \"$0\" \"$1/$k\" 2>&1; echo \"status $?\"; done"
                  ${CMAKE_SOURCE_DIR}/scripts/plot_stability.py ${GRANFLOW_STABILITY_FIXTURE})
@@ -685,3 +685,10 @@ add_test(NAME scripts_refuse_damaged_files_and_bad_names
 set_tests_properties(scripts_refuse_damaged_files_and_bad_names PROPERTIES LABELS cli
                      PASS_REGULAR_EXPRESSION "^error: [^\n]*fields_00002[.]vtr: not a whole fields file [(]damaged, or cut short[)]\nstatus 1\nusage: [^\n]*\n[^\n]*argument --json: [^\n]*the numbers go to a file ending in [.]json\nstatus 2\nkept\n[^\n]*argument --png: [^\n]*a picture ends in [.]png, [.]pdf, [.]svg\nnone written\n$"
                      FAIL_REGULAR_EXPRESSION "Traceback")
+
+# granflow stability --restart continues an analysis stopped midway to the factor and trials of one run
+# through, runs an unfinished trial again, and refuses another case or displacement limit.
+add_test(NAME cli_stability_restart_continues_the_search
+         COMMAND sh ${CMAKE_CURRENT_SOURCE_DIR}/stability_restart.sh $<TARGET_FILE:granflow>
+                 ${CMAKE_SOURCE_DIR}/cases/slope_griffiths_lane1999.toml ${CMAKE_CURRENT_BINARY_DIR}/stability_restart)
+set_tests_properties(cli_stability_restart_continues_the_search PROPERTIES LABELS cli TIMEOUT 300)

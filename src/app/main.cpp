@@ -230,7 +230,12 @@ int main(int argc, char** argv) {
   stability->add_option("--displacement", strength.displacement_limit,
                         "the soil fails when it moves further than this, m (default: a tenth of the smallest cell)")
       ->check(finite_in(1e-12, 1e12, "a length from 1e-12 to 1e12 m"));
-  stability->add_flag("--overwrite", overwrite, "replace an earlier analysis in the output directory");
+  auto* stability_restart = stability->add_flag(
+      "--restart", restart,
+      "continue the earlier analysis in the output directory (same case, --set and --displacement): its finished "
+      "trials are taken as they are; --tolerance may be finer");
+  stability->add_flag("--overwrite", overwrite, "replace an earlier analysis in the output directory")
+      ->excludes(stability_restart);
 
   auto* check = app.add_subcommand("check", "validate a case file without running it");
   check->add_option("case", case_file, "case file (TOML)")->required();
@@ -335,7 +340,7 @@ int main(int argc, char** argv) {
 
   int status = 0;
   try {
-    status = *stability ? granflow::run_stability(case_file, overrides, out_dir, overwrite, strength)
+    status = *stability ? granflow::run_stability(case_file, overrides, out_dir, overwrite, restart, strength)
                         : granflow::run_case(case_file, overrides, out_dir, restart, overwrite);
     granflow::warn_unused_petsc_options(rank);
   } catch (const std::exception& e) {

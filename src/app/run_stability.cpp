@@ -4,8 +4,11 @@
 #include <petscsys.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
+#include <sstream>
 
 #include "app/run_case.hpp"
 #include "io/atomic_file.hpp"
@@ -21,6 +24,9 @@ namespace granflow {
 namespace {
 
 constexpr const char* table_name = "stability.csv";
+constexpr const char* table_header =
+    "factor,fails,diverged,largest_displacement_m,displacement_limit_m,time_s,steps,unconverged_steps,wall_seconds,"
+    "directory";
 
 // The earlier analysis in dir: its table and its trials' directories (F_<factor> holding any of a
 // run's files, io/run_directory.hpp).
@@ -41,24 +47,161 @@ std::vector<std::filesystem::path> earlier_analysis(const std::filesystem::path&
 // table of the trials it finished.
 void write_table(const std::filesystem::path& path, const std::vector<StrengthTrial>& trials) {
   write_file_atomically(path, [&](std::ostream& out) {
-    out << "factor,fails,diverged,largest_displacement_m,time_s,steps,unconverged_steps,wall_seconds,directory\n";
+    out << table_header << "\n";
     for (const auto& t : trials)
-      out << fmt::format("{},{},{},{:.6g},{:.6g},{},{},{:.3f},{}\n", t.factor, int(t.fails), int(t.diverged),
-                         t.largest_displacement, t.time, t.steps, t.unconverged_steps, t.wall_seconds,
-                         trial_directory(".", t.factor).filename().string());
+      out << fmt::format("{},{},{},{:.6g},{},{:.6g},{},{},{:.3f},{}\n", t.factor, int(t.fails), int(t.diverged),
+                         t.largest_displacement, t.displacement_limit, t.time, t.steps, t.unconverged_steps,
+                         t.wall_seconds, trial_directory(".", t.factor).filename().string());
   });
+}
+
+// The trials of an earlier analysis, from its table; a problem in `problem` (the table missing, of
+// another form, or a row that does not read).
+std::vector<StrengthTrial> read_table(const std::filesystem::path& path, std::string& problem) {
+  std::vector<StrengthTrial> trials;
+  std::ifstream in(path);
+  std::string line;
+  if (!in || !std::getline(in, line)) {
+    problem = fmt::format("no analysis to continue in {}: no {} there", path.parent_path().string(), table_name);
+    return trials;
+  }
+  if (line != table_header) {
+    problem = fmt::format("{}: not the table of an analysis this granflow can continue (its first line is not \"{}\"); "
+                          "start anew with --overwrite",
+                          path.string(), table_header);
+    return trials;
+  }
+  for (int row = 2; std::getline(in, line); ++row) {
+    std::vector<std::string> cells;
+    std::stringstream text(line);
+    for (std::string cell; std::getline(text, cell, ',');) cells.push_back(cell);
+    StrengthTrial t;
+    try {
+      if (cells.size() != 10 || (cells[1] != "0" && cells[1] != "1") || (cells[2] != "0" && cells[2] != "1"))
+        throw std::invalid_argument("row");
+      size_t used = 0;
+      auto number = [&used](const std::string& s) {
+        const double x = std::stod(s, &used);
+        if (used != s.size() || !std::isfinite(x)) throw std::invalid_argument(s);
+        return x;
+      };
+      t.factor = number(cells[0]);
+      t.fails = cells[1] == "1";
+      t.diverged = cells[2] == "1";
+      t.largest_displacement = number(cells[3]);
+      t.displacement_limit = number(cells[4]);
+      t.time = number(cells[5]);
+      t.steps = long(number(cells[6]));
+      t.unconverged_steps = long(number(cells[7]));
+      t.wall_seconds = number(cells[8]);
+      if (!(t.factor > 0.0) || cells[9] != trial_directory(".", t.factor).filename().string())
+        throw std::invalid_argument("row");
+    } catch (const std::exception&) {
+      problem = fmt::format("{}: row {} is not a trial's (\"{}\"): the table is damaged; start anew with --overwrite",
+                            path.string(), row, line);
+      return {};
+    }
+    if (t.diverged) t.divergence = fmt::format("diverged in the earlier analysis ({})", cells[9]);
+    trials.push_back(t);
+  }
+  return trials;
+}
+
+// The case a trial's directory records, without the comment lines that say how it was run.
+std::string recorded_case(const std::filesystem::path& trial) {
+  std::ifstream in(trial / case_record_name);
+  std::string line, text;
+  bool header = true;
+  while (std::getline(in, line)) {
+    if (header && (line.starts_with("#") || line.empty())) continue;
+    header = false;
+    text += line + "\n";
+  }
+  return text;
+}
+
+// Why the earlier analysis in out cannot be continued by this one (empty if it can): each trial of its
+// table must be of this case at its factor, as its directory's record says, and judged by the same
+// displacement limit. Its directories of trials it did not finish are removed (they run again).
+std::string continue_earlier(const std::filesystem::path& out, const CaseConfig& config, double limit,
+                             const std::vector<StrengthTrial>& earlier) {
+  namespace fs = std::filesystem;
+  for (const auto& t : earlier) {
+    const fs::path dir = trial_directory(out, t.factor);
+    if (std::abs(t.displacement_limit - limit) > 1e-12 * limit)
+      return fmt::format("the analysis in {} judged its trials by a displacement of {} m, this one by {} m: continue it "
+                         "with the same --displacement, or start anew with --overwrite",
+                         out.string(), t.displacement_limit, limit);
+    const std::string recorded = recorded_case(dir);
+    if (recorded.empty())
+      return fmt::format("{}: no {} there, the record of the trial at F = {} that {} lists: start anew with --overwrite",
+                         dir.string(), case_record_name, t.factor, table_name);
+    if (recorded != reduced_strength(config, t.factor).as_run + "\n")
+      return fmt::format("the analysis in {} is of another case than this one (its trial at F = {} ran the case in {} "
+                         "with other keys or values): continue it with the same case and --set, or start anew with "
+                         "--overwrite",
+                         out.string(), t.factor, (dir / case_record_name).string());
+  }
+  std::error_code ec;
+  for (const auto& entry : fs::directory_iterator(out, ec)) {
+    const std::string name = entry.path().filename().string();
+    const bool listed = std::any_of(earlier.begin(), earlier.end(), [&](const StrengthTrial& t) {
+      return trial_directory(".", t.factor).filename().string() == name;
+    });
+    if (name.starts_with("F_") && !listed && !run_files_in(entry.path(), {}).empty()) {
+      fmt::print("{}: a trial the earlier analysis did not finish; it runs again if the search reaches it\n",
+                 entry.path().string());
+      fs::remove_all(entry.path(), ec);
+    }
+  }
+  return {};
+}
+
+// The earlier trials, rank 0's, on every rank: the search must be the same on all.
+std::vector<StrengthTrial> shared_trials(MPI_Comm comm, const std::vector<StrengthTrial>& mine) {
+  constexpr int fields = 9;
+  long count = long(mine.size());
+  MPI_Bcast(&count, 1, MPI_LONG, 0, comm);
+  std::vector<double> flat(size_t(count) * fields);
+  for (size_t k = 0; k < mine.size(); ++k) {
+    const auto& t = mine[k];
+    const double row[fields] = {t.factor, double(t.fails), double(t.diverged), t.largest_displacement,
+                                t.displacement_limit, t.time, double(t.steps), double(t.unconverged_steps), t.wall_seconds};
+    std::copy(row, row + fields, flat.begin() + long(k) * fields);
+  }
+  MPI_Bcast(flat.data(), int(flat.size()), MPI_DOUBLE, 0, comm);
+  std::vector<StrengthTrial> trials(static_cast<size_t>(count));
+  for (size_t k = 0; k < trials.size(); ++k) {
+    const double* row = flat.data() + k * fields;
+    auto& t = trials[k];
+    t.factor = row[0];
+    t.fails = row[1] != 0.0;
+    t.diverged = row[2] != 0.0;
+    t.largest_displacement = row[3];
+    t.displacement_limit = row[4];
+    t.time = row[5];
+    t.steps = long(row[6]);
+    t.unconverged_steps = long(row[7]);
+    t.wall_seconds = row[8];
+    if (t.diverged) t.divergence = k < mine.size() ? mine[k].divergence : "diverged in the earlier analysis";
+  }
+  return trials;
 }
 
 }  // namespace
 
 int run_stability(const std::string& case_file, const std::vector<std::string>& overrides, std::string out_dir,
-                  bool overwrite, const StrengthReductionSettings& settings) {
+                  bool overwrite, bool restart, const StrengthReductionSettings& settings) {
   const CaseConfig config = load_case(case_file, overrides);
   check_solver_options(config);
   // A case with nothing to reduce, and the first trial's simulation, made and dropped before the
   // directory is touched: it checks what the case file alone cannot, and PETSc, which refuses an
   // option it does not know by ending the process, reads the solvers' options there (as a run's does).
-  Simulation(PETSC_COMM_WORLD, reduced_strength(config, settings.first_factor), "");
+  // The displacement limit comes from its mesh.
+  const double limit = [&] {
+    Simulation first(PETSC_COMM_WORLD, reduced_strength(config, settings.first_factor), "");
+    return settings.displacement_limit > 0.0 ? settings.displacement_limit : first.soil()->moved_distance();
+  }();
   if (out_dir.empty()) out_dir = default_output_directory(case_file, "_stability").string();
   int rank;
   MPI_Comm_rank(PETSC_COMM_WORLD, &rank);
@@ -68,9 +211,12 @@ int run_stability(const std::string& case_file, const std::vector<std::string>& 
   RunLock lock;
   std::string problem;
   bool set_aside = false;
+  std::vector<StrengthTrial> earlier;  // an earlier analysis's trials, continued (restart)
   if (rank == 0) {
     std::error_code ec;
-    if (std::filesystem::exists(out_dir, ec) && !std::filesystem::is_directory(out_dir, ec))
+    if (restart && !std::filesystem::is_directory(out_dir, ec))
+      problem = fmt::format("no analysis to continue in {}: no such directory", out_dir);
+    else if (std::filesystem::exists(out_dir, ec) && !std::filesystem::is_directory(out_dir, ec))
       problem = fmt::format("-o {}: not a directory", out_dir);
     else if (problem = inside_a_runs_own_directory(out_dir); !problem.empty()) {
     }
@@ -82,21 +228,28 @@ int run_stability(const std::string& case_file, const std::vector<std::string>& 
                             "aside and was stopped before its first trial ended: move them back into {} (or remove "
                             "{}), then run again",
                             out_dir, aside.string(), out_dir, aside.string());
-    else if (const auto earlier = earlier_analysis(out_dir); !earlier.empty()) {
+    else if (restart) {
+      earlier = read_table(std::filesystem::path(out_dir) / table_name, problem);
+      if (problem.empty()) problem = continue_earlier(out_dir, config, limit, earlier);
+    } else if (const auto found = earlier_analysis(out_dir); !found.empty()) {
       if (!overwrite)
-        problem = fmt::format("{} holds an earlier analysis ({}): replace it with --overwrite, or choose another "
-                              "directory with -o",
-                              out_dir, earlier.front().string());
-      else if (problem = set_aside_run(out_dir, earlier); problem.empty())
+        problem = fmt::format("{} holds an earlier analysis ({}): continue it with --restart, replace it with "
+                              "--overwrite, or choose another directory with -o",
+                              out_dir, found.front().string());
+      else if (problem = set_aside_run(out_dir, found); problem.empty())
         set_aside = true;
     }
   }
   if (auto text = first_failure(PETSC_COMM_WORLD, problem); !text.empty()) throw CaseError(text);
+  if (restart) earlier = shared_trials(PETSC_COMM_WORLD, earlier);
   std::vector<std::string> advice;  // warnings on the case's choices, which a failure may come from
   if (rank == 0) {
     fmt::print("granflow: factor of safety of {} by strength reduction (C / F, tan(phi) / F), each trial to t = {} s, "
-               "output in {}\n",
-               config.title, config.time.end, out_dir);
+               "output in {}{}\n",
+               config.title, config.time.end, out_dir,
+               restart ? fmt::format(", continuing the analysis there ({} trial{} finished)", earlier.size(),
+                                     earlier.size() == 1 ? "" : "s")
+                       : std::string());
     std::fflush(stdout);
     advice = case_advice(config);
     for (const auto& line : advice) fmt::print(stderr, "warning: {}\n", line);
@@ -107,19 +260,31 @@ int run_stability(const std::string& case_file, const std::vector<std::string>& 
   };
   StrengthReductionResult r;
   std::vector<StrengthTrial> finished;
+  // The table: the trials of this search, then those of the earlier analysis it has not reached (a
+  // search continued to a coarser tolerance), which stay in their directories.
+  auto table = [&](const std::vector<StrengthTrial>& visited) {
+    std::vector<StrengthTrial> rows = visited;
+    for (const auto& e : earlier)
+      if (std::none_of(visited.begin(), visited.end(), [&](const StrengthTrial& t) { return t.factor == e.factor; }))
+        rows.push_back(e);
+    write_table(std::filesystem::path(out_dir) / table_name, rows);
+  };
   try {
-    r = factor_of_safety(PETSC_COMM_WORLD, config, out_dir, settings, [&](const StrengthTrial& t) {
-        if (rank != 0) return;
-        under_way();
-        finished.push_back(t);
-        write_table(std::filesystem::path(out_dir) / table_name, finished);
-        fmt::print("F = {}: {} (largest displacement {:.3g} m at t = {:.4g} s; {} steps{}, {:.1f} s)\n", t.factor,
-                   t.diverged ? "fails (diverged)" : t.fails ? "fails" : "stands", t.largest_displacement, t.time,
-                   t.steps,
-                   t.unconverged_steps > 0 ? fmt::format(", {} of them unconverged", t.unconverged_steps) : std::string(),
-                   t.wall_seconds);
-        std::fflush(stdout);
-      });
+    r = factor_of_safety(
+        PETSC_COMM_WORLD, config, out_dir, settings,
+        [&](const StrengthTrial& t) {
+          if (rank != 0) return;
+          under_way();
+          finished.push_back(t);
+          table(finished);
+          fmt::print("F = {}: {} (largest displacement {:.3g} m at t = {:.4g} s; {} steps{}, {:.1f} s{})\n", t.factor,
+                     t.diverged ? "fails (diverged)" : t.fails ? "fails" : "stands", t.largest_displacement, t.time,
+                     t.steps,
+                     t.unconverged_steps > 0 ? fmt::format(", {} of them unconverged", t.unconverged_steps) : std::string(),
+                     t.wall_seconds, t.earlier ? "; from the earlier analysis" : "");
+          std::fflush(stdout);
+        },
+        earlier);
   } catch (...) {
     if (set_aside) {  // the new analysis's trials go, and the earlier one comes back
       std::error_code ec;
@@ -129,7 +294,7 @@ int run_stability(const std::string& case_file, const std::vector<std::string>& 
     throw;
   }
   under_way();  // a search of no trial
-  if (rank == 0) write_table(std::filesystem::path(out_dir) / table_name, r.trials);
+  if (rank == 0) table(r.trials);
   if (!r.bracketed()) {
     // Trials that all diverged say nothing of the soil's strength: the solution broke down at every
     // factor, down to the strongest soil tried, and the first trial's message says where.

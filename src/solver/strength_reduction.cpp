@@ -141,6 +141,7 @@ StrengthTrial strength_trial(MPI_Comm comm, const CaseConfig& config, const std:
     trial.divergence = e.what();
   }
   trial.largest_displacement = sim.soil()->largest_displacement();
+  trial.displacement_limit = limit;
   trial.fails = trial.diverged || trial.largest_displacement > limit;
   trial.time = sim.time();
   trial.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -149,13 +150,21 @@ StrengthTrial strength_trial(MPI_Comm comm, const CaseConfig& config, const std:
 
 StrengthReductionResult factor_of_safety(MPI_Comm comm, const CaseConfig& config, const std::filesystem::path& out,
                                          const StrengthReductionSettings& settings,
-                                         const std::function<void(const StrengthTrial&)>& on_trial) {
+                                         const std::function<void(const StrengthTrial&)>& on_trial,
+                                         const std::vector<StrengthTrial>& earlier) {
   reduced_strength(config, settings.first_factor);  // the case's own errors, before any trial runs
   if (!(settings.tolerance > 0.0))
     throw CaseError(fmt::format("strength reduction: the tolerance {} is not a positive number", settings.tolerance));
   StrengthReductionResult result;
   auto trial = [&](double factor) {
-    const StrengthTrial t = strength_trial(comm, config, out, factor, settings.displacement_limit);
+    const auto known = std::find_if(earlier.begin(), earlier.end(), [factor](const StrengthTrial& e) { return e.factor == factor; });
+    StrengthTrial t;
+    if (known != earlier.end()) {
+      t = *known;
+      t.earlier = true;
+    } else {
+      t = strength_trial(comm, config, out, factor, settings.displacement_limit);
+    }
     result.trials.push_back(t);
     if (t.fails) result.fails_at = std::min(result.fails_at, factor);
     else result.stands_at = std::max(result.stands_at, factor);

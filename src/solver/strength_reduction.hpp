@@ -29,12 +29,14 @@ struct StrengthTrial {
   bool diverged = false;              // the run stopped on divergence (counted as failing)
   std::string divergence;             // its message, when it diverged
   double largest_displacement = 0.0;  // m, of the soil (cells with c >= 0.5) when the trial ended
+  double displacement_limit = 0.0;    // m, the displacement past which it counted as failing
   double time = 0.0;                  // s, when it ended: time.end, or earlier once the soil moved past the limit
   long steps = 0;
   // Steps whose outer iterations stopped at numerics.outer_iterations before outer_tolerance. Near its
   // limit a soil converges slowly, and a viscosity that lags makes it stand a little longer.
   long unconverged_steps = 0;
   double wall_seconds = 0.0;
+  bool earlier = false;  // taken from an earlier analysis of the same case (stability --restart), not run again
 };
 
 struct StrengthReductionSettings {
@@ -61,10 +63,13 @@ StrengthTrial strength_trial(MPI_Comm comm, const CaseConfig& config, const std:
 
 // Runs the trials (collective on comm), each into out/F_<factor> (no files if out is empty): from
 // first_factor, doubling or halving until one stands and one fails, then bisecting. on_trial is
-// called after each trial, on every rank.
+// called after each trial, on every rank. A factor that `earlier` holds a trial of (an analysis of the
+// same case, continued) is not run again: that trial is taken, marked `earlier`. The search is the
+// same either way, so an analysis stopped midway and continued tries the factors it would have.
 StrengthReductionResult factor_of_safety(MPI_Comm comm, const CaseConfig& config, const std::filesystem::path& out,
                                          const StrengthReductionSettings& settings,
-                                         const std::function<void(const StrengthTrial&)>& on_trial = {});
+                                         const std::function<void(const StrengthTrial&)>& on_trial = {},
+                                         const std::vector<StrengthTrial>& earlier = {});
 
 // A trial's output directory under out.
 std::filesystem::path trial_directory(const std::filesystem::path& out, double factor);
