@@ -61,8 +61,8 @@ LinearSolver::LinearSolver(MPI_Comm comm, const std::string& prefix, const Linea
   PetscCallAbort(comm, PCSetType(pc, s.pc_type.c_str()));
   PetscCallAbort(comm, KSPSetTolerances(ksp_, s.rtol, s.atol, PETSC_DEFAULT, s.max_iterations));
   PetscCallAbort(comm, KSPSetInitialGuessNonzero(ksp_, PETSC_TRUE));
-  if (s.pc_type == "lu")  // a parallel direct solver, unless the user names another
-    set_default_option("-" + prefix + "_pc_factor_mat_solver_type", "mumps");
+  if (const char* package = default_factorisation_package(s))  // unless the user names another
+    set_default_option("-" + prefix + "_pc_factor_mat_solver_type", package);
   if (s.pc_type == "hypre") {
     // BoomerAMG with a symmetric smoother, so that it is a valid preconditioner for CG, and the
     // cheaper HMIS coarsening; each is only a default that the user's own options override.

@@ -21,6 +21,12 @@ struct LinearSolverSettings {
   int max_reuse = 1;
 };
 
+// The factorisation package a solver of these settings takes unless PETSc's options name another
+// (-PREFIX_pc_factor_mat_solver_type): MUMPS, a parallel one, for pc_type = "lu"; none (nullptr) otherwise.
+inline const char* default_factorisation_package(const LinearSolverSettings& settings) {
+  return settings.pc_type == "lu" ? "mumps" : nullptr;
+}
+
 // Whether granflow itself set the PETSc option `name` (without its '-') as a solver's default:
 // the user's --petsc may make another preconditioner read none of them, which is no mistake.
 bool is_default_petsc_option(const std::string& name);

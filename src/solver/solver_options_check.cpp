@@ -62,12 +62,36 @@ PetscOptions options_without_viewers(std::vector<std::string>* left_out = nullpt
   return options;
 }
 
+// The solver `prefix` as LinearSolver makes it, on `options` (a copy of PETSc's, so that checking reads
+// none of the run's): its methods and tolerances, and the default factorisation package
+// (default_factorisation_package) set in the copy where the options name none, its name then added to
+// `defaults`. *ksp is the caller's to destroy, however far the making came; the first error is returned.
+PetscErrorCode make_solver_on(PetscOptions options, const std::string& prefix, const LinearSolverSettings& s, KSP* ksp,
+                              std::set<std::string>& defaults) {
+  PC pc = nullptr;
+  PetscErrorCode error = KSPCreate(PETSC_COMM_SELF, ksp);
+  if (!error) error = PetscObjectSetOptions(reinterpret_cast<PetscObject>(*ksp), options);
+  if (!error) error = KSPSetOptionsPrefix(*ksp, (prefix + "_").c_str());
+  if (!error) error = KSPSetType(*ksp, s.ksp_type.c_str());
+  if (!error) error = KSPGetPC(*ksp, &pc);
+  if (!error) error = PetscObjectSetOptions(reinterpret_cast<PetscObject>(pc), options);
+  if (!error) error = PCSetType(pc, s.pc_type.c_str());
+  if (!error) error = KSPSetTolerances(*ksp, s.rtol, s.atol, PETSC_DEFAULT, s.max_iterations);
+  if (const char* package = default_factorisation_package(s); !error && package) {
+    const std::string option = "-" + prefix + "_pc_factor_mat_solver_type";
+    PetscBool given = PETSC_FALSE;
+    error = PetscOptionsHasName(options, nullptr, option.c_str(), &given);
+    if (!error && !given) error = PetscOptionsSetValue(options, option.c_str(), package);
+    if (!error && !given) defaults.insert(option.substr(1));
+  }
+  return error;
+}
+
 // What PETSc's options (--petsc, an options file, PETSC_OPTIONS) make of a solver's factorisation that
 // PETSc accepts there but cannot carry out: a Cholesky factor of a matrix that is not symmetric (the
 // case file refuses it as pc_type), a factorisation package PETSc does not have, or one that does not
 // make this factor of this matrix (MUMPS no ILU, a serial package on several ranks). Empty if none.
-// case_pc_type: the case file's, whose "lu" makes MUMPS the package unless the options name another.
-std::string factorisation_problem(PC pc, const std::string& prefix, const std::string& case_pc_type) {
+std::string factorisation_problem(PC pc, const std::string& prefix) {
   PCType type = nullptr;
   PCGetType(pc, &type);
   if (!type) return {};
@@ -82,7 +106,6 @@ std::string factorisation_problem(PC pc, const std::string& prefix, const std::s
   if (factor == MAT_FACTOR_NONE) return {};
   MatSolverType package = nullptr;
   PCFactorGetMatSolverType(pc, &package);
-  if (!package && case_pc_type == "lu") package = MATSOLVERMUMPS;  // as the solver will set it (below)
   if (!package) return {};
   MatInitializePackage();
   int ranks = 1;
@@ -110,18 +133,11 @@ std::string factorisation_problem(PC pc, const std::string& prefix, const std::s
 
 std::string petsc_options_problem(const std::string& prefix, const LinearSolverSettings& s) {
   PetscOptions options = options_without_viewers();
-  KSP ksp;
-  PC pc;
-  KSPCreate(PETSC_COMM_SELF, &ksp);
-  PetscObjectSetOptions(reinterpret_cast<PetscObject>(ksp), options);
-  KSPSetOptionsPrefix(ksp, (prefix + "_").c_str());
-  KSPSetType(ksp, s.ksp_type.c_str());
-  KSPGetPC(ksp, &pc);
-  PetscObjectSetOptions(reinterpret_cast<PetscObject>(pc), options);
-  PCSetType(pc, s.pc_type.c_str());
-  KSPSetTolerances(ksp, s.rtol, s.atol, PETSC_DEFAULT, s.max_iterations);
+  KSP ksp = nullptr;
+  std::set<std::string> defaults;
   PetscPushErrorHandler(PetscReturnErrorHandler, nullptr);  // what PETSc refuses is told in one line, below
-  const PetscErrorCode error = KSPSetFromOptions(ksp);
+  PetscErrorCode error = make_solver_on(options, prefix, s, &ksp, defaults);
+  if (!error) error = KSPSetFromOptions(ksp);
   PetscPopErrorHandler();
   std::string problem;
   if (error) {
@@ -130,7 +146,9 @@ std::string petsc_options_problem(const std::string& prefix, const LinearSolverS
     problem = fmt::format("linear solver '{}': PETSc refuses its options: {}", prefix,
                           specific && *specific ? std::string(specific) : petsc_error_text(error));
   } else {
-    problem = factorisation_problem(pc, prefix, s.pc_type);
+    PC pc = nullptr;
+    KSPGetPC(ksp, &pc);
+    problem = factorisation_problem(pc, prefix);
     if (problem.empty()) problem = tolerance_problem(ksp, prefix);
   }
   KSPDestroy(&ksp);
@@ -146,22 +164,9 @@ std::set<std::string> options_left_by_solvers(const std::vector<std::pair<std::s
   PetscPushErrorHandler(PetscReturnErrorHandler, nullptr);  // a solver that cannot be set up judges nothing
   for (const auto& [prefix, s] : made) {
     KSP ksp = nullptr;  // destroyed below however far the set-up came
-    PC pc = nullptr;
     Mat matrix = nullptr;
     const PetscInt block = prefix == "coupled" ? 3 : 1;  // u, v, p per cell, as the coupled system's
-    PetscErrorCode error = KSPCreate(PETSC_COMM_SELF, &ksp);
-    if (!error) error = PetscObjectSetOptions(reinterpret_cast<PetscObject>(ksp), options);
-    if (!error) error = KSPSetOptionsPrefix(ksp, (prefix + "_").c_str());
-    if (!error) error = KSPSetType(ksp, s.ksp_type.c_str());
-    if (!error) error = KSPGetPC(ksp, &pc);
-    if (!error) error = PetscObjectSetOptions(reinterpret_cast<PetscObject>(pc), options);
-    if (!error) error = PCSetType(pc, s.pc_type.c_str());
-    if (!error && s.pc_type == "lu") {  // the run's default package (LinearSolver), unless the options name another
-      const std::string package = "-" + prefix + "_pc_factor_mat_solver_type";
-      PetscBool given = PETSC_FALSE;
-      PetscOptionsHasName(options, nullptr, package.c_str(), &given);
-      if (!given && !PetscOptionsSetValue(options, package.c_str(), "mumps")) defaults.insert(package.substr(1));
-    }
+    PetscErrorCode error = make_solver_on(options, prefix, s, &ksp, defaults);
     if (!error) error = KSPSetFromOptions(ksp);
     // Set up on a small diagonal matrix: a factorisation package and AMG read their own options there.
     if (!error) error = MatCreateSeqAIJ(PETSC_COMM_SELF, 2 * block, 2 * block, 1, nullptr, &matrix);
