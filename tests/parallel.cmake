@@ -78,3 +78,12 @@ add_test(NAME lithostatic_floor_2_ranks
 set_tests_properties(lithostatic_floor_2_ranks PROPERTIES
   LABELS parallel TIMEOUT 120
   ENVIRONMENT "OMPI_ALLOW_RUN_AS_ROOT=1;OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1;OMPI_MCA_rmaps_base_oversubscribe=1")
+
+# granflow stability --restart on 2 ranks: the earlier trials, read by rank 0, are every rank's.
+add_test(NAME cli_stability_restart_2_ranks
+         COMMAND sh ${CMAKE_CURRENT_SOURCE_DIR}/stability_restart.sh $<TARGET_FILE:granflow>
+                 ${CMAKE_SOURCE_DIR}/cases/slope_griffiths_lane1999.toml ${CMAKE_CURRENT_BINARY_DIR}/stability_restart_2_ranks
+                 ${MPIRUN} -np 2 --oversubscribe)
+set_tests_properties(cli_stability_restart_2_ranks PROPERTIES
+  LABELS parallel TIMEOUT 300
+  ENVIRONMENT "OMPI_ALLOW_RUN_AS_ROOT=1;OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1;OMPI_MCA_rmaps_base_oversubscribe=1")

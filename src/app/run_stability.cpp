@@ -55,14 +55,36 @@ void write_table(const std::filesystem::path& path, const std::vector<StrengthTr
   });
 }
 
-// The trials of an earlier analysis, from its table; a problem in `problem` (the table missing, of
-// another form, or a row that does not read).
-std::vector<StrengthTrial> read_table(const std::filesystem::path& path, std::string& problem) {
+// A line of a text file without the carriage return of a CRLF line end.
+bool read_line(std::istream& in, std::string& line) {
+  if (!std::getline(in, line)) return false;
+  if (!line.empty() && line.back() == '\r') line.pop_back();
+  return true;
+}
+
+// The trials of the earlier analysis in `out`, from its table; a problem in `problem` (no analysis
+// there, a table of another form, or a row that does not read). An analysis stopped in its first trial
+// has trial directories and no table yet: none of its trials finished.
+std::vector<StrengthTrial> read_table(const std::filesystem::path& out, std::string& problem) {
+  namespace fs = std::filesystem;
+  const fs::path path = out / table_name;
   std::vector<StrengthTrial> trials;
+  std::error_code ec;
+  if (!fs::exists(path, ec)) {
+    if (earlier_analysis(out).empty())
+      problem = fmt::format("no analysis to continue in {}: neither {} nor a trial's directory (F_<factor>) is there{}",
+                            out.string(), table_name,
+                            run_files_in(out, {}).empty() ? "" : " (it holds the files of a run, not of an analysis)");
+    return trials;
+  }
   std::ifstream in(path);
   std::string line;
-  if (!in || !std::getline(in, line)) {
-    problem = fmt::format("no analysis to continue in {}: no {} there", path.parent_path().string(), table_name);
+  if (!in) {
+    problem = fmt::format("{}: cannot be read", path.string());
+    return trials;
+  }
+  if (!read_line(in, line)) {
+    problem = fmt::format("{}: empty, not the table of an analysis; start anew with --overwrite", path.string());
     return trials;
   }
   if (line != table_header) {
@@ -71,7 +93,8 @@ std::vector<StrengthTrial> read_table(const std::filesystem::path& path, std::st
                           path.string(), table_header);
     return trials;
   }
-  for (int row = 2; std::getline(in, line); ++row) {
+  for (int row = 2; read_line(in, line); ++row) {
+    if (line.empty()) continue;
     std::vector<std::string> cells;
     std::stringstream text(line);
     for (std::string cell; std::getline(text, cell, ',');) cells.push_back(cell);
@@ -122,10 +145,12 @@ std::string recorded_case(const std::filesystem::path& trial) {
 
 // Why the earlier analysis in out cannot be continued by this one (empty if it can): each trial of its
 // table must be of this case at its factor, as its directory's record says, and judged by the same
-// displacement limit. Its directories of trials it did not finish are removed (they run again).
+// displacement limit. A listed trial whose directory or record is gone is dropped from `earlier`, and
+// directories of trials not listed (not finished) are removed: they run again if the search reaches them.
 std::string continue_earlier(const std::filesystem::path& out, const CaseConfig& config, double limit,
-                             const std::vector<StrengthTrial>& earlier) {
+                             std::vector<StrengthTrial>& earlier) {
   namespace fs = std::filesystem;
+  std::vector<StrengthTrial> kept;
   for (const auto& t : earlier) {
     const fs::path dir = trial_directory(out, t.factor);
     if (std::abs(t.displacement_limit - limit) > 1e-12 * limit)
@@ -133,15 +158,19 @@ std::string continue_earlier(const std::filesystem::path& out, const CaseConfig&
                          "with the same --displacement, or start anew with --overwrite",
                          out.string(), t.displacement_limit, limit);
     const std::string recorded = recorded_case(dir);
-    if (recorded.empty())
-      return fmt::format("{}: no {} there, the record of the trial at F = {} that {} lists: start anew with --overwrite",
-                         dir.string(), case_record_name, t.factor, table_name);
+    if (recorded.empty()) {
+      fmt::print("{}: the trial at F = {} that {} lists has no {} there; it runs again if the search reaches it\n",
+                 dir.string(), t.factor, table_name, case_record_name);
+      continue;
+    }
     if (recorded != reduced_strength(config, t.factor).as_run + "\n")
       return fmt::format("the analysis in {} is of another case than this one (its trial at F = {} ran the case in {} "
                          "with other keys or values): continue it with the same case and --set, or start anew with "
                          "--overwrite",
                          out.string(), t.factor, (dir / case_record_name).string());
+    kept.push_back(t);
   }
+  earlier = std::move(kept);
   std::error_code ec;
   for (const auto& entry : fs::directory_iterator(out, ec)) {
     const std::string name = entry.path().filename().string();
@@ -214,10 +243,10 @@ int run_stability(const std::string& case_file, const std::vector<std::string>& 
   std::vector<StrengthTrial> earlier;  // an earlier analysis's trials, continued (restart)
   if (rank == 0) {
     std::error_code ec;
-    if (restart && !std::filesystem::is_directory(out_dir, ec))
-      problem = fmt::format("no analysis to continue in {}: no such directory", out_dir);
-    else if (std::filesystem::exists(out_dir, ec) && !std::filesystem::is_directory(out_dir, ec))
+    if (std::filesystem::exists(out_dir, ec) && !std::filesystem::is_directory(out_dir, ec))
       problem = fmt::format("-o {}: not a directory", out_dir);
+    else if (restart && !std::filesystem::is_directory(out_dir, ec))
+      problem = fmt::format("no analysis to continue in {}: no such directory", out_dir);
     else if (problem = inside_a_runs_own_directory(out_dir); !problem.empty()) {
     }
     else if (std::filesystem::create_directories(out_dir, ec); ec)
@@ -229,8 +258,12 @@ int run_stability(const std::string& case_file, const std::vector<std::string>& 
                             "{}), then run again",
                             out_dir, aside.string(), out_dir, aside.string());
     else if (restart) {
-      earlier = read_table(std::filesystem::path(out_dir) / table_name, problem);
-      if (problem.empty()) problem = continue_earlier(out_dir, config, limit, earlier);
+      try {  // a failure here is every rank's, through first_failure below
+        earlier = read_table(out_dir, problem);
+        if (problem.empty()) problem = continue_earlier(out_dir, config, limit, earlier);
+      } catch (const std::exception& e) {
+        problem = e.what();
+      }
     } else if (const auto found = earlier_analysis(out_dir); !found.empty()) {
       if (!overwrite)
         problem = fmt::format("{} holds an earlier analysis ({}): continue it with --restart, replace it with "

@@ -572,9 +572,10 @@ NumericsSettings read_numerics(TableReader& top, bool granular, int band,
                           : coupling == "piso"     ? PressureCoupling::piso
                                                    : PressureCoupling::coupled;
   if (n.has("rotational_coefficient"))
-    throw CaseError(fmt::format("{}: removed; the projection's rotational pressure correction diverged wherever the "
-                                "step is above about rho h^2 / mu, even at a constant viscosity, and sped nothing up "
-                                "below it (docs/method.md). Leave the key out",
+    throw CaseError(fmt::format("{}: removed; the projection's rotational pressure correction diverged at steps of two "
+                                "to twenty times rho h^2 / mu and more (the more, the smaller the coefficient), even "
+                                "at a constant viscosity, and sped nothing up where it held (docs/method.md). Leave "
+                                "the key out",
                                 n.key_path("rotational_coefficient")));
   num.blending = n.number("blending", num.blending);
   n.require_range("blending", num.blending, 0.0, 1.0);

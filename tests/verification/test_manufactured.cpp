@@ -155,16 +155,22 @@ TEST(ManufacturedSolution, CoupledSolveSecondOrderWithoutTheTransposeStress) {
 }
 
 // PISO without the momentum predictor (numerics.momentum_predictor = false: the pressure correctors
-// start from the last velocity): the same steady solution, second order.
+// start from the last velocity), at a constant viscosity: the same steady solution, second order. That
+// the key takes effect shows in the steps to get there: the correctors alone relax the viscous terms
+// as a Jacobi sweep would, and took 1942 steps on 32 cells against the predictor's 734.
 TEST(ManufacturedSolution, PisoWithoutMomentumPredictorSecondOrder) {
   const int sizes[3] = {8, 16, 32};
   test::VelocityPressureErrors e[3];
   contrast_decades = 0.0;
   for (int k = 0; k < 3; ++k)
     e[k] = solve_on(sizes[k], "", "pressure_coupling = \"piso\"\nmomentum_predictor = false");
+  const auto predicted = solve_on(sizes[2], "", "pressure_coupling = \"piso\"");
   contrast_decades = 4.0;
   test::expect_second_order("PISO without predictor", sizes, e, "u", "v");
-  std::printf("PISO without predictor: %ld, %ld, %ld steps\n", e[0].steps, e[1].steps, e[2].steps);
+  std::printf("PISO without predictor: %ld, %ld, %ld steps; with it on %d cells %ld\n", e[0].steps, e[1].steps,
+              e[2].steps, sizes[2], predicted.steps);
+  EXPECT_GT(e[2].steps, 2 * predicted.steps);
+  EXPECT_NEAR(e[2].u, predicted.u, 1e-3 * predicted.u);  // the same steady solution
 }
 
 // Graded cells: widths growing 3-fold from west to east and halving from south to north (the same

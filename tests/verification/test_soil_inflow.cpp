@@ -91,7 +91,7 @@ TEST(SoilInflow, ThroughAnOpenSideConservedAndAsFastAsThePlug) {
   EXPECT_NEAR(coarse.conserved, 0.0, 1e-12);
   EXPECT_NEAR(fine.conserved, 0.0, 1e-12);
   EXPECT_GT(fine.let_in, 0.2 * slug);  // water did come in: a fifth of the slug
-  EXPECT_NEAR(fine.let_in, exact, 2e-3 * exact);
+  EXPECT_NEAR(fine.let_in, exact, 3e-3 * exact);  // measured 1.9e-3
   // First order in the step: five times shorter steps, some five times smaller an error.
   EXPECT_GT(std::abs(coarse.let_in - exact) / std::abs(fine.let_in - exact), 3.0);
 }
