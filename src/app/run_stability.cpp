@@ -147,8 +147,9 @@ std::string recorded_case(const std::filesystem::path& trial) {
 // table must be of this case at its factor, as its directory's record says, and judged by the same
 // displacement limit. A listed trial whose directory or record is gone is dropped from `earlier`, and
 // directories of trials not listed (not finished) are removed: they run again if the search reaches them.
+// What was dropped or removed is said in `notes`.
 std::string continue_earlier(const std::filesystem::path& out, const CaseConfig& config, double limit,
-                             std::vector<StrengthTrial>& earlier) {
+                             std::vector<StrengthTrial>& earlier, std::vector<std::string>& notes) {
   namespace fs = std::filesystem;
   std::vector<StrengthTrial> kept;
   for (const auto& t : earlier) {
@@ -159,8 +160,8 @@ std::string continue_earlier(const std::filesystem::path& out, const CaseConfig&
                          out.string(), t.displacement_limit, limit);
     const std::string recorded = recorded_case(dir);
     if (recorded.empty()) {
-      fmt::print("{}: the trial at F = {} that {} lists has no {} there; it runs again if the search reaches it\n",
-                 dir.string(), t.factor, table_name, case_record_name);
+      notes.push_back(fmt::format("{}: the trial at F = {} that {} lists has no {} there; it runs again if the search "
+                                  "reaches it", dir.string(), t.factor, table_name, case_record_name));
       continue;
     }
     if (recorded != reduced_strength(config, t.factor).as_run + "\n")
@@ -178,8 +179,8 @@ std::string continue_earlier(const std::filesystem::path& out, const CaseConfig&
       return trial_directory(".", t.factor).filename().string() == name;
     });
     if (name.starts_with("F_") && !listed && !run_files_in(entry.path(), {}).empty()) {
-      fmt::print("{}: a trial the earlier analysis did not finish; it runs again if the search reaches it\n",
-                 entry.path().string());
+      notes.push_back(fmt::format("{}: a trial the earlier analysis did not finish; it runs again if the search "
+                                  "reaches it", entry.path().string()));
       fs::remove_all(entry.path(), ec);
     }
   }
@@ -241,6 +242,7 @@ int run_stability(const std::string& case_file, const std::vector<std::string>& 
   std::string problem;
   bool set_aside = false;
   std::vector<StrengthTrial> earlier;  // an earlier analysis's trials, continued (restart)
+  std::vector<std::string> notes;      // and what of it runs again
   if (rank == 0) {
     std::error_code ec;
     if (std::filesystem::exists(out_dir, ec) && !std::filesystem::is_directory(out_dir, ec))
@@ -260,7 +262,7 @@ int run_stability(const std::string& case_file, const std::vector<std::string>& 
     else if (restart) {
       try {  // a failure here is every rank's, through first_failure below
         earlier = read_table(out_dir, problem);
-        if (problem.empty()) problem = continue_earlier(out_dir, config, limit, earlier);
+        if (problem.empty()) problem = continue_earlier(out_dir, config, limit, earlier, notes);
       } catch (const std::exception& e) {
         problem = e.what();
       }
@@ -283,6 +285,7 @@ int run_stability(const std::string& case_file, const std::vector<std::string>& 
                restart ? fmt::format(", continuing the analysis there ({} trial{} finished)", earlier.size(),
                                      earlier.size() == 1 ? "" : "s")
                        : std::string());
+    for (const auto& note : notes) fmt::print("{}\n", note);
     std::fflush(stdout);
     advice = case_advice(config);
     for (const auto& line : advice) fmt::print(stderr, "warning: {}\n", line);
