@@ -620,7 +620,8 @@ NumericsSettings read_numerics(TableReader& top, bool granular, int band,
   without_effect("krylov_iterations", coupled && num.reuse_first_factorisation && num.outer_iterations > 1,
                  "used only with numerics.later_iterations = \"first_factorisation\", the coupled solve and more "
                  "than one outer iteration");
-  num.reuse_first_factorisation = num.reuse_first_factorisation && coupled;
+  // Of no effect, so bound by nothing: its solver's requirements (read_solvers) do not apply either.
+  num.reuse_first_factorisation = num.reuse_first_factorisation && coupled && num.outer_iterations > 1;
   without_effect("pressure_correctors", num.pressure_coupling == PressureCoupling::piso,
                  "used only with numerics.pressure_coupling = \"piso\"");
   without_effect("momentum_predictor", num.pressure_coupling == PressureCoupling::piso,

@@ -40,7 +40,7 @@ struct LineSample {
 };
 
 struct OutputSettings {
-  double interval = 0.0;       // simulated time between outputs; 0: only the final state
+  double interval = 0.0;       // simulated time between outputs; 0: only the start and the end
   std::vector<double> times;   // extra output times
   bool fields = true;          // ParaView series
   bool checkpoints = true;     // a checkpoint at each output time, to restart from (granflow run --restart)

@@ -808,6 +808,9 @@ TEST(CaseFile, FirstFactorisationIsWarnedOfWhereUnusedAndRefusedWhereInexact) {
                                             "numerics.outer_iterations = 1"), std::string::npos) << one.keys_without_effect[0];
   EXPECT_NE(one.keys_without_effect[1].find("numerics.krylov_iterations: used only with"), std::string::npos)
       << one.keys_without_effect[1];
+  EXPECT_FALSE(one.flow.numerics.reuse_first_factorisation);
+  // Of no effect there, it binds the coupled solver to nothing.
+  EXPECT_EQ(error_of(minimal, {coupled, first, "numerics.outer_iterations=1", "solver.coupled.pc_type=\"hypre\""}), "");
   const CaseConfig own = parse_case(minimal, {coupled, "numerics.krylov_iterations=3"});
   ASSERT_EQ(own.keys_without_effect.size(), 1u);
   EXPECT_NE(own.keys_without_effect[0].find("numerics.krylov_iterations"), std::string::npos);
