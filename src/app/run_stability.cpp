@@ -7,11 +7,11 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
 #include <sstream>
 
 #include "app/run_case.hpp"
 #include "io/atomic_file.hpp"
+#include "io/text_file.hpp"
 #include "io/case_advice.hpp"
 #include "io/case_error.hpp"
 #include "io/collective_failure.hpp"
@@ -24,6 +24,8 @@ namespace granflow {
 namespace {
 
 constexpr const char* table_name = "stability.csv";
+constexpr std::size_t table_limit = std::size_t(64) << 20;    // bytes: some 500 000 trials
+constexpr std::size_t record_limit = std::size_t(256) << 20;  // as a case file may be (polygons of many vertices)
 constexpr const char* table_header =
     "factor,fails,diverged,largest_displacement_m,displacement_limit_m,time_s,steps,unconverged_steps,wall_seconds,"
     "directory";
@@ -77,12 +79,14 @@ std::vector<StrengthTrial> read_table(const std::filesystem::path& out, std::str
                             run_files_in(out, {}).empty() ? "" : " (it holds the files of a run, not of an analysis)");
     return trials;
   }
-  std::ifstream in(path);
-  std::string line;
-  if (!in) {
-    problem = fmt::format("{}: cannot be read", path.string());
+  const TextFile file = read_text_file(path, table_limit);
+  if (file.status != TextFile::Status::read) {
+    problem = fmt::format("{}: cannot be read ({})", path.string(),
+                          file.status == TextFile::Status::too_long ? "longer than any analysis's table" : file.reason);
     return trials;
   }
+  std::istringstream in(file.text);
+  std::string line;
   if (!read_line(in, line)) {
     problem = fmt::format("{}: empty, not the table of an analysis; start anew with --overwrite", path.string());
     return trials;
@@ -130,9 +134,12 @@ std::vector<StrengthTrial> read_table(const std::filesystem::path& out, std::str
   return trials;
 }
 
-// The case a trial's directory records, without the comment lines that say how it was run.
+// The case a trial's directory records, without the comment lines that say how it was run; empty if
+// it cannot be read.
 std::string recorded_case(const std::filesystem::path& trial) {
-  std::ifstream in(trial / case_record_name);
+  const TextFile file = read_text_file(trial / case_record_name, record_limit);
+  if (file.status != TextFile::Status::read) return {};
+  std::istringstream in(file.text);
   std::string line, text;
   bool header = true;
   while (std::getline(in, line)) {
