@@ -128,7 +128,6 @@ std::vector<StrengthTrial> read_table(const std::filesystem::path& out, std::str
                             path.string(), row, line);
       return {};
     }
-    if (t.diverged) t.divergence = fmt::format("diverged in the earlier analysis ({})", cells[9]);
     trials.push_back(t);
   }
   return trials;
@@ -220,7 +219,8 @@ std::vector<StrengthTrial> shared_trials(MPI_Comm comm, const std::vector<Streng
     t.steps = long(row[6]);
     t.unconverged_steps = long(row[7]);
     t.wall_seconds = row[8];
-    if (t.diverged) t.divergence = k < mine.size() ? mine[k].divergence : "diverged in the earlier analysis";
+    if (t.diverged)
+      t.divergence = fmt::format("diverged in the earlier analysis ({})", trial_directory(".", t.factor).filename().string());
   }
   return trials;
 }
