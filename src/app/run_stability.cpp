@@ -179,16 +179,15 @@ std::string continue_earlier(const std::filesystem::path& out, const CaseConfig&
   }
   earlier = std::move(kept);
   std::error_code ec;
-  for (const auto& entry : fs::directory_iterator(out, ec)) {
-    const std::string name = entry.path().filename().string();
-    const bool listed = std::any_of(earlier.begin(), earlier.end(), [&](const StrengthTrial& t) {
-      return trial_directory(".", t.factor).filename().string() == name;
-    });
-    if (name.starts_with("F_") && !listed && !run_files_in(entry.path(), {}).empty()) {
-      notes.push_back(fmt::format("{}: a trial the earlier analysis did not finish; it runs again if the search "
-                                  "reaches it", entry.path().string()));
-      fs::remove_all(entry.path(), ec);
-    }
+  for (const auto& path : earlier_analysis(out)) {  // the table and the trials' directories
+    const bool listed = path.filename() == table_name ||
+                        std::any_of(earlier.begin(), earlier.end(), [&](const StrengthTrial& t) {
+                          return trial_directory(".", t.factor).filename() == path.filename();
+                        });
+    if (listed) continue;
+    notes.push_back(fmt::format("{}: a trial the earlier analysis did not finish; it runs again if the search "
+                                "reaches it", path.string()));
+    fs::remove_all(path, ec);
   }
   return {};
 }
