@@ -270,7 +270,7 @@ interface::Shape read_shape(TableReader r, std::string* material = nullptr) {
       throw CaseError(r.key_path("material") + ": empty; name a [[soil.materials]] entry, or leave the key out for the "
                       "rheology's own soil");
   }
-  const std::string shape = r.choice("shape", "", {"box", "circle", "polygon"});
+  const std::string shape = r.choice("shape", "", {"box", "circle", "ring", "polygon"});
   interface::Shape out;
   if (shape == "box") {
     interface::Box b{r.required_pair("lower"), r.required_pair("upper")};
@@ -281,6 +281,14 @@ interface::Shape read_shape(TableReader r, std::string* material = nullptr) {
     interface::Circle c{r.required_pair("centre"), r.required_number("radius")};
     r.require_range("radius", c.radius, 1e-300, 1e300, "positive");
     out = c;
+  } else if (shape == "ring") {
+    interface::Ring ring{r.required_pair("centre"), r.required_number("inner_radius"), r.required_number("outer_radius")};
+    r.require_range("inner_radius", ring.inner_radius, 1e-300, 1e300, "positive");
+    r.require_range("outer_radius", ring.outer_radius, 1e-300, 1e300, "positive");
+    if (!(ring.outer_radius > ring.inner_radius))
+      throw CaseError(fmt::format("{}: the ring is empty (outer_radius {} must exceed inner_radius {}; a disc is shape = \"circle\")",
+                                  r.key_path("outer_radius"), ring.outer_radius, ring.inner_radius));
+    out = ring;
   } else {
     r.known_elsewhere("points_file");  // read into `points` before (read_points_files)
     out = polygon_of(r.pairs("points", 3), r.key_path("points"));

@@ -16,6 +16,10 @@ struct Contains {
     const double dx = x - c.centre[0], dy = y - c.centre[1];
     return dx * dx + dy * dy <= c.radius * c.radius;
   }
+  bool operator()(const Ring& r) const {
+    const double dx = x - r.centre[0], dy = y - r.centre[1], d2 = dx * dx + dy * dy;
+    return d2 >= r.inner_radius * r.inner_radius && d2 <= r.outer_radius * r.outer_radius;
+  }
   bool operator()(const Polygon& p) const {  // even-odd crossing rule
     bool inside = false;
     const std::size_t n = p.vertices.size();
@@ -35,6 +39,7 @@ std::array<Point, 2> bounding_box(const Shape& shape) {
   if (const auto* b = std::get_if<Box>(&shape)) return {b->lower, b->upper};
   if (const auto* c = std::get_if<Circle>(&shape))
     return {Point{c->centre[0] - c->radius, c->centre[1] - c->radius}, Point{c->centre[0] + c->radius, c->centre[1] + c->radius}};
+  if (const auto* r = std::get_if<Ring>(&shape)) return bounding_box(Circle{r->centre, r->outer_radius});
   const auto& v = std::get<Polygon>(shape).vertices;
   std::array<Point, 2> box{v.front(), v.front()};
   for (const auto& p : v)
@@ -76,6 +81,18 @@ bool overlaps(const Shape& shape, const Point& lower, const Point& upper) {
     const double dx = c->centre[0] - std::clamp(c->centre[0], lower[0], upper[0]);
     const double dy = c->centre[1] - std::clamp(c->centre[1], lower[1], upper[1]);
     return dx * dx + dy * dy < c->radius * c->radius;
+  }
+  if (const auto* r = std::get_if<Ring>(&shape)) {
+    // The outer disc covers some of the rectangle, and the hole not all of it: the rectangle is convex,
+    // so between a point of it inside the outer disc and one outside the (closed) hole lie points of
+    // the open annulus, with area around them. The hole, a disc, holds the rectangle if it holds its corners.
+    if (!overlaps(Circle{r->centre, r->outer_radius}, lower, upper)) return false;
+    for (const double x : {lower[0], upper[0]})
+      for (const double y : {lower[1], upper[1]}) {
+        const double dx = x - r->centre[0], dy = y - r->centre[1];
+        if (dx * dx + dy * dy > r->inner_radius * r->inner_radius) return true;
+      }
+    return false;
   }
   // A polygon: the area of its part inside the rectangle, clipped edge by edge (Sutherland-Hodgman,
   // which keeps the area of a concave polygon right though it may leave edges along the sides).
@@ -245,6 +262,12 @@ double ShapeUnion::fraction(double x0, double x1, double y0, double y1, bool axi
     if (!(lo[0] < x1 && hi[0] > x0 && lo[1] < y1 && hi[1] > y0)) continue;
     small_shape_here = std::holds_alternative<Polygon>(shapes_[k]) ? polygon_edge_through(k, x0, x1, y0, y1)
                                                                     : hi[0] - lo[0] < x1 - x0 || hi[1] - lo[1] < y1 - y0;
+    // A ring's hole narrower or lower than the cell that reaches into it, as a small circle would.
+    if (const auto* r = std::get_if<Ring>(&shapes_[k]); r && !small_shape_here) {
+      const double d = 2.0 * r->inner_radius, cx = r->centre[0], cy = r->centre[1];
+      small_shape_here = (d < x1 - x0 || d < y1 - y0) && cx - 0.5 * d < x1 && cx + 0.5 * d > x0 &&
+                         cy - 0.5 * d < y1 && cy + 0.5 * d > y0;
+    }
   }
   const int probe = contains(x0, y0) + contains(x1, y0) + contains(x0, y1) + contains(x1, y1) +
                     contains(0.5 * (x0 + x1), 0.5 * (y0 + y1));

@@ -1,5 +1,5 @@
 #pragma once
-// Initial soil regions: boxes, circles (cylinders in 2D), polygons, and their union; and the
+// Initial soil regions: boxes, circles (cylinders in 2D), rings, polygons, and their union; and the
 // fraction of a cell they cover.
 #include <array>
 #include <cstddef>
@@ -16,10 +16,16 @@ struct Circle {
   Point centre;
   double radius;
 };
+// The annulus inner_radius <= |x - centre| <= outer_radius: a hollow cylinder in planar 2D; drawn in
+// the r-z plane of an axisymmetric mesh, a torus of that section.
+struct Ring {
+  Point centre;
+  double inner_radius, outer_radius;  // 0 < inner_radius < outer_radius
+};
 struct Polygon {
   std::vector<Point> vertices;  // either orientation, not self-intersecting
 };
-using Shape = std::variant<Box, Circle, Polygon>;
+using Shape = std::variant<Box, Circle, Ring, Polygon>;
 
 bool contains(const Shape& shape, double x, double y);
 // The smallest axis-aligned box around the shape: {lower, upper}.

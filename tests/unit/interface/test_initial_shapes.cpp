@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <random>
 #include <vector>
 
@@ -28,6 +29,18 @@ TEST(InitialShapes, CirclesOverlapByTheirDistanceFromTheDomain) {
   EXPECT_TRUE(overlaps(Circle{{0.3, 0.1}, 0.01}, lower, upper));   // inside
   EXPECT_TRUE(overlaps(Circle{{0.3, 0.1}, 10.0}, lower, upper));   // around
   EXPECT_FALSE(overlaps(Circle{{0.3, -0.1}, 0.1}, lower, upper));  // touching the floor
+}
+
+// A ring covers some of the domain where its outer disc does and its hole does not hold all of it.
+TEST(InitialShapes, RingsOverlapUnlessTheDomainLiesInTheirHole) {
+  EXPECT_TRUE(overlaps(Ring{{0.3, 0.1}, 0.01, 0.05}, lower, upper));   // inside
+  EXPECT_FALSE(overlaps(Ring{{0.3, 0.1}, 1.0, 2.0}, lower, upper));    // the domain in its hole
+  EXPECT_TRUE(overlaps(Ring{{0.3, 0.1}, 0.3, 2.0}, lower, upper));     // the hole holds all but the corners
+  EXPECT_FALSE(overlaps(Ring{{0.7, 0.3}, 0.05, 0.12}, lower, upper));  // its box reaches in, the ring does not
+  EXPECT_FALSE(overlaps(Ring{{0.3, -0.2}, 0.1, 0.2}, lower, upper));   // touching the floor
+  EXPECT_TRUE(contains(Ring{{0.0, 0.0}, 1.0, 2.0}, 1.5, 0.0));
+  EXPECT_FALSE(contains(Ring{{0.0, 0.0}, 1.0, 2.0}, 0.5, 0.5));
+  EXPECT_FALSE(contains(Ring{{0.0, 0.0}, 1.0, 2.0}, 2.0, 0.1));
 }
 
 TEST(InitialShapes, PolygonsOverlapByTheAreaOfTheirPartInside) {
@@ -204,6 +217,31 @@ TEST(InitialShapes, AxisymmetricFractionsAreVolumeFractions) {
   const std::vector<Shape> cylinder{Box{{0.0, 0.0}, {0.25, 1.0}}};
   EXPECT_NEAR(ShapeUnion(cylinder).fraction(0.0, 0.5, 0.0, 1.0, true), 0.25, 1e-12);
   EXPECT_NEAR(ShapeUnion(cylinder).fraction(0.0, 0.5, 0.0, 1.0, false), 0.5, 1e-12);
+}
+
+// A ring's cells hold its area, pi (R^2 - r^2), planar; and drawn in the r-z plane of an axisymmetric
+// mesh, the torus's volume per radian, the section's area times its centre's radius (Pappus). A hole
+// smaller than a cell, off the cell's centre, where the cell's corners and centre all lie in the
+// ring, is found: the cell is not taken as full.
+TEST(InitialShapes, RingsHoldTheirAreaAndTheirTorusVolume) {
+  const double inner = 0.1, outer = 0.2, h = 0.01;
+  const std::vector<Shape> planar{Ring{{0.0, 0.0}, inner, outer}};
+  double area = 0.0;
+  for (int i = -25; i < 25; ++i)
+    for (int j = -25; j < 25; ++j) area += ShapeUnion(planar).fraction(i * h, (i + 1) * h, j * h, (j + 1) * h) * h * h;
+  EXPECT_NEAR(area / (M_PI * (outer * outer - inner * inner)), 1.0, 2e-4);
+
+  const double r0 = 0.5;  // the section's centre, off the axis
+  const std::vector<Shape> torus{Ring{{r0, 0.0}, inner, outer}};
+  double volume = 0.0;
+  for (int i = 25; i < 75; ++i)
+    for (int j = -25; j < 25; ++j)
+      volume += ShapeUnion(torus).fraction(i * h, (i + 1) * h, j * h, (j + 1) * h, true) * (i + 0.5) * h * h * h;
+  EXPECT_NEAR(volume / (M_PI * (outer * outer - inner * inner) * r0), 1.0, 2e-4);
+
+  const std::vector<Shape> small_hole{Ring{{0.3, 0.3}, 0.1, 2.0}};
+  EXPECT_NEAR(ShapeUnion(small_hole).fraction(0.0, 1.0, 0.0, 1.0), 1.0 - M_PI * 0.01, 2e-3);
+  EXPECT_EQ(ShapeUnion(small_hole).fraction(1.0, 2.0, 0.0, 1.0), 1.0);  // beside the hole: full
 }
 
 }  // namespace

@@ -856,6 +856,29 @@ TEST(CaseFile, ShippedCasesAreValid) {
 namespace granflow {
 namespace {
 
+// shape = "ring": its centre and two radii, the hole's smaller; a ring without area, or one given a
+// circle's radius, is refused by the key.
+TEST(CaseFile, RingsTakeACentreAndTwoRadii) {
+  const std::string phi = "soil.rheology.friction_angle=30";
+  const std::string ring = "initial.soil=[{shape = \"ring\", centre = [0.5, 0.1], inner_radius = 0.05, outer_radius = 0.1}]";
+  const CaseConfig c = parse_case(two_phase, {phi, ring});
+  ASSERT_EQ(c.soil->initial_soil.size(), 1u);
+  const auto* parsed = std::get_if<interface::Ring>(&c.soil->initial_soil[0]);
+  ASSERT_NE(parsed, nullptr);
+  EXPECT_EQ(parsed->inner_radius, 0.05);
+  EXPECT_EQ(parsed->outer_radius, 0.1);
+  const std::string empty = error_of(
+      two_phase, {phi, "initial.soil=[{shape = \"ring\", centre = [0.5, 0.1], inner_radius = 0.1, outer_radius = 0.1}]"});
+  EXPECT_NE(empty.find("initial.soil[0].outer_radius"), std::string::npos) << empty;
+  EXPECT_NE(empty.find("ring is empty"), std::string::npos) << empty;
+  const std::string negative = error_of(
+      two_phase, {phi, "initial.soil=[{shape = \"ring\", centre = [0.5, 0.1], inner_radius = -0.1, outer_radius = 0.1}]"});
+  EXPECT_NE(negative.find("inner_radius"), std::string::npos) << negative;
+  const std::string circle_key = error_of(
+      two_phase, {phi, "initial.soil=[{shape = \"ring\", centre = [0.5, 0.1], radius = 0.1, outer_radius = 0.2}]"});
+  EXPECT_NE(circle_key.find("inner_radius"), std::string::npos) << circle_key;
+}
+
 // [[obstacle]]: the shapes of initial.soil, refused where the solver does not know blocked cells.
 TEST(CaseFile, ObstaclesTakeShapesAndNeedTheCoupledPlanarSolve) {
   const std::vector<std::string> coupled{"soil.rheology.friction_angle=30", "numerics.pressure_coupling=coupled"};
