@@ -1,5 +1,7 @@
 #include "mesh/gather.hpp"
 
+#include "mesh/largest.hpp"
+
 namespace granflow {
 
 namespace {
@@ -33,5 +35,16 @@ std::vector<double> gather(const Grid& grid, Vec global, bool to_all) {
 std::vector<double> gather_to_root(const Grid& grid, const Field& field) { return gather(grid, field.global(), false); }
 
 std::vector<double> gather_to_all(const Grid& grid, const Field& field) { return gather(grid, field.global(), true); }
+
+double max_abs(MPI_Comm comm, Vec v) {
+  PetscInt n = 0;
+  const PetscScalar* a = nullptr;
+  PetscCallAbort(comm, VecGetLocalSize(v, &n));
+  PetscCallAbort(comm, VecGetArrayRead(v, &a));
+  double largest = 0.0;
+  for (PetscInt k = 0; k < n; ++k) largest = larger_or_nan(largest, std::abs(a[k]));
+  PetscCallAbort(comm, VecRestoreArrayRead(v, &a));
+  return mpi_max(comm, largest);
+}
 
 }  // namespace granflow

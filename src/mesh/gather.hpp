@@ -24,4 +24,9 @@ inline double mpi_max(MPI_Comm comm, double v) {
   return all[0] > 0.0 ? std::numeric_limits<double>::quiet_NaN() : all[1];
 }
 
+// The largest |value| of a distributed vector on every rank; NaN on every rank if any value is NaN.
+// In place of VecNorm(NORM_INFINITY), which reduces with a plain MPI_MAX: a NaN on one rank may be
+// lost there, and a diverged velocity must reach the divergence check.
+double max_abs(MPI_Comm comm, Vec v);
+
 }  // namespace granflow

@@ -336,13 +336,10 @@ StepReport FlowSolver::step(double dt) {
     // Convergence of the outer loop: largest velocity change relative to the largest velocity.
     double change = 0.0, scale = 0.0;
     for (int a = 0; a < 2; ++a) {
-      double nv;
-      PetscCallAbort(grid_.comm(), VecNorm(vel_[a]->global(), NORM_INFINITY, &nv));
+      const double nv = max_abs(grid_.comm(), vel_[a]->global());
       const Vec start = outer_start_[a]->global();
       PetscCallAbort(grid_.comm(), VecAXPY(start, -1.0, vel_[a]->global()));
-      double nd;
-      PetscCallAbort(grid_.comm(), VecNorm(start, NORM_INFINITY, &nd));
-      change = larger_or_nan(change, nd);  // a NaN iterate is not converged
+      change = larger_or_nan(change, max_abs(grid_.comm(), start));  // a NaN iterate is not converged
       scale = larger_or_nan(scale, nv);
     }
     report.velocity_change = scale > 0.0 ? change / scale : change;

@@ -141,8 +141,9 @@ void FlowSolver::assemble_momentum(double dt) {
         if (num.convection != ConvectionScheme::upwind)
           for (int c = 0; c < 2; ++c) src[c] -= deferred_convection_correction(num, vel[c], i, j, fg, flux);
       }
-      // Hoop stress of the radial momentum, -2 mu u_r / r^2 per volume ([YS] Sec. 4), implicit.
-      if (grid_.axisymmetric()) extra[0] += 2.0 * muP * V / (grid_.xc(i) * grid_.xc(i));
+      // Hoop stress of the radial momentum, implicit: -2 mu u_r / r^2 per volume of the full stress ([YS]
+      // Sec. 4); -mu u_r / r^2 of div(mu grad v) alone (transpose_stress = false).
+      if (grid_.axisymmetric()) extra[0] += stress_factor * muP * V / (grid_.xc(i) * grid_.xc(i));
       a_east_[k] = a_nb[0];
       a_west_[k] = a_nb[1];
       a_north_[k] = a_nb[2];

@@ -85,7 +85,7 @@ void SoilPhase::compute_diagnostics(const FlowSolver& flow) {
 // the normal derivatives are compact differences across the face and the tangential one is the
 // operator's average of the two cells' central differences; each interior face gives half its work to
 // either cell, a wall face all of it to its cell. Axisymmetric: face areas carry the radius, and the
-// hoop stress adds 2 mu (u_r/r)^2 per unit volume. A cell-centred mu 2 D:D instead weights a soft
+// hoop stress adds 2 mu (u_r/r)^2 per unit volume (mu (u_r/r)^2 without the transpose stress). A cell-centred mu 2 D:D instead weights a soft
 // layer's shear with its stiff neighbour's viscosity and overstates the dissipation by the viscosity
 // contrast wherever the soil yields next to rigid soil.
 // Fills dissipation_ (W per metre depth, or per radian) and the local Lode-binned rates; returns the
@@ -193,7 +193,7 @@ double SoilPhase::compute_dissipation(const FlowSolver& flow) {
     for (int i = b.xs; i < b.xe(); ++i) {
       if (grid_.axisymmetric()) {
         const double hoop = u[j][i] / grid_.xc(i);
-        out[j][i] += 2.0 * mu[j][i] * hoop * hoop * grid_.volume(i, j);
+        out[j][i] += normal_factor * mu[j][i] * hoop * hoop * grid_.volume(i, j);  // as the momentum's hoop term
       }
       rate += out[j][i];
       const double theta = rheology::lode_angle(cell_strain_rate(grid_, u.data(), v.data(), i, j));
