@@ -11,7 +11,7 @@
 //     face between rows j and j+1.
 //   - dx[i], dy[j] are cell widths indexed globally, valid for ghost indices too.
 //
-// One time step (the caller's job, see SerialVofField for a serial reference driver):
+// One time step (the caller's job, see the advection tests' SerialVofField, tests/unit/interface, for a serial reference driver):
 //   1. fill ghosts of c (exchange + boundary conditions), including the corner ghosts;
 //   2. dilatation_indicator(c, owned, cc)  -- once per step, held fixed over both sweeps;
 //   3. vof_sweep(first axis, ...) into c_tmp; fill ghosts of c_tmp;

@@ -15,7 +15,7 @@
 #include <vector>
 
 #include "interface_test_utils.hpp"
-#include "models/interface/serial_vof_field.hpp"
+#include "serial_vof_field.hpp"
 
 namespace granflow::interface {
 namespace {

@@ -1,4 +1,4 @@
-#include "models/interface/serial_vof_field.hpp"
+#include "serial_vof_field.hpp"
 
 #include "models/interface/material_transport.hpp"
 

@@ -1,6 +1,6 @@
 // Single-block serial driver for the split PLIC advection (vof_sweep): owns c, the face velocities
 // and the scratch arrays in the DMDA-like ghosted layout, applies simple boundary conditions and
-// performs complete time steps. Used by the unit tests and benchmarks, and as the reference for
+// performs complete time steps. Used by the advection unit tests (it is theirs, not the library's), and as the reference for
 // what the parallel solver must do around each sweep.
 #pragma once
 
