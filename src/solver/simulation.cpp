@@ -342,8 +342,11 @@ RunSummary Simulation::run(const StepObserver& after_step) {
     if (!output_is_current) write_output();  // out of steps
     if (!checkpoint_is_current) write_checkpoint(dt);
   }
-  if (soil_ && initial_soil_volume_ > 0.0)
-    summary.soil_volume_error = soil_->budget(*flow_).soil_volume / initial_soil_volume_ - 1.0;
+  if (soil_ && initial_soil_volume_ > 0.0) {
+    const SoilBudget b = soil_->budget(*flow_);
+    summary.soil_volume_error = b.soil_volume / initial_soil_volume_ - 1.0;
+    summary.soil_balance_error = (b.soil_volume + b.soil_outflow) / initial_soil_volume_ - 1.0;
+  }
   summary.time = time_;
   summary.stopped_at_max_steps = !summary.reached_steady_state && !summary.soil_at_rest && steps_ >= tc.max_steps && time_ < tc.end * (1 - 1e-12);
   summary.wall_seconds = std::chrono::duration<double>(clock::now() - start).count();

@@ -15,6 +15,9 @@ namespace granflow {
 
 struct RunSummary {
   double soil_volume_error = 0.0;  // relative change of the soil volume over the run
+  // Relative change of the soil in the domain plus what left it through open sides: round-off, unless
+  // the solves were inexact (their divergence makes and destroys soil).
+  double soil_balance_error = 0.0;
   long steps = 0;
   long retried_steps = 0;  // steps taken again with a smaller time step
   double time = 0.0;

@@ -856,6 +856,18 @@ TEST(CaseFile, ShippedCasesAreValid) {
 namespace granflow {
 namespace {
 
+// The coupled solver's default single iteration is preonly's: a Krylov method given without a count
+// takes 1000, so that its solves are not each stopped after one iteration.
+TEST(CaseFile, CoupledKrylovMethodWithoutACountTakesAKrylovCount) {
+  const std::string phi = "soil.rheology.friction_angle=30";
+  EXPECT_EQ(parse_case(two_phase, {phi}).flow.coupled_solver.max_iterations, 1);
+  EXPECT_EQ(parse_case(two_phase, {phi, "solver.coupled.ksp_type=\"gmres\""}).flow.coupled_solver.max_iterations, 1000);
+  EXPECT_EQ(parse_case(two_phase, {phi, "solver.coupled.ksp_type=\"gmres\"", "solver.coupled.max_iterations=2"})
+                .flow.coupled_solver.max_iterations,
+            2);
+  EXPECT_EQ(parse_case(two_phase, {phi, "solver.coupled.ksp_type=\"preonly\""}).flow.coupled_solver.max_iterations, 1);
+}
+
 // shape = "ring": its centre and two radii, the hole's smaller; a ring without area, or one given a
 // circle's radius, is refused by the key.
 TEST(CaseFile, RingsTakeACentreAndTwoRadii) {
