@@ -844,6 +844,11 @@ CaseConfig read_case(const toml::table& root, const std::filesystem::path& sourc
   {
     TableReader p = top.table("physics");
     c.flow.gravity = p.pair("gravity", {0.0, 0.0});
+    // The flow is the same in every half-plane through the axis: a force along r would point out of
+    // each half-plane's own axis in a different direction, which no body force does.
+    if (c.mesh.axisymmetric && c.flow.gravity[0] != 0.0)
+      throw CaseError(fmt::format("physics.gravity: {} along r in an axisymmetric mesh; gravity there acts along the "
+                                  "axis (y = z): [0, gz]", c.flow.gravity[0]));
     p.finish();
   }
   if (top.has("soil")) {

@@ -868,6 +868,17 @@ TEST(CaseFile, CoupledKrylovMethodWithoutACountTakesAKrylovCount) {
   EXPECT_EQ(parse_case(two_phase, {phi, "solver.coupled.ksp_type=\"preonly\""}).flow.coupled_solver.max_iterations, 1);
 }
 
+// An axisymmetric mesh's gravity acts along its axis: a radial component is refused by the key.
+TEST(CaseFile, AxisymmetricGravityAlongTheAxisOnly) {
+  const std::vector<std::string> axisymmetric{"soil.rheology.friction_angle=30", "mesh.geometry=\"axisymmetric\"",
+                                              "boundary.west={type = \"axis\"}"};
+  EXPECT_TRUE(parse_case(two_phase, axisymmetric).mesh.axisymmetric);
+  auto radial = axisymmetric;
+  radial.push_back("physics.gravity=[-9.81, 0.0]");
+  const std::string e = error_of(two_phase, radial);
+  EXPECT_NE(e.find("physics.gravity: -9.81 along r in an axisymmetric mesh"), std::string::npos) << e;
+}
+
 // shape = "ring": its centre and two radii, the hole's smaller; a ring without area, or one given a
 // circle's radius, is refused by the key.
 TEST(CaseFile, RingsTakeACentreAndTwoRadii) {
