@@ -8,7 +8,7 @@
 # two trials from the earlier analysis and running the other two again. An analysis stopped in its
 # first trial (directories, no table) is continued from nothing. A continuation with another case or
 # displacement limit is refused, status 2, the earlier analysis kept; so is one where -o is a file or
-# holds a run.
+# holds a run, and an analysis into a run's directory or a run into an analysis's.
 set -f
 g=$1 c=$2 d=$3
 shift 3
@@ -54,6 +54,13 @@ touch "$d.file"
 expect_refusal "a file" "^error: -o .*\.file: not a directory" -o "$d.file" --restart
 "$g" run "$c" -o "$d.run" --overwrite --set 'mesh.cells=[40,10]' --set time.end=0.01 --set output.progress_seconds=0 > /dev/null 2>&1 \
   || fail "the run to continue did not run"
-expect_refusal "a run" "^error: no analysis to continue in .*: neither stability.csv nor a trial.s directory (F_<factor>) is there (it holds the files of a run, not of an analysis)" \
+expect_refusal "a run" "^error: .*\.run holds a run (.*), not an analysis: an analysis.s files would lie beside it" \
   -o "$d.run" --restart
+expect_refusal "a run, a new analysis" "^error: .*\.run holds a run (.*), not an analysis" -o "$d.run"
+# ... nor a run into an analysis's directory.
+"$g" run "$c" -o "$d" --overwrite --set time.end=0.01 > "$d.other.log" 2>&1
+status=$?
+test $status -eq 2 && head -n 1 "$d.other.log" | grep -q "^error: .* holds a stability analysis (.*): a run.s files would lie beside it" \
+  || { cat "$d.other.log"; fail "a run into an analysis: status $status"; }
+cmp "$d/stability.csv" "$d.kept" || fail "a refused run changed the analysis"
 echo "continued: the same factor and trials"

@@ -86,6 +86,10 @@ int run_case(const std::string& case_file, const std::vector<std::string>& overr
                                 "was stopped before its first step: move them back into {} (or remove {}), then "
                                 "run again",
                                 out_dir, aside.string(), out_dir, aside.string()));
+  if (const auto analysis = analysis_files_in(out_dir); !analysis.empty())
+    throw CaseError(fmt::format("{} holds a stability analysis ({}): a run's files would lie beside it; choose another "
+                                "directory with -o",
+                                out_dir, analysis.front().string()));
   const auto earlier = run_files_in(out_dir, config.output.lines);
   if (!restart && !overwrite && !earlier.empty()) {
     std::error_code ec;

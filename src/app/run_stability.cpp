@@ -23,27 +23,12 @@ namespace granflow {
 
 namespace {
 
-constexpr const char* table_name = "stability.csv";
+constexpr const char* table_name = stability_table_name;
 constexpr std::size_t table_limit = std::size_t(64) << 20;    // bytes: some 500 000 trials
 constexpr std::size_t record_limit = std::size_t(256) << 20;  // as a case file may be (polygons of many vertices)
 constexpr const char* table_header =
     "factor,fails,diverged,largest_displacement_m,displacement_limit_m,time_s,steps,unconverged_steps,wall_seconds,"
     "directory";
-
-// The earlier analysis in dir: its table and its trials' directories (F_<factor> holding any of a
-// run's files, io/run_directory.hpp).
-std::vector<std::filesystem::path> earlier_analysis(const std::filesystem::path& dir) {
-  namespace fs = std::filesystem;
-  std::vector<fs::path> found;
-  std::error_code ec;
-  if (!fs::is_directory(dir, ec)) return found;
-  for (const auto& entry : fs::directory_iterator(dir, ec)) {
-    const std::string name = entry.path().filename().string();
-    if (name == table_name || (name.starts_with("F_") && !run_files_in(entry.path(), {}).empty()))
-      found.push_back(entry.path());
-  }
-  return found;
-}
 
 // The trials so far, rewritten whole after each one, so that an analysis stopped or killed keeps the
 // table of the trials it finished.
@@ -73,10 +58,9 @@ std::vector<StrengthTrial> read_table(const std::filesystem::path& out, std::str
   std::vector<StrengthTrial> trials;
   std::error_code ec;
   if (!fs::exists(path, ec)) {
-    if (earlier_analysis(out).empty())
-      problem = fmt::format("no analysis to continue in {}: neither {} nor a trial's directory (F_<factor>) is there{}",
-                            out.string(), table_name,
-                            run_files_in(out, {}).empty() ? "" : " (it holds the files of a run, not of an analysis)");
+    if (analysis_files_in(out).empty())
+      problem = fmt::format("no analysis to continue in {}: neither {} nor a trial's directory (F_<factor>) is there",
+                            out.string(), table_name);
     return trials;
   }
   const TextFile file = read_text_file(path, table_limit);
@@ -179,7 +163,7 @@ std::string continue_earlier(const std::filesystem::path& out, const CaseConfig&
   }
   earlier = std::move(kept);
   std::error_code ec;
-  for (const auto& path : earlier_analysis(out)) {  // the table and the trials' directories
+  for (const auto& path : analysis_files_in(out)) {  // the table and the trials' directories
     const bool listed = path.filename() == table_name ||
                         std::any_of(earlier.begin(), earlier.end(), [&](const StrengthTrial& t) {
                           return trial_directory(".", t.factor).filename() == path.filename();
@@ -265,6 +249,10 @@ int run_stability(const std::string& case_file, const std::vector<std::string>& 
                             "aside and was stopped before its first trial ended: move them back into {} (or remove "
                             "{}), then run again",
                             out_dir, aside.string(), out_dir, aside.string());
+    else if (const auto run = run_files_in(out_dir, {}); !run.empty())
+      problem = fmt::format("{} holds a run ({}), not an analysis: an analysis's files would lie beside it; choose "
+                            "another directory with -o",
+                            out_dir, run.front().string());
     else if (restart) {
       try {  // a failure here is every rank's, through first_failure below
         earlier = read_table(out_dir, problem);
@@ -272,7 +260,7 @@ int run_stability(const std::string& case_file, const std::vector<std::string>& 
       } catch (const std::exception& e) {
         problem = e.what();
       }
-    } else if (const auto found = earlier_analysis(out_dir); !found.empty()) {
+    } else if (const auto found = analysis_files_in(out_dir); !found.empty()) {
       if (!overwrite)
         problem = fmt::format("{} holds an earlier analysis ({}): continue it with --restart, replace it with "
                               "--overwrite, or choose another directory with -o",
@@ -330,7 +318,7 @@ int run_stability(const std::string& case_file, const std::vector<std::string>& 
   } catch (...) {
     if (set_aside) {  // the new analysis's trials go, and the earlier one comes back
       std::error_code ec;
-      for (const auto& p : earlier_analysis(out_dir)) std::filesystem::remove_all(p, ec);
+      for (const auto& p : analysis_files_in(out_dir)) std::filesystem::remove_all(p, ec);
       restore_set_aside_run(out_dir, {});
     }
     throw;

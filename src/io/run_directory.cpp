@@ -185,4 +185,17 @@ void record_run(const std::filesystem::path& dir, const std::vector<LineSample>&
   });
 }
 
+std::vector<std::filesystem::path> analysis_files_in(const std::filesystem::path& dir) {
+  namespace fs = std::filesystem;
+  std::vector<fs::path> found;
+  std::error_code ec;
+  if (!fs::is_directory(dir, ec)) return found;
+  for (const auto& entry : fs::directory_iterator(dir, ec)) {
+    const std::string name = entry.path().filename().string();
+    if (name == stability_table_name || (name.starts_with("F_") && !run_files_in(entry.path(), {}).empty()))
+      found.push_back(entry.path());
+  }
+  return found;
+}
+
 }  // namespace granflow

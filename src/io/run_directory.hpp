@@ -28,6 +28,12 @@ inline constexpr const char* case_record_name = "granflow_case.toml";
 // names or `lines` (the new run's) holds. Empty if `dir` is not a directory.
 std::vector<std::filesystem::path> run_files_in(const std::filesystem::path& dir, const std::vector<LineSample>& lines);
 
+// A stability analysis (granflow stability) in `dir`: its table, stability_table_name, and its trials'
+// directories, F_<factor> holding any of a run's files. Empty if there is none, or `dir` is not a
+// directory. A run and an analysis do not share a directory: each refuses one that holds the other's.
+inline constexpr const char* stability_table_name = "stability.csv";
+std::vector<std::filesystem::path> analysis_files_in(const std::filesystem::path& dir);
+
 // Refuses an output directory `dir` (as -o gives it) that is or lies in a directory an earlier run
 // keeps to itself and replaces or removes whole: its checkpoint/, checkpoint.old/ or
 // checkpoint.partial/, or a set-aside run. Output there would be lost at that run's next output.
