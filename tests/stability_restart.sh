@@ -17,6 +17,9 @@ go() { $launch "$g" stability "$c" --set 'mesh.cells=[40,10]' --set time.end=2 -
 fail() { echo "$1"; exit 1; }
 rm -rf "$d" "$d.once" "$d.file" "$d.run"
 go -o "$d.once" --tolerance 0.05 > "$d.once.log" 2>&1 || { cat "$d.once.log"; exit 1; }
+# Its bracket at t = 2 s: F = 1.4375 fails at t = 1.97 s, F = 1.40625 stands having moved 17 % of the limit.
+grep -q "^note: time.end = 2 s may have decided the bracket: the trial at F = 1.4375 failed only at t = 1.97 s, and the trial at F = 1.40625 stood having moved 0.0332 m, 17 % of the limit" "$d.once.log" \
+  || { cat "$d.once.log"; fail "a bracket decided near time.end not noted"; }
 go -o "$d" --tolerance 0.3 > "$d.log" 2>&1 || { cat "$d.log"; exit 1; }
 test -d "$d/F_1.25" && test -d "$d/F_2" || fail "no trials F_1.25 and F_2 to damage"
 head -n 4 "$d/stability.csv" | sed 's/$/\r/' > "$d/table" && mv "$d/table" "$d/stability.csv"

@@ -1,6 +1,7 @@
 #include "app/run_stability.hpp"
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 #include <petscsys.h>
 
 #include <algorithm>
@@ -363,6 +364,21 @@ int run_stability(const std::string& case_file, const std::vector<std::string>& 
                    config.flow.numerics.outer_iterations < 10 ? 10 : config.flow.numerics.outer_iterations);
         break;
       }
+    // A soil near its limit moves slowly: a failing trial of the bracket that failed late, or a standing
+    // one that moved a good part of the limit, says that time.end, not the strength, may have decided
+    // the bracket. More time can only make more trials fail, so the factor is then an upper bound.
+    std::vector<std::string> late;
+    for (const auto& t : r.trials) {
+      if (t.factor == r.fails_at && t.fails && !t.diverged && t.time > 0.5 * config.time.end)
+        late.push_back(fmt::format("the trial at F = {} failed only at t = {:.3g} s", t.factor, t.time));
+      if (t.factor == r.stands_at && !t.fails && t.largest_displacement > 0.1 * t.displacement_limit)
+        late.push_back(fmt::format("the trial at F = {} stood having moved {:.3g} m, {:.0f} % of the limit", t.factor,
+                                   t.largest_displacement, 100.0 * t.largest_displacement / t.displacement_limit));
+    }
+    if (!late.empty())
+      fmt::print("note: time.end = {} s may have decided the bracket: {}; with more time trials nearer the limit may "
+                 "fail too, so the factor may be lower (a longer time.end tells)\n",
+                 config.time.end, fmt::join(late, ", and "));
   }
   return 0;
 }
