@@ -9,12 +9,14 @@ Without --png it lists the run's output times and the fields of the chosen outpu
 output nearest T, --output N the N-th (from 0, the initial state); the default is the last. A vector
 field (velocity, displacement) is drawn as its magnitude unless --component says x or y. --soil-only
 leaves out the cells with c < 0.5; --log draws log10 of the absolute value (for the viscosity, which
-spans ten decades). Blocked cells (obstacles, terrain) and left-out cells are drawn grey. Fields and
+spans ten decades), from the smallest non-zero magnitude, at most 14 decades below the largest (cells of
+0, as air at rest, are drawn at that floor). Blocked cells (obstacles, terrain) and left-out cells are drawn grey. Fields and
 units: docs/output.md.
 """
 import argparse
 import os
 import re
+import sys
 
 import numpy as np
 
@@ -100,7 +102,17 @@ def main():
             label = f"{a.field} {a.component}"
     unit = UNITS.get(a.field, "-")
     if a.log:
-        value = np.log10(np.maximum(np.abs(value), 1e-300))
+        # Cells at exactly 0 (air at rest) would set the scale at 1e-300 and squeeze every other value
+        # into one colour: the floor is the smallest non-zero magnitude, but at most 14 decades below
+        # the largest (the viscosity spans about 13).
+        magnitude = np.abs(value)
+        nonzero = magnitude[np.isfinite(magnitude) & (magnitude > 0)]
+        if nonzero.size == 0:
+            raise InputError(f"--log: every value of {label} is 0 (or not finite); draw it without --log")
+        floor = max(nonzero.min(), nonzero.max() * 1e-14)
+        if (np.nanmin(value) < 0) and (np.nanmax(value) > 0):
+            print(f"note: --log draws log10 of the magnitude; {label} takes both signs", file=sys.stderr)
+        value = np.log10(np.maximum(magnitude, floor))
         label = f"log10 {label} ({unit})"
     else:
         label = f"{label} ({unit})"
