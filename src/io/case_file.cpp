@@ -1062,6 +1062,17 @@ CaseConfig load_case(const std::filesystem::path& file, const std::vector<std::s
   } catch (const CaseError& e) {
     const std::string what = e.what();
     if (what.starts_with(file.string())) throw;  // a TOML syntax error names its file and line already
+    // A key (or an entry under it) that a --set assignment gave is named as the command line's, not
+    // the file's, which may not even hold it.
+    const std::string_view key_of_message = std::string_view(what).substr(0, what.find(": "));
+    for (const auto& assignment : overrides) {
+      std::string_view key = std::string_view(assignment).substr(0, assignment.find('='));
+      while (!key.empty() && std::isspace(static_cast<unsigned char>(key.back()))) key.remove_suffix(1);
+      while (!key.empty() && std::isspace(static_cast<unsigned char>(key.front()))) key.remove_prefix(1);
+      if (!key.empty() && key_of_message.starts_with(key) &&
+          (key_of_message.size() == key.size() || key_of_message[key.size()] == '.' || key_of_message[key.size()] == '['))
+        throw CaseError(fmt::format("--set {}", what));
+    }
     throw CaseError(fmt::format("{}: {}", file.string(), what));
   }
 }

@@ -14,6 +14,7 @@
 
 #include "io/case_error.hpp"
 #include "io/case_file.hpp"
+#include "io/text_file.hpp"
 
 namespace granflow {
 namespace {
@@ -866,6 +867,45 @@ TEST(CaseFile, CoupledKrylovMethodWithoutACountTakesAKrylovCount) {
                 .flow.coupled_solver.max_iterations,
             2);
   EXPECT_EQ(parse_case(two_phase, {phi, "solver.coupled.ksp_type=\"preonly\""}).flow.coupled_solver.max_iterations, 1);
+}
+
+// An error in a key that --set gave (or in an entry under it) names the command line, not the case file,
+// which may not hold the key at all; one in the file's own keys names the file.
+TEST(CaseFile, ErrorsInSetKeysNameTheCommandLine) {
+  const std::string bui = std::string(GRANFLOW_SOURCE_DIR) + "/cases/bui2008_experiment.toml";
+  auto message = [&](std::vector<std::string> overrides) {
+    try {
+      load_case(bui, overrides);
+    } catch (const CaseError& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  EXPECT_EQ(message({"mesh.cels=3"}).rfind("--set mesh.cels: unknown key", 0), 0u) << message({"mesh.cels=3"});
+  const std::string ring =
+      message({"initial.soil=[{shape = \"ring\", centre = [0.3, 0.05], inner_radius = 0.05, outer_radius = 0.04}]"});
+  EXPECT_EQ(ring.rfind("--set initial.soil[0].outer_radius: the ring is empty", 0), 0u) << ring;
+  const std::string spaced = message({" time.courant = -1"});
+  EXPECT_EQ(spaced.rfind("--set time.courant: ", 0), 0u) << spaced;
+  // A key of the same start is not the key: time.endx is not under time.end.
+  const std::string similar = message({"time.end=1", "time.endx=2"});
+  EXPECT_EQ(similar.rfind("--set time.endx: unknown key", 0), 0u) << similar;
+  // The file's own key in error, with --set giving others: the file's.
+  const auto dir = std::filesystem::temp_directory_path() / "granflow_set_or_file";
+  std::filesystem::create_directories(dir);
+  const auto bad = dir / "bad.toml";
+  {
+    std::ofstream out(bad);
+    out << read_text_file(bui, 1 << 20).text << "\n[extra]\nx = 1\n";
+  }
+  std::string file_error;
+  try {
+    load_case(bad, {"mesh.cells=[30,10]", "time.end=1"});
+  } catch (const CaseError& e) {
+    file_error = e.what();
+  }
+  EXPECT_EQ(file_error.rfind(bad.string() + ": extra: unknown", 0), 0u) << file_error;
+  std::filesystem::remove_all(dir);
 }
 
 // An axisymmetric mesh's gravity acts along its axis: a radial component is refused by the key.
