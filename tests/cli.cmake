@@ -561,6 +561,10 @@ set_tests_properties(cli_stability_displacement_nan_refused PROPERTIES LABELS cl
 add_test(NAME cli_element_test_phi_message COMMAND ${GRANFLOW_EXPECT_STATUS} 2 $<TARGET_FILE:granflow> element-test --phi 0)
 set_tests_properties(cli_element_test_phi_message PROPERTIES LABELS cli
                      PASS_REGULAR_EXPRESSION "^error: --phi: '0' is not an angle from 0.001 to 89.999 degrees [(]see granflow element-test --help[)]\n")
+# An option given twice is said so, in words.
+add_test(NAME cli_option_given_twice COMMAND ${GRANFLOW_EXPECT_STATUS} 2 $<TARGET_FILE:granflow> element-test --phi 30 --phi 40)
+set_tests_properties(cli_option_given_twice PROPERTIES LABELS cli
+                     PASS_REGULAR_EXPRESSION "^error: --phi: given 2 times; give it once [(]see granflow element-test --help[)]\n$")
 # Arguments a command does not take are named in the order given, with the command's own help.
 add_test(NAME cli_check_takes_no_output COMMAND ${GRANFLOW_EXPECT_STATUS} 2 $<TARGET_FILE:granflow> check ${CMAKE_SOURCE_DIR}/cases/bui2008_experiment.toml -o somewhere)
 set_tests_properties(cli_check_takes_no_output PROPERTIES LABELS cli

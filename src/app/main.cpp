@@ -292,7 +292,12 @@ int main(int argc, char** argv) {
                                 output && (given == check || given == element) ? "; it writes no output directory" : "",
                                 help));
     }
-    return refuse(fmt::format("{} (see {})", e.what(), help));
+    // An option given more than once: CLI11 says "At Most 1 required but received N".
+    std::string what = e.what();
+    if (const auto at = what.find("At Most 1 required but received "); at != std::string::npos)
+      what = what.substr(0, at) + "given " + what.substr(at + std::string_view("At Most 1 required but received ").size()) +
+             " times; give it once";
+    return refuse(fmt::format("{} (see {})", what, help));
   }
   if ((run->count("--output") || stability->count("--output")) && out_dir.empty())
     return refuse("-o/--output: the output directory is empty");
