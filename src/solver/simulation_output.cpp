@@ -63,8 +63,10 @@ void Simulation::write_output() {
       data.push_back({"strain_norm", 1, gather_to_root(g, soil_->strain_norm())});
       data.push_back({"strain_rate_norm", 1, gather_to_root(g, soil_->strain_rate_norm())});
       data.push_back({"lode_angle", 1, gather_to_root(g, soil_->lode_angle())});
-      if (config_.soil->rheology)
+      if (config_.soil->rheology) {
         data.push_back({"stress_ratio_to_drucker_prager", 1, gather_to_root(g, soil_->stress_ratio_to_drucker_prager())});
+        data.push_back({"relative_shear_stress", 1, gather_to_root(g, soil_->relative_shear_stress())});
+      }
       auto w = gather_to_root(g, soil_->dissipation());  // empty on ranks other than the root
       if (!w.empty())
         for (int j = 0; j < g.ny(); ++j)

@@ -49,14 +49,15 @@ void SoilPhase::compute_diagnostics(const FlowSolver& flow) {
   ConstFieldArray p(grid_.field_dm(), flow.pressure().global());
   const auto overburden = overburden_if_floor();
   FieldArray en(grid_.field_dm(), strain_norm_->global()), rn(grid_.field_dm(), rate_norm_->global()),
-      lo(grid_.field_dm(), lode_->global()), ratio(grid_.field_dm(), stress_ratio_->global());
+      lo(grid_.field_dm(), lode_->global()), ratio(grid_.field_dm(), stress_ratio_->global()),
+      relative(grid_.field_dm(), relative_stress_->global());
   const BlockedView mask(grid_, blocked_);
   const auto m = share_arrays(false);
   Shares shares{};
   for (int j = b.ys; j < b.ye(); ++j)
     for (int i = b.xs; i < b.xe(); ++i) {
       if (is_blocked(mask.data(), i, j)) {  // no soil, no flow
-        en[j][i] = rn[j][i] = lo[j][i] = 0.0;
+        en[j][i] = rn[j][i] = lo[j][i] = relative[j][i] = 0.0;
         ratio[j][i] = 1.0;
         continue;
       }
@@ -74,8 +75,10 @@ void SoilPhase::compute_diagnostics(const FlowSolver& flow) {
       if (materials_) {
         cell_shares(m, i, j, shares);
         ratio[j][i] = materials_->stress_ratio_to_drucker_prager(D, pressure, shares.data());
+        relative[j][i] = materials_->relative_shear_stress(D, pressure, shares.data());
       } else {
         ratio[j][i] = rheology_ ? rheology_->stress_ratio_to_drucker_prager(D, pressure) : 1.0;
+        relative[j][i] = rheology_ ? rheology_->relative_shear_stress(D, pressure) : 1.0;
       }
     }
 }

@@ -68,13 +68,14 @@ SoilPhase::SoilPhase(const Grid& grid, const FlowSettings& flow, const SoilSetti
   rate_norm_ = make();
   lode_ = make();
   stress_ratio_ = make();
+  relative_stress_ = make();
   dissipation_ = make();
   for (int a = 0; a < 2; ++a) {
     disp_[a] = make();
     disp_new_[a] = make();
     disp_[a]->set(0.0);
   }
-  for (Field* f : {c_.get(), c_tmp_.get(), dilatation_.get(), region_[0].get(), region_[1].get(), strain_norm_.get(), rate_norm_.get(), lode_.get(), stress_ratio_.get(), dissipation_.get(),
+  for (Field* f : {c_.get(), c_tmp_.get(), dilatation_.get(), region_[0].get(), region_[1].get(), strain_norm_.get(), rate_norm_.get(), lode_.get(), stress_ratio_.get(), relative_stress_.get(), dissipation_.get(),
                    overburden_.get()})
     f->set(0.0);
 }

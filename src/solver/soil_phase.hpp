@@ -95,6 +95,8 @@ class SoilPhase {
   const Field& strain_rate_norm() const { return *rate_norm_; }
   const Field& lode_angle() const { return *lode_; }
   const Field& stress_ratio_to_drucker_prager() const { return *stress_ratio_; }
+  // The soil's shear stress over its strength (GranularRheology::relative_shear_stress); 1 without a rheology.
+  const Field& relative_shear_stress() const { return *relative_stress_; }
   const Field& dissipation() const { return *dissipation_; }  // per cell, from the last budget()
   const SoilSettings& settings() const { return settings_; }
   // The cells within `reach` cells of a cell whose |c| exceeds `floor` (1 there, else 0), ghosts
@@ -194,7 +196,7 @@ class SoilPhase {
   std::unique_ptr<Field> c_, c_tmp_, dilatation_;
   std::unique_ptr<Field> region_[2];  // scratch of soil_region
   std::unique_ptr<Field> disp_[2], disp_new_[2];
-  std::unique_ptr<Field> strain_norm_, rate_norm_, lode_, stress_ratio_, dissipation_;
+  std::unique_ptr<Field> strain_norm_, rate_norm_, lode_, stress_ratio_, relative_stress_, dissipation_;
   rheology::LodeHistogram lode_rate_, lode_energy_;  // this rank's cells: W and J per bin
   std::unique_ptr<Field> overburden_;  // rho_s g times the soil depth above each centre (Pa)
   void compute_overburden(const std::array<double, 2>& gravity);

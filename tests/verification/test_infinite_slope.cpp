@@ -20,6 +20,8 @@
 #include <vector>
 
 #include "io/case_file.hpp"
+#include "mesh/gather.hpp"
+#include "solver/simulation.hpp"
 #include "solver/strength_reduction.hpp"
 #include "test_support.hpp"
 
@@ -106,6 +108,43 @@ TEST(InfiniteSlope, CohesiveLayerFailsAtTheBedWhereTheModelsConeSaysSo) {
 // the reduced friction.
 TEST(InfiniteSlope, CohesionlessLayerFailsWhereTheShearStressOverPressureIsThreeAlpha) {
   expect_bracket({"soil.rheology.cohesion=0"}, 1.0444, 1.2382);
+}
+
+// The relative shear stress of the layer at rest (the case as it stands, F = 1): the load over the
+// strength at each depth, tau(z) / (3 alpha_phi p(z) + k_c), carried by the creep the regularised
+// viscosity needs to hold the load (docs/output.md, `relative_shear_stress`). It grows with depth, as
+// the cohesion's share of the strength falls: 0.54 at 0.6 m, 0.82 at mid-depth, 0.88 at the bed.
+TEST(InfiniteSlope, RelativeShearStressOfTheLayerAtRestIsLoadOverStrength) {
+  const CaseConfig config = load_case(test::repo_path("cases/infinite_slope.toml"),
+                                      {"output.progress_seconds=0", "time.end=1"});
+  const Layer l = layer_of(config);
+  Simulation sim(PETSC_COMM_WORLD, config, "");
+  sim.run();
+  sim.soil()->compute_diagnostics(sim.flow());
+  const auto relative = gather_to_root(sim.grid(), sim.soil()->relative_shear_stress());
+  if (!test::is_root()) return;
+  const Grid& grid = sim.grid();
+  const double t = std::tan(l.friction_rad), root = std::sqrt(9.0 + 12.0 * t * t);
+  double largest_error = 0.0;
+  int checked = 0;
+  for (int j = 1; j < grid.ny(); ++j) {
+    const double depth = l.depth - grid.yc(j);
+    if (depth < 1.5 * grid.dy(j)) break;  // the top cell and the one below it: the surface's
+    const double shear = (l.soil_density - l.air_density) * l.gravity * std::sin(l.slope_rad) * depth;
+    const double pressure = (l.soil_density * depth + l.air_density * l.air_depth) * l.gravity * std::cos(l.slope_rad);
+    const double expected = shear / (3.0 * t / root * pressure + 3.0 * l.cohesion / root);
+    for (int i = 0; i < grid.nx(); ++i) {
+      const double got = relative[size_t(j) * grid.nx() + i];
+      largest_error = std::max(largest_error, std::abs(got / expected - 1.0));
+      ++checked;
+    }
+    if (j % 4 == 1)
+      std::printf("depth %.3f m: relative shear stress %.4f, load over strength %.4f\n", depth,
+                  relative[size_t(j) * grid.nx()], expected);
+  }
+  std::printf("relative shear stress over %d cells: largest relative error %.3g\n", checked, largest_error);
+  EXPECT_GE(checked, 4 * 17);
+  EXPECT_LT(largest_error, 0.02);
 }
 
 }  // namespace

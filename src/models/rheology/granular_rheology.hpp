@@ -94,6 +94,17 @@ class GranularRheology {
     return matsuoka_nakai_for(friction).stress_ratio(state.sin_three_lode) / friction;  // phi > 0 (validate)
   }
 
+  // The shear stress the viscosity gives over the strength, 2 eta ||D|| / tau_y ([YS] Eq. 8's norms): how
+  // much of the strength the soil mobilises at this strain rate and pressure (geotechnical software's
+  // "relative shear stress"). Below yield the regularised viscosity carries the stress that holds the
+  // soil up at a creep rate, so the ratio is the load over the strength there: 1 - exp(-2 m ||D||) +
+  // 2 mu_min ||D|| / tau_y under [VoF] Eq. 12, 1 where the soil yields (above 1 only by the floor's
+  // share), 0 at rest. 1 where the soil has no strength (p <= 0 without cohesion).
+  [[nodiscard]] double relative_shear_stress(const StrainRate& strain_rate, double pressure) const noexcept {
+    const RheologyResult r = evaluate(strain_rate, pressure);
+    return r.yield_stress > 0.0 ? 2.0 * r.dynamic_viscosity * r.strain_rate_norm / r.yield_stress : 1.0;
+  }
+
   // sin(phi) for a constant friction angle, mu(I) otherwise ([YS] Eq. 25).
   [[nodiscard]] double friction_coefficient(double strain_rate_norm,
                                             double yield_pressure) const noexcept {

@@ -4,7 +4,10 @@
 // strong as its parts in proportion.
 #pragma once
 
+#include <algorithm>
 #include <array>
+#include <cmath>
+#include <utility>
 #include <vector>
 
 #include "models/rheology/granular_rheology.hpp"
@@ -45,10 +48,25 @@ class SoilMaterials {
   // With every share 0 it is the base's own dynamic_viscosity, to the bit.
   [[nodiscard]] double dynamic_viscosity(const StrainRate& strain_rate, double pressure,
                                          const double* shares) const noexcept {
+    const auto [rate, tau] = rate_and_yield_stress(strain_rate, pressure, shares);
+    return materials_[0].regularise(tau, rate);
+  }
+
+  // GranularRheology::relative_shear_stress of the shared-out soil: the stress of its viscosity over its
+  // share-weighted yield stress (1 without strength).
+  [[nodiscard]] double relative_shear_stress(const StrainRate& strain_rate, double pressure,
+                                             const double* shares) const noexcept {
+    const auto [rate, tau] = rate_and_yield_stress(strain_rate, pressure, shares);
+    return tau > 0.0 ? 2.0 * materials_[0].regularise(tau, rate) * rate / tau : 1.0;
+  }
+
+ private:
+  // ||dev D|| (0 for a NaN rate) and the yield stress, the mean of the materials' weighted by their shares.
+  [[nodiscard]] std::pair<double, double> rate_and_yield_stress(const StrainRate& strain_rate, double pressure,
+                                                                const double* shares) const noexcept {
     const SymmetricTensor dev = deviatoric(strain_rate);
     double rate = norm(dev);
     if (std::isnan(rate)) rate = 0.0;
-    const GranularRheology& base = materials_[0];
     const double sin3 = needs_lode_angle_ ? sin_three_lode_angle(dev, rate) : 0.0;
     double rest = 1.0, tau = 0.0;
     for (int k = 1; k < count(); ++k) {
@@ -57,11 +75,10 @@ class SoilMaterials {
       tau += share * materials_[k].yield_stress_at(rate, sin3, pressure);
       rest -= share;
     }
-    if (rest > 0.0) tau += rest * base.yield_stress_at(rate, sin3, pressure);
-    return base.regularise(tau, rate);
+    if (rest > 0.0) tau += rest * materials_[0].yield_stress_at(rate, sin3, pressure);
+    return {rate, tau};
   }
 
- private:
   std::vector<GranularRheology> materials_;
   bool needs_lode_angle_ = false;  // some material's surface depends on the Lode angle
 };

@@ -81,6 +81,24 @@ TEST(SoilMaterials, StressRatioIsTheSharesMeanOfTheMaterials) {
   EXPECT_DOUBLE_EQ(soils.stress_ratio_to_drucker_prager(compression, 1e3, shares.data()), 0.5 * (loose + dense));
 }
 
+// The relative shear stress of shared-out soil: its viscosity's stress over the shares' mean yield
+// stress. Alone, each material's own; half and half at a rate well above yield, 1 (plus the floor's share).
+TEST(SoilMaterials, RelativeShearStressOfTheSharedOutSoil) {
+  RheologyParameters sand;
+  sand.friction_angle_deg = 20.0;
+  const RheologyParameters dense = with_strength(sand, 40.0, 0.0);
+  const SoilMaterials soils(sand, {dense});
+  const StrainRate slow = planar_strain_rate(0.0, 0.0, 2e-6), fast = planar_strain_rate(0.0, 0.0, 5.0);
+  SoilMaterials::Shares shares{};
+  EXPECT_DOUBLE_EQ(soils.relative_shear_stress(slow, 1e3, shares.data()), GranularRheology(sand).relative_shear_stress(slow, 1e3));
+  shares[0] = 1.0;
+  EXPECT_DOUBLE_EQ(soils.relative_shear_stress(slow, 1e3, shares.data()), GranularRheology(dense).relative_shear_stress(slow, 1e3));
+  shares[0] = 0.5;
+  const double tau = 0.5 * (GranularRheology(sand).evaluate(fast, 1e3).yield_stress + GranularRheology(dense).evaluate(fast, 1e3).yield_stress);
+  EXPECT_NEAR(soils.relative_shear_stress(fast, 1e3, shares.data()), 1.0 + 2.0 * sand.min_dynamic_viscosity * 5.0 / tau, 1e-12);
+  EXPECT_NEAR(soils.relative_shear_stress(slow, 1e3, shares.data()), 1.0 - std::exp(-2.0 * sand.regularisation_time * 2e-6) + 2.0 * sand.min_dynamic_viscosity * 2e-6 / tau, 1e-12);
+}
+
 // A material of its own yield surface: a Matsuoka-Nakai sand (phi = 30 deg) in a case of
 // Drucker-Prager-Bingham clay. Alone it is its own rheology, Lode angle and all, even where the base's
 // surface needs none; half and half, the mean of the two yield stresses regularised once.

@@ -125,5 +125,35 @@ TEST(LodeHistogram, BinsCentredOnZeroAndTheTriaxialLimits) {
   EXPECT_EQ(LodeHistogram(4).bins(), 5);  // made odd
 }
 
+// The relative shear stress 2 eta ||D|| / tau_y: under the exponential regularisation ([VoF] Eq. 12)
+// 1 - exp(-2 m ||D||) + 2 mu_min ||D|| / tau_y, so 0 at rest, 1 - 1/e at ||D|| = 1 / (2 m) and 1 (plus
+// the floor's share) well above; under the clip the kinematic cap nu_max holds it below 1 at slow rates;
+// 1 where the soil has no strength (no pressure, no cohesion).
+TEST(StressRatio, RelativeShearStressIsTheMobilisedShareOfTheStrength) {
+  RheologyParameters p;
+  p.model = Model::drucker_prager_bingham;
+  p.friction_angle_deg = 30.0;
+  p.regularisation_time = 1e5;  // m
+  p.min_dynamic_viscosity = 1e-3;  // mu_min
+  const GranularRheology dpb(p);
+  const double pressure = 1e4;
+  const double tau = dpb.evaluate(planar_strain_rate(1.0, -1.0, 0.0), pressure).yield_stress;
+  ASSERT_GT(tau, 0.0);
+  auto shear = [](double rate_norm) { return planar_strain_rate(0.0, 0.0, rate_norm); };  // ||D|| = D_xy
+  EXPECT_NEAR(norm(deviatoric(shear(0.3))), 0.3, 1e-15);
+  EXPECT_EQ(dpb.relative_shear_stress(shear(0.0), pressure), 0.0);
+  EXPECT_NEAR(dpb.relative_shear_stress(shear(0.5 / p.regularisation_time), pressure), 1.0 - std::exp(-1.0) + 1e-3 / (p.regularisation_time * tau), 1e-12);
+  EXPECT_NEAR(dpb.relative_shear_stress(shear(10.0), pressure), 1.0 + 2.0 * 1e-3 * 10.0 / tau, 1e-12);
+  EXPECT_EQ(dpb.relative_shear_stress(shear(10.0), 0.0), 1.0);    // no pressure, no cohesion: no strength
+  EXPECT_EQ(dpb.relative_shear_stress(shear(10.0), -5e3), 1.0);  // tension: none either
+  // Drucker-Prager with the clip ([YS] Sec. 2.4): eta = clamp(tau / (2 ||D||), rho nu_min, rho nu_max).
+  const auto dp = rheology_of(Model::drucker_prager);
+  const double tau_dp = dp.evaluate(shear(1.0), pressure).yield_stress;
+  const double slow = 1e-6, cap = 1430.0 * 1.0;  // nu_max = 1 m^2/s by default
+  ASSERT_GT(tau_dp / (2.0 * slow), cap);
+  EXPECT_NEAR(dp.relative_shear_stress(shear(slow), pressure), 2.0 * cap * slow / tau_dp, 1e-12);
+  EXPECT_NEAR(dp.relative_shear_stress(shear(1e3), pressure), 1.0, 1e-12);
+}
+
 }  // namespace
 }  // namespace granflow::rheology
