@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "io/checkpoint.hpp"
+#include "mesh/column_depth.hpp"
 #include "mesh/field.hpp"
 #include "mesh/field_snapshot.hpp"
 #include "models/interface/vof_advection.hpp"
@@ -199,6 +200,7 @@ class SoilPhase {
   std::unique_ptr<Field> strain_norm_, rate_norm_, lode_, stress_ratio_, relative_stress_, dissipation_;
   rheology::LodeHistogram lode_rate_, lode_energy_;  // this rank's cells: W and J per bin
   std::unique_ptr<Field> overburden_;  // rho_s g times the soil depth above each centre (Pa)
+  std::unique_ptr<ColumnDepth> column_depth_;  // made at the first overburden (collective)
   void compute_overburden(const std::array<double, 2>& gravity);
   int sweep_parity_ = 0;
   const Field* blocked_ = nullptr;

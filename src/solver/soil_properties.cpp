@@ -12,7 +12,6 @@
 
 #include "io/collective_failure.hpp"
 #include "mesh/face_loop.hpp"
-#include "mesh/gather.hpp"
 #include "mesh/obstacles.hpp"
 #include "models/interface/material_transport.hpp"
 #include "models/interface/vof_advection.hpp"
@@ -184,33 +183,22 @@ void SoilPhase::refresh(const FlowSolver& flow) {
 }
 
 // Depth of soil above each cell centre, sum of c dy over the cells above plus half the cell's own,
-// times rho_s |g|. Columns cross ranks, so the soil fraction is gathered whole (once per step).
+// times rho_s |g|. Columns cross ranks: ColumnDepth carries the sums of the ranks above.
 void SoilPhase::compute_overburden(const std::array<double, 2>& gravity) {
-  // Soils of several densities: the column's mass per area, c rho_s / soil.density in place of c.
-  if (densities_differ()) {
+  if (!column_depth_) column_depth_ = std::make_unique<ColumnDepth>(grid_);
+  {
     FieldArray o(grid_.field_dm(), overburden_->global());
     ConstFieldArray cf(grid_.field_dm(), c_->global());
+    // Soils of several densities: the column's mass per area, c rho_s / soil.density in place of c.
     const auto m = share_arrays(false);
-    const auto& ob = grid_.owned();
-    for (int j = ob.ys; j < ob.ye(); ++j)
-      for (int i = ob.xs; i < ob.xe(); ++i) o[j][i] = cf[j][i] * cell_soil_density(m, i, j) / settings_.soil_density;
+    const bool densities = densities_differ();
+    const auto& b = grid_.owned();
+    for (int j = b.ys; j < b.ye(); ++j)
+      for (int i = b.xs; i < b.xe(); ++i)
+        o[j][i] = cf[j][i] * grid_.dy(j) * (densities ? cell_soil_density(m, i, j) / settings_.soil_density : 1.0);
   }
-  const std::vector<double> c = gather_to_all(grid_, densities_differ() ? *overburden_ : *c_);
-  DM dm = grid_.field_dm();
-  const int nx = grid_.nx(), ny = grid_.ny();
-  const double weight = settings_.soil_density * std::abs(gravity[1]);
-  const auto& b = grid_.owned();
-  {
-    FieldArray o(dm, overburden_->global());
-    for (int i = b.xs; i < b.xe(); ++i) {
-      double depth = 0.0;
-      for (int j = ny - 1; j >= b.ys; --j) {
-        const double cj = c[size_t(j) * nx + i] * grid_.dy(j);
-        if (j < b.ye()) o[j][i] = weight * (depth + 0.5 * cj);
-        depth += cj;
-      }
-    }
-  }
+  column_depth_->to_centre_depths(*overburden_);
+  PetscCallAbort(grid_.comm(), VecScale(overburden_->global(), settings_.soil_density * std::abs(gravity[1])));
 }
 
 }  // namespace granflow
