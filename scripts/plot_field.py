@@ -6,7 +6,7 @@ Usage: plot_field.py OUT [--field NAME] [--time T | --output N] [--component x|y
                          [--soil-only] [--log] [--png FILE]
 
 Without --png it lists the run's output times and the fields of the chosen output. --time takes the
-output nearest T, --output N the N-th (from 0, the initial state); the default is the last. A vector
+output nearest T (within the outputs' span, half an interval either side), --output N the N-th (from 0, the initial state); the default is the last. A vector
 field (velocity, displacement) is drawn as its magnitude unless --component says x or y. --soil-only
 leaves out the cells with c < 0.5; --log draws log10 of the absolute value (for the viscosity, which
 spans ten decades), from the smallest non-zero magnitude, at most 14 decades below the largest (cells of
@@ -71,6 +71,12 @@ def main():
             raise InputError(f"{a.out}: no output {a.output}; it has outputs 0 to {len(runs) - 1}")
         index = a.output
     elif a.time is not None:
+        # Nearest, within the run's outputs: a time outside them is a slip (a sign, a unit), not a request
+        # for the first or last output.
+        first, last = runs[0][0], runs[-1][0]
+        spacing = (last - first) / max(len(runs) - 1, 1)
+        if not first - 0.5 * spacing <= a.time <= last + 0.5 * spacing:
+            raise InputError(f"--time {a.time:g}: the run's outputs lie from t = {first:g} to {last:g} s")
         index = int(np.argmin([abs(t - a.time) for t, _ in runs]))
     else:
         index = len(runs) - 1

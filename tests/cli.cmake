@@ -614,6 +614,13 @@ add_test(NAME scripts_plot_field
 set_tests_properties(scripts_plot_field PROPERTIES LABELS cli
                      PASS_REGULAR_EXPRESSION "^3 outputs: 0 [(]t = 0 s[)], 1 [(]t = 0[.]01 s[)], 2 [(]t = 0[.]02 s[)]\nfields of output 1: density, displacement [(]3 components[)], [^\n]*, viscosity\nwrote [^\n]*v[.]png [(]log10 viscosity [(]Pa s[)] from [^\n]*[)]\ndrawn\nerror: [^\n]*has no field velocty; it has [^\n]*velocity[^\n]*\nstatus 1\nnone written\n$"
                      FAIL_REGULAR_EXPRESSION "Traceback")
+# A time outside the run's outputs is refused, not taken as the first or last output.
+add_test(NAME scripts_plot_field_time_outside_the_outputs
+         COMMAND sh -c "g=$0; p=$1; c=$2; d=$3; rm -rf \"$d\"; \"$g\" run \"$c\" -o \"$d\" --set 'mesh.cells=[30,10]' --set time.end=0.02 --set output.interval=0.01 --set output.progress_seconds=0 > /dev/null || exit 1; /usr/bin/python3 \"$p\" \"$d\" --time -5 --field pressure --png \"$d/p.png\" 2>&1; echo \"status $?\"; test ! -e \"$d/p.png\" && echo 'none written'"
+                 $<TARGET_FILE:granflow> ${CMAKE_SOURCE_DIR}/scripts/plot_field.py ${CMAKE_SOURCE_DIR}/cases/bui2008_experiment.toml ${CMAKE_CURRENT_BINARY_DIR}/plot_field_time)
+set_tests_properties(scripts_plot_field_time_outside_the_outputs PROPERTIES LABELS cli
+                     PASS_REGULAR_EXPRESSION "^error: --time -5: the run's outputs lie from t = 0 to 0[.]02 s\nstatus 1\nnone written\n$"
+                     FAIL_REGULAR_EXPRESSION "Traceback")
 # A case with obstacles is drawn (its blocked cells left out of the colour scale); on a log scale the air
 # at rest does not set the scale's floor (at most 14 decades below the largest); a component asked of a
 # scalar field is refused rather than ignored.
