@@ -8,7 +8,7 @@
 # two trials from the earlier analysis and running the other two again. An analysis stopped in its
 # first trial (directories, no table) is continued from nothing. A continuation with another case or
 # displacement limit is refused, status 2, the earlier analysis kept; so is one where -o is a file or
-# holds a run, and an analysis into a run's directory or a run into an analysis's.
+# holds a run, and an analysis into a run's directory or a run into an analysis's or one of its trials'.
 set -f
 g=$1 c=$2 d=$3
 shift 3
@@ -66,4 +66,8 @@ status=$?
 test $status -eq 2 && head -n 1 "$d.other.log" | grep -q "^error: .* holds a stability analysis (.*): a run.s files would lie beside it" \
   || { cat "$d.other.log"; fail "a run into an analysis: status $status"; }
 cmp "$d/stability.csv" "$d.kept" || fail "a refused run changed the analysis"
+"$g" run "$c" -o "$d/F_1.25/" --overwrite --set time.end=0.01 > "$d.other.log" 2>&1
+status=$?
+test $status -eq 2 && head -n 1 "$d.other.log" | grep -q "^error: .*/F_1.25/ is a trial of the stability analysis in " \
+  || { cat "$d.other.log"; fail "a run into a trial's directory: status $status"; }
 echo "continued: the same factor and trials"

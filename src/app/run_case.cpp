@@ -90,6 +90,10 @@ int run_case(const std::string& case_file, const std::vector<std::string>& overr
     throw CaseError(fmt::format("{} holds a stability analysis ({}): a run's files would lie beside it; choose another "
                                 "directory with -o",
                                 out_dir, analysis.front().string()));
+  if (const auto analysis = analysis_of_trial(out_dir); !analysis.empty())
+    throw CaseError(fmt::format("{} is a trial of the stability analysis in {}, which a continued analysis reads: "
+                                "choose another directory with -o",
+                                out_dir, analysis.string()));
   const auto earlier = run_files_in(out_dir, config.output.lines);
   if (!restart && !overwrite && !earlier.empty()) {
     std::error_code ec;

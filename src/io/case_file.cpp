@@ -34,6 +34,36 @@ constexpr std::size_t case_file_limit = std::size_t(64) << 20;
 // (docs/method.md, "Air band").
 constexpr int default_air_band = 12;
 
+// The key of a --set assignment: before its '=', without the blanks a TOML line may have around the key
+// and its dots ("time.end = 0.1"); empty without an '='.
+std::string override_key(const std::string& assignment) {
+  const auto eq = assignment.find('=');
+  std::string key;
+  if (eq != std::string::npos)
+    for (char ch : assignment.substr(0, eq))
+      if (ch != ' ' && ch != '\t') key += ch;
+  return key;
+}
+
+// Whether a message about the case names a key that the --set assignment gave, or an entry under it
+// ("initial.soil[0].radius" of initial.soil): the key before the message's first ": " (and before
+// " = " where the value follows it); or a table the assignment's key lies in, when the message is a
+// rheology check of that key ("soil.rheology: rheology parameter friction_angle (phi) = 95 ...").
+bool names_key_of(std::string_view message, const std::string& assignment) {
+  const std::string key = override_key(assignment);
+  if (key.empty()) return false;
+  std::string_view named = message.substr(0, message.find(": "));
+  named = named.substr(0, named.find(" = "));
+  if (named.starts_with(key) && (named.size() == key.size() || named[key.size()] == '.' || named[key.size()] == '['))
+    return true;
+  if (!(key.size() > named.size() && key.starts_with(named) && key[named.size()] == '.')) return false;
+  const std::string parameter = "parameter " + key.substr(key.rfind('.') + 1);
+  const auto at = message.find(parameter, named.size());
+  const std::size_t end = at + parameter.size();
+  return at != std::string_view::npos &&
+         (end == message.size() || !(std::isalnum(static_cast<unsigned char>(message[end])) || message[end] == '_'));
+}
+
 void apply_override(toml::table& root, const std::string& assignment) {
   // The case as run is recorded as TOML, which is UTF-8 throughout (a bare word would be kept as it is).
   if (!is_valid_utf8(assignment))
@@ -41,10 +71,7 @@ void apply_override(toml::table& root, const std::string& assignment) {
   const auto eq = assignment.find('=');
   if (eq == std::string::npos || eq == 0)
     throw CaseError(fmt::format("--set '{}': expected KEY=VALUE", assignment));
-  // Blanks around the key and its dots are the TOML line's, not the key's ("time.end = 0.1").
-  std::string key;
-  for (char ch : assignment.substr(0, eq))
-    if (ch != ' ' && ch != '\t') key += ch;
+  const std::string key = override_key(assignment);
   if (key.empty()) throw CaseError(fmt::format("--set '{}': expected KEY=VALUE", assignment));
   const auto whole_array_only = [&](const std::string& array) {
     return CaseError(fmt::format("--set '{}': an element of an array cannot be set alone; set the whole array, "
@@ -686,9 +713,11 @@ LineSample read_line_sample(TableReader& l, const GridSpec& mesh, const std::vec
     if (!(std::isalnum(static_cast<unsigned char>(ch)) || ch == '_' || ch == '-'))
       throw CaseError(fmt::format("{}.name: '{}' may hold only letters, digits, '_' and '-'", l.path(), s.name));
   // The solver's own files must not be overwritten by a line's samples.
-  for (const char* own : {"history", "surface", "failure_line", "column_height", "lode_dissipation", "fields"})
+  // "stability": stability.csv marks a directory as a stability analysis's, which a run refuses.
+  for (const char* own : {"history", "surface", "failure_line", "column_height", "lode_dissipation", "fields", "stability"})
     if (s.name == own)
-      throw CaseError(fmt::format("{}.name: '{}' is the name of one of the run's own output files", l.path(), s.name));
+      throw CaseError(fmt::format("{}.name: '{}' is the name of one of the run's own output files{}", l.path(), s.name,
+                                  s.name == "stability" ? " (a stability analysis's table, stability.csv)" : ""));
   // Numbered files are NAME_NNNNN.csv: a name ending in '_' and five digits could be one of them.
   if (const size_t u = s.name.find_last_of('_');
       u != std::string::npos && s.name.size() - u > 5 &&
@@ -751,8 +780,15 @@ PhaseSettings read_fluid(TableReader& top) {
 }
 
 // Why a shape within [lo, hi] covers no area of the mesh's domain (interface::overlaps): it lies
-// outside, or what lies inside is too small to count.
-std::string no_area_in_domain(const interface::Point& lo, const interface::Point& hi, const GridSpec& mesh) {
+// outside, or what lies inside is too small to count. A ring whose hole holds the domain is said so.
+std::string no_area_in_domain(const interface::Shape& shape, const GridSpec& mesh) {
+  const auto [lo, hi] = interface::bounding_box(shape);
+  // A ring covers none of the domain where its outer disc does: its hole holds it (interface::overlaps).
+  if (const auto* ring = std::get_if<interface::Ring>(&shape);
+      ring && interface::overlaps(interface::Circle{ring->centre, ring->outer_radius}, mesh.lower, mesh.upper))
+    return fmt::format("the ring's hole (radius {} about [{}, {}]) holds the whole domain [{}, {}] x [{}, {}]",
+                       ring->inner_radius, ring->centre[0], ring->centre[1], mesh.lower[0], mesh.upper[0],
+                       mesh.lower[1], mesh.upper[1]);
   const bool outside = !(lo[0] < mesh.upper[0] && hi[0] > mesh.lower[0] && lo[1] < mesh.upper[1] && hi[1] > mesh.lower[1]);
   return fmt::format("the shape, within [{}, {}] x [{}, {}], covers {} area of the domain [{}, {}] x [{}, {}]{}", lo[0],
                      hi[0], lo[1], hi[1], outside ? "no" : "next to no", mesh.lower[0], mesh.upper[0], mesh.lower[1],
@@ -764,11 +800,9 @@ std::string no_area_in_domain(const interface::Point& lo, const interface::Point
 void require_consistent(const CaseConfig& c) {
   if (c.soil) {
     // A shape may reach past the domain (it is clipped), but one wholly outside it holds no soil.
-    for (size_t k = 0; k < c.soil->initial_soil.size(); ++k) {
-      const auto [lo, hi] = interface::bounding_box(c.soil->initial_soil[k]);
+    for (size_t k = 0; k < c.soil->initial_soil.size(); ++k)
       if (!interface::overlaps(c.soil->initial_soil[k], c.mesh.lower, c.mesh.upper))
-        throw CaseError(fmt::format("initial.soil[{}]: {}", k, no_area_in_domain(lo, hi, c.mesh)));
-    }
+        throw CaseError(fmt::format("initial.soil[{}]: {}", k, no_area_in_domain(c.soil->initial_soil[k], c.mesh)));
   }
   auto frictional_wall = [&](const std::string& wall) {
     if (!c.soil) return;
@@ -783,11 +817,9 @@ void require_consistent(const CaseConfig& c) {
     if (boundary(c.flow.boundaries, s).friction) frictional_wall(fmt::format("boundary.{}", side_name(s)));
   for (size_t k = 0; k < c.obstacle_friction.size(); ++k)
     if (c.obstacle_friction[k]) frictional_wall(fmt::format("obstacle[{}]", k));
-  for (size_t k = 0; k < c.obstacles.size(); ++k) {
-    const auto [lo, hi] = interface::bounding_box(c.obstacles[k]);
+  for (size_t k = 0; k < c.obstacles.size(); ++k)
     if (!interface::overlaps(c.obstacles[k], c.mesh.lower, c.mesh.upper))
-      throw CaseError(fmt::format("obstacle[{}]: {}", k, no_area_in_domain(lo, hi, c.mesh)));
-  }
+      throw CaseError(fmt::format("obstacle[{}]: {}", k, no_area_in_domain(c.obstacles[k], c.mesh)));
   if (!c.obstacles.empty()) {
     // The obstacles' walls are built into the coupled solve's rows and the operators it uses.
     if (c.flow.numerics.pressure_coupling != PressureCoupling::coupled)
@@ -1062,17 +1094,11 @@ CaseConfig load_case(const std::filesystem::path& file, const std::vector<std::s
   } catch (const CaseError& e) {
     const std::string what = e.what();
     if (what.starts_with(file.string())) throw;  // a TOML syntax error names its file and line already
+    if (what.starts_with("--set ")) throw;        // an assignment that could not be applied names itself
     // A key (or an entry under it) that a --set assignment gave is named as the command line's, not
     // the file's, which may not even hold it.
-    const std::string_view key_of_message = std::string_view(what).substr(0, what.find(": "));
-    for (const auto& assignment : overrides) {
-      std::string_view key = std::string_view(assignment).substr(0, assignment.find('='));
-      while (!key.empty() && std::isspace(static_cast<unsigned char>(key.back()))) key.remove_suffix(1);
-      while (!key.empty() && std::isspace(static_cast<unsigned char>(key.front()))) key.remove_prefix(1);
-      if (!key.empty() && key_of_message.starts_with(key) &&
-          (key_of_message.size() == key.size() || key_of_message[key.size()] == '.' || key_of_message[key.size()] == '['))
-        throw CaseError(fmt::format("--set {}", what));
-    }
+    for (const auto& assignment : overrides)
+      if (names_key_of(what, assignment)) throw CaseError(fmt::format("--set {}", what));
     throw CaseError(fmt::format("{}: {}", file.string(), what));
   }
 }

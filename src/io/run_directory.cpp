@@ -198,4 +198,15 @@ std::vector<std::filesystem::path> analysis_files_in(const std::filesystem::path
   return found;
 }
 
+std::filesystem::path analysis_of_trial(const std::filesystem::path& dir) {
+  namespace fs = std::filesystem;
+  fs::path trial = dir.lexically_normal();
+  if (trial.filename().empty()) trial = trial.parent_path();  // "OUT/F_1/"
+  if (!trial.filename().string().starts_with("F_")) return {};
+  const fs::path analysis = trial.has_parent_path() ? trial.parent_path() : fs::path(".");
+  for (const auto& p : analysis_files_in(analysis))
+    if (p.filename() == trial.filename()) return analysis;
+  return {};
+}
+
 }  // namespace granflow

@@ -33,6 +33,9 @@ std::vector<std::filesystem::path> run_files_in(const std::filesystem::path& dir
 // directory. A run and an analysis do not share a directory: each refuses one that holds the other's.
 inline constexpr const char* stability_table_name = "stability.csv";
 std::vector<std::filesystem::path> analysis_files_in(const std::filesystem::path& dir);
+// The analysis `dir` is a trial directory of (its parent, when analysis_files_in lists `dir` there), or
+// empty: a run there would replace the trial a continued analysis reads.
+std::filesystem::path analysis_of_trial(const std::filesystem::path& dir);
 
 // Refuses an output directory `dir` (as -o gives it) that is or lies in a directory an earlier run
 // keeps to itself and replaces or removes whole: its checkpoint/, checkpoint.old/ or

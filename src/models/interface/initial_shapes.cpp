@@ -262,11 +262,14 @@ double ShapeUnion::fraction(double x0, double x1, double y0, double y1, bool axi
     if (!(lo[0] < x1 && hi[0] > x0 && lo[1] < y1 && hi[1] > y0)) continue;
     small_shape_here = std::holds_alternative<Polygon>(shapes_[k]) ? polygon_edge_through(k, x0, x1, y0, y1)
                                                                     : hi[0] - lo[0] < x1 - x0 || hi[1] - lo[1] < y1 - y0;
-    // A ring's hole narrower or lower than the cell that reaches into it, as a small circle would.
+    // A ring's band narrower than the cell (it may pass between the probes), or its hole narrower or
+    // lower than the cell and reaching into it, as a small circle would.
     if (const auto* r = std::get_if<Ring>(&shapes_[k]); r && !small_shape_here) {
+      const double band = r->outer_radius - r->inner_radius;
       const double d = 2.0 * r->inner_radius, cx = r->centre[0], cy = r->centre[1];
-      small_shape_here = (d < x1 - x0 || d < y1 - y0) && cx - 0.5 * d < x1 && cx + 0.5 * d > x0 &&
-                         cy - 0.5 * d < y1 && cy + 0.5 * d > y0;
+      small_shape_here = band < x1 - x0 || band < y1 - y0 ||
+                         ((d < x1 - x0 || d < y1 - y0) && cx - 0.5 * d < x1 && cx + 0.5 * d > x0 &&
+                          cy - 0.5 * d < y1 && cy + 0.5 * d > y0);
     }
   }
   const int probe = contains(x0, y0) + contains(x1, y0) + contains(x0, y1) + contains(x1, y1) +

@@ -17,7 +17,8 @@ struct Circle {
   double radius;
 };
 // The annulus inner_radius <= |x - centre| <= outer_radius: a hollow cylinder in planar 2D; drawn in
-// the r-z plane of an axisymmetric mesh, a torus of that section.
+// the r-z plane of an axisymmetric mesh, that section revolved about the axis (a torus where the
+// annulus lies clear of the axis; the part at r < 0 is outside the mesh).
 struct Ring {
   Point centre;
   double inner_radius, outer_radius;  // 0 < inner_radius < outer_radius

@@ -239,6 +239,13 @@ TEST(InitialShapes, RingsHoldTheirAreaAndTheirTorusVolume) {
       volume += ShapeUnion(torus).fraction(i * h, (i + 1) * h, j * h, (j + 1) * h, true) * (i + 0.5) * h * h * h;
   EXPECT_NEAR(volume / (M_PI * (outer * outer - inner * inner) * r0), 1.0, 2e-4);
 
+  // A band thinner than the cells (a fifth of one), which can pass between a cell's corners and centre.
+  const std::vector<Shape> thin{Ring{{0.0, 0.0}, 0.2, 0.202}};
+  double thin_area = 0.0;
+  for (int i = -25; i < 25; ++i)
+    for (int j = -25; j < 25; ++j) thin_area += ShapeUnion(thin).fraction(i * h, (i + 1) * h, j * h, (j + 1) * h) * h * h;
+  EXPECT_NEAR(thin_area / (M_PI * (0.202 * 0.202 - 0.2 * 0.2)), 1.0, 0.02);
+
   const std::vector<Shape> small_hole{Ring{{0.3, 0.3}, 0.1, 2.0}};
   EXPECT_NEAR(ShapeUnion(small_hole).fraction(0.0, 1.0, 0.0, 1.0), 1.0 - M_PI * 0.01, 2e-3);
   EXPECT_EQ(ShapeUnion(small_hole).fraction(1.0, 2.0, 0.0, 1.0), 1.0);  // beside the hole: full

@@ -661,7 +661,7 @@ TEST(CaseFile, LineNamesCannotBeThoseOfOtherOutputFiles) {
   };
   EXPECT_EQ(error_of(line("profile_2")), "");
   EXPECT_EQ(error_of(line("x_1a")), "");
-  for (const char* bad : {"", "surface_00001", "a_00000", "history", "a b"}) {
+  for (const char* bad : {"", "surface_00001", "a_00000", "history", "stability", "a b"}) {
     const std::string e = error_of(line(bad));
     EXPECT_NE(e.find("output.line"), std::string::npos) << "'" << bad << "': " << e;
   }
@@ -887,24 +887,43 @@ TEST(CaseFile, ErrorsInSetKeysNameTheCommandLine) {
   EXPECT_EQ(ring.rfind("--set initial.soil[0].outer_radius: the ring is empty", 0), 0u) << ring;
   const std::string spaced = message({" time.courant = -1"});
   EXPECT_EQ(spaced.rfind("--set time.courant: ", 0), 0u) << spaced;
-  // A key of the same start is not the key: time.endx is not under time.end.
-  const std::string similar = message({"time.end=1", "time.endx=2"});
-  EXPECT_EQ(similar.rfind("--set time.endx: unknown key", 0), 0u) << similar;
-  // The file's own key in error, with --set giving others: the file's.
+  // A table's rheology check of a key --set gave; a message that quotes its value after the key; blanks
+  // around the dots; an assignment that cannot be applied.
+  const std::string phi = message({"soil.rheology.friction_angle=95"});
+  EXPECT_EQ(phi.rfind("--set soil.rheology: rheology parameter friction_angle", 0), 0u) << phi;
+  const std::string band = message({"numerics.air_band=2"});
+  EXPECT_EQ(band.rfind("--set numerics.air_band = 2: too narrow", 0), 0u) << band;
+  const std::string dots = message({"time . courant=-1"});
+  EXPECT_EQ(dots.rfind("--set time.courant: ", 0), 0u) << dots;
+  EXPECT_EQ(message({"foo"}), "--set 'foo': expected KEY=VALUE");
+  // The file's own key in error, with --set giving others: the file's; so too where an assigned key
+  // begins the erring key's name (output.interval is not output.intervalx) or the rheology check names
+  // another parameter than the one assigned.
   const auto dir = std::filesystem::temp_directory_path() / "granflow_set_or_file";
   std::filesystem::create_directories(dir);
   const auto bad = dir / "bad.toml";
   {
     std::ofstream out(bad);
-    out << read_text_file(bui, 1 << 20).text << "\n[extra]\nx = 1\n";
+    out << read_text_file(bui, 1 << 20).text << "\nintervalx = 1\n";  // in its last table, [output]
   }
-  std::string file_error;
-  try {
-    load_case(bad, {"mesh.cells=[30,10]", "time.end=1"});
-  } catch (const CaseError& e) {
-    file_error = e.what();
+  auto file_error = [&](std::vector<std::string> overrides) {
+    try {
+      load_case(bad, overrides);
+    } catch (const CaseError& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  const std::string prefix = file_error({"mesh.cells=[30,10]", "output.interval=0.5"});
+  EXPECT_EQ(prefix.rfind(bad.string() + ": output.intervalx: unknown key", 0), 0u) << prefix;
+  {
+    std::ofstream out(bad);
+    std::string text = read_text_file(bui, 1 << 20).text;
+    text.replace(text.find("friction_angle = 19.8"), std::string("friction_angle = 19.8").size(), "friction_angle = 95");
+    out << text;
   }
-  EXPECT_EQ(file_error.rfind(bad.string() + ": extra: unknown", 0), 0u) << file_error;
+  const std::string other = file_error({"soil.rheology.cohesion=10"});
+  EXPECT_EQ(other.rfind(bad.string() + ": soil.rheology: rheology parameter friction_angle", 0), 0u) << other;
   std::filesystem::remove_all(dir);
 }
 
@@ -937,6 +956,9 @@ TEST(CaseFile, RingsTakeACentreAndTwoRadii) {
   const std::string negative = error_of(
       two_phase, {phi, "initial.soil=[{shape = \"ring\", centre = [0.5, 0.1], inner_radius = -0.1, outer_radius = 0.1}]"});
   EXPECT_NE(negative.find("inner_radius"), std::string::npos) << negative;
+  const std::string around = error_of(
+      two_phase, {phi, "initial.soil=[{shape = \"ring\", centre = [0.5, 0.1], inner_radius = 5, outer_radius = 6}]"});
+  EXPECT_NE(around.find("the ring's hole (radius 5 about [0.5, 0.1]) holds the whole domain"), std::string::npos) << around;
   const std::string circle_key = error_of(
       two_phase, {phi, "initial.soil=[{shape = \"ring\", centre = [0.5, 0.1], radius = 0.1, outer_radius = 0.2}]"});
   EXPECT_NE(circle_key.find("inner_radius"), std::string::npos) << circle_key;
