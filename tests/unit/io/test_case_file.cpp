@@ -873,14 +873,15 @@ TEST(CaseFile, CoupledKrylovMethodWithoutACountTakesAKrylovCount) {
 // which may not hold the key at all; one in the file's own keys names the file.
 TEST(CaseFile, ErrorsInSetKeysNameTheCommandLine) {
   const std::string bui = std::string(GRANFLOW_SOURCE_DIR) + "/cases/bui2008_experiment.toml";
-  auto message = [&](std::vector<std::string> overrides) {
+  auto error_loading = [](const std::filesystem::path& file, const std::vector<std::string>& overrides) {
     try {
-      load_case(bui, overrides);
+      load_case(file, overrides);
     } catch (const CaseError& e) {
       return std::string(e.what());
     }
     return std::string("no error");
   };
+  auto message = [&](const std::vector<std::string>& overrides) { return error_loading(bui, overrides); };
   EXPECT_EQ(message({"mesh.cels=3"}).rfind("--set mesh.cels: unknown key", 0), 0u) << message({"mesh.cels=3"});
   const std::string ring =
       message({"initial.soil=[{shape = \"ring\", centre = [0.3, 0.05], inner_radius = 0.05, outer_radius = 0.04}]"});
@@ -906,14 +907,7 @@ TEST(CaseFile, ErrorsInSetKeysNameTheCommandLine) {
     std::ofstream out(bad);
     out << read_text_file(bui, 1 << 20).text << "\nintervalx = 1\n";  // in its last table, [output]
   }
-  auto file_error = [&](std::vector<std::string> overrides) {
-    try {
-      load_case(bad, overrides);
-    } catch (const CaseError& e) {
-      return std::string(e.what());
-    }
-    return std::string("no error");
-  };
+  auto file_error = [&](const std::vector<std::string>& overrides) { return error_loading(bad, overrides); };
   const std::string prefix = file_error({"mesh.cells=[30,10]", "output.interval=0.5"});
   EXPECT_EQ(prefix.rfind(bad.string() + ": output.intervalx: unknown key", 0), 0u) << prefix;
   {
