@@ -62,7 +62,7 @@ TEST(SlopeStability, GriffithsLaneExampleOneWithMohrCoulombItself) {
 // does. Their factors, and circular-slip limit equilibrium over the same geometry (docs/validation.md),
 // are 2.03 (2.02) for lambda >= 1.5, the toe circle in the slope; 1.45 (1.47) for one clay, a circle
 // through the foundation to the base; 0.87 for lambda = 0.5. Measured by bisection at 90 x 30 (1 m cells):
-// 2.102 for lambda = 2, 1.506 for lambda = 1, 0.883 for lambda = 0.5; at 180 x 60, 2.070 for lambda = 2.
+// 2.102 for lambda = 2, 1.506 for lambda = 1, 0.883 for lambda = 0.5; at 180 x 60, 2.066 for lambda = 2 (standing at 2.0625, failing at 2.0703).
 // Here single trials on 1 m cells: with the strong foundation the slope stands at F = 1.9, where one clay
 // fails (its deep circle at 1.45-1.5), and fails at 2.25; with a foundation half as strong it fails at
 // F = 1, where the slope on the strong one stands, and stands at 0.8.
