@@ -128,10 +128,6 @@ LinearSolverSettings read_linear_solver(TableReader r, LinearSolverSettings d) {
   r.require_range("rtol", d.rtol, 0.0, std::nextafter(1.0, 0.0), "in [0, 1)");  // PETSc refuses 1 itself
   d.atol = r.number("atol", d.atol);
   r.require_range("atol", d.atol, 0.0, inf);
-  // The coupled solver's one iteration belongs to its default preonly (a factorisation applied once): a
-  // Krylov method given without a count takes a Krylov method's, not one iteration that would stop it
-  // far from its rtol at every solve.
-  if (d.ksp_type != "preonly" && d.max_iterations == 1) d.max_iterations = LinearSolverSettings{}.max_iterations;
   d.max_iterations = r.integer_in("max_iterations", d.max_iterations, 1, 1000000000);
   d.max_reuse = r.integer_in("reuse_preconditioner", d.max_reuse, 1, 1000000);
   r.finish();

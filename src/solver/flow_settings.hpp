@@ -64,7 +64,9 @@ struct FlowSettings {
   NumericsSettings numerics{};
   LinearSolverSettings momentum_solver{"bcgs", "bjacobi", 1e-8, 1e-14, 1000};
   LinearSolverSettings pressure_solver{"cg", "hypre", 1e-10, 1e-14, 2000};
-  LinearSolverSettings coupled_solver{"preonly", "lu", 1e-10, 1e-14, 1};
+  // preonly applies its factorisation once whatever max_iterations says; the count is a Krylov
+  // method's, for one chosen in the case or through PETSc's options.
+  LinearSolverSettings coupled_solver{"preonly", "lu", 1e-10, 1e-14, 1000};
 };
 
 // Whether u and v share one momentum matrix in the segregated steps: not beside a slip wall (its
