@@ -2,13 +2,14 @@
 """The mechanism of a strength-reduction analysis (`granflow stability`): the displacement of the soil
 in the trial at the smallest factor that failed, as it was when the trial saw it fail.
 
-Usage: plot_stability.py OUT [--png FILE]
+Usage: plot_stability.py OUT [--png FILE] [--line CSV]
 Prints the bracket (the largest factor that stood, the smallest that failed) from OUT/stability.csv, or
 the smallest factor tried where the soil failed in every trial;
 with --png draws the displacement magnitude over the soil (cells with c >= 0.5) of that trial's last
 fields file, with the soil's surface (c = 0.5) and, dashed, the contacts of the soil materials (where
 a material's share of the soil is a half). The trials must have written fields
-(output.fields = true).
+(output.fields = true). --line draws a reference line over it, red and dashed: a CSV of columns x, y in
+the case's coordinates, a row of nan between pieces (validation/refdata/prandtl1920_strip_footing_mechanism.csv).
 """
 import argparse
 import csv
@@ -17,14 +18,18 @@ import os
 
 import numpy as np
 
-from granflow_files import InputError, main_with_errors, picture_file, read_vtr
+from granflow_files import InputError, main_with_errors, picture_file, read_csv, read_vtr
 
 
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("out")
     ap.add_argument("--png", type=picture_file)
+    ap.add_argument("--line", help="a reference line to draw: CSV of x, y")
     a = ap.parse_args()
+    line = read_csv(a.line) if a.line else None
+    if line is not None and not ("x" in line and "y" in line and len(line["x"])):
+        raise InputError(f"{a.line}: no rows of columns x, y")
     path = os.path.join(a.out, "stability.csv")
     try:
         with open(path) as f:
@@ -73,7 +78,10 @@ def main():
     soil = c > 0.5
     top = yc[np.any(soil, axis=1)].max() if soil.any() else y[-1]
     right = xc[np.any(soil, axis=0)].max() if soil.any() else x[-1]
-    fig, ax = plt.subplots(figsize=(9, 3.4))
+    # The frame shows the soil and a little above and beyond it; the figure takes its proportions.
+    y1 = min(y[-1], y[0] + 1.6 * (top - y[0]))
+    x1 = min(x[-1], x[0] + 1.2 * (right - x[0]))
+    fig, ax = plt.subplots(figsize=(9, min(8.0, max(2.5, 7.5 * (y1 - y[0]) / (x1 - x[0]) + 0.9))))
     shown = np.ma.masked_where(c < 0.5, d)
     m = ax.pcolormesh(x, y, shown, cmap="viridis", shading="flat")
     fig.colorbar(m, ax=ax, label="displacement (m)")
@@ -83,8 +91,10 @@ def main():
         share = np.where(c > 0.5, cells[name] / np.maximum(c, 1e-300), np.nan)
         if np.nanmin(share) < 0.5 < np.nanmax(share):
             ax.contour(xc, yc, share, levels=[0.5], colors="w", linewidths=1.0, linestyles="--")
-    ax.set_ylim(y[0], min(y[-1], 1.6 * top))
-    ax.set_xlim(x[0], min(x[-1], x[0] + 1.2 * (right - x[0])))
+    if line is not None:
+        ax.plot(line["x"], line["y"], "r--", linewidth=1.2)
+    ax.set_ylim(y[0], y1)
+    ax.set_xlim(x[0], x1)
     ax.set_aspect("equal")
     ax.set_xlabel("x (m)")
     ax.set_ylabel("y (m)")

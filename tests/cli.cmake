@@ -416,6 +416,13 @@ add_test(NAME scripts_plot_stability_bracket
                  ${CMAKE_SOURCE_DIR}/scripts/plot_stability.py ${GRANFLOW_STABILITY_FIXTURE})
 set_tests_properties(scripts_plot_stability_bracket PROPERTIES LABELS cli
                      PASS_REGULAR_EXPRESSION "^stands at F = 1[.]5000, fails at F = 1[.]7500: factor of safety 1[.]625\nstatus 0\nfails at every factor tried, down to F = 0[.]5000: factor of safety below it\nstatus 0\nerror: [^\n]*stands/stability.csv: the soil stands in every trial: no failure to draw\nstatus 1\n$")
+# A reference line to draw over the mechanism must be a table of x and y.
+file(WRITE ${GRANFLOW_STABILITY_FIXTURE}/line_of_r_z.csv "r,z\n0.5,1.5\n1.0,1.0\n")
+add_test(NAME scripts_plot_stability_line_without_x_and_y
+         COMMAND ${GRANFLOW_EXPECT_STATUS} 1 /usr/bin/python3 ${CMAKE_SOURCE_DIR}/scripts/plot_stability.py
+                 ${GRANFLOW_STABILITY_FIXTURE}/bracket --line ${GRANFLOW_STABILITY_FIXTURE}/line_of_r_z.csv)
+set_tests_properties(scripts_plot_stability_line_without_x_and_y PROPERTIES LABELS cli
+                     PASS_REGULAR_EXPRESSION "^error: [^\n]*line_of_r_z.csv: no rows of columns x, y\n$")
 # The SPH-case drawing refuses a run of another block too, rather than label it as the paper's figure.
 add_test(NAME scripts_compare_bui2008_sph_other_case
          COMMAND ${GRANFLOW_EXPECT_STATUS} 1 /usr/bin/python3 ${CMAKE_SOURCE_DIR}/scripts/compare_bui2008_sph.py ${GRANFLOW_BUI_FIXTURE}_other --times 2)
