@@ -24,23 +24,15 @@ import glob
 import math
 import os
 import sys
-import tomllib
 
 import numpy as np
 
-from granflow_files import (InputError, main_with_errors, picture_file, read_csv, require_columns,
-                            require_rows, sample_time)
+from granflow_files import (InputError, main_with_errors, picture_file, read_csv, read_run_case,
+                            require_columns, require_rows, sample_time)
 
 
 def read_case(run_dir):
-    path = os.path.join(run_dir, "granflow_case.toml")
-    try:
-        with open(path, "rb") as f:
-            case = tomllib.load(f)
-    except OSError as e:
-        raise InputError(f"cannot read {path}: {e.strerror}")
-    except tomllib.TOMLDecodeError as e:
-        raise InputError(f"{path}: {e}")
+    case, path = read_run_case(run_dir)
     try:
         rheology = case["soil"]["rheology"]
         if rheology.get("friction") != "mu_of_I":

@@ -17,22 +17,15 @@ With --png, Q against h for every run.
 import argparse
 import math
 import os
-import tomllib
 
 import numpy as np
 
-from granflow_files import InputError, main_with_errors, picture_file, read_csv, require_columns, require_rows
+from granflow_files import (InputError, main_with_errors, picture_file, read_csv, read_run_case, require_columns,
+                            require_rows)
 
 
 def read_silo(run_dir):
-    path = os.path.join(run_dir, "granflow_case.toml")
-    try:
-        with open(path, "rb") as f:
-            case = tomllib.load(f)
-    except OSError as e:
-        raise InputError(f"cannot read {path}: {e.strerror}")
-    except tomllib.TOMLDecodeError as e:
-        raise InputError(f"{path}: {e}")
+    case, path = read_run_case(run_dir)
     try:
         if case["boundary"]["west"]["type"] != "symmetry":
             raise InputError(f"{path}: the west side is not the silo's axis (a symmetry plane)")
@@ -44,10 +37,14 @@ def read_silo(run_dir):
         if not 0 < half_slot < upper[0] - lower[0]:
             raise InputError(f"{path}: the floor does not leave a slot on the axis")
         gx, gy = case["physics"]["gravity"]
-        return {"L": 2.0 * half_slot, "width": upper[0] - lower[0], "g": math.hypot(gx, gy),
+        g = math.hypot(gx, gy)
+        if not g > 0:
+            raise InputError(f"{path}: no gravity: nothing drains")
+        return {"L": 2.0 * half_slot, "width": upper[0] - lower[0], "g": g,
                 "title": case.get("title", os.path.basename(os.path.normpath(run_dir)))}
     except (KeyError, IndexError, TypeError, ValueError) as e:
-        raise InputError(f"{path}: not a silo with a floor obstacle and a slot on its axis ({e!r} missing)")
+        raise InputError(f"{path}: not a silo with a floor obstacle and a slot on its axis "
+                         f"({type(e).__name__}: {e})")
 
 
 def discharge(run_dir, silo):
@@ -56,10 +53,15 @@ def discharge(run_dir, silo):
     history = require_rows(read_csv(path), path)
     require_columns(history, path, ["time", "soil_volume", "soil_outflow"])
     t, volume, out = history["time"], history["soil_volume"], history["soil_outflow"]
+    if not volume[0] > 0:
+        raise InputError(f"{path}: no soil in the silo at the start")
     step = volume[0] / 20.0
     rows, k = [], 0
     for j in range(1, len(t)):
-        if out[j] - out[k] >= step or (j == len(t) - 1 and t[j] > t[k]):
+        # A window closes when a twentieth of the fill has flowed out; the last, cut short by the run's
+        # end, counts if half as much has.
+        last = j == len(t) - 1 and out[j] - out[k] >= 0.5 * step
+        if out[j] - out[k] >= step or last:
             h = 0.5 * (volume[j] + volume[k]) / silo["width"]
             rows.append((0.5 * (t[j] + t[k]), h, 2.0 * (out[j] - out[k]) / (t[j] - t[k])))
             k = j

@@ -8,6 +8,7 @@ import math
 import os
 import re
 import sys
+import tomllib
 import zlib
 
 import numpy as np
@@ -45,6 +46,18 @@ def read_csv(path):
     return {h: data[:, k] for k, h in enumerate(header)}
 
 
+def read_run_case(run_dir):
+    """(the case as a run took it, RUN_DIR/granflow_case.toml, as a dict; its path)."""
+    path = os.path.join(run_dir, "granflow_case.toml")
+    try:
+        with open(path, "rb") as f:
+            return tomllib.load(f), path
+    except OSError as e:
+        raise InputError(f"cannot read {path}: {e.strerror}")
+    except tomllib.TOMLDecodeError as e:
+        raise InputError(f"{path}: {e}")
+
+
 def require_rows(table, path):
     """A table with rows under its header (a run stopped before writing any has none)."""
     if not table or len(next(iter(table.values()))) == 0:
@@ -72,6 +85,14 @@ def positive(text):
 
 
 PICTURE_SUFFIXES = (".png", ".pdf", ".svg")
+
+
+def figure_size(width, height):
+    """A figure's size in inches for a frame of width x height drawn to scale with a colour bar beside
+    it: 9 inches wide for a wide frame, 9 high for a tall one."""
+    if height <= width:
+        return 9.0, max(2.5, 7.5 * height / width + 1.0)
+    return max(4.0, 7.5 * width / height + 2.2), 9.0
 
 
 def picture_file(text):

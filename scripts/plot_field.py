@@ -20,7 +20,7 @@ import sys
 
 import numpy as np
 
-from granflow_files import InputError, finite, main_with_errors, picture_file, read_csv, read_vtr
+from granflow_files import InputError, figure_size, finite, main_with_errors, picture_file, read_csv, read_vtr
 
 UNITS = {"velocity": "m/s", "pressure": "Pa", "density": "kg/m^3", "viscosity": "Pa s",
          "displacement": "m", "strain_rate_norm": "1/s", "lode_angle": "degrees"}
@@ -140,11 +140,7 @@ def main():
     from matplotlib.collections import LineCollection
 
     width, height = x[-1] - x[0], y[-1] - y[0]
-    # The figure takes the domain's proportions: a wide domain 9 inches wide, a tall one 9 high.
-    if height <= width:
-        fig, ax = plt.subplots(figsize=(9, max(2.5, 9 * height / width + 1.0)))
-    else:
-        fig, ax = plt.subplots(figsize=(max(4.0, 7.5 * width / height + 2.2), 9))
+    fig, ax = plt.subplots(figsize=figure_size(width, height))
     if np.ma.count(value) == 0:
         raise InputError(f"{name}: no cell of {a.field} is left to draw")
     ax.set_facecolor("0.6")  # where cells are left out: grey

@@ -18,7 +18,7 @@ import os
 
 import numpy as np
 
-from granflow_files import InputError, main_with_errors, picture_file, read_csv, read_vtr
+from granflow_files import InputError, figure_size, main_with_errors, picture_file, read_csv, read_vtr
 
 
 def main():
@@ -81,7 +81,7 @@ def main():
     # The frame shows the soil and a little above and beyond it; the figure takes its proportions.
     y1 = min(y[-1], y[0] + 1.6 * (top - y[0]))
     x1 = min(x[-1], x[0] + 1.2 * (right - x[0]))
-    fig, ax = plt.subplots(figsize=(9, min(8.0, max(2.5, 7.5 * (y1 - y[0]) / (x1 - x[0]) + 0.9))))
+    fig, ax = plt.subplots(figsize=figure_size(x1 - x[0], y1 - y[0]))
     shown = np.ma.masked_where(c < 0.5, d)
     m = ax.pcolormesh(x, y, shown, cmap="viridis", shading="flat")
     fig.colorbar(m, ax=ax, label="displacement (m)")
