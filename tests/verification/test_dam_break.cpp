@@ -38,15 +38,6 @@ namespace {
 constexpr double a = 0.05715;  // column width, 2.25 in
 constexpr double g = 9.81;
 
-// Linear interpolation of y(x) at xq, x increasing.
-double interp(const std::vector<double>& x, const std::vector<double>& y, double xq) {
-  if (xq <= x.front()) return y.front();
-  if (xq >= x.back()) return y.back();
-  const auto k = size_t(std::upper_bound(x.begin(), x.end(), xq) - x.begin());
-  const double w = (xq - x[k - 1]) / (x[k] - x[k - 1]);
-  return (1 - w) * y[k - 1] + w * y[k];
-}
-
 TEST(DamBreak, MartinMoyceColumnCollapse) {
   int rank = 0;
   MPI_Comm_rank(PETSC_COMM_WORLD, &rank);
@@ -98,9 +89,9 @@ TEST(DamBreak, MartinMoyceColumnCollapse) {
     const double Te = front["T"][k], Ze = front["Z"][k];
     if (Te > 3.0) continue;
     ++compared;
-    const double Zs = interp(T, Z, Te);
+    const double Zs = test::interp(T, Z, Te);
     const double dev = std::abs(Zs - Ze) / Ze;
-    const double lead = Te - interp(Z, T, Ze);  // Z is increasing over this range
+    const double lead = Te - test::interp(Z, T, Ze);  // Z is increasing over this range
     const bool early = Te > 0.8 && Te < 1.7;
     say("  %4.2f  %5.2f  %5.3f  %9.4f  %9.3f  %s\n", Te, Ze, Zs, dev, lead, early ? "16 %, ahead" : "10 %");
     if (early) {
@@ -124,7 +115,7 @@ TEST(DamBreak, MartinMoyceColumnCollapse) {
     const double te = resid["tau"][k], He = resid["H"][k];
     if (std::sqrt(2.0) * te > 3.0) continue;
     ++heights_compared;
-    const double Hs = interp(tau, H, te);
+    const double Hs = test::interp(tau, H, te);
     say("  %4.2f  %5.2f  %5.3f  %+9.4f\n", te, He, Hs, Hs - He);
     test::keep_largest(worst_h, std::abs(Hs - He));
     test::keep_largest(worst_h_rel, std::abs(Hs - He) / He);

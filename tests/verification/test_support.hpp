@@ -150,6 +150,15 @@ inline void remove_scratch(const std::filesystem::path& dir) {
   MPI_Barrier(PETSC_COMM_WORLD);
 }
 
+// Linear interpolation of y(x) at xq, x increasing; y's end values beyond x's ends.
+inline double interp(const std::vector<double>& x, const std::vector<double>& y, double xq) {
+  if (xq <= x.front()) return y.front();
+  if (xq >= x.back()) return y.back();
+  const auto k = size_t(std::upper_bound(x.begin(), x.end(), xq) - x.begin());
+  const double w = (xq - x[k - 1]) / (x[k] - x[k - 1]);
+  return (1 - w) * y[k - 1] + w * y[k];
+}
+
 // Columns of a CSV file with '#' comment lines and one header line.
 inline std::map<std::string, std::vector<double>> read_csv(const std::string& path) {
   std::ifstream in(path);
