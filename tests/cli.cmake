@@ -427,12 +427,12 @@ set_tests_properties(scripts_plot_stability_line_without_x_and_y PROPERTIES LABE
 # 4 cm) is an hour-glass, Q ~ h^0 with Beverloo's coefficient 0.04 / (g^0.5 0.04^1.5) = 1.5964; a case
 # without the silo's axis on its west side is refused.
 set(GRANFLOW_SILO_FIXTURE ${CMAKE_CURRENT_BINARY_DIR}/silo_fixture)
-file(WRITE ${GRANFLOW_SILO_FIXTURE}/granflow_case.toml
-     "title = \"silo\"\n[mesh]\nlower = [0.0, 0.0]\nupper = [0.15, 0.4]\n[physics]\ngravity = [0.0, -9.81]\n[boundary]\nwest = { type = \"symmetry\" }\n[[obstacle]]\nshape = \"box\"\nlower = [0.02, -0.01]\nupper = [0.16, 0.005]\n")
+set(GRANFLOW_SILO_CASE "title = \"silo\"\n[mesh]\nlower = [0.0, 0.0]\nupper = [0.15, 0.4]\n[physics]\ngravity = [0.0, -9.81]\n[boundary]\nwest = { type = \"symmetry\" }\n[[obstacle]]\nshape = \"box\"\nlower = [0.02, -0.01]\nupper = [0.16, 0.005]\n")
+file(WRITE ${GRANFLOW_SILO_FIXTURE}/granflow_case.toml "${GRANFLOW_SILO_CASE}")
 set(GRANFLOW_SILO_HISTORY "time,soil_volume,soil_outflow\n0,0.045,0\n0.05,0.044,0.001\n0.1,0.043,0.002\n0.15,0.042,0.003\n0.2,0.041,0.004\n0.25,0.04,0.005\n0.3,0.039,0.006\n0.35,0.038,0.007\n0.4,0.037,0.008\n0.45,0.036,0.009\n0.5,0.035,0.01\n0.55,0.034,0.011\n0.6,0.033,0.012\n0.65,0.032,0.013\n0.7,0.031,0.014\n0.75,0.03,0.015\n0.8,0.029,0.016\n0.85,0.028,0.017\n0.9,0.027,0.018\n0.95,0.026,0.019\n1,0.025,0.02\n")
 file(WRITE ${GRANFLOW_SILO_FIXTURE}/history.csv "${GRANFLOW_SILO_HISTORY}")
-file(WRITE ${GRANFLOW_SILO_FIXTURE}_walled/granflow_case.toml
-     "[mesh]\nlower = [0.0, 0.0]\nupper = [0.15, 0.4]\n[physics]\ngravity = [0.0, -9.81]\n[boundary]\nwest = { type = \"wall\" }\n[[obstacle]]\nshape = \"box\"\nlower = [0.02, -0.01]\nupper = [0.16, 0.005]\n")
+string(REPLACE "symmetry" "wall" GRANFLOW_WALLED_CASE "${GRANFLOW_SILO_CASE}")
+file(WRITE ${GRANFLOW_SILO_FIXTURE}_walled/granflow_case.toml "${GRANFLOW_WALLED_CASE}")
 file(WRITE ${GRANFLOW_SILO_FIXTURE}_walled/history.csv "${GRANFLOW_SILO_HISTORY}")
 add_test(NAME scripts_compare_silo_hour_glass
          COMMAND ${GRANFLOW_EXPECT_STATUS} 0 /usr/bin/python3 ${CMAKE_SOURCE_DIR}/scripts/compare_silo.py ${GRANFLOW_SILO_FIXTURE})
