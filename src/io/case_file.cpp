@@ -479,14 +479,15 @@ GridSpec read_mesh(TableReader& top) {
       throw CaseError(fmt::format("mesh.cells: {} is not a positive whole number of cells", n));
     if (n > 1e8) throw CaseError(fmt::format("mesh.cells: {:.0f} cells along an axis, more than 1e8", n));
   }
-  mesh.cells = {int(cells[0]), int(cells[1])};
+  mesh.cells = {int(cells[0]), int(cells[1]), 1};
   // PETSc's indices here are 32-bit; the coupled solve's matrix holds about 3 x 35 entries a cell.
   constexpr double max_cells = 2e7;
   if (cells[0] * cells[1] > max_cells)
     throw CaseError(fmt::format("mesh.cells: {} x {} = {:.3g} cells, more than the {:.0e} this build can index",
                                 cells[0], cells[1], cells[0] * cells[1], max_cells));
-  mesh.lower = m.pair("lower", {0.0, 0.0});
-  mesh.upper = m.required_pair("upper");
+  const auto lower = m.pair("lower", {0.0, 0.0}), upper = m.required_pair("upper");
+  mesh.lower = {lower[0], lower[1], 0.0};
+  mesh.upper = {upper[0], upper[1], 1.0};
   for (int a = 0; a < 2; ++a)
     if (!(mesh.upper[a] > mesh.lower[a]))
       throw CaseError(fmt::format("mesh.upper: the domain is empty along {} (upper {} <= lower {})",
@@ -507,8 +508,9 @@ GridSpec read_mesh(TableReader& top) {
   mesh.axisymmetric = m.choice("geometry", "planar", {"planar", "axisymmetric"}) == "axisymmetric";
   if (mesh.axisymmetric && mesh.lower[0] < 0.0)
     throw CaseError(fmt::format("mesh.lower: an axisymmetric mesh needs r >= 0 (x = r), got {}", mesh.lower[0]));
-  mesh.grading = m.pair("grading", {1.0, 1.0});
-  for (double g : mesh.grading) m.require_range("grading", g, 1e-3, 1e3);
+  const auto grading = m.pair("grading", {1.0, 1.0});
+  for (double g : grading) m.require_range("grading", g, 1e-3, 1e3);
+  mesh.grading = {grading[0], grading[1], 1.0};
   m.finish();
   return mesh;
 }
@@ -775,13 +777,17 @@ PhaseSettings read_fluid(TableReader& top) {
   return fluid;
 }
 
+// The domain's corners in the x-y plane, where the shapes are drawn.
+interface::Point plane_lower(const GridSpec& mesh) { return {mesh.lower[0], mesh.lower[1]}; }
+interface::Point plane_upper(const GridSpec& mesh) { return {mesh.upper[0], mesh.upper[1]}; }
+
 // Why a shape within [lo, hi] covers no area of the mesh's domain (interface::overlaps): it lies
 // outside, or what lies inside is too small to count. A ring whose hole holds the domain is said so.
 std::string no_area_in_domain(const interface::Shape& shape, const GridSpec& mesh) {
   const auto [lo, hi] = interface::bounding_box(shape);
   // A ring covers none of the domain where its outer disc does: its hole holds it (interface::overlaps).
   if (const auto* ring = std::get_if<interface::Ring>(&shape);
-      ring && interface::overlaps(interface::Circle{ring->centre, ring->outer_radius}, mesh.lower, mesh.upper))
+      ring && interface::overlaps(interface::Circle{ring->centre, ring->outer_radius}, plane_lower(mesh), plane_upper(mesh)))
     return fmt::format("the ring's hole (radius {} about [{}, {}]) holds the whole domain [{}, {}] x [{}, {}]",
                        ring->inner_radius, ring->centre[0], ring->centre[1], mesh.lower[0], mesh.upper[0],
                        mesh.lower[1], mesh.upper[1]);
@@ -797,7 +803,7 @@ void require_consistent(const CaseConfig& c) {
   if (c.soil) {
     // A shape may reach past the domain (it is clipped), but one wholly outside it holds no soil.
     for (size_t k = 0; k < c.soil->initial_soil.size(); ++k)
-      if (!interface::overlaps(c.soil->initial_soil[k], c.mesh.lower, c.mesh.upper))
+      if (!interface::overlaps(c.soil->initial_soil[k], plane_lower(c.mesh), plane_upper(c.mesh)))
         throw CaseError(fmt::format("initial.soil[{}]: {}", k, no_area_in_domain(c.soil->initial_soil[k], c.mesh)));
   }
   auto frictional_wall = [&](const std::string& wall) {
@@ -814,7 +820,7 @@ void require_consistent(const CaseConfig& c) {
   for (size_t k = 0; k < c.obstacle_friction.size(); ++k)
     if (c.obstacle_friction[k]) frictional_wall(fmt::format("obstacle[{}]", k));
   for (size_t k = 0; k < c.obstacles.size(); ++k)
-    if (!interface::overlaps(c.obstacles[k], c.mesh.lower, c.mesh.upper))
+    if (!interface::overlaps(c.obstacles[k], plane_lower(c.mesh), plane_upper(c.mesh)))
       throw CaseError(fmt::format("obstacle[{}]: {}", k, no_area_in_domain(c.obstacles[k], c.mesh)));
   if (!c.obstacles.empty()) {
     // The obstacles' walls are built into the coupled solve's rows and the operators it uses.

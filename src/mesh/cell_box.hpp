@@ -1,9 +1,12 @@
 #pragma once
-// The block of cells a rank owns, in global cell indices: [xs, xs+xm) x [ys, ys+ym).
+// The block of cells a rank owns, in global cell indices: [xs, xs+xm) x [ys, ys+ym) x [zs, zs+zm).
+// A planar or axisymmetric mesh has one layer along z (zs = 0, zm = 1).
 namespace granflow {
 struct CellBox {
   int xs = 0, ys = 0, xm = 0, ym = 0;
+  int zs = 0, zm = 1;
   int xe() const { return xs + xm; }
   int ye() const { return ys + ym; }
+  int ze() const { return zs + zm; }
 };
 }  // namespace granflow

@@ -1,6 +1,7 @@
 #pragma once
 // A cell field on the grid: one global Vec (owned values, what solvers and writers see) and one
-// local Vec (owned plus ghosts, what stencils read). Arrays are indexed [j][i] with global indices.
+// local Vec (owned plus ghosts, what stencils read). Arrays are indexed [k][j][i] with global indices;
+// on a mesh of one layer along z, [j][i] (and data()) is its one plane, k = 0.
 // The whole-field operations (set, copy_from, combine, ...) act on both, so ghosts stay current.
 #include <petscdmda.h>
 
@@ -29,13 +30,14 @@ class Field {
   // Local owned values -> global. Copied block by block: PETSc's DMLocalToGlobal with INSERT_VALUES
   // refuses a periodic axis that one rank holds whole.
   void gather_from_local() {
-    PetscInt xs, ys, xm, ym;
-    PetscCallAbort(PETSC_COMM_WORLD, DMDAGetCorners(dm_, &xs, &ys, nullptr, &xm, &ym, nullptr));
-    double **g, **l;
+    PetscInt xs, ys, zs, xm, ym, zm;
+    PetscCallAbort(PETSC_COMM_WORLD, DMDAGetCorners(dm_, &xs, &ys, &zs, &xm, &ym, &zm));
+    double ***g, ***l;
     PetscCallAbort(PETSC_COMM_WORLD, DMDAVecGetArray(dm_, global_, &g));
     PetscCallAbort(PETSC_COMM_WORLD, DMDAVecGetArray(dm_, local_, &l));
-    for (PetscInt j = ys; j < ys + ym; ++j)
-      for (PetscInt i = xs; i < xs + xm; ++i) g[j][i] = l[j][i];
+    for (PetscInt k = zs; k < zs + zm; ++k)
+      for (PetscInt j = ys; j < ys + ym; ++j)
+        for (PetscInt i = xs; i < xs + xm; ++i) g[k][j][i] = l[k][j][i];
     PetscCallAbort(PETSC_COMM_WORLD, DMDAVecRestoreArray(dm_, local_, &l));
     PetscCallAbort(PETSC_COMM_WORLD, DMDAVecRestoreArray(dm_, global_, &g));
   }
@@ -64,20 +66,22 @@ class Field {
   OwnedVec local_;
 };
 
-// RAII access to a local (ghosted) or global vector as a 2D array [j][i] in global indices.
+// RAII access to a local (ghosted) or global vector as an array [k][j][i] in global indices (volume()),
+// or as the plane k = 0, [j][i], the whole of a mesh of one layer along z.
 class FieldArray {
  public:
   FieldArray(DM dm, Vec v) : dm_(dm), v_(v) { PetscCallAbort(PETSC_COMM_WORLD, DMDAVecGetArray(dm_, v_, &a_)); }
   ~FieldArray() { DMDAVecRestoreArray(dm_, v_, &a_); }
   FieldArray(const FieldArray&) = delete;
   FieldArray& operator=(const FieldArray&) = delete;
-  double* operator[](int j) const { return a_[j]; }
-  double** data() const { return a_; }
+  double* operator[](int j) const { return a_[0][j]; }
+  double** data() const { return a_[0]; }
+  double*** volume() const { return a_; }
 
  private:
   DM dm_;
   Vec v_;
-  double** a_ = nullptr;
+  double*** a_ = nullptr;
 };
 
 class ConstFieldArray {
@@ -88,8 +92,9 @@ class ConstFieldArray {
   ~ConstFieldArray() { DMDAVecRestoreArrayRead(dm_, v_, &a_); }
   ConstFieldArray(const ConstFieldArray&) = delete;
   ConstFieldArray& operator=(const ConstFieldArray&) = delete;
-  const double* operator[](int j) const { return static_cast<const double* const*>(a_)[j]; }
-  const double* const* data() const { return static_cast<const double* const*>(a_); }
+  const double* operator[](int j) const { return data()[j]; }
+  const double* const* data() const { return volume()[0]; }
+  const double* const* const* volume() const { return static_cast<const double* const* const*>(a_); }
 
  private:
   DM dm_;

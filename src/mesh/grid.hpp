@@ -6,10 +6,15 @@
 // boundary conditions fill those. With periodic x (GridSpec::periodic_x) the x sides are
 // DM_BOUNDARY_PERIODIC: the exchange fills those ghosts with the other end's cells, and the
 // matrices' stencils wrap. Matrices use a second DMDA with the same parallel layout and a
-// 5-point star stencil, so they are preallocated for exactly the pattern the operators use.
+// star stencil (5 points in 2D, 7 in 3D), so they are preallocated for exactly the pattern the operators use.
 //
 // Coordinates are held per axis (cell widths and centres, ghosts included), so graded spacing is a
-// change of constructor only. The third axis is carried as nz = 1 for planar 2D.
+// change of constructor only.
+//
+// The DMDAs are three-dimensional. A planar or axisymmetric mesh is one layer of cells along z
+// (nz = 1), whose z sides have no ghosts, so its arrays are [0][j][i] and hold what a 2D DMDA's would;
+// its ranks are laid out as PETSc lays out a 2D DMDA. Its areas and volumes are per metre of depth
+// (per radian in r-z).
 #include <petscdmda.h>
 
 #include <array>
@@ -26,11 +31,14 @@ inline constexpr std::array<Side, 4> all_sides{Side::west, Side::east, Side::sou
 const char* side_name(Side s);
 
 struct GridSpec {
-  std::array<int, 2> cells{0, 0};
-  std::array<double, 2> lower{0.0, 0.0};
-  std::array<double, 2> upper{1.0, 1.0};
+  // Cells along x, y and z; y is the vertical of the shipped cases, in 2D and 3D alike. With one cell
+  // along z the mesh is planar (or axisymmetric) and the z entries of lower, upper and grading are
+  // not read: the depth is one metre.
+  std::array<int, 3> cells{0, 0, 1};
+  std::array<double, 3> lower{0.0, 0.0, 0.0};
+  std::array<double, 3> upper{1.0, 1.0, 1.0};
   // Ratio of the last to the first cell width per axis (1 = uniform); geometric progression.
-  std::array<double, 2> grading{1.0, 1.0};
+  std::array<double, 3> grading{1.0, 1.0, 1.0};
   // Axisymmetric (r-z): x is the radius r >= 0, y the axial coordinate z. Areas and volumes are per
   // radian: a face at radius r has area r dz, a cell volume r_c dr dz.
   bool axisymmetric = false;
@@ -60,7 +68,10 @@ class Grid {
   DMBoundaryType matrix_x_sides() const { return spec_.periodic_x ? DM_BOUNDARY_PERIODIC : DM_BOUNDARY_NONE; }
   int nx() const { return spec_.cells[0]; }
   int ny() const { return spec_.cells[1]; }
-  long cell_count() const { return long(nx()) * ny(); }
+  int nz() const { return spec_.cells[2]; }
+  // 2 for a planar or axisymmetric mesh (one layer along z), 3 otherwise.
+  int dimension() const { return nz() > 1 ? 3 : 2; }
+  long cell_count() const { return long(nx()) * ny() * nz(); }
   const GridSpec& spec() const { return spec_; }
   const CellBox& owned() const { return owned_; }
 
@@ -69,14 +80,18 @@ class Grid {
   double dy(int j) const { return width_[1][j + ghost_width]; }
   double xc(int i) const { return centre_[0][i + ghost_width]; }
   double yc(int j) const { return centre_[1][j + ghost_width]; }
+  double dz(int k) const { return width_[2][k + ghost_width]; }  // 1 on a planar mesh
+  double zc(int k) const { return centre_[2][k + ghost_width]; }
   // Face coordinate between cells i and i+1 (east face of cell i).
   double xf(int i) const { return xc(i) + 0.5 * dx(i); }
   double yf(int j) const { return yc(j) + 0.5 * dy(j); }
+  double zf(int k) const { return zc(k) + 0.5 * dz(k); }
   bool axisymmetric() const { return spec_.axisymmetric; }
   // Radius weight of cell i's centre and of its east face (1 in planar geometry).
   double radius_c(int i) const { return spec_.axisymmetric ? xc(i) : 1.0; }
   double radius_f(int i) const { return spec_.axisymmetric ? xf(i) : 1.0; }
   double volume(int i, int j) const { return dx(i) * dy(j) * radius_c(i); }
+  double volume(int i, int j, int k) const { return dx(i) * dy(j) * dz(k); }  // 3D meshes
   // Area of the face of cell (i, j) normal to `axis` on the high (sign > 0) or low side.
   double face_area(int axis, int i, int j, double sign) const {
     return axis == 0 ? dy(j) * radius_f(sign > 0 ? i : i - 1) : dx(i) * radius_c(i);
@@ -97,6 +112,7 @@ class Grid {
   bool outside(int i, int j) const {
     return j < 0 || j >= ny() || (!spec_.periodic_x && (i < 0 || i >= nx()));
   }
+  bool outside(int i, int j, int k) const { return k < 0 || k >= nz() || outside(i, j); }
   // Whether this rank's cells touch side s and it is a boundary: its ghosts beyond s are the rank's to fill.
   bool owns_boundary(Side s) const {
     if (!bounded(s)) return false;
@@ -115,7 +131,7 @@ class Grid {
   OwnedDm field_dm_;
   OwnedDm matrix_dm_;
   CellBox owned_;
-  std::array<std::vector<double>, 2> width_, centre_;
+  std::array<std::vector<double>, 3> width_, centre_;
   std::vector<double> radius_face_;  // x-face coordinates, east face of each (ghost) column
 };
 

@@ -28,7 +28,7 @@ std::string Simulation::domain() const {
   std::string text = fmt::format("[{:.9g}, {:.9g}] x [{:.9g}, {:.9g}] ({})", m.lower[0], m.upper[0], m.lower[1],
                                  m.upper[1], m.axisymmetric ? "axisymmetric" : "planar");
   // Graded cells lie elsewhere: a restart on other grading would read the fields into wrong cells.
-  if (m.grading != std::array<double, 2>{1.0, 1.0})
+  if (m.grading[0] != 1.0 || m.grading[1] != 1.0)
     text += fmt::format(", grading [{:.9g}, {:.9g}]", m.grading[0], m.grading[1]);
   return text + obstacles_;
 }

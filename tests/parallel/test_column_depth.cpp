@@ -17,7 +17,7 @@ TEST(ColumnDepth, SumsAboveEachCentreAcrossTheRanksOfItsColumn) {
   MPI_Comm_size(MPI_COMM_WORLD, &size);
   ASSERT_GE(size, 2) << "run under mpirun -np 2";
   GridSpec spec;
-  spec.cells = {3, 40};  // tall: the ranks share the columns
+  spec.cells = {3, 40, 1};  // tall: the ranks share the columns
   const Grid grid(MPI_COMM_WORLD, spec);
   ASSERT_LT(grid.owned().ym, 40) << "the ranks do not share the columns";
   Field value(grid);

@@ -12,7 +12,7 @@ namespace {
 // One square of four cell centres, (0.5, 0.5) to (1.5, 1.5) on a 2 x 2 grid of unit cells.
 Grid unit_square_grid() {
   GridSpec spec;
-  spec.cells = {2, 2};
+  spec.cells = {2, 2, 1};
   spec.upper = {2.0, 2.0};
   return Grid(PETSC_COMM_SELF, spec);
 }

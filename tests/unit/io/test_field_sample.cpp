@@ -14,7 +14,7 @@ namespace {
 
 GridSpec graded_spec() {
   GridSpec spec;
-  spec.cells = {7, 5};
+  spec.cells = {7, 5, 1};
   spec.lower = {-0.3, 0.1};
   spec.upper = {0.9, 0.6};
   spec.grading = {2.0, 0.5};
@@ -87,7 +87,7 @@ TEST(FieldSample, WallsGiveTheirVelocitySlipSidesNoNormalFlowAtmospheresAZeroGra
 
 TEST(FieldSample, OneCellAcrossFallsBackToItsValue) {
   GridSpec spec;
-  spec.cells = {1, 1};
+  spec.cells = {1, 1, 1};
   const Grid g(PETSC_COMM_SELF, spec);
   const std::vector<double> values{4.25};
   for (const auto& [x, y] : points(spec)) EXPECT_DOUBLE_EQ(sample_field(g, values, pressure_side_rules(), x, y), 4.25);
@@ -128,7 +128,7 @@ TEST(FieldSample, ObstacleWallsGiveTheirValueAsTheSidesDo) {
 // corner reads it: it takes the open cell's value mirrored across both walls.
 TEST(FieldSample, ObstacleCornersGiveTheWallsValue) {
   GridSpec spec;
-  spec.cells = {8, 6};
+  spec.cells = {8, 6, 1};
   spec.upper = {0.8, 0.6};
   const Grid g(PETSC_COMM_SELF, spec);
   std::vector<double> blocked(48, 0.0);

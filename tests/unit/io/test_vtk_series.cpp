@@ -53,7 +53,7 @@ std::vector<double> decode(const std::string& blob, std::size_t offset, std::uin
 
 TEST(VtkSeries, CellDataAreCompressedAndReadBackExactly) {
   GridSpec spec;
-  spec.cells = {100, 50};
+  spec.cells = {100, 50, 1};
   spec.upper = {1.0, 0.5};
   const Grid grid(PETSC_COMM_SELF, spec);
   const std::size_t cells = 100 * 50;

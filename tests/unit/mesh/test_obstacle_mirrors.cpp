@@ -14,7 +14,7 @@ namespace {
 // 100 i + j, mirrored as a velocity (sign -1).
 TEST(ObstacleMirrors, EachBlockedCellMirrorsAcrossItsNearestWall) {
   GridSpec spec;
-  spec.cells = {12, 10};
+  spec.cells = {12, 10, 1};
   const Grid g(PETSC_COMM_SELF, spec);
   Field mask(g), value(g);
   {
@@ -53,7 +53,7 @@ TEST(ObstacleMirrors, EachBlockedCellMirrorsAcrossItsNearestWall) {
 // holds its centre, 0 in open cells and in the ghosts outside the domain.
 TEST(ObstacleIndex, EachCellTakesTheLastObstacleHoldingItsCentre) {
   GridSpec spec;
-  spec.cells = {10, 10};  // unit square, cells of 0.1
+  spec.cells = {10, 10, 1};  // unit square, cells of 0.1
   const Grid g(PETSC_COMM_SELF, spec);
   Field index(g);
   const interface::ShapeUnion shapes({interface::Box{{0.0, 0.0}, {0.6, 0.3}}, interface::Box{{0.4, 0.0}, {1.0, 0.5}}});

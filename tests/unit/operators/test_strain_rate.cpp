@@ -31,7 +31,7 @@ struct GhostedArray {
 // 6 x 5 cells over 0.3 x 0.2 m, graded along both axes.
 GridSpec graded_spec() {
   GridSpec spec;
-  spec.cells = {6, 5};
+  spec.cells = {6, 5, 1};
   spec.upper = {0.3, 0.2};
   spec.grading = {1.4, 0.7};
   return spec;
@@ -61,7 +61,7 @@ TEST(StrainRate, ExactForALinearVelocityAtCentresAndOnEveryFace) {
 // (u_N - u_P) / dy across it, which lies between the two cells' central rates.
 TEST(StrainRate, FaceShearIsTheCompactDifferenceAcrossTheFace) {
   GridSpec spec;
-  spec.cells = {4, 8};
+  spec.cells = {4, 8, 1};
   spec.upper = {0.04, 0.08};
   Grid g(PETSC_COMM_SELF, spec);
   const double k = std::log(3.0) / 0.01;  // three-fold per cell
