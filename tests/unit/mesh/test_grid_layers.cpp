@@ -1,0 +1,80 @@
+// A grid's third axis: a mesh of one layer along z is planar (a metre deep, no ghosts along z), one of
+// several is three-dimensional, with graded layers and two ghost layers beyond its z sides.
+#include <gtest/gtest.h>
+
+#include <stdexcept>
+
+#include "mesh/field.hpp"
+#include "mesh/grid.hpp"
+
+namespace granflow {
+namespace {
+
+TEST(GridLayers, OneLayerIsAPlanarMeshAMetreDeepWithoutGhostsAlongZ) {
+  GridSpec spec;
+  spec.cells = {6, 4, 1};
+  spec.upper = {0.6, 0.4};  // z entries left unset: a planar mesh does not read them
+  const Grid g(PETSC_COMM_SELF, spec);
+  EXPECT_EQ(g.dimension(), 2);
+  EXPECT_EQ(g.cell_count(), 24);
+  EXPECT_EQ(g.dz(0), 1.0);
+  EXPECT_EQ(g.zc(0), 0.5);
+  EXPECT_EQ(g.owned().zs, 0);
+  EXPECT_EQ(g.owned().zm, 1);
+  PetscInt gzs, gzm;
+  PetscCallAbort(PETSC_COMM_SELF, DMDAGetGhostCorners(g.field_dm(), nullptr, nullptr, &gzs, nullptr, nullptr, &gzm));
+  EXPECT_EQ(gzs, 0);
+  EXPECT_EQ(gzm, 1);
+  // The plane view and the volume view are the same storage.
+  Field f(g);
+  FieldArray a = local_array(g, f);
+  a[-2][-2] = 3.0;
+  a[3][5] = 7.0;
+  EXPECT_EQ(a.volume()[0][-2][-2], 3.0);
+  EXPECT_EQ(a.volume()[0][3][5], 7.0);
+}
+
+TEST(GridLayers, SeveralLayersAreGradedCellsFillingTheBox) {
+  GridSpec spec;
+  spec.cells = {3, 4, 5};
+  spec.lower = {0.0, -1.0, 2.0};
+  spec.upper = {0.3, 1.0, 3.0};
+  spec.grading = {1.0, 1.0, 4.0};
+  const Grid g(PETSC_COMM_SELF, spec);
+  EXPECT_EQ(g.dimension(), 3);
+  EXPECT_EQ(g.cell_count(), 60);
+  double depth = 0.0, volume = 0.0;
+  for (int k = 0; k < 5; ++k) depth += g.dz(k);
+  EXPECT_NEAR(depth, 1.0, 1e-14);
+  EXPECT_NEAR(g.dz(4) / g.dz(0), 4.0, 1e-12);
+  EXPECT_NEAR(g.zf(4), 3.0, 1e-14);
+  EXPECT_NEAR(g.zc(0) - 0.5 * g.dz(0), 2.0, 1e-14);
+  EXPECT_NEAR(g.zc(-1), 2.0 - (g.zc(0) - 2.0), 1e-14) << "ghost centres mirror the first layer's";
+  for (int k = 0; k < 5; ++k)
+    for (int j = 0; j < 4; ++j)
+      for (int i = 0; i < 3; ++i) volume += g.volume(i, j, k);
+  EXPECT_NEAR(volume, 0.3 * 2.0 * 1.0, 1e-14);
+  EXPECT_NEAR(g.min_spacing(), g.dz(0), 1e-15);  // the first layer, 0.2 / 2.5 of a mean one
+  EXPECT_TRUE(g.outside(0, 0, -1));
+  EXPECT_TRUE(g.outside(0, 0, 5));
+  EXPECT_FALSE(g.outside(2, 3, 4));
+  PetscInt gzs, gzm;
+  PetscCallAbort(PETSC_COMM_SELF, DMDAGetGhostCorners(g.field_dm(), nullptr, nullptr, &gzs, nullptr, nullptr, &gzm));
+  EXPECT_EQ(gzs, -Grid::ghost_width);
+  EXPECT_EQ(gzm, 5 + 2 * Grid::ghost_width);
+}
+
+TEST(GridLayers, ARefusedSpecSaysWhy) {
+  GridSpec spec;
+  spec.cells = {3, 4, 0};
+  EXPECT_THROW(Grid(PETSC_COMM_SELF, spec), std::invalid_argument);
+  spec.cells = {3, 4, 2};
+  spec.upper = {1.0, 1.0, 0.0};  // no depth
+  EXPECT_THROW(Grid(PETSC_COMM_SELF, spec), std::invalid_argument);
+  spec.upper = {1.0, 1.0, 1.0};
+  spec.axisymmetric = true;
+  EXPECT_THROW(Grid(PETSC_COMM_SELF, spec), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace granflow
