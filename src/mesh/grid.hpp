@@ -99,6 +99,7 @@ class Grid {
   // Raw pointers offset so that p[-2] is the first ghost; for kernels working on plain arrays.
   const double* dx_data() const { return width_[0].data() + ghost_width; }
   const double* dy_data() const { return width_[1].data() + ghost_width; }
+  const double* dz_data() const { return width_[2].data() + ghost_width; }
   // Radii of the x-faces (p[i] = r of cell i's east face) and of the cell centres, ghost-offset like
   // dx_data(); nullptr in planar geometry, so kernels can skip the weights altogether.
   const double* radius_face_data() const { return spec_.axisymmetric ? radius_face_.data() + ghost_width : nullptr; }

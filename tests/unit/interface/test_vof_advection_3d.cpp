@@ -1,0 +1,206 @@
+// Split PLIC advection in 3D (vof_advection_3d.hpp) on a grid of several layers: a plane carried
+// exactly, and LeVeque's (1996) deforming sphere, which comes back conserved to round-off, bounded,
+// and closer to its start on the finer mesh.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <functional>
+#include <numbers>
+#include <utility>
+
+#include "mesh/field.hpp"
+#include "mesh/grid.hpp"
+#include "models/interface/plic_geometry_3d.hpp"
+#include "models/interface/vof_advection_3d.hpp"
+
+namespace granflow::interface {
+namespace {
+
+using std::numbers::pi;
+
+// The soil fraction and face velocities of a grid on one rank, all in the local (ghosted) arrays.
+struct Advection {
+  explicit Advection(const GridSpec& spec)
+      : grid(PETSC_COMM_SELF, spec), c(grid), tmp(grid), cc(grid), u{Field(grid), Field(grid), Field(grid)} {}
+  Grid grid;
+  Field c, tmp, cc;
+  Field u[3];
+
+  CellWidths3 widths() const { return {grid.dx_data(), grid.dy_data(), grid.dz_data()}; }
+  // The cells beyond the sides: `outside` of their centre, or empty.
+  void fill_ghosts(Field& f, const std::function<double(int, int, int)>& outside) {
+    FieldArray a = local_array(grid, f);
+    const int g = Grid::ghost_width;
+    for (int k = -g; k < grid.nz() + g; ++k)
+      for (int j = -g; j < grid.ny() + g; ++j)
+        for (int i = -g; i < grid.nx() + g; ++i)
+          if (grid.outside(i, j, k)) a.volume()[k][j][i] = outside ? outside(i, j, k) : 0.0;
+  }
+  // One step: the sweeps in the order x y z, y z x, z x y by turns, each into the other array.
+  void step(double dt, long n, const std::function<double(int, int, int)>& outside = {}) {
+    fill_ghosts(c, outside);
+    {
+      ConstFieldArray from = local_read(grid, c);
+      FieldArray ind = local_array(grid, cc);
+      dilatation_indicator(from.volume(), grid.owned(), ind.volume());
+    }
+    Field* from = &c;
+    Field* to = &tmp;
+    for (int s = 0; s < 3; ++s) {
+      const int axis = int((n + s) % 3);
+      {
+        ConstFieldArray a = local_read(grid, *from), ua = local_read(grid, u[axis]), ind = local_read(grid, cc);
+        FieldArray b = local_array(grid, *to);
+        vof_sweep(axis, dt, a.volume(), ua.volume(), ind.volume(), widths(), grid.owned(), b.volume(),
+                  outside ? DomainCells3{} : DomainCells3{grid.nx(), grid.ny(), grid.nz()});
+      }
+      fill_ghosts(*to, outside);
+      std::swap(from, to);
+    }
+    if (from != &c) c.copy_from(*from);  // three sweeps end in tmp
+  }
+  double sum(const std::function<double(double, int, int, int)>& of) const {
+    ConstFieldArray a = local_read(grid, c);
+    double s = 0.0;
+    for (int k = 0; k < grid.nz(); ++k)
+      for (int j = 0; j < grid.ny(); ++j)
+        for (int i = 0; i < grid.nx(); ++i) s += of(a.volume()[k][j][i], i, j, k);
+    return s;
+  }
+  std::pair<double, double> extremes() const {
+    double lo = 1e300, hi = -1e300;
+    sum([&](double v, int, int, int) {
+      lo = std::min(lo, v);
+      hi = std::max(hi, v);
+      return 0.0;
+    });
+    return {lo, hi};
+  }
+};
+
+GridSpec unit_cube(int n) {
+  GridSpec spec;
+  spec.cells = {n, n, n};
+  spec.upper = {1.0, 1.0, 1.0};
+  return spec;
+}
+
+TEST(VofSweep3d, APlaneAlongTheBodyDiagonalIsCarriedExactly) {
+  Advection f(unit_cube(8));
+  const Normal3 n{1.0 / 3, 1.0 / 3, 1.0 / 3};
+  const double speed = 0.3, dt = 0.1 / 8 / speed * 1.3;  // Courant 0.13, a plane off the cells' corners
+  auto exact = [&](double t) {
+    return [&, t](int i, int j, int k) {
+      const double h = 1.0 / 8;  // the plane n.x = 0.5 + 0.1 + speed t / 3, in the cell's scaled coordinates
+      const double d = 0.6 + n.nx * speed * t;
+      return cube_fraction(n, (d - n.nx * f.grid.xc(i) - n.ny * f.grid.yc(j) - n.nz * f.grid.zc(k)) / h);
+    };
+  };
+  {
+    FieldArray a = local_array(f.grid, f.c);
+    for (int k = 0; k < 8; ++k)
+      for (int j = 0; j < 8; ++j)
+        for (int i = 0; i < 8; ++i) a.volume()[k][j][i] = exact(0.0)(i, j, k);
+  }
+  f.u[0].set(speed);
+  double worst = 0.0;
+  for (long s = 0; s < 6; ++s) {
+    f.step(dt, s, exact(s * dt));
+    const auto e = exact((s + 1) * dt);
+    worst = std::max(worst, f.sum([&](double v, int i, int j, int k) { return std::abs(v - e(i, j, k)); }));
+  }
+  EXPECT_LT(worst, 1e-12);
+  EXPECT_GT(f.sum([](double v, int, int, int) { return v > 0.0 && v < 1.0 ? 1.0 : 0.0; }), 50) << "mixed cells";
+}
+
+// LeVeque's deformation: u = 2 sin^2(pi x) sin(2 pi y) sin(2 pi z), v = -sin(2 pi x) sin^2(pi y) sin(2 pi z),
+// w = -sin(2 pi x) sin(2 pi y) sin^2(pi z), times cos(pi t / T): the curl of A = (0, B, psi) with
+// psi = sin^2(pi x) sin^2(pi y) sin(2 pi z) / pi and B = -sin^2(pi x) sin^2(pi z) sin(2 pi y) / pi. Each
+// face's flux is the circulation of A around it, from A at the edges' midpoints times their lengths,
+// so that the fluxes out of every cell sum to zero to round-off.
+void set_deformation(Advection& f, double time_factor) {
+  const Grid& g = f.grid;
+  auto s2 = [](double x) { return std::sin(pi * x) * std::sin(pi * x); };
+  auto psi = [&](double x, double y, double z) { return s2(x) * s2(y) * std::sin(2 * pi * z) / pi * time_factor; };
+  auto B = [&](double x, double y, double z) { return -s2(x) * s2(z) * std::sin(2 * pi * y) / pi * time_factor; };
+  FieldArray ux = local_array(g, f.u[0]), uy = local_array(g, f.u[1]), uz = local_array(g, f.u[2]);
+  for (int k = -1; k < g.nz(); ++k)
+    for (int j = -1; j < g.ny(); ++j)
+      for (int i = -1; i < g.nx(); ++i) {
+        const double xl = g.xf(i - 1), xh = g.xf(i), yl = g.yf(j - 1), yh = g.yf(j), zl = g.zf(k - 1), zh = g.zf(k);
+        const double dx = g.dx(i), dy = g.dy(j), dz = g.dz(k);
+        // Face between (i, j, k) and (i + 1, j, k), at x = xh.
+        const double fx = (psi(xh, yh, g.zc(k)) - psi(xh, yl, g.zc(k))) * dz - (B(xh, g.yc(j), zh) - B(xh, g.yc(j), zl)) * dy;
+        ux.volume()[k][j][i] = fx / (dy * dz);
+        const double fy = -(psi(xh, yh, g.zc(k)) - psi(xl, yh, g.zc(k))) * dz;  // A_x = 0
+        uy.volume()[k][j][i] = fy / (dx * dz);
+        const double fz = (B(xh, g.yc(j), zh) - B(xl, g.yc(j), zh)) * dy;
+        uz.volume()[k][j][i] = fz / (dx * dy);
+      }
+}
+
+struct DeformationResult {
+  double volume_change, lowest, highest, shape_error;
+};
+
+DeformationResult deform_and_return(int n, double period) {
+  Advection f(unit_cube(n));
+  const double h = 1.0 / n, R = 0.15;
+  auto inside = [&](double x, double y, double z) {
+    return std::hypot(x - 0.35, y - 0.35, z - 0.35) < R;
+  };
+  {
+    FieldArray a = local_array(f.grid, f.c);
+    const int q = 10;
+    for (int k = 0; k < n; ++k)
+      for (int j = 0; j < n; ++j)
+        for (int i = 0; i < n; ++i) {
+          const double r = std::hypot(f.grid.xc(i) - 0.35, f.grid.yc(j) - 0.35, f.grid.zc(k) - 0.35);
+          double v = r < R ? 1.0 : 0.0;
+          if (std::abs(r - R) < h) {
+            v = 0.0;
+            for (int c = 0; c < q; ++c)
+              for (int b = 0; b < q; ++b)
+                for (int a0 = 0; a0 < q; ++a0)
+                  v += inside(f.grid.xc(i) + h * ((a0 + 0.5) / q - 0.5), f.grid.yc(j) + h * ((b + 0.5) / q - 0.5),
+                              f.grid.zc(k) + h * ((c + 0.5) / q - 0.5));
+            v /= q * q * q;
+          }
+          a.volume()[k][j][i] = v;
+        }
+  }
+  Field start(f.grid);
+  start.copy_from(f.c);
+  const double volume0 = f.sum([&](double v, int, int, int) { return v * h * h * h; });
+  const long steps = long(std::ceil(period / (0.4 * h / 2.0)));  // Courant at most 0.4 per sweep (|u| <= 2)
+  const double dt = period / steps;
+  DeformationResult r{0.0, 0.0, 1.0, 0.0};
+  for (long s = 0; s < steps; ++s) {
+    set_deformation(f, std::cos(pi * (s + 0.5) * dt / period));
+    f.step(dt, s);
+    const auto [lo, hi] = f.extremes();
+    r.lowest = std::min(r.lowest, lo);
+    r.highest = std::max(r.highest, hi);
+  }
+  r.volume_change = std::abs(f.sum([&](double v, int, int, int) { return v * h * h * h; }) - volume0) / volume0;
+  ConstFieldArray c0 = local_read(f.grid, start);
+  r.shape_error = f.sum([&](double v, int i, int j, int k) { return std::abs(v - c0.volume()[k][j][i]) * h * h * h; });
+  return r;
+}
+
+TEST(VofSweep3d, LeVequesDeformingSphereReturnsConservedBoundedAndCloserOnAFinerMesh) {
+  // A period of 2 rather than LeVeque's 3: his thinnest sheets are not resolved on 16 cells, where the
+  // error falls only from 0.0136 to 0.0078 on 32 (docs/interface_scheme.md).
+  const DeformationResult coarse = deform_and_return(16, 2.0), fine = deform_and_return(32, 2.0);
+  for (const auto& r : {coarse, fine}) {
+    EXPECT_LT(r.volume_change, 1e-12);
+    EXPECT_GT(r.lowest, -1e-12);
+    EXPECT_LT(r.highest, 1.0 + 1e-12);
+  }
+  RecordProperty("shape_error_16", std::to_string(coarse.shape_error));
+  RecordProperty("shape_error_32", std::to_string(fine.shape_error));
+  EXPECT_LT(fine.shape_error, 0.5 * coarse.shape_error) << coarse.shape_error << " -> " << fine.shape_error;  // 0.0079 -> 0.0024
+}
+
+}  // namespace
+}  // namespace granflow::interface
