@@ -1,0 +1,98 @@
+#include "models/interface/initial_shapes_3d.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace granflow::interface {
+
+namespace {
+struct Contains3 {
+  double x, y, z;
+  bool operator()(const Box3& b) const {
+    return x >= b.lower[0] && x <= b.upper[0] && y >= b.lower[1] && y <= b.upper[1] && z >= b.lower[2] &&
+           z <= b.upper[2];
+  }
+  bool operator()(const Sphere& s) const {
+    const double dx = x - s.centre[0], dy = y - s.centre[1], dz = z - s.centre[2];
+    return dx * dx + dy * dy + dz * dz <= s.radius * s.radius;
+  }
+  bool operator()(const VerticalCylinder& c) const {
+    const double dx = x - c.axis[0], dz = z - c.axis[1];
+    return y >= c.bottom && y <= c.top && dx * dx + dz * dz <= c.radius * c.radius;
+  }
+  bool operator()(const Extrusion& e) const {
+    return z >= e.z_lower && z <= e.z_upper && interface::contains(e.section, x, y);
+  }
+};
+}  // namespace
+
+bool contains(const Shape3& shape, double x, double y, double z) { return std::visit(Contains3{x, y, z}, shape); }
+
+std::array<Point3, 2> bounding_box(const Shape3& shape) {
+  if (const auto* b = std::get_if<Box3>(&shape)) return {b->lower, b->upper};
+  if (const auto* s = std::get_if<Sphere>(&shape)) {
+    const double r = s->radius;
+    return {Point3{s->centre[0] - r, s->centre[1] - r, s->centre[2] - r},
+            Point3{s->centre[0] + r, s->centre[1] + r, s->centre[2] + r}};
+  }
+  if (const auto* c = std::get_if<VerticalCylinder>(&shape))
+    return {Point3{c->axis[0] - c->radius, c->bottom, c->axis[1] - c->radius},
+            Point3{c->axis[0] + c->radius, c->top, c->axis[1] + c->radius}};
+  const auto& e = std::get<Extrusion>(shape);
+  const auto [lo, hi] = bounding_box(e.section);
+  return {Point3{lo[0], lo[1], e.z_lower}, Point3{hi[0], hi[1], e.z_upper}};
+}
+
+ShapeUnion3::ShapeUnion3(std::vector<Shape3> shapes) : shapes_(std::move(shapes)) {
+  for (const auto& s : shapes_) {
+    boxes_.push_back(bounding_box(s));
+    const auto* e = std::get_if<Extrusion>(&s);
+    sections_.emplace_back(e ? std::vector<Shape>{e->section} : std::vector<Shape>{});
+  }
+}
+
+bool ShapeUnion3::contains(double x, double y, double z) const {
+  for (std::size_t k = 0; k < shapes_.size(); ++k) {
+    const auto& [lo, hi] = boxes_[k];
+    if (x < lo[0] || x > hi[0] || y < lo[1] || y > hi[1] || z < lo[2] || z > hi[2]) continue;
+    const bool in = std::holds_alternative<Extrusion>(shapes_[k])
+                        ? sections_[k].contains(x, y)  // within the box, so within the z range
+                        : interface::contains(shapes_[k], x, y, z);
+    if (in) return true;
+  }
+  return false;
+}
+
+double ShapeUnion3::fraction(const Point3& lower, const Point3& upper, int samples) const {
+  // Fast path: the eight corners and the centre agree, and no shape is small enough here to pass
+  // between them: one narrower than the cell along an axis and reaching into it, or an extruded
+  // section whose outline crosses the cell's x-y rectangle (a notch narrower than the cell).
+  bool small_shape_here = false;
+  for (std::size_t k = 0; k < shapes_.size() && !small_shape_here; ++k) {
+    const auto& [lo, hi] = boxes_[k];
+    bool overlaps = true;
+    for (int a = 0; a < 3; ++a) overlaps = overlaps && lo[a] < upper[a] && hi[a] > lower[a];
+    if (!overlaps) continue;
+    for (int a = 0; a < 3; ++a) small_shape_here = small_shape_here || hi[a] - lo[a] < upper[a] - lower[a];
+    if (!small_shape_here && std::holds_alternative<Extrusion>(shapes_[k])) {
+      const double f = sections_[k].fraction(lower[0], upper[0], lower[1], upper[1], false, 4);
+      small_shape_here = f > 0.0 && f < 1.0;
+    }
+  }
+  int probe = contains(0.5 * (lower[0] + upper[0]), 0.5 * (lower[1] + upper[1]), 0.5 * (lower[2] + upper[2]));
+  for (int c = 0; c < 8; ++c)
+    probe += contains(c & 1 ? upper[0] : lower[0], c & 2 ? upper[1] : lower[1], c & 4 ? upper[2] : lower[2]);
+  if (!small_shape_here && probe == 0) return 0.0;
+  if (!small_shape_here && probe == 9) return 1.0;
+  long inside = 0;
+  for (int c = 0; c < samples; ++c) {
+    const double z = lower[2] + (c + 0.5) * (upper[2] - lower[2]) / samples;
+    for (int b = 0; b < samples; ++b) {
+      const double y = lower[1] + (b + 0.5) * (upper[1] - lower[1]) / samples;
+      for (int a = 0; a < samples; ++a) inside += contains(lower[0] + (a + 0.5) * (upper[0] - lower[0]) / samples, y, z);
+    }
+  }
+  return double(inside) / (double(samples) * samples * samples);
+}
+
+}  // namespace granflow::interface

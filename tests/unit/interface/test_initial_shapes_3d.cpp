@@ -1,0 +1,75 @@
+// Initial soil shapes in 3D: the volume their fractions lay on a mesh against the shapes' own, for
+// spheres, vertical cylinders, extruded 2D shapes, boxes and a union; and shapes smaller than a cell.
+#include "models/interface/initial_shapes_3d.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+
+namespace granflow::interface {
+namespace {
+
+using std::numbers::pi;
+
+// The volume the union's fractions lay on n^3 cubic cells of [0, 1]^3.
+double laid_volume(const ShapeUnion3& u, int n) {
+  const double h = 1.0 / n;
+  double v = 0.0;
+  for (int k = 0; k < n; ++k)
+    for (int j = 0; j < n; ++j)
+      for (int i = 0; i < n; ++i) v += u.fraction({i * h, j * h, k * h}, {(i + 1) * h, (j + 1) * h, (k + 1) * h});
+  return v * h * h * h;
+}
+
+TEST(InitialShapes3d, FractionsLayEachShapesVolume) {
+  const double r = 0.3;
+  EXPECT_NEAR(laid_volume(ShapeUnion3({Sphere{{0.5, 0.45, 0.52}, r}}), 20), 4.0 / 3.0 * pi * r * r * r, 2e-4);
+  // A granular column standing on the floor, and a block of a 2D case across a channel.
+  EXPECT_NEAR(laid_volume(ShapeUnion3({VerticalCylinder{{0.4, 0.55}, 0.2, 0.0, 0.35}}), 20), pi * 0.2 * 0.2 * 0.35, 2e-4);
+  EXPECT_NEAR(laid_volume(ShapeUnion3({Extrusion{Circle{{0.5, 0.5}, 0.25}, 0.1, 0.9}}), 20), pi * 0.25 * 0.25 * 0.8,
+              2e-4);
+  EXPECT_NEAR(laid_volume(ShapeUnion3({Extrusion{Polygon{{{0.0, 0.0}, {0.6, 0.0}, {0.0, 0.3}}}, 0.0, 1.0}}), 20),
+              0.5 * 0.6 * 0.3, 2e-4);
+  // A box on the cells' faces is laid exactly; one off them to the sampling: half a sample's width (h / 32)
+  // times the area of its faces off the cells' faces, 2.2e-3 at most (3.7e-4 here).
+  EXPECT_NEAR(laid_volume(ShapeUnion3({Box3{{0.1, 0.0, 0.2}, {0.5, 0.3, 0.9}}}), 10), 0.4 * 0.3 * 0.7, 1e-15);
+  EXPECT_NEAR(laid_volume(ShapeUnion3({Box3{{0.13, 0.0, 0.2}, {0.5, 0.31, 0.9}}}), 10), 0.37 * 0.31 * 0.7, 2.2e-3);
+}
+
+TEST(InitialShapes3d, AUnionCountsTheOverlapOnce) {
+  const ShapeUnion3 u({Box3{{0.2, 0.2, 0.2}, {0.8, 0.8, 0.8}}, Sphere{{0.5, 0.5, 0.5}, 0.25}});
+  EXPECT_NEAR(laid_volume(u, 10), 0.6 * 0.6 * 0.6, 1e-15);
+  EXPECT_TRUE(u.contains(0.5, 0.5, 0.5));
+  EXPECT_FALSE(u.contains(0.1, 0.5, 0.5));
+  EXPECT_EQ(u.size(), 2u);
+}
+
+TEST(InitialShapes3d, AShapeSmallerThanTheCellIsSampledEvenBetweenItsProbes) {
+  // A sphere that holds neither the cell's centre nor a corner.
+  const ShapeUnion3 u({Sphere{{0.25, 0.3, 0.7}, 0.1}});
+  EXPECT_NEAR(u.fraction({0.0, 0.0, 0.0}, {1.0, 1.0, 1.0}, 64), 4.0 / 3.0 * pi * 1e-3, 1e-4);
+  // A slot narrower than the cell cut into an extruded section, between the probes.
+  const ShapeUnion3 slot({Extrusion{Polygon{{{0.0, 0.0}, {1.0, 0.0}, {1.0, 1.0}, {0.55, 1.0}, {0.55, 0.3}, {0.45, 0.3},
+                                             {0.45, 1.0}, {0.0, 1.0}}},
+                                    -1.0, 2.0}});
+  EXPECT_NEAR(slot.fraction({0.0, 0.0, 0.0}, {1.0, 1.0, 1.0}, 64), 1.0 - 0.1 * 0.7, 5e-3);  // 6 x 45 of 64^2 samples
+}
+
+TEST(InitialShapes3d, BoundingBoxes) {
+  const auto [lo, hi] = bounding_box(VerticalCylinder{{0.4, 0.6}, 0.1, 0.2, 0.9});
+  EXPECT_DOUBLE_EQ(lo[0], 0.3);
+  EXPECT_DOUBLE_EQ(lo[1], 0.2);
+  EXPECT_DOUBLE_EQ(lo[2], 0.5);
+  EXPECT_DOUBLE_EQ(hi[0], 0.5);
+  EXPECT_DOUBLE_EQ(hi[1], 0.9);
+  EXPECT_DOUBLE_EQ(hi[2], 0.7);
+  const auto [elo, ehi] = bounding_box(Extrusion{Circle{{0.0, 1.0}, 0.5}, -2.0, 3.0});
+  EXPECT_DOUBLE_EQ(elo[1], 0.5);
+  EXPECT_DOUBLE_EQ(elo[2], -2.0);
+  EXPECT_DOUBLE_EQ(ehi[0], 0.5);
+  EXPECT_DOUBLE_EQ(ehi[2], 3.0);
+}
+
+}  // namespace
+}  // namespace granflow::interface
