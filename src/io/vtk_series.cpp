@@ -49,7 +49,10 @@ void VtkSeries::write(const Grid& grid, double time, const std::vector<CellData>
   MPI_Comm_rank(grid.comm(), &rank);
   if (rank != 0) return;
   const std::string name = fmt::format("{}_{:05d}.vtr", base_, entries_.size());
-  const int nx = grid.nx(), ny = grid.ny();
+  const int nx = grid.nx(), ny = grid.ny(), nz = grid.nz();
+  // A planar mesh is one sheet of cells at z = 0, as ParaView shows a 2D grid; a mesh of several
+  // layers has its z faces. The cell data are in natural order, x fastest, as VTK's.
+  const int z_cells = grid.dimension() == 3 ? nz : 0;
   // The cell data go compressed into the appended section; the coordinates and the time stay text.
   std::vector<std::string> packed;
   packed.reserve(data.size());
@@ -57,15 +60,22 @@ void VtkSeries::write(const Grid& grid, double time, const std::vector<CellData>
   write_file_atomically(dir_ / name, [&](std::ostream& out) {
     fmt::print(out, "<?xml version=\"1.0\"?>\n<VTKFile type=\"RectilinearGrid\" version=\"1.0\" byte_order=\"LittleEndian\" "
                     "header_type=\"UInt64\" compressor=\"vtkZLibDataCompressor\">\n");
-    fmt::print(out, "<RectilinearGrid WholeExtent=\"0 {} 0 {} 0 0\">\n", nx, ny);
+    fmt::print(out, "<RectilinearGrid WholeExtent=\"0 {} 0 {} 0 {}\">\n", nx, ny, z_cells);
     // The time belongs to the data set, before its pieces: VTK's readers look for it there only.
     fmt::print(out, "<FieldData><DataArray type=\"Float64\" Name=\"TimeValue\" NumberOfTuples=\"1\" format=\"ascii\">{:.17g}</DataArray></FieldData>\n", time);
-    fmt::print(out, "<Piece Extent=\"0 {} 0 {} 0 0\">\n", nx, ny);
+    fmt::print(out, "<Piece Extent=\"0 {} 0 {} 0 {}\">\n", nx, ny, z_cells);
     fmt::print(out, "<Coordinates>\n<DataArray type=\"Float64\" Name=\"x\" format=\"ascii\">\n");
     for (int i = 0; i < nx; ++i) fmt::print(out, "{:.12g} ", grid.xc(i) - 0.5 * grid.dx(i));
     fmt::print(out, "{:.12g}\n</DataArray>\n<DataArray type=\"Float64\" Name=\"y\" format=\"ascii\">\n", grid.xf(nx - 1));
     for (int j = 0; j < ny; ++j) fmt::print(out, "{:.12g} ", grid.yc(j) - 0.5 * grid.dy(j));
-    fmt::print(out, "{:.12g}\n</DataArray>\n<DataArray type=\"Float64\" Name=\"z\" format=\"ascii\">0</DataArray>\n</Coordinates>\n", grid.yf(ny - 1));
+    fmt::print(out, "{:.12g}\n</DataArray>\n", grid.yf(ny - 1));
+    if (z_cells == 0) {
+      fmt::print(out, "<DataArray type=\"Float64\" Name=\"z\" format=\"ascii\">0</DataArray>\n</Coordinates>\n");
+    } else {
+      fmt::print(out, "<DataArray type=\"Float64\" Name=\"z\" format=\"ascii\">\n");
+      for (int k = 0; k < nz; ++k) fmt::print(out, "{:.12g} ", grid.zc(k) - 0.5 * grid.dz(k));
+      fmt::print(out, "{:.12g}\n</DataArray>\n</Coordinates>\n", grid.zf(nz - 1));
+    }
     fmt::print(out, "<CellData>\n");
     std::size_t offset = 0;
     for (std::size_t k = 0; k < data.size(); ++k) {

@@ -16,6 +16,8 @@
 #include <vector>
 
 #include "io/vtk_series.hpp"
+#include "mesh/field.hpp"
+#include "mesh/gather.hpp"
 
 namespace granflow {
 namespace {
@@ -101,6 +103,52 @@ TEST(VtkSeries, CellDataAreCompressedAndReadBackExactly) {
   std::stringstream index;
   index << pvd.rdbuf();
   EXPECT_NE(index.str().find(R"(<DataSet timestep="0.125" file="fields_00000.vtr"/>)"), std::string::npos);
+  fs::remove_all(dir);
+}
+
+// A mesh of several layers: its z extent and faces, and the cells in natural order (x fastest, then y,
+// then z) as the gather gives them and VTK reads them.
+TEST(VtkSeries, LayersHaveTheirZFacesAndCellsInVtksOrder) {
+  GridSpec spec;
+  spec.cells = {4, 3, 5};
+  spec.lower = {0.0, 0.0, -1.0};
+  spec.upper = {0.4, 0.3, 1.5};
+  spec.grading = {1.0, 1.0, 2.0};
+  const Grid grid(PETSC_COMM_SELF, spec);
+  Field f(grid);
+  {
+    FieldArray a(grid.field_dm(), f.global());
+    for (int k = 0; k < 5; ++k)
+      for (int j = 0; j < 3; ++j)
+        for (int i = 0; i < 4; ++i) a.volume()[k][j][i] = i + 10.0 * j + 100.0 * k;
+  }
+  const std::vector<double> values = gather_to_root(grid, f);
+  const fs::path dir = fs::temp_directory_path() / ("granflow_vtk_layers_" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  VtkSeries series(dir, "fields");
+  series.write(grid, 0.5, {{"index", 1, values}});
+  std::ifstream in(dir / "fields_00000.vtr", std::ios::binary);
+  std::stringstream buffer;
+  buffer << in.rdbuf();
+  const std::string file = buffer.str();
+  EXPECT_NE(file.find(R"(<RectilinearGrid WholeExtent="0 4 0 3 0 5">)"), std::string::npos);
+  EXPECT_NE(file.find(R"(<Piece Extent="0 4 0 3 0 5">)"), std::string::npos);
+  std::smatch m;
+  ASSERT_TRUE(std::regex_search(file, m, std::regex(R"re(Name="z" format="ascii">\n([^<]*)</DataArray>)re")));
+  std::istringstream faces(m[1]);
+  std::vector<double> z;
+  for (double v; faces >> v;) z.push_back(v);
+  ASSERT_EQ(z.size(), 6u);
+  EXPECT_NEAR(z.front(), -1.0, 1e-12);
+  EXPECT_NEAR(z.back(), 1.5, 1e-12);
+  EXPECT_NEAR((z[5] - z[4]) / (z[1] - z[0]), 2.0, 1e-9);
+  const std::size_t underscore = file.find("<AppendedData encoding=\"raw\">\n_");
+  ASSERT_NE(underscore, std::string::npos);
+  const auto v = decode(file.substr(underscore + std::strlen("<AppendedData encoding=\"raw\">\n_")), 0);
+  ASSERT_EQ(v.size(), 60u);
+  for (int k = 0; k < 5; ++k)
+    for (int j = 0; j < 3; ++j)
+      for (int i = 0; i < 4; ++i) EXPECT_EQ(v[(k * 3 + j) * 4 + i], i + 10.0 * j + 100.0 * k);
   fs::remove_all(dir);
 }
 
