@@ -1,5 +1,7 @@
 #include "operators/strain_rate.hpp"
 
+#include <array>
+
 namespace granflow {
 
 // Central differences over the two neighbours along each axis.
@@ -94,6 +96,49 @@ rheology::StrainRate quadratic_wall_strain_rate(const Grid& g, const double* con
     d.dudy = no_shear ? 0.0 : du;
   }
   return strain_rate_of(g, d);
+}
+
+namespace {
+
+using Index3 = std::array<int, 3>;
+
+double centre_along(const Grid& g, int axis, int n) { return axis == 0 ? g.xc(n) : (axis == 1 ? g.yc(n) : g.zc(n)); }
+
+double value(const double* const* const* f, const Index3& p) { return f[p[2]][p[1]][p[0]]; }
+
+// d f / d x_axis at the centre of cell p, central over its two neighbours along the axis.
+double central(const Grid& g, const double* const* const* f, Index3 p, int axis) {
+  const int n = p[axis];
+  Index3 lo = p, hi = p;
+  --lo[axis];
+  ++hi[axis];
+  return (value(f, hi) - value(f, lo)) / (centre_along(g, axis, n + 1) - centre_along(g, axis, n - 1));
+}
+
+// D = (G + G^T) / 2 of the velocity gradient G[c][d] = d v_c / d x_d ([YS] Eq. 4).
+rheology::StrainRate symmetric_part(const double G[3][3]) {
+  return {G[0][0], G[1][1], G[2][2], 0.5 * (G[0][1] + G[1][0]), 0.5 * (G[0][2] + G[2][0]), 0.5 * (G[1][2] + G[2][1])};
+}
+
+}  // namespace
+
+rheology::StrainRate cell_strain_rate(const Grid& g, const VelocityArrays3& v, int i, int j, int k) {
+  double G[3][3];
+  for (int c = 0; c < 3; ++c)
+    for (int d = 0; d < 3; ++d) G[c][d] = central(g, v[c], {i, j, k}, d);
+  return symmetric_part(G);
+}
+
+rheology::StrainRate face_strain_rate(const Grid& g, const VelocityArrays3& v, int axis, int i, int j, int k) {
+  const Index3 p{i, j, k};
+  Index3 q = p;
+  ++q[axis];
+  const double h = centre_along(g, axis, q[axis]) - centre_along(g, axis, p[axis]);
+  double G[3][3];
+  for (int c = 0; c < 3; ++c)
+    for (int d = 0; d < 3; ++d)
+      G[c][d] = d == axis ? (value(v[c], q) - value(v[c], p)) / h : 0.5 * (central(g, v[c], p, d) + central(g, v[c], q, d));
+  return symmetric_part(G);
 }
 
 }  // namespace granflow

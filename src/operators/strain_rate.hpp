@@ -16,6 +16,17 @@ rheology::StrainRate cell_strain_rate(const Grid& g, const double* const* u, con
 rheology::StrainRate face_strain_rate(const Grid& g, const double* const* u, const double* const* v, int axis, int i,
                                       int j);
 
+// The three velocity components' ghosted arrays [k][j][i] of a mesh of several layers.
+using VelocityArrays3 = std::array<const double* const* const*, 3>;
+
+// At the centre of cell (i, j, k) of a 3D mesh, from central differences of all three components.
+rheology::StrainRate cell_strain_rate(const Grid& g, const VelocityArrays3& v, int i, int j, int k);
+
+// On the face between cell (i, j, k) and its neighbour at +1 along axis, in 3D: as face_strain_rate
+// above, the derivatives across the face compact, those along it the mean of the two cells' central
+// ones.
+rheology::StrainRate face_strain_rate(const Grid& g, const VelocityArrays3& v, int axis, int i, int j, int k);
+
 // Derivative at a wall, along the distance from it, of a quantity worth `wall` there and f1, f2 at
 // the first two cell centres (s1 and s2 from the wall): quadratic through the three. The momentum
 // flux and the wall face's strain rate both take it, so that a plastic stress stays on its yield

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "mesh/field.hpp"
 #include "mesh/grid.hpp"
 #include "operators/strain_rate.hpp"
 
@@ -127,6 +128,80 @@ TEST(StrainRate, QuadraticWallRateIsExactForAQuadraticProfile) {
       EXPECT_NEAR(w.axis == 0 ? S.xx : S.yy, w.derivative_sign * e, 1e-10);
     }
   }
+}
+
+// In 3D, on a grid graded along all three axes: every component's gradient, exactly, for a linear
+// velocity v = A x, at the centres and on the faces along each axis, ghosts included.
+TEST(StrainRate, ExactForALinearVelocityIn3dAtCentresAndOnFacesAlongEachAxis) {
+  GridSpec spec;
+  spec.cells = {5, 4, 6};
+  spec.lower = {0.0, -0.1, 0.2};
+  spec.upper = {0.3, 0.2, 0.5};
+  spec.grading = {1.4, 0.7, 2.0};
+  const Grid g(PETSC_COMM_SELF, spec);
+  const double A[3][3] = {{0.3, -1.2, 0.7}, {2.1, -0.5, 0.4}, {-0.9, 1.6, 0.2}};
+  Field u(g), v(g), w(g);
+  {
+    FieldArray a[3] = {local_array(g, u), local_array(g, v), local_array(g, w)};
+    const int gw = Grid::ghost_width;
+    for (int k = -gw; k < g.nz() + gw; ++k)
+      for (int j = -gw; j < g.ny() + gw; ++j)
+        for (int i = -gw; i < g.nx() + gw; ++i)
+          for (int c = 0; c < 3; ++c) a[c].volume()[k][j][i] = A[c][0] * g.xc(i) + A[c][1] * g.yc(j) + A[c][2] * g.zc(k);
+  }
+  ConstFieldArray ua = local_read(g, u), va = local_read(g, v), wa = local_read(g, w);
+  const VelocityArrays3 vel{ua.volume(), va.volume(), wa.volume()};
+  auto expect_sym_a = [&](const rheology::StrainRate& d, const std::string& where) {
+    EXPECT_NEAR(d.xx, A[0][0], 1e-12) << where;
+    EXPECT_NEAR(d.yy, A[1][1], 1e-12) << where;
+    EXPECT_NEAR(d.zz, A[2][2], 1e-12) << where;
+    EXPECT_NEAR(d.xy, 0.5 * (A[0][1] + A[1][0]), 1e-12) << where;
+    EXPECT_NEAR(d.xz, 0.5 * (A[0][2] + A[2][0]), 1e-12) << where;
+    EXPECT_NEAR(d.yz, 0.5 * (A[1][2] + A[2][1]), 1e-12) << where;
+  };
+  for (int k = 0; k < g.nz(); ++k)
+    for (int j = 0; j < g.ny(); ++j)
+      for (int i = 0; i < g.nx(); ++i) {
+        const std::string where = std::to_string(i) + ", " + std::to_string(j) + ", " + std::to_string(k);
+        expect_sym_a(cell_strain_rate(g, vel, i, j, k), "cell " + where);
+        for (int axis = 0; axis < 3; ++axis) expect_sym_a(face_strain_rate(g, vel, axis, i, j, k), "face " + where);
+      }
+  // The low boundary faces, between a ghost and the first cells.
+  expect_sym_a(face_strain_rate(g, vel, 2, 2, 1, -1), "the face below the first layer");
+}
+
+// A velocity along the layers and the same on each (w = 0, no z dependence) has the planar rate.
+TEST(StrainRate, AFlowTheSameOnEveryLayerHasThePlanarRate) {
+  GridSpec spec;
+  spec.cells = {4, 4, 3};
+  spec.upper = {0.4, 0.4, 0.3};
+  const Grid g(PETSC_COMM_SELF, spec);
+  Field u(g), v(g), w(g);
+  w.set(0.0);
+  {
+    FieldArray ua = local_array(g, u), va = local_array(g, v);
+    const int gw = Grid::ghost_width;
+    for (int k = -gw; k < g.nz() + gw; ++k)
+      for (int j = -gw; j < g.ny() + gw; ++j)
+        for (int i = -gw; i < g.nx() + gw; ++i) {
+          ua.volume()[k][j][i] = std::sin(3.0 * g.xc(i)) * std::cos(2.0 * g.yc(j));
+          va.volume()[k][j][i] = g.xc(i) * g.xc(i) - g.yc(j);
+        }
+  }
+  ConstFieldArray ua = local_read(g, u), va = local_read(g, v), wa = local_read(g, w);
+  const VelocityArrays3 vel{ua.volume(), va.volume(), wa.volume()};
+  for (int k = 0; k < 3; ++k)
+    for (int j = 0; j < 4; ++j)
+      for (int i = 0; i < 4; ++i) {
+        const auto d3 = cell_strain_rate(g, vel, i, j, k);
+        const auto d2 = cell_strain_rate(g, ua.volume()[k], va.volume()[k], i, j);
+        EXPECT_EQ(d3.xx, d2.xx);
+        EXPECT_EQ(d3.yy, d2.yy);
+        EXPECT_EQ(d3.xy, d2.xy);
+        EXPECT_EQ(d3.zz, 0.0);
+        EXPECT_EQ(d3.xz, 0.0);
+        EXPECT_EQ(d3.yz, 0.0);
+      }
 }
 
 }  // namespace
