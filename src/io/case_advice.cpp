@@ -52,7 +52,7 @@ std::vector<std::string> case_advice(const CaseConfig& config) {
   auto wall_radians = [&](const std::optional<rheology::WallFriction>& friction, const std::string& wall) {
     if (friction) radians_hint(friction->friction_angle_degrees, wall + ".friction_angle");
   };
-  for (Side side : all_sides)
+  for (Side side : planar_sides)
     wall_radians(boundary(config.flow.boundaries, side).friction, fmt::format("boundary.{}", side_name(side)));
   for (size_t k = 0; k < config.obstacle_friction.size(); ++k)
     wall_radians(config.obstacle_friction[k], fmt::format("obstacle[{}]", k));

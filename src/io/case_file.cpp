@@ -560,8 +560,8 @@ BoundarySet read_boundaries(TableReader& top, const GridSpec& mesh, std::vector<
   TableReader b = top.table("boundary");
   if (!b.present()) throw CaseError("boundary: missing table [boundary] (west, east, south, north)" + top.misspelling_of("boundary"));
   std::vector<TableReader> sides;  // all four read first: a side missing is then not taken for another misspelt
-  for (Side s : all_sides) sides.push_back(b.table(side_name(s)));
-  for (Side s : all_sides) {
+  for (Side s : planar_sides) sides.push_back(b.table(side_name(s)));
+  for (Side s : planar_sides) {
     bool is_axis = false;
     TableReader& side = sides[int(s)];
     if (!side.present())
@@ -576,7 +576,7 @@ BoundarySet read_boundaries(TableReader& top, const GridSpec& mesh, std::vector<
   }
   b.finish();
   // Periodic sides come in the west-east pair: flow leaving through one enters through the other.
-  for (Side s : all_sides) {
+  for (Side s : planar_sides) {
     if (boundaries[int(s)].kind != BoundaryKind::periodic) continue;
     if (normal_axis(s) == 1)
       throw CaseError(fmt::format("boundary.{}.type: only the west and east sides can be periodic (joined along x)",
@@ -586,7 +586,7 @@ BoundarySet read_boundaries(TableReader& top, const GridSpec& mesh, std::vector<
       throw CaseError(fmt::format("boundary.{}.type: a periodic side needs the opposite side periodic too "
                                   "(boundary.{} = {{ type = \"periodic\" }})", side_name(s), side_name(other)));
   }
-  for (Side s : all_sides) {
+  for (Side s : planar_sides) {
     const auto& bc = boundaries[int(s)];
     if (bc.kind == BoundaryKind::wall && bc.wall_velocity[normal_axis(s)] != 0.0)
       throw CaseError(fmt::format("boundary.{}.velocity: a wall cannot move through itself (normal component must be 0)",
@@ -815,7 +815,7 @@ void require_consistent(const CaseConfig& c) {
       throw CaseError(fmt::format("{}: a wall's friction (friction_angle, adhesion) needs soil.yield_pressure = \"face\" "
                                   "(the viscosity is then taken on faces, the wall's among them)", wall));
   };
-  for (Side s : all_sides)
+  for (Side s : planar_sides)
     if (boundary(c.flow.boundaries, s).friction) frictional_wall(fmt::format("boundary.{}", side_name(s)));
   for (size_t k = 0; k < c.obstacle_friction.size(); ++k)
     if (c.obstacle_friction[k]) frictional_wall(fmt::format("obstacle[{}]", k));

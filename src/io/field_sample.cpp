@@ -8,7 +8,7 @@ namespace granflow {
 
 SideRules velocity_side_rules(const BoundarySet& boundaries, int axis) {
   SideRules rules;
-  for (Side s : all_sides) {
+  for (Side s : planar_sides) {
     const BoundaryCondition& bc = boundary(boundaries, s);
     SideRule& r = rules[static_cast<int>(s)];
     const bool normal = normal_axis(s) == axis;

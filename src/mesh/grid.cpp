@@ -14,6 +14,8 @@ const char* side_name(Side s) {
     case Side::east: return "east";
     case Side::south: return "south";
     case Side::north: return "north";
+    case Side::front: return "front";
+    case Side::back: return "back";
   }
   return "?";
 }

@@ -18,6 +18,7 @@
 #include <petscdmda.h>
 
 #include <array>
+#include <span>
 #include <stdexcept>
 #include <vector>
 
@@ -26,9 +27,25 @@
 
 namespace granflow {
 
-enum class Side { west = 0, east = 1, south = 2, north = 3 };
-inline constexpr std::array<Side, 4> all_sides{Side::west, Side::east, Side::south, Side::north};
+// The sides of the box: west and east along x, south and north along y (the vertical), front and back
+// along z, which a mesh of several layers has.
+enum class Side { west = 0, east = 1, south = 2, north = 3, front = 4, back = 5 };
+inline constexpr std::array<Side, 4> planar_sides{Side::west, Side::east, Side::south, Side::north};
+inline constexpr std::array<Side, 6> box_sides{Side::west, Side::east, Side::south, Side::north, Side::front, Side::back};
+// The sides a mesh of this dimension has (2: the planar four; 3: all six).
+inline std::span<const Side> sides_of_dimension(int dimension) {
+  return dimension == 3 ? std::span<const Side>(box_sides) : std::span<const Side>(planar_sides);
+}
 const char* side_name(Side s);
+// The axis a side is normal to (0 = x, 1 = y, 2 = z).
+inline int normal_axis(Side s) { return static_cast<int>(s) / 2; }
+// Outward unit normal component of a side along an axis.
+inline double outward_normal(Side s, int axis) {
+  if (axis != normal_axis(s)) return 0.0;
+  return static_cast<int>(s) % 2 == 0 ? -1.0 : 1.0;
+}
+// The side a boundary face lies on, from its axis and its sign (-1 low, +1 high).
+inline Side side_of(int axis, int sign) { return static_cast<Side>(2 * axis + (sign < 0 ? 0 : 1)); }
 
 struct GridSpec {
   // Cells along x, y and z; y is the vertical of the shipped cases, in 2D and 3D alike. With one cell
@@ -106,8 +123,12 @@ class Grid {
   const double* radius_centre_data() const { return spec_.axisymmetric ? centre_[0].data() + ghost_width : nullptr; }
   double min_spacing() const;
   bool periodic_x() const { return spec_.periodic_x; }
-  // Whether side s is a boundary of the domain (not joined to the opposite side).
-  bool bounded(Side s) const { return !(spec_.periodic_x && (s == Side::west || s == Side::east)); }
+  // Whether side s is a boundary of the domain (not joined to the opposite side). The front and back
+  // of a planar mesh are not: it is one layer, a metre deep, without ghosts along z.
+  bool bounded(Side s) const {
+    if (s == Side::front || s == Side::back) return dimension() == 3;
+    return !(spec_.periodic_x && (s == Side::west || s == Side::east));
+  }
   // Whether (i, j) lies beyond a boundary: a ghost that a boundary condition fills. A ghost across a
   // periodic side is a cell of the other end, not outside.
   bool outside(int i, int j) const {
@@ -122,6 +143,8 @@ class Grid {
       case Side::east: return owned_.xe() == nx();
       case Side::south: return owned_.ys == 0;
       case Side::north: return owned_.ye() == ny();
+      case Side::front: return owned_.zs == 0;
+      case Side::back: return owned_.ze() == nz();
     }
     return false;
   }

@@ -31,7 +31,7 @@ struct BoundaryCondition {
   double outside_density = 0.0;
 };
 
-using BoundarySet = std::array<BoundaryCondition, 4>;  // indexed by Side
+using BoundarySet = std::array<BoundaryCondition, 6>;  // indexed by Side; front and back for 3D meshes
 
 // The condition on an obstacle's faces (mesh/obstacles.hpp): a static no-slip wall.
 inline constexpr BoundaryCondition obstacle_wall{};
@@ -55,22 +55,6 @@ inline double ambient_pressure(const BoundarySet& b) {
   return lowest;
 }
 
-// Outward unit normal component of a side along an axis (0 = x, 1 = y).
-inline double outward_normal(Side s, int axis) {
-  switch (s) {
-    case Side::west: return axis == 0 ? -1.0 : 0.0;
-    case Side::east: return axis == 0 ? 1.0 : 0.0;
-    case Side::south: return axis == 1 ? -1.0 : 0.0;
-    case Side::north: return axis == 1 ? 1.0 : 0.0;
-  }
-  return 0.0;
-}
-// The side a boundary face lies on, from its axis and its sign (-1 low, +1 high).
-inline Side side_of(int axis, int sign) {
-  if (axis == 0) return sign < 0 ? Side::west : Side::east;
-  return sign < 0 ? Side::south : Side::north;
-}
-inline int normal_axis(Side s) { return (s == Side::west || s == Side::east) ? 0 : 1; }
 
 // Pressure at an atmosphere face: p0 plus the hydrostatic head below the top of the domain
 // (hydrostatic_head, Pa), minus rho |v|^2 / 2 where fluid flows in (total pressure) unless the

@@ -262,7 +262,7 @@ class FlowSolver::CoupledRows {
 void FlowSolver::fill_coupled_rows() {
   const auto& b = grid_.owned();
   const int nx = grid_.nx(), ny = grid_.ny();
-  for (Side side : all_sides)  // NaN: a face the system below does not hold (outside the air band's region)
+  for (Side side : planar_sides)  // NaN: a face the system below does not hold (outside the air band's region)
     solved_boundary_pressure_[static_cast<int>(side)].assign(normal_axis(side) == 0 ? ny : nx, std::nan(""));
   CoupledRows rows(*this);
   if (solve_region_) {
@@ -371,7 +371,7 @@ void FlowSolver::update_coupled_face_velocities() {
     ConstFieldArray p = local_read(grid_, *p_), rho = local_read(grid_, *rho_);
     for (int c = 0; c < 2; ++c) {
       FieldArray ff = local_array(grid_, *face_force_[c]);
-      for (Side side : all_sides) {
+      for (Side side : planar_sides) {
         if (normal_axis(side) != c) continue;
         const double sign = outward_normal(side, c);
         const auto& solved = solved_boundary_pressure_[static_cast<int>(side)];

@@ -73,7 +73,7 @@ struct FlowSettings {
 // condition differs by component), nor on the axis (the hoop stress is on the radial one's diagonal).
 inline bool momentum_matrix_shared(const FlowSettings& s, bool axisymmetric) {
   if (axisymmetric) return false;
-  for (Side side : all_sides)
+  for (Side side : planar_sides)
     if (boundary(s.boundaries, side).kind == BoundaryKind::slip) return false;
   return true;
 }

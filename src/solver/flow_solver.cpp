@@ -61,7 +61,7 @@ FlowSolver::FlowSolver(const Grid& grid, const FlowSettings& settings) : grid_(g
   for (auto* v : {&a_east_, &a_west_, &a_north_, &a_south_, &a_centre_[0], &a_centre_[1], &source_[0], &source_[1]})
     v->assign(n, 0.0);
 
-  for (Side s : all_sides)
+  for (Side s : planar_sides)
     if (boundary(settings.boundaries, s).kind == BoundaryKind::atmosphere) has_pressure_boundary_ = true;
   shared_momentum_matrix_ = momentum_matrix_shared(settings, grid.axisymmetric());
 

@@ -80,7 +80,7 @@ std::string Simulation::physics() const {
 // written before they were recorded is not taken for one of other physics).
 std::string Simulation::boundaries() const {
   std::string text;
-  for (Side side : all_sides) {
+  for (Side side : planar_sides) {
     const BoundaryCondition& bc = boundary(config_.flow.boundaries, side);
     text += fmt::format("{}{} ", text.empty() ? "" : "; ", side_name(side));
     switch (bc.kind) {
@@ -164,7 +164,7 @@ void Simulation::restart() {
   constexpr std::size_t fields_with_speed = 13;
   for (auto& row : history_) {
     const std::size_t fields = 1 + std::count(row.begin(), row.end(), ',');
-    const std::size_t expected = fields_with_speed + 2 * all_sides.size() + (blocked_ ? 2 : 0);
+    const std::size_t expected = fields_with_speed + 2 * planar_sides.size() + (blocked_ ? 2 : 0);
     if (fields + 1 == expected) {
       std::size_t at = 0;
       for (std::size_t k = 0; k + 1 < fields_with_speed; ++k) at = row.find(',', at) + 1;

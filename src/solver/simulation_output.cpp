@@ -221,7 +221,7 @@ void Simulation::write_history() const {
   write_file_atomically(out_ / "history.csv", [&](std::ostream& out) {
     fmt::print(out, "time,dt,soil_volume,air_volume,kinetic_energy,potential_energy,dissipated_energy,"
                     "toe_contour,toe_one_cell,wall_height,mixture_mass,soil_outflow,soil_speed");
-    for (Side side : all_sides) fmt::print(out, ",force_{0}_x,force_{0}_y", side_name(side));
+    for (Side side : planar_sides) fmt::print(out, ",force_{0}_x,force_{0}_y", side_name(side));
     if (blocked_) fmt::print(out, ",force_obstacle_x,force_obstacle_y");
     fmt::print(out, "\n");
     for (const auto& row : history_) fmt::print(out, "{}\n", row);

@@ -97,7 +97,7 @@ CaseConfig reduced_strength(const CaseConfig& config, double factor) {
     }
     keys.push_back(materials_with(config, strengths));
   }
-  for (Side side : all_sides)  // and a wall's friction against the soil: the interface is as weak in the same measure
+  for (Side side : planar_sides)  // and a wall's friction against the soil: the interface is as weak in the same measure
     if (const auto& friction = boundary(config.flow.boundaries, side).friction) {
       keys.push_back(fmt::format("boundary.{}.friction_angle={}", side_name(side), reduced_wall_angle(*friction, factor)));
       keys.push_back(fmt::format("boundary.{}.adhesion={}", side_name(side), friction->adhesion / factor));

@@ -5,6 +5,9 @@
 
 #include <mpi.h>
 
+#include <algorithm>
+
+#include "mesh/copied_ghosts.hpp"
 #include "mesh/field.hpp"
 #include "mesh/grid.hpp"
 
@@ -69,6 +72,14 @@ TEST(GridLayers, SeveralLayersAreSplitAcrossTheSmallestAreaAndTheirGhostsExchang
           ++checked;
         }
   EXPECT_EQ(checked, 6 * 5 * 6) << "four owned layers and two of the other rank's";
+  // Copied ghosts: the other rank's layers where it has them, the nearest cell beyond the box.
+  fill_copied_ghosts(g, nullptr, f);
+  ConstFieldArray c = local_read(g, f);
+  for (int k = b.zs - 2; k < b.ze() + 2; ++k)
+    for (int j = -2; j < 7; ++j)
+      for (int i = -2; i < 8; ++i)
+        EXPECT_EQ(c.volume()[k][j][i], value(std::clamp(i, 0, 5), std::clamp(j, 0, 4), std::clamp(k, 0, 7)))
+            << "cell " << i << ", " << j << ", " << k;
 }
 
 TEST(GridLayers, TooManyRanksForSeveralLayersIsAGridError) {

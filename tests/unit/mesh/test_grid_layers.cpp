@@ -2,8 +2,10 @@
 // several is three-dimensional, with graded layers and two ghost layers beyond its z sides.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <stdexcept>
 
+#include "mesh/copied_ghosts.hpp"
 #include "mesh/field.hpp"
 #include "mesh/grid.hpp"
 
@@ -74,6 +76,50 @@ TEST(GridLayers, ARefusedSpecSaysWhy) {
   spec.upper = {1.0, 1.0, 1.0};
   spec.axisymmetric = true;
   EXPECT_THROW(Grid(PETSC_COMM_SELF, spec), std::invalid_argument);
+}
+
+TEST(GridLayers, SidesAlongZAreBoundariesOfLayersOnly) {
+  GridSpec spec;
+  spec.cells = {3, 4, 1};
+  const Grid planar(PETSC_COMM_SELF, spec);
+  EXPECT_FALSE(planar.bounded(Side::front));
+  EXPECT_FALSE(planar.owns_boundary(Side::back));
+  EXPECT_EQ(sides_of_dimension(planar.dimension()).size(), 4u);
+  spec.cells = {3, 4, 2};
+  const Grid layers(PETSC_COMM_SELF, spec);
+  EXPECT_TRUE(layers.owns_boundary(Side::front));
+  EXPECT_TRUE(layers.owns_boundary(Side::back));
+  EXPECT_EQ(sides_of_dimension(layers.dimension()).size(), 6u);
+  for (Side s : box_sides) {
+    EXPECT_EQ(side_of(normal_axis(s), int(outward_normal(s, normal_axis(s)))), s) << side_name(s);
+    for (int axis = 0; axis < 3; ++axis)
+      if (axis != normal_axis(s)) EXPECT_EQ(outward_normal(s, axis), 0.0);
+  }
+  EXPECT_STREQ(side_name(Side::front), "front");
+  EXPECT_EQ(outward_normal(Side::back, 2), 1.0);
+}
+
+// Each ghost of a copied field, beyond a face, an edge or a corner of the box, is its nearest cell's value.
+TEST(GridLayers, CopiedGhostsAreTheNearestCellsBeyondFacesEdgesAndCorners) {
+  GridSpec spec;
+  spec.cells = {4, 3, 5};
+  const Grid g(PETSC_COMM_SELF, spec);
+  Field f(g);
+  auto value = [](int i, int j, int k) { return i + 10.0 * j + 100.0 * k; };
+  {
+    FieldArray a(g.field_dm(), f.global());
+    for (int k = 0; k < 5; ++k)
+      for (int j = 0; j < 3; ++j)
+        for (int i = 0; i < 4; ++i) a.volume()[k][j][i] = value(i, j, k);
+  }
+  fill_copied_ghosts(g, nullptr, f);
+  ConstFieldArray a = local_read(g, f);
+  const int w = Grid::ghost_width;
+  for (int k = -w; k < 5 + w; ++k)
+    for (int j = -w; j < 3 + w; ++j)
+      for (int i = -w; i < 4 + w; ++i)
+        EXPECT_EQ(a.volume()[k][j][i], value(std::clamp(i, 0, 3), std::clamp(j, 0, 2), std::clamp(k, 0, 4)))
+            << i << ", " << j << ", " << k;
 }
 
 }  // namespace
