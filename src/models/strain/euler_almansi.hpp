@@ -21,4 +21,14 @@ struct AlmansiStrain {
 bool almansi_strain(const DisplacementGradient& grad_u, AlmansiStrain& e);
 double deviatoric_norm(const AlmansiStrain& e);
 
+// In 3D: the whole displacement gradient, g[i][j] = d u_i / d x_j, and the whole symmetric strain.
+struct DisplacementGradient3 {
+  double g[3][3] = {};
+};
+struct AlmansiStrain3 {
+  double xx = 0, yy = 0, zz = 0, xy = 0, xz = 0, yz = 0;
+};
+bool almansi_strain(const DisplacementGradient3& grad_u, AlmansiStrain3& e);
+double deviatoric_norm(const AlmansiStrain3& e);
+
 }  // namespace granflow::strain

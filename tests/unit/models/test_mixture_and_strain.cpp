@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <random>
 
 #include "models/interface/initial_shapes.hpp"
 #include "models/mixture/mixture_interpolation.hpp"
@@ -103,6 +104,61 @@ TEST(EulerAlmansi, AxisymmetricRadialStretchHasHoopStrain) {
   EXPECT_NEAR(strain::deviatoric_norm(e), std::abs(e_rr) * std::sqrt(2.0 / 3.0), 1e-15);
   g.hoop = 1.0;  // F_thth = 0: singular
   EXPECT_FALSE(strain::almansi_strain(g, e));
+}
+
+// In 3D: a gradient in the x-y plane alone gives the planar strain; a rigid rotation none, about any
+// axis; shear across the layers and a stretch along z their closed forms; F singular none at all.
+TEST(EulerAlmansi, In3dThePlanarStrainRigidRotationsShearAndStretch) {
+  std::mt19937 rng(17);
+  std::uniform_real_distribution<double> u(-0.6, 0.6);
+  for (int t = 0; t < 100; ++t) {
+    const double gxx = u(rng), gxy = u(rng), gyx = u(rng), gyy = u(rng);
+    strain::AlmansiStrain e2;
+    strain::AlmansiStrain3 e3;
+    const bool planar = strain::almansi_strain(strain::DisplacementGradient{gxx, gxy, gyx, gyy, 0.0}, e2);
+    strain::DisplacementGradient3 g;
+    g.g[0][0] = gxx, g.g[0][1] = gxy, g.g[1][0] = gyx, g.g[1][1] = gyy;
+    ASSERT_EQ(strain::almansi_strain(g, e3), planar);
+    if (!planar) continue;
+    EXPECT_NEAR(e3.xx, e2.xx, 1e-12);
+    EXPECT_NEAR(e3.yy, e2.yy, 1e-12);
+    EXPECT_NEAR(e3.xy, e2.xy, 1e-12);
+    EXPECT_EQ(e3.zz, 0.0);
+    EXPECT_NEAR(strain::deviatoric_norm(e3), strain::deviatoric_norm(e2), 1e-12);
+  }
+  // A rigid rotation X = R^T x: u = (I - R^T) x, so F = R^T and G G^T = I.
+  const double a = 0.7, b = -0.4;
+  const double Rz[3][3] = {{std::cos(a), -std::sin(a), 0}, {std::sin(a), std::cos(a), 0}, {0, 0, 1}};
+  const double Rx[3][3] = {{1, 0, 0}, {0, std::cos(b), -std::sin(b)}, {0, std::sin(b), std::cos(b)}};
+  double R[3][3] = {};
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j)
+      for (int k = 0; k < 3; ++k) R[i][j] += Rz[i][k] * Rx[k][j];
+  strain::DisplacementGradient3 rotation;
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) rotation.g[i][j] = (i == j ? 1.0 : 0.0) - R[j][i];
+  strain::AlmansiStrain3 e;
+  ASSERT_TRUE(strain::almansi_strain(rotation, e));
+  EXPECT_NEAR(strain::deviatoric_norm(e), 0.0, 1e-15);
+  // Simple shear of the layers, x = X + s Z: grad u = s e_x e_z^T, e = [[-s^2/2, 0, -s/2], [0, 0, 0], [-s/2, 0, 0]].
+  const double s = 0.3;
+  strain::DisplacementGradient3 shear;
+  shear.g[0][2] = s;
+  ASSERT_TRUE(strain::almansi_strain(shear, e));
+  EXPECT_NEAR(e.xx, -0.5 * s * s, 1e-15);
+  EXPECT_NEAR(e.xz, -0.5 * s, 1e-15);
+  EXPECT_NEAR(e.zz, 0.0, 1e-15);
+  EXPECT_NEAR(e.xy, 0.0, 1e-15);
+  // A stretch along z by l: u_z = z (1 - 1/l), G_zz = l, e_zz = (1 - l^2)/2.
+  const double l = 1.25;
+  strain::DisplacementGradient3 stretch;
+  stretch.g[2][2] = 1.0 - 1.0 / l;
+  ASSERT_TRUE(strain::almansi_strain(stretch, e));
+  EXPECT_NEAR(e.zz, 0.5 * (1.0 - l * l), 1e-15);
+  EXPECT_NEAR(strain::deviatoric_norm(e), std::abs(e.zz) * std::sqrt(2.0 / 3.0), 1e-15);
+  stretch.g[2][2] = 1.0;  // F_zz = 0
+  EXPECT_FALSE(strain::almansi_strain(stretch, e));
+  EXPECT_EQ(strain::deviatoric_norm(e), 0.0);
 }
 
 TEST(InitialShapes, BoxCircleAndPolygonFractions) {
