@@ -166,6 +166,56 @@ Normal3 youngs_normal(const Block3x3x3& b) {
   return normalise_l1(-g[0] * b.dx[1], -g[1] * b.dy[1], -g[2] * b.dz[1]);
 }
 
+Normal3 myc_normal(const Block3x3x3& b) {
+  const double* width[3] = {b.dx, b.dy, b.dz};
+  auto c_at = [&](const int q[3]) { return b.c[q[2]][q[1]][q[0]]; };  // q: offsets 0..2 along x, y, z
+  // Candidates in physical coordinates, |n|_1 = 1: the three centred ones, then Youngs'.
+  double m[4][3];
+  for (int a = 0; a < 3; ++a) {
+    const int t1 = (a + 1) % 3, t2 = (a + 2) % 3;
+    // Heights along a of the 3 x 3 columns (physical lengths of soil), H[r][s] at offsets r along t1, s along t2.
+    double H[3][3];
+    for (int r = 0; r < 3; ++r)
+      for (int s = 0; s < 3; ++s) {
+        H[r][s] = 0.0;
+        for (int q = 0; q < 3; ++q) {
+          int p[3];
+          p[a] = q, p[t1] = r, p[t2] = s;
+          H[r][s] += c_at(p) * width[a][q];
+        }
+      }
+    // Soil on the low side along a (the low layer of the block holds more): the normal points to +a.
+    double low = 0.0, high = 0.0;
+    for (int r = 0; r < 3; ++r)
+      for (int s = 0; s < 3; ++s) {
+        int p[3];
+        p[t1] = r, p[t2] = s;
+        p[a] = 0;
+        low += c_at(p);
+        p[a] = 2;
+        high += c_at(p);
+      }
+    const double sign = low > high ? 1.0 : -1.0;
+    // n = (sign, -dH/dt1, -dH/dt2) along (a, t1, t2), the height's slope central over the middle row.
+    const double d1 = (H[2][1] - H[0][1]) / (0.5 * width[t1][0] + width[t1][1] + 0.5 * width[t1][2]);
+    const double d2 = (H[1][2] - H[1][0]) / (0.5 * width[t2][0] + width[t2][1] + 0.5 * width[t2][2]);
+    const double norm = 1.0 + std::abs(d1) + std::abs(d2);
+    m[a][a] = sign / norm;
+    m[a][t1] = -d1 / norm;
+    m[a][t2] = -d2 / norm;
+  }
+  const Normal3 y = to_physical(youngs_normal(b), b.dx[1], b.dy[1], b.dz[1]);
+  m[3][0] = y.nx, m[3][1] = y.ny, m[3][2] = y.nz;
+  if (y.nx == 0.0 && y.ny == 0.0 && y.nz == 0.0) return {};
+  int choice = 0;
+  for (int a = 1; a < 3; ++a)
+    if (std::abs(m[a][a]) > std::abs(m[choice][choice])) choice = a;
+  const double youngs_largest = std::max({std::abs(m[3][0]), std::abs(m[3][1]), std::abs(m[3][2])});
+  if (std::abs(m[choice][choice]) > youngs_largest) choice = 3;
+  // Back to the centre cell's scaled coordinates.
+  return normalise_l1(m[choice][0] * b.dx[1], m[choice][1] * b.dy[1], m[choice][2] * b.dz[1]);
+}
+
 Normal3 to_physical(Normal3 n, double dx, double dy, double dz) { return normalise_l1(n.nx / dx, n.ny / dy, n.nz / dz); }
 
 }  // namespace granflow::interface

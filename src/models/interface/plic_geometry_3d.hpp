@@ -58,6 +58,15 @@ struct Block3x3x3 {
 // the grid's axes, face diagonals and body diagonals on a uniform mesh; first order otherwise.
 Normal3 youngs_normal(const Block3x3x3& b);
 
+// Mixed Youngs-centred normal in 3D (Aulisa, Manservisi, Scardovelli & Zaleski 2007, J. Comput. Phys.
+// 225:2301; Basilisk's mycs has the same choice): the centred height-function normal along each
+// axis (the column sums of the block along the axis, differenced across it), the one most aligned
+// with its own axis of the three, replaced by Youngs' when that one's is more aligned still. Exact
+// on a uniform mesh for every plane whose heights along one of the axes the block brackets. Heights
+// are physical lengths, so graded cells are allowed; there the error for such planes is of the order
+// of the grading (Youngs' may be taken), as in 2D.
+Normal3 myc_normal(const Block3x3x3& b);
+
 // Converts a normal in scaled cell coordinates (cell widths dx, dy, dz) into the same physical
 // direction, again normalised with |nx| + |ny| + |nz| = 1.
 Normal3 to_physical(Normal3 n, double dx, double dy, double dz);

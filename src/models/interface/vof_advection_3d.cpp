@@ -52,7 +52,7 @@ double swept_fraction(const double* const* const* c, CellWidths3 w, const Index&
   // A flat neighbourhood has no orientation (a plane would amplify round-off to O(1) within one
   // sweep), so take the plane parallel to the flow (donor cell), as in 2D.
   if (hi - lo < 1e-8) return cu;
-  const Normal3 normal = youngs_normal(b);
+  const Normal3 normal = myc_normal(b);
   if (normal.nx == 0.0 && normal.ny == 0.0 && normal.nz == 0.0) return cu;
   if (!(s > 0.0)) return cu;
   s = std::min(s, 1.0);

@@ -7,7 +7,7 @@
 //   - face velocities of axis a at [k][j][i] are on the face between the cell and its neighbour at +1
 //     along a (the low boundary face at index -1 along a);
 //   - dx, dy, dz are cell widths indexed globally, valid for ghost indices too.
-// The plane in a mixed cell takes Youngs' normal (plic_geometry_3d.hpp).
+// The plane in a mixed cell takes the mixed Youngs-centred normal (plic_geometry_3d.hpp), as in 2D.
 //
 // One time step: fill the ghosts of c (corners included); dilatation_indicator once; then three sweeps,
 // each into the other array, ghosts refilled after each; the order of the axes permuted from step to
