@@ -5,6 +5,7 @@
 // side are visited too, so that a stencil over the owned cells needs no exchange. With periodic x the
 // end faces are interior faces between a cell and a ghost of the other end.
 #include <algorithm>
+#include <array>
 
 #include "mesh/field.hpp"
 #include "mesh/grid.hpp"
@@ -41,6 +42,32 @@ void fill_owned_faces(const Grid& g, Field& x_faces, Field& y_faces, Interior in
     if (b.ys == 0) fy[-1][i] = boundary(1, i, 0, -1);
     for (int j = std::max(b.ys - 1, 0); j < b.ye(); ++j)
       fy[j][i] = j + 1 == ny ? boundary(1, i, j, 1) : inner(1, i, j);
+  }
+}
+
+// On a mesh of several layers: faces[a] holds the faces normal to axis a, [k][j][i] the face between
+// cell (i, j, k) and its neighbour at +1 along a, index -1 along a the low boundary face; each owned
+// cell's six faces, those on the low side of the block included. interior(axis, i, j, k) and
+// boundary(axis, i, j, k, sign) as above, without obstacles (not laid out on layers yet) or periodic
+// sides.
+template <class Interior, class Boundary>
+void fill_owned_faces_3d(const Grid& g, const std::array<Field*, 3>& faces, Interior interior, Boundary boundary) {
+  const auto& b = g.owned();
+  const int n[3] = {g.nx(), g.ny(), g.nz()};
+  const int start[3] = {b.xs, b.ys, b.zs}, end[3] = {b.xe(), b.ye(), b.ze()};
+  for (int axis = 0; axis < 3; ++axis) {
+    FieldArray f = local_array(g, *faces[axis]);
+    double*** a = f.volume();
+    int lo[3] = {start[0], start[1], start[2]};
+    lo[axis] = std::max(start[axis] - 1, -1);  // the faces on the block's low side, its ghosts' high faces
+    for (int k = lo[2]; k < end[2]; ++k)
+      for (int j = lo[1]; j < end[1]; ++j)
+        for (int i = lo[0]; i < end[0]; ++i) {
+          const int along = axis == 0 ? i : (axis == 1 ? j : k);
+          if (along < 0) a[k][j][i] = boundary(axis, i + (axis == 0), j + (axis == 1), k + (axis == 2), -1);
+          else if (along + 1 == n[axis]) a[k][j][i] = boundary(axis, i, j, k, 1);
+          else a[k][j][i] = interior(axis, i, j, k);
+        }
   }
 }
 

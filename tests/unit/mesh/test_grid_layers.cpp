@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "mesh/copied_ghosts.hpp"
+#include "mesh/face_loop.hpp"
 #include "mesh/field.hpp"
 #include "mesh/grid.hpp"
 
@@ -120,6 +121,43 @@ TEST(GridLayers, CopiedGhostsAreTheNearestCellsBeyondFacesEdgesAndCorners) {
       for (int i = -w; i < 4 + w; ++i)
         EXPECT_EQ(a.volume()[k][j][i], value(std::clamp(i, 0, 3), std::clamp(j, 0, 2), std::clamp(k, 0, 4)))
             << i << ", " << j << ", " << k;
+}
+
+// Every face of every cell once, in the layout of the face fields: interior faces from both cells'
+// indices, boundary faces from their one cell and side.
+TEST(GridLayers, TheFaceLoopVisitsEachFaceOfTheCellsOnce) {
+  GridSpec spec;
+  spec.cells = {3, 4, 5};
+  const Grid g(PETSC_COMM_SELF, spec);
+  Field fx(g), fy(g), fz(g);
+  for (Field* f : {&fx, &fy, &fz}) {
+    f->set(-1.0);  // unvisited
+  }
+  const int n[3] = {3, 4, 5};
+  int boundary_faces = 0, interior_faces = 0;
+  fill_owned_faces_3d(
+      g, {&fx, &fy, &fz},
+      [&](int axis, int i, int j, int k) {
+        ++interior_faces;
+        return 1000.0 * axis + i + 10.0 * j + 100.0 * k;  // the low cell's index
+      },
+      [&](int axis, int i, int j, int k, int sign) {
+        ++boundary_faces;
+        const int along = axis == 0 ? i : (axis == 1 ? j : k);
+        EXPECT_EQ(along, sign < 0 ? 0 : n[axis] - 1) << "a boundary face's cell lies on its side";
+        return -10.0 - sign;
+      });
+  EXPECT_EQ(boundary_faces, 2 * (4 * 5 + 3 * 5 + 3 * 4));
+  EXPECT_EQ(interior_faces, 2 * 4 * 5 + 3 * 3 * 5 + 3 * 4 * 4);
+  ConstFieldArray a[3] = {local_read(g, fx), local_read(g, fy), local_read(g, fz)};
+  for (int axis = 0; axis < 3; ++axis)
+    for (int k = axis == 2 ? -1 : 0; k < 5; ++k)
+      for (int j = axis == 1 ? -1 : 0; j < 4; ++j)
+        for (int i = axis == 0 ? -1 : 0; i < 3; ++i) {
+          const int along = axis == 0 ? i : (axis == 1 ? j : k);
+          const double expected = along < 0 ? -9.0 : (along + 1 == n[axis] ? -11.0 : 1000.0 * axis + i + 10.0 * j + 100.0 * k);
+          EXPECT_EQ(a[axis].volume()[k][j][i], expected) << axis << ": " << i << ", " << j << ", " << k;
+        }
 }
 
 }  // namespace
