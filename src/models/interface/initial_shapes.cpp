@@ -252,26 +252,31 @@ bool ShapeUnion::polygon_edge_through(std::size_t k, double x0, double x1, doubl
   return false;
 }
 
-double ShapeUnion::fraction(double x0, double x1, double y0, double y1, bool axisymmetric, int samples) const {
-  // Fast path: the four corners and the centre agree (cells are small against the shapes). Not where
-  // an outline could pass between the probes: a box or circle narrower or lower than the cell that
-  // reaches into it, or a polygon's edge through the cell (a notch or spike narrower than a cell).
-  bool small_shape_here = false;
-  for (std::size_t k = 0; k < shapes_.size() && !small_shape_here; ++k) {
+bool ShapeUnion::may_pass_between_probes(double x0, double x1, double y0, double y1) const {
+  for (std::size_t k = 0; k < shapes_.size(); ++k) {
     const auto& [lo, hi] = boxes_[k];
     if (!(lo[0] < x1 && hi[0] > x0 && lo[1] < y1 && hi[1] > y0)) continue;
-    small_shape_here = std::holds_alternative<Polygon>(shapes_[k]) ? polygon_edge_through(k, x0, x1, y0, y1)
-                                                                    : hi[0] - lo[0] < x1 - x0 || hi[1] - lo[1] < y1 - y0;
+    if (std::holds_alternative<Polygon>(shapes_[k]) ? polygon_edge_through(k, x0, x1, y0, y1)
+                                                     : hi[0] - lo[0] < x1 - x0 || hi[1] - lo[1] < y1 - y0)
+      return true;
     // A ring's band narrower than the cell (it may pass between the probes), or its hole narrower or
     // lower than the cell and reaching into it, as a small circle would.
-    if (const auto* r = std::get_if<Ring>(&shapes_[k]); r && !small_shape_here) {
+    if (const auto* r = std::get_if<Ring>(&shapes_[k])) {
       const double band = r->outer_radius - r->inner_radius;
       const double d = 2.0 * r->inner_radius, cx = r->centre[0], cy = r->centre[1];
-      small_shape_here = band < x1 - x0 || band < y1 - y0 ||
-                         ((d < x1 - x0 || d < y1 - y0) && cx - 0.5 * d < x1 && cx + 0.5 * d > x0 &&
-                          cy - 0.5 * d < y1 && cy + 0.5 * d > y0);
+      if (band < x1 - x0 || band < y1 - y0 ||
+          ((d < x1 - x0 || d < y1 - y0) && cx - 0.5 * d < x1 && cx + 0.5 * d > x0 && cy - 0.5 * d < y1 &&
+           cy + 0.5 * d > y0))
+        return true;
     }
   }
+  return false;
+}
+
+double ShapeUnion::fraction(double x0, double x1, double y0, double y1, bool axisymmetric, int samples) const {
+  // Fast path: the four corners and the centre agree (cells are small against the shapes), unless an
+  // outline may pass between them.
+  const bool small_shape_here = may_pass_between_probes(x0, x1, y0, y1);
   const int probe = contains(x0, y0) + contains(x1, y0) + contains(x0, y1) + contains(x1, y1) +
                     contains(0.5 * (x0 + x1), 0.5 * (y0 + y1));
   if (probe == 0 && !small_shape_here) return 0.0;

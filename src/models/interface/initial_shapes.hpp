@@ -54,6 +54,12 @@ class ShapeUnion {
   // of the cell's volume, each sample weighted by its radius, so that a cut cell near the axis is not
   // counted by its area.
   double fraction(double x0, double x1, double y0, double y1, bool axisymmetric = false, int samples = 32) const;
+  // Whether a shape's outline may pass through the rectangle between its four corners and centre, so
+  // that probing those five points could miss it: a box or circle narrower or lower than the
+  // rectangle that reaches into it, a polygon's edge through it, a ring's band or hole narrower than
+  // it. (A large circle's arc bulging through a side between two corners is not caught, and neither
+  // is it by the probes: a sliver of the cell's area.)
+  bool may_pass_between_probes(double x0, double x1, double y0, double y1) const;
 
  private:
   // A polygon's edges (edge e joins vertices e and e + 1) by height bin: bin b holds

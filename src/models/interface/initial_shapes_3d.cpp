@@ -17,7 +17,7 @@ struct Contains3 {
     return dx * dx + dy * dy + dz * dz <= s.radius * s.radius;
   }
   bool operator()(const VerticalCylinder& c) const {
-    const double dx = x - c.axis[0], dz = z - c.axis[1];
+    const double dx = x - c.centre_xz[0], dz = z - c.centre_xz[1];
     return y >= c.bottom && y <= c.top && dx * dx + dz * dz <= c.radius * c.radius;
   }
   bool operator()(const Extrusion& e) const {
@@ -36,8 +36,8 @@ std::array<Point3, 2> bounding_box(const Shape3& shape) {
             Point3{s->centre[0] + r, s->centre[1] + r, s->centre[2] + r}};
   }
   if (const auto* c = std::get_if<VerticalCylinder>(&shape))
-    return {Point3{c->axis[0] - c->radius, c->bottom, c->axis[1] - c->radius},
-            Point3{c->axis[0] + c->radius, c->top, c->axis[1] + c->radius}};
+    return {Point3{c->centre_xz[0] - c->radius, c->bottom, c->centre_xz[1] - c->radius},
+            Point3{c->centre_xz[0] + c->radius, c->top, c->centre_xz[1] + c->radius}};
   const auto& e = std::get<Extrusion>(shape);
   const auto [lo, hi] = bounding_box(e.section);
   return {Point3{lo[0], lo[1], e.z_lower}, Point3{hi[0], hi[1], e.z_upper}};
@@ -66,7 +66,8 @@ bool ShapeUnion3::contains(double x, double y, double z) const {
 double ShapeUnion3::fraction(const Point3& lower, const Point3& upper, int samples) const {
   // Fast path: the eight corners and the centre agree, and no shape is small enough here to pass
   // between them: one narrower than the cell along an axis and reaching into it, or an extruded
-  // section whose outline crosses the cell's x-y rectangle (a notch narrower than the cell).
+  // section whose outline may pass through the cell's x-y rectangle between the probes (a notch
+  // narrower than the cell; ShapeUnion::may_pass_between_probes).
   bool small_shape_here = false;
   for (std::size_t k = 0; k < shapes_.size() && !small_shape_here; ++k) {
     const auto& [lo, hi] = boxes_[k];
@@ -74,10 +75,8 @@ double ShapeUnion3::fraction(const Point3& lower, const Point3& upper, int sampl
     for (int a = 0; a < 3; ++a) overlaps = overlaps && lo[a] < upper[a] && hi[a] > lower[a];
     if (!overlaps) continue;
     for (int a = 0; a < 3; ++a) small_shape_here = small_shape_here || hi[a] - lo[a] < upper[a] - lower[a];
-    if (!small_shape_here && std::holds_alternative<Extrusion>(shapes_[k])) {
-      const double f = sections_[k].fraction(lower[0], upper[0], lower[1], upper[1], false, 4);
-      small_shape_here = f > 0.0 && f < 1.0;
-    }
+    if (!small_shape_here && std::holds_alternative<Extrusion>(shapes_[k]))
+      small_shape_here = sections_[k].may_pass_between_probes(lower[0], upper[0], lower[1], upper[1]);
   }
   int probe = contains(0.5 * (lower[0] + upper[0]), 0.5 * (lower[1] + upper[1]), 0.5 * (lower[2] + upper[2]));
   for (int c = 0; c < 8; ++c)

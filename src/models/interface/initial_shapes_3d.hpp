@@ -20,9 +20,9 @@ struct Sphere {
   Point3 centre;
   double radius;
 };
-// The column of radius `radius` about the vertical line through (x, z) = axis, from y = bottom to top.
+// The column of radius `radius` about the vertical line through (x, z) = centre_xz, from y = bottom to top.
 struct VerticalCylinder {
-  std::array<double, 2> axis;  // x, z
+  std::array<double, 2> centre_xz;
   double radius;
   double bottom, top;
 };
@@ -44,8 +44,9 @@ class ShapeUnion3 {
   bool contains(double x, double y, double z) const;
   std::size_t size() const { return shapes_.size(); }
   // Fraction of the cell [lower, upper] inside the union, by samples^3 midpoint sampling where the
-  // cell's eight corners and centre disagree or a shape is smaller than the cell there (error
-  // O(1/samples) only in cells an outline crosses).
+  // cell's eight corners and centre disagree or a shape's outline may pass between them (error
+  // O(1/samples) in those cells). As in 2D, a large sphere's or cylinder's surface bulging through a
+  // face of the cell between its probes is not caught: a sliver of the cell's volume.
   double fraction(const Point3& lower, const Point3& upper, int samples = 16) const;
 
  private:
