@@ -6,6 +6,7 @@
 // end faces are interior faces between a cell and a ghost of the other end.
 #include <algorithm>
 #include <array>
+#include <cassert>
 
 #include "mesh/field.hpp"
 #include "mesh/grid.hpp"
@@ -52,6 +53,7 @@ void fill_owned_faces(const Grid& g, Field& x_faces, Field& y_faces, Interior in
 // sides.
 template <class Interior, class Boundary>
 void fill_owned_faces_3d(const Grid& g, const std::array<Field*, 3>& faces, Interior interior, Boundary boundary) {
+  assert(g.dimension() == 3 && !g.periodic_x());
   const auto& b = g.owned();
   const int n[3] = {g.nx(), g.ny(), g.nz()};
   const int start[3] = {b.xs, b.ys, b.zs}, end[3] = {b.xe(), b.ye(), b.ze()};
@@ -59,7 +61,7 @@ void fill_owned_faces_3d(const Grid& g, const std::array<Field*, 3>& faces, Inte
     FieldArray f = local_array(g, *faces[axis]);
     double*** a = f.volume();
     int lo[3] = {start[0], start[1], start[2]};
-    lo[axis] = std::max(start[axis] - 1, -1);  // the faces on the block's low side, its ghosts' high faces
+    lo[axis] = start[axis] - 1;  // the faces on the block's low side: the boundary's, or a ghost's high faces
     for (int k = lo[2]; k < end[2]; ++k)
       for (int j = lo[1]; j < end[1]; ++j)
         for (int i = lo[0]; i < end[0]; ++i) {

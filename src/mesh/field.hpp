@@ -66,40 +66,58 @@ class Field {
   OwnedVec local_;
 };
 
+namespace detail {
+// Whether the DMDA has one layer along z, whose arrays are then the plane [0][j][i].
+inline bool one_layer(DM dm) {
+  PetscInt layers = 1;
+  PetscCallAbort(PETSC_COMM_WORLD, DMDAGetInfo(dm, nullptr, nullptr, nullptr, &layers, nullptr, nullptr, nullptr,
+                                               nullptr, nullptr, nullptr, nullptr, nullptr, nullptr));
+  return layers == 1;
+}
+}  // namespace detail
+
 // RAII access to a local (ghosted) or global vector as an array [k][j][i] in global indices (volume()),
-// or as the plane k = 0, [j][i], the whole of a mesh of one layer along z.
+// or, on a mesh of one layer along z, as its plane [j][i] (operator[], data()). On a mesh of several
+// layers the plane is null: a 2D kernel there fails at once rather than reading some layer.
 class FieldArray {
  public:
-  FieldArray(DM dm, Vec v) : dm_(dm), v_(v) { PetscCallAbort(PETSC_COMM_WORLD, DMDAVecGetArray(dm_, v_, &a_)); }
+  FieldArray(DM dm, Vec v) : dm_(dm), v_(v) {
+    PetscCallAbort(PETSC_COMM_WORLD, DMDAVecGetArray(dm_, v_, &a_));
+    if (detail::one_layer(dm_)) plane_ = a_[0];
+  }
   ~FieldArray() { DMDAVecRestoreArray(dm_, v_, &a_); }
   FieldArray(const FieldArray&) = delete;
   FieldArray& operator=(const FieldArray&) = delete;
-  double* operator[](int j) const { return a_[0][j]; }
-  double** data() const { return a_[0]; }
+  double* operator[](int j) const { return plane_[j]; }
+  double** data() const { return plane_; }
   double*** volume() const { return a_; }
 
  private:
   DM dm_;
   Vec v_;
   double*** a_ = nullptr;
+  double** plane_ = nullptr;
 };
 
+// Read-only FieldArray.
 class ConstFieldArray {
  public:
   ConstFieldArray(DM dm, Vec v) : dm_(dm), v_(v) {
     PetscCallAbort(PETSC_COMM_WORLD, DMDAVecGetArrayRead(dm_, v_, &a_));
+    if (detail::one_layer(dm_)) plane_ = volume()[0];
   }
   ~ConstFieldArray() { DMDAVecRestoreArrayRead(dm_, v_, &a_); }
   ConstFieldArray(const ConstFieldArray&) = delete;
   ConstFieldArray& operator=(const ConstFieldArray&) = delete;
-  const double* operator[](int j) const { return data()[j]; }
-  const double* const* data() const { return volume()[0]; }
+  const double* operator[](int j) const { return plane_[j]; }
+  const double* const* data() const { return plane_; }
   const double* const* const* volume() const { return static_cast<const double* const* const*>(a_); }
 
  private:
   DM dm_;
   Vec v_;
   void* a_ = nullptr;
+  const double* const* plane_ = nullptr;
 };
 
 inline FieldArray local_array(const Grid& g, Field& f) { return FieldArray(g.field_dm(), f.local()); }

@@ -18,6 +18,7 @@
 #include <petscdmda.h>
 
 #include <array>
+#include <cassert>
 #include <span>
 #include <stdexcept>
 #include <vector>
@@ -107,11 +108,21 @@ class Grid {
   // Radius weight of cell i's centre and of its east face (1 in planar geometry).
   double radius_c(int i) const { return spec_.axisymmetric ? xc(i) : 1.0; }
   double radius_f(int i) const { return spec_.axisymmetric ? xf(i) : 1.0; }
-  double volume(int i, int j) const { return dx(i) * dy(j) * radius_c(i); }
+  // Volume of cell (i, j) of a planar or axisymmetric mesh (per metre of depth, per radian).
+  double volume(int i, int j) const {
+    assert(dimension() == 2);
+    return dx(i) * dy(j) * radius_c(i);
+  }
   double volume(int i, int j, int k) const { return dx(i) * dy(j) * dz(k); }  // 3D meshes
-  // Area of the face of cell (i, j) normal to `axis` on the high (sign > 0) or low side.
+  // Area of the face of cell (i, j) of a planar or axisymmetric mesh normal to `axis` (0 or 1) on the
+  // high (sign > 0) or low side.
   double face_area(int axis, int i, int j, double sign) const {
+    assert(dimension() == 2 && axis < 2);
     return axis == 0 ? dy(j) * radius_f(sign > 0 ? i : i - 1) : dx(i) * radius_c(i);
+  }
+  // Area of a face normal to `axis` of cell (i, j, k) of a 3D mesh.
+  double face_area_3d(int axis, int i, int j, int k) const {
+    return axis == 0 ? dy(j) * dz(k) : (axis == 1 ? dx(i) * dz(k) : dx(i) * dy(j));
   }
   // Raw pointers offset so that p[-2] is the first ghost; for kernels working on plain arrays.
   const double* dx_data() const { return width_[0].data() + ghost_width; }

@@ -1,6 +1,7 @@
 #pragma once
 // Discrete strain-rate tensor D = (grad v + grad v^T) / 2 of the cell-centred velocity, at a cell
-// centre or on a face. The velocity arrays are ghosted ([j][i], ghosts encoding the boundaries).
+// centre or on a face. The velocity arrays are ghosted, ghosts encoding the boundaries: [j][i] of the
+// two components of a planar or axisymmetric mesh, or [k][j][i] of the three of a mesh of layers.
 #include <array>
 
 #include "mesh/grid.hpp"

@@ -88,28 +88,34 @@ FaceFlux face_flux(const double* const* const* c, double u, double dt, CellWidth
 }  // namespace
 
 // Weymouth & Yue's update in the form of the 2D sweep (vof_advection.cpp): cc = 0, c + (F_low -
-// F_high)/h; cc = 1, c + (G_high - G_low)/h, so that pure regions stay exactly pure. Each line of
-// cells along the axis is walked once, its low face's flux carried from the cell before.
+// F_high)/h; cc = 1, c + (G_high - G_low)/h, so that pure regions stay exactly pure. Each face is
+// visited once, x innermost whatever the axis (as the 2D y sweep walks its rows), and its fluxes
+// added to the owned cells on both its sides.
 void vof_sweep(int axis, double dt, const double* const* const* c, const double* const* const* u,
                const double* const* const* cc, CellWidths3 w, CellBox o, double*** c_new, DomainCells3 domain) {
+  for (int k = o.zs; k < o.ze(); ++k)
+    for (int j = o.ys; j < o.ye(); ++j)
+      for (int i = o.xs; i < o.xe(); ++i) c_new[k][j][i] = c[k][j][i];
   const int start[3] = {o.xs, o.ys, o.zs}, end[3] = {o.xe(), o.ye(), o.ze()};
-  const int t1 = (axis + 1) % 3, t2 = (axis + 2) % 3;  // the axes across the sweep
+  int lo[3] = {start[0], start[1], start[2]};
+  --lo[axis];  // the faces on the block's low side too
   const double* h = w.along(axis);
-  for (int q2 = start[t2]; q2 < end[t2]; ++q2)
-    for (int q1 = start[t1]; q1 < end[t1]; ++q1) {
-      Index p;
-      p[t1] = q1;
-      p[t2] = q2;
-      p[axis] = start[axis] - 1;
-      FaceFlux low = face_flux(c, at(u, p), dt, w, p, axis, domain);
-      for (int s = start[axis]; s < end[axis]; ++s) {
-        p[axis] = s;
-        const FaceFlux high = face_flux(c, at(u, p), dt, w, p, axis, domain);
-        const double cp = at(c, p);
-        c_new[p[2]][p[1]][p[0]] = at(cc, p) > 0.5 ? cp + (high.g - low.g) / h[s] : cp + (low.f - high.f) / h[s];
-        low = high;
+  for (int k = lo[2]; k < end[2]; ++k)
+    for (int j = lo[1]; j < end[1]; ++j)
+      for (int i = lo[0]; i < end[0]; ++i) {
+        const double velocity = u[k][j][i];
+        if (velocity == 0.0) continue;
+        const Index low{i, j, k};
+        const FaceFlux flux = face_flux(c, velocity, dt, w, low, axis, domain);
+        const int s = low[axis];
+        if (s >= start[axis])  // the face is the high face of the owned cell below it
+          c_new[k][j][i] += cc[k][j][i] > 0.5 ? flux.g / h[s] : -flux.f / h[s];
+        if (s + 1 < end[axis]) {  // and the low face of the owned cell above it
+          Index high = low;
+          ++high[axis];
+          c_new[high[2]][high[1]][high[0]] += at(cc, high) > 0.5 ? -flux.g / h[s + 1] : flux.f / h[s + 1];
+        }
       }
-    }
 }
 
 void dilatation_indicator(const double* const* const* c, CellBox o, double*** cc) {

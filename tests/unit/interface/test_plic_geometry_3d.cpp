@@ -187,7 +187,7 @@ TEST(PlicGeometry3d, YoungsNormalIsExactForPlanesAlongTheAxesAndDiagonals) {
 // Planes steeper than the body diagonal along one axis, whose heights along it the block brackets:
 // the mixed normal has them exactly on uniform cells, where Youngs' is off. On graded cells the
 // heights' normal is still exact, but Youngs' (inexact there) may be taken in its place, as in 2D:
-// an error of the order of the grading (2.0e-3 at most here, with neighbours' widths 10-40 % apart).
+// an error of the order of the grading (2.1e-3 at most here, with neighbours' widths 10-40 % apart).
 TEST(PlicGeometry3d, MixedNormalIsExactForPlanesTheBlocksHeightsBracket) {
   const std::array<double, 3> h{1.0, 1.0, 1.0}, gx{0.8, 1.0, 1.3}, gy{1.2, 1.0, 0.9}, gz{0.7, 1.0, 1.4};
   double youngs_worst = 0.0;
@@ -196,7 +196,7 @@ TEST(PlicGeometry3d, MixedNormalIsExactForPlanesTheBlocksHeightsBracket) {
       for (const bool graded : {false, true}) {
         const Block3x3x3 b = graded ? block_under(n, d, gx, gy, gz) : block_under(n, d, h, h, h);
         const Normal3 m = to_physical(myc_normal(b), b.dx[1], b.dy[1], b.dz[1]);
-        const double tolerance = graded ? 5e-3 : 1e-14;
+        const double tolerance = graded ? 3e-3 : 1e-14;
         EXPECT_NEAR(m.nx, n.nx, tolerance) << n.nx << " " << n.ny << " " << n.nz << (graded ? " graded" : "");
         EXPECT_NEAR(m.ny, n.ny, tolerance) << n.nx << " " << n.ny << " " << n.nz << (graded ? " graded" : "");
         EXPECT_NEAR(m.nz, n.nz, tolerance) << n.nx << " " << n.ny << " " << n.nz << (graded ? " graded" : "");
