@@ -7,6 +7,7 @@
 #include "mesh/face_loop.hpp"
 #include "solver/cell_faces.hpp"
 #include "mesh/obstacles.hpp"
+#include "operators/face_laplacian.hpp"
 #include "solver/flow_solver.hpp"
 
 namespace granflow {
@@ -29,41 +30,24 @@ double FlowSolver::face_coefficient(const double* const* rau, const double* cons
   return dt_ / (0.5 * (rho[j][i] + rho[jn][in]));
 }
 
-// Pressure equation ([VoF] Eqs. 28-30): sum_f K_f (p_P - p_N) = -sum_f (predicted outward flux).
+// Pressure equation ([VoF] Eqs. 28-30): sum_f K_f (p_P - p_N) = -sum_f (predicted outward flux). An
+// atmosphere's face holds the pressure there (its conductance on the diagonal); a wall's carries no flux.
 void FlowSolver::assemble_pressure_matrix() {
-  const auto& b = grid_.owned();
   ConstFieldArray rx = local_read(grid_, *pressure_mobility_[0]), ry = local_read(grid_, *pressure_mobility_[1]);
   ConstFieldArray rho = local_read(grid_, *rho_);
-  for (int j = b.ys; j < b.ye(); ++j)
-    for (int i = b.xs; i < b.xe(); ++i) {
-      MatStencil row{0, j, i, 0};
-      MatStencil cols[5];
-      double vals[5];
-      int n = 1;
-      cols[0] = row;
-      double diag = 0.0;
-      for (const auto& fg : faces_of_cell) {
-        const int in = i + fg.di, jn = j + fg.dj;
-        const double area = grid_.face_area(fg.axis, i, j, fg.sign);
-        const double* const* r = fg.axis == 0 ? rx.data() : ry.data();
-        if (grid_.outside(in, jn)) {
-          if (boundary(settings_.boundaries, fg.side).kind == BoundaryKind::atmosphere) {
-            const double d_half = 0.5 * (fg.axis == 0 ? grid_.dx(i) : grid_.dy(j));
-            diag += r[j][i] * area / d_half;
-          }
-          continue;
-        }
-        const double d = fg.axis == 0 ? std::abs(grid_.xc(in) - grid_.xc(i)) : std::abs(grid_.yc(jn) - grid_.yc(j));
-        const double K = face_coefficient(r, rho.data(), i, j, in, jn) * area / d;
-        diag += K;
-        cols[n] = MatStencil{0, jn, in, 0};
-        vals[n++] = -K;
-      }
-      vals[0] = diag;
-      PetscCallAbort(PETSC_COMM_SELF, MatSetValuesStencil(pressure_matrix_, 1, &row, n, cols, vals, INSERT_VALUES));
-    }
-  PetscCallAbort(grid_.comm(), MatAssemblyBegin(pressure_matrix_, MAT_FINAL_ASSEMBLY));
-  PetscCallAbort(grid_.comm(), MatAssemblyEnd(pressure_matrix_, MAT_FINAL_ASSEMBLY));
+  assemble_face_laplacian(
+      grid_, pressure_matrix_,
+      [&](int axis, int sign, int i, int j, int) {
+        const int in = i + (axis == 0 ? sign : 0), jn = j + (axis == 1 ? sign : 0);
+        const double area = grid_.face_area(axis, i, j, sign);
+        const double d = axis == 0 ? std::abs(grid_.xc(in) - grid_.xc(i)) : std::abs(grid_.yc(jn) - grid_.yc(j));
+        return face_coefficient(axis == 0 ? rx.data() : ry.data(), rho.data(), i, j, in, jn) * area / d;
+      },
+      [&](int axis, int sign, int i, int j, int) {
+        if (boundary(settings_.boundaries, side_of(axis, sign)).kind != BoundaryKind::atmosphere) return 0.0;
+        const double d_half = 0.5 * (axis == 0 ? grid_.dx(i) : grid_.dy(j));
+        return (axis == 0 ? rx : ry)[j][i] * grid_.face_area(axis, i, j, sign) / d_half;
+      });
   pressure_solver_->set_operator(pressure_matrix_);
 }
 
