@@ -87,6 +87,14 @@ set_tests_properties(production_advection_2_ranks PROPERTIES
   LABELS parallel TIMEOUT 120
   ENVIRONMENT "OMPI_ALLOW_RUN_AS_ROOT=1;OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1;OMPI_MCA_rmaps_base_oversubscribe=1")
 
+# The 3D sweeps of the soil fraction on 2 ranks (a mesh of layers split along z, ghosts exchanged after
+# each sweep) against the same on one rank, to the bit.
+add_test(NAME vof_sweeps_3d_2_ranks
+         COMMAND ${MPIRUN} -np 2 --oversubscribe $<TARGET_FILE:unit_tests> --gtest_filter=VofSweep3d.RanksSweepAsOneRank)
+set_tests_properties(vof_sweeps_3d_2_ranks PROPERTIES
+  LABELS parallel TIMEOUT 120
+  ENVIRONMENT "OMPI_ALLOW_RUN_AS_ROOT=1;OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1;OMPI_MCA_rmaps_base_oversubscribe=1")
+
 # granflow stability --restart on 2 ranks: the earlier trials, read by rank 0, are every rank's.
 add_test(NAME cli_stability_restart_2_ranks
          COMMAND sh ${CMAKE_CURRENT_SOURCE_DIR}/stability_restart.sh $<TARGET_FILE:granflow>
