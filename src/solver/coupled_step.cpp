@@ -159,12 +159,11 @@ class FlowSolver::CoupledRows {
     cols[n] = row;
     vals[n++] = f_.a_centre_[c][k];
     const int di[4] = {1, -1, 0, 0}, dj[4] = {0, 0, 1, -1};
-    const double anb[4] = {f_.a_east_[k], f_.a_west_[k], f_.a_north_[k], f_.a_south_[k]};
     for (int f = 0; f < 4; ++f) {
       const int in = i + di[f], jn = j + dj[f];
       if (!open_neighbour(in, jn)) continue;
       cols[n] = MatStencil{0, jn, in, c};
-      vals[n++] = -anb[f];
+      vals[n++] = -f_.a_neighbour_[f][k];
     }
     double r = f_.source_[c][k];
     double p_centre = 0.0;

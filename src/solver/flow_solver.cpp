@@ -58,7 +58,8 @@ FlowSolver::FlowSolver(const Grid& grid, const FlowSettings& settings) : grid_(g
 
   const auto& box = grid.owned();
   const size_t n = size_t(box.xm) * box.ym;
-  for (auto* v : {&a_east_, &a_west_, &a_north_, &a_south_, &a_centre_[0], &a_centre_[1], &source_[0], &source_[1]})
+  for (auto* v : {&a_neighbour_[0], &a_neighbour_[1], &a_neighbour_[2], &a_neighbour_[3], &a_centre_[0], &a_centre_[1],
+                  &source_[0], &source_[1]})
     v->assign(n, 0.0);
 
   for (Side s : planar_sides)

@@ -216,8 +216,9 @@ class FlowSolver {
   std::unique_ptr<Field> velocity_without_pressure_[2], old_time_share_[2];
 
   // Momentum coefficients of the owned cells (row-major over the owned box). Off-diagonal
-  // coefficients are stored positive (matrix entry = -a_nb) and shared by both components.
-  std::vector<double> a_east_, a_west_, a_north_, a_south_;
+  // coefficients are stored positive (matrix entry = -a_nb) and shared by both components, one array
+  // per face in the order of cell_faces.hpp: east, west, north, south.
+  std::vector<double> a_neighbour_[4];
   std::vector<double> a_centre_[2], source_[2];
 
   // The segregated steps' systems (none under the coupled solve).

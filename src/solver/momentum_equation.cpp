@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "operators/convection_scheme.hpp"
+#include "operators/face_laplacian.hpp"
 #include "operators/strain_rate.hpp"
 #include "mesh/obstacles.hpp"
 #include "solver/cell_faces.hpp"
@@ -144,10 +145,7 @@ void FlowSolver::assemble_momentum(double dt) {
       // Hoop stress of the radial momentum, implicit: -2 mu u_r / r^2 per volume of the full stress ([YS]
       // Sec. 4); -mu u_r / r^2 of div(mu grad v) alone (transpose_stress = false).
       if (grid_.axisymmetric()) extra[0] += stress_factor * muP * V / (grid_.xc(i) * grid_.xc(i));
-      a_east_[k] = a_nb[0];
-      a_west_[k] = a_nb[1];
-      a_north_[k] = a_nb[2];
-      a_south_[k] = a_nb[3];
+      for (int f = 0; f < 4; ++f) a_neighbour_[f][k] = a_nb[f];
       for (int c = 0; c < 2; ++c) {
         a_centre_[c][k] = diag + extra[c];
         source_[c][k] = src[c];
@@ -157,28 +155,13 @@ void FlowSolver::assemble_momentum(double dt) {
 
 int FlowSolver::solve_momentum() {
   const auto& b = grid_.owned();
-  const int ny = grid_.ny();
   // The momentum matrices from assemble_momentum's coefficients (the coupled solve has its own).
+  auto at = [&](int i, int j) { return size_t(j - b.ys) * b.xm + (i - b.xs); };
   for (int c = 0; c < (shared_momentum_matrix_ ? 1 : 2); ++c) {
     Mat A = momentum_matrix_[c];
-    for (int j = b.ys; j < b.ye(); ++j)
-      for (int i = b.xs; i < b.xe(); ++i) {
-        const size_t k = size_t(j - b.ys) * b.xm + (i - b.xs);
-        MatStencil row{0, j, i, 0};
-        MatStencil cols[5];
-        double vals[5];
-        int n = 0;
-        cols[n] = row;
-        vals[n++] = a_centre_[c][k];
-        // Beyond a periodic side the stencil wraps (the matrix's DMDA maps the index).
-        if (!grid_.outside(i + 1, j)) { cols[n] = MatStencil{0, j, i + 1, 0}; vals[n++] = -a_east_[k]; }
-        if (!grid_.outside(i - 1, j)) { cols[n] = MatStencil{0, j, i - 1, 0}; vals[n++] = -a_west_[k]; }
-        if (j + 1 < ny) { cols[n] = MatStencil{0, j + 1, i, 0}; vals[n++] = -a_north_[k]; }
-        if (j - 1 >= 0) { cols[n] = MatStencil{0, j - 1, i, 0}; vals[n++] = -a_south_[k]; }
-        PetscCallAbort(PETSC_COMM_SELF, MatSetValuesStencil(A, 1, &row, n, cols, vals, INSERT_VALUES));
-      }
-    PetscCallAbort(grid_.comm(), MatAssemblyBegin(A, MAT_FINAL_ASSEMBLY));
-    PetscCallAbort(grid_.comm(), MatAssemblyEnd(A, MAT_FINAL_ASSEMBLY));
+    assemble_star_rows(
+        grid_, A, [&](int axis, int sign, int i, int j, int) { return a_neighbour_[2 * axis + (sign < 0)][at(i, j)]; },
+        [](int, int, int, int, int) { return 0.0; }, [&](int i, int j, int, double) { return a_centre_[c][at(i, j)]; });
     momentum_solver_[c]->set_operator(A);
   }
   int iterations = 0;
@@ -226,15 +209,14 @@ void FlowSolver::compute_velocity_without_pressure() {
     FieldArray h(grid_.field_dm(), velocity_without_pressure_[c]->global());
     FieldArray r(grid_.field_dm(), pressure_mobility_[c]->global());
     FieldArray w(grid_.field_dm(), old_time_share_[c]->global());
-    const int ny = grid_.ny();
     for (int j = b.ys; j < b.ye(); ++j)
       for (int i = b.xs; i < b.xe(); ++i) {
         const size_t k = size_t(j - b.ys) * b.xm + (i - b.xs);
         double H = source_[c][k];
-        if (!grid_.outside(i + 1, j)) H += a_east_[k] * q[j][i + 1];
-        if (!grid_.outside(i - 1, j)) H += a_west_[k] * q[j][i - 1];
-        if (j + 1 < ny) H += a_north_[k] * q[j + 1][i];
-        if (j > 0) H += a_south_[k] * q[j - 1][i];
+        for (int f = 0; f < 4; ++f) {
+          const FaceGeometry& fg = faces_of_cell[f];
+          if (!grid_.outside(i + fg.di, j + fg.dj)) H += a_neighbour_[f][k] * q[j + fg.dj][i + fg.di];
+        }
         const double V = grid_.volume(i, j);
         h[j][i] = H / a_centre_[c][k];
         r[j][i] = V / a_centre_[c][k];
