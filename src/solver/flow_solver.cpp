@@ -22,6 +22,9 @@ std::unique_ptr<Field> make_field(const Grid& g) { return std::make_unique<Field
 }  // namespace
 
 FlowSolver::FlowSolver(const Grid& grid, const FlowSettings& settings) : grid_(grid), settings_(settings) {
+  // The kernels below are two-dimensional (docs/method.md, "Known limitations"); the case file refuses
+  // three cell counts, so only a program's own grid reaches this.
+  if (grid.dimension() == 3) throw std::invalid_argument("FlowSolver: meshes of several layers are not implemented");
   for (int a = 0; a < 2; ++a) {
     vel_[a] = make_field(grid);
     vel_old_[a] = make_field(grid);

@@ -14,6 +14,7 @@
 #include <cmath>
 #include <deque>
 #include <optional>
+#include <stdexcept>
 
 #include "models/interface/material_transport.hpp"
 #include "models/interface/vof_advection.hpp"
@@ -31,6 +32,7 @@ static_assert(rheology::SoilMaterials::max_count == interface::max_materials);
 
 SoilPhase::SoilPhase(const Grid& grid, const FlowSettings& flow, const SoilSettings& settings)
     : grid_(grid), flow_settings_(flow), settings_(settings), ambient_pressure_(ambient_pressure(flow.boundaries)) {
+  if (grid.dimension() == 3) throw std::invalid_argument("SoilPhase: meshes of several layers are not implemented");
   if (settings.rheology) rheology_.emplace(*settings.rheology);
   auto make = [&] { return std::make_unique<Field>(grid); };
   if (!settings.materials.empty()) {
