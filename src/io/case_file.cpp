@@ -164,7 +164,8 @@ BoundaryCondition read_boundary(TableReader r, bool& is_axis, std::vector<std::s
     bc.kind = BoundaryKind::slip;  // symmetry: u_r = 0, no shear; the face at r = 0 has no area
   } else if (type == "wall") {
     bc.kind = BoundaryKind::wall;
-    bc.wall_velocity = r.pair("velocity", {0.0, 0.0});
+    const auto velocity = r.pair("velocity", {0.0, 0.0});
+    bc.wall_velocity = {velocity[0], velocity[1], 0.0};
     bc.friction = read_wall_friction(r, two_phase_keys);
   } else if (type == "slip" || type == "symmetry") {
     bc.kind = BoundaryKind::slip;  // a symmetry plane is a slip wall: no normal velocity, no shear

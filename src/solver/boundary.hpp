@@ -18,7 +18,7 @@ enum class BoundaryKind {
 
 struct BoundaryCondition {
   BoundaryKind kind = BoundaryKind::wall;
-  std::array<double, 2> wall_velocity{0.0, 0.0};  // tangential part is used; normal part must be zero
+  std::array<double, 3> wall_velocity{0.0, 0.0, 0.0};  // tangential part is used; normal part must be zero
   // A wall of its own Coulomb friction against the soil (models/rheology/wall_friction.hpp); without
   // it the soil's own strength is what holds it at the wall.
   std::optional<rheology::WallFriction> friction;

@@ -11,6 +11,7 @@
 #include <stdexcept>
 
 #include "operators/face_interpolation.hpp"
+#include "solver/velocity_ghosts.hpp"
 
 namespace granflow {
 
@@ -140,41 +141,12 @@ void FlowSolver::fill_scalar_ghosts(Field& f) { fill_copied_ghosts(grid_, blocke
 void FlowSolver::fill_velocity_ghosts() {
   for (int a = 0; a < 2; ++a) vel_[a]->scatter_to_local();
   FieldArray u(grid_.field_dm(), vel_[0]->local()), v(grid_.field_dm(), vel_[1]->local());
-  double** comp[2] = {u.data(), v.data()};
   {
     const BlockedView mask(grid_, blocked_);  // an obstacle's walls are static and no-slip
-    for (auto* f : comp) mirror_into_blocked(grid_, mask.data(), f, -1.0);
+    for (auto* f : {u.data(), v.data()}) mirror_into_blocked(grid_, mask.data(), f, -1.0);
   }
-  const auto& b = grid_.owned();
-  const int nx = grid_.nx(), ny = grid_.ny();
-  // value of the ghost at distance k outside a boundary whose mirror interior cell holds `inner`
-  auto ghost = [](const BoundaryCondition& bc, int axis, int normal, double inner, double first) {
-    switch (bc.kind) {
-      case BoundaryKind::wall: return 2.0 * bc.wall_velocity[axis] - inner;
-      case BoundaryKind::slip: return axis == normal ? -inner : inner;
-      case BoundaryKind::atmosphere: return first;
-      case BoundaryKind::periodic: break;  // no ghost of its own: the exchange filled it
-    }
-    return inner;
-  };
-  for (int a = 0; a < 2; ++a) {
-    double** f = comp[a];
-    for (int k = 1; k <= Grid::ghost_width; ++k) {
-      for (int j = b.ys - Grid::ghost_width; j < b.ye() + Grid::ghost_width; ++j) {
-        if (grid_.owns_boundary(Side::west))
-          f[j][-k] = ghost(boundary(settings_.boundaries, Side::west), a, 0, f[j][k - 1], f[j][0]);
-        if (grid_.owns_boundary(Side::east))
-          f[j][nx - 1 + k] = ghost(boundary(settings_.boundaries, Side::east), a, 0, f[j][nx - k], f[j][nx - 1]);
-      }
-    }
-    for (int k = 1; k <= Grid::ghost_width; ++k) {
-      for (int i = b.xs - Grid::ghost_width; i < b.xe() + Grid::ghost_width; ++i) {
-        if (b.ys == 0) f[-k][i] = ghost(boundary(settings_.boundaries, Side::south), a, 1, f[k - 1][i], f[0][i]);
-        if (b.ye() == ny)
-          f[ny - 1 + k][i] = ghost(boundary(settings_.boundaries, Side::north), a, 1, f[ny - k][i], f[ny - 1][i]);
-      }
-    }
-  }
+  double*** const components[2] = {u.volume(), v.volume()};
+  fill_velocity_side_ghosts(grid_, settings_.boundaries, components);
 }
 
 void FlowSolver::refresh_ghosts() {
