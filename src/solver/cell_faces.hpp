@@ -1,28 +1,35 @@
 #pragma once
-// The four faces of a cell (i, j) as the finite-volume loops of the flow solver visit them.
+// The faces of a cell as the finite-volume loops of the flow solver visit them.
+#include <span>
+
 #include "mesh/grid.hpp"
 #include "operators/strain_rate.hpp"
 
 namespace granflow {
 
-// Geometry of one face of cell (i, j) in 2D planar coordinates (unit depth).
+// Geometry of one face of a cell.
 struct FaceGeometry {
   Side side;
-  int axis;      // normal axis of the face
-  double sign;   // +1 for the east/north face, -1 for west/south
-  int di, dj;    // offset to the neighbour across the face
+  int axis;        // normal axis of the face
+  double sign;     // +1 for the east/north/back face, -1 for west/south/front
+  int di, dj, dk;  // offset to the neighbour across the face
 };
-inline constexpr FaceGeometry faces_of_cell[4] = {
-    {Side::east, 0, +1.0, +1, 0},
-    {Side::west, 0, -1.0, -1, 0},
-    {Side::north, 1, +1.0, 0, +1},
-    {Side::south, 1, -1.0, 0, -1},
+// A cell's faces: east, west, north, south, then back and front on a mesh of layers. The 2D kernels
+// visit the first four (faces_of_cell), in this order.
+inline constexpr FaceGeometry box_faces[6] = {
+    {Side::east, 0, +1.0, +1, 0, 0},  {Side::west, 0, -1.0, -1, 0, 0},  {Side::north, 1, +1.0, 0, +1, 0},
+    {Side::south, 1, -1.0, 0, -1, 0}, {Side::back, 2, +1.0, 0, 0, +1}, {Side::front, 2, -1.0, 0, 0, -1},
 };
+inline constexpr std::span<const FaceGeometry, 4> faces_of_cell{box_faces, 4};
+// The faces of a cell of a mesh of this dimension.
+inline std::span<const FaceGeometry> cell_faces(int dimension) {
+  return {box_faces, std::size_t(dimension == 3 ? 6 : 4)};
+}
 // The face of a cell that lies on side s of the domain when the cell is next to it.
 constexpr const FaceGeometry& face_on(Side s) {
-  for (const auto& f : faces_of_cell)
+  for (const auto& f : box_faces)
     if (f.side == s) return f;
-  return faces_of_cell[0];  // unreachable: every side is listed
+  return box_faces[0];  // unreachable: every side is listed
 }
 
 // The value on face fg of cell (i, j) of a face field held as x and y faces in FlowSolver's layout:
