@@ -12,9 +12,8 @@
 namespace granflow {
 
 // components[c]: the local (ghosted) array [k][j][i] of velocity component c, one per axis of the
-// mesh. The sides' ghosts this rank holds are filled along x, then y, then z, each pass over the ghost
-// rows of the ones before, so that an edge's or a corner's ghost takes the last side's rule applied to
-// the ghosts already there.
+// mesh. The sides' ghosts this rank holds are filled in the passes of mesh/side_ghosts.hpp: an edge's
+// or a corner's ghost takes the later side's rule applied to the earlier side's ghosts.
 void fill_velocity_side_ghosts(const Grid& grid, const BoundarySet& boundaries, std::span<double*** const> components);
 
 }  // namespace granflow
