@@ -95,6 +95,15 @@ set_tests_properties(vof_sweeps_3d_2_ranks PROPERTIES
   LABELS parallel TIMEOUT 120
   ENVIRONMENT "OMPI_ALLOW_RUN_AS_ROOT=1;OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1;OMPI_MCA_rmaps_base_oversubscribe=1")
 
+# The flow solver on a mesh of layers split over 2 ranks: the layer-independent cavity still gives the
+# planar run's velocities (both on 2 ranks), and flat layers split along the vertical stay at rest.
+add_test(NAME flow_3d_2_ranks
+         COMMAND ${MPIRUN} -np 2 --oversubscribe $<TARGET_FILE:verification_tests>
+                 --gtest_filter=FlowSolver3d.ALayerIndependentCavityIsThePlanarOne:FlowSolver3d.FlatLayersUnderGravityStayAtRest)
+set_tests_properties(flow_3d_2_ranks PROPERTIES
+  LABELS parallel TIMEOUT 300
+  ENVIRONMENT "OMPI_ALLOW_RUN_AS_ROOT=1;OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1;OMPI_MCA_rmaps_base_oversubscribe=1")
+
 # granflow stability --restart on 2 ranks: the earlier trials, read by rank 0, are every rank's.
 add_test(NAME cli_stability_restart_2_ranks
          COMMAND sh ${CMAKE_CURRENT_SOURCE_DIR}/stability_restart.sh $<TARGET_FILE:granflow>

@@ -878,7 +878,8 @@ CaseConfig read_case(const toml::table& root, const std::filesystem::path& sourc
   c.time = read_time(top, interface_courant, two_phase_keys, c.keys_without_effect);
   {
     TableReader p = top.table("physics");
-    c.flow.gravity = p.pair("gravity", {0.0, 0.0});
+    const auto planar_gravity = p.pair("gravity", {0.0, 0.0});
+    c.flow.gravity = {planar_gravity[0], planar_gravity[1], 0.0};
     // The flow is the same in every half-plane through the axis: a force along r would point out of
     // each half-plane's own axis in a different direction, which no body force does.
     if (c.mesh.axisymmetric && c.flow.gravity[0] != 0.0)

@@ -73,4 +73,19 @@ void fill_owned_faces_3d(const Grid& g, const std::array<Field*, 3>& faces, Inte
   }
 }
 
+// Either of the two above, by the mesh's dimension: interior(axis, i, j, k) and boundary(axis, i, j, k,
+// sign) with k = 0 on a planar mesh, whose faces[2] is not read. Obstacles on a planar mesh only.
+template <class Interior, class Boundary>
+void fill_owned_faces_any(const Grid& g, const std::array<Field*, 3>& faces, Interior interior, Boundary boundary,
+                          const double* const* blocked = nullptr) {
+  if (g.dimension() == 3) {
+    assert(blocked == nullptr);
+    fill_owned_faces_3d(g, faces, interior, boundary);
+    return;
+  }
+  fill_owned_faces(
+      g, *faces[0], *faces[1], [&](int axis, int i, int j) { return interior(axis, i, j, 0); },
+      [&](int axis, int i, int j, int sign) { return boundary(axis, i, j, 0, sign); }, blocked);
+}
+
 }  // namespace granflow

@@ -120,6 +120,16 @@ class ConstFieldArray {
   const double* const* plane_ = nullptr;
 };
 
+// A read-only array [k][j][i] as ConstFieldArray::volume() gives it; on a planar mesh k = 0.
+using VolumeView = const double* const* const*;
+inline double at(VolumeView a, int i, int j, int k) { return a[k][j][i]; }
+// A plane [j][i] seen as a volume of one layer, for 2D callers of kernels written for any dimension.
+struct PlaneAsVolume {
+  explicit PlaneAsVolume(const double* const* plane) : layers{plane} {}
+  operator VolumeView() const { return layers; }
+  const double* const* layers[1];
+};
+
 inline FieldArray local_array(const Grid& g, Field& f) { return FieldArray(g.field_dm(), f.local()); }
 inline ConstFieldArray local_read(const Grid& g, const Field& f) { return ConstFieldArray(g.field_dm(), f.local()); }
 

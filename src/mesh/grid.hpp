@@ -100,6 +100,9 @@ class Grid {
   double yc(int j) const { return centre_[1][j + ghost_width]; }
   double dz(int k) const { return width_[2][k + ghost_width]; }  // 1 on a planar mesh
   double zc(int k) const { return centre_[2][k + ghost_width]; }
+  // The same along any axis (0 = x, 1 = y, 2 = z), for kernels that loop over axes.
+  double width(int axis, int index) const { return width_[axis][index + ghost_width]; }
+  double centre(int axis, int index) const { return centre_[axis][index + ghost_width]; }
   // Face coordinate between cells i and i+1 (east face of cell i).
   double xf(int i) const { return xc(i) + 0.5 * dx(i); }
   double yf(int j) const { return yc(j) + 0.5 * dy(j); }
@@ -113,7 +116,9 @@ class Grid {
     assert(dimension() == 2);
     return dx(i) * dy(j) * radius_c(i);
   }
-  double volume(int i, int j, int k) const { return dx(i) * dy(j) * dz(k); }  // 3D meshes
+  // Volume of cell (i, j, k) of a mesh of any dimension: a planar or axisymmetric mesh's depth is 1,
+  // so it is volume(i, j) to the bit.
+  double volume(int i, int j, int k) const { return dx(i) * dy(j) * dz(k) * radius_c(i); }
   // Area of the face of cell (i, j) of a planar or axisymmetric mesh normal to `axis` (0 or 1) on the
   // high (sign > 0) or low side.
   double face_area(int axis, int i, int j, double sign) const {
@@ -123,6 +128,12 @@ class Grid {
   // Area of a face normal to `axis` of cell (i, j, k) of a 3D mesh.
   double face_area_3d(int axis, int i, int j, int k) const {
     return axis == 0 ? dy(j) * dz(k) : (axis == 1 ? dx(i) * dz(k) : dx(i) * dy(j));
+  }
+  // Area of the face of cell (i, j, k) normal to `axis` on its high (sign > 0) or low side, on a mesh
+  // of any dimension; on one layer it is face_area(axis, i, j, sign) to the bit.
+  double face_area(int axis, int i, int j, int k, double sign) const {
+    if (axis == 0) return dy(j) * dz(k) * radius_f(sign > 0 ? i : i - 1);
+    return axis == 1 ? dx(i) * dz(k) * radius_c(i) : dx(i) * dy(j);
   }
   // Raw pointers offset so that p[-2] is the first ghost; for kernels working on plain arrays.
   const double* dx_data() const { return width_[0].data() + ghost_width; }

@@ -32,46 +32,64 @@ constexpr const FaceGeometry& face_on(Side s) {
   return box_faces[0];  // unreachable: every side is listed
 }
 
-// The value on face fg of cell (i, j) of a face field held as x and y faces in FlowSolver's layout:
-// [j][i] of the x faces is the cell's east face and [j][i - 1] its west one; the y faces likewise in j.
+// The index of cell (i, j, k) along `axis`.
+inline int index_along(int axis, int i, int j, int k) { return axis == 0 ? i : (axis == 1 ? j : k); }
+
+// The value on face fg of cell (i, j, k) of a face field held per axis in FlowSolver's layout:
+// [k][j][i] of faces[a] is the cell's high face along a, and the entry at -1 along a its low one.
+inline double on_face(const VolumeView faces[], int i, int j, int k, const FaceGeometry& fg) {
+  const bool low = fg.sign < 0;
+  return faces[fg.axis][k - (low && fg.axis == 2)][j - (low && fg.axis == 1)][i - (low && fg.axis == 0)];
+}
+// The same for a planar mesh's x and y faces, [j][i].
 inline double on_face(const double* const* x_faces, const double* const* y_faces, int i, int j,
                       const FaceGeometry& fg) {
   if (fg.axis == 0) return x_faces[j][fg.sign > 0 ? i : i - 1];
   return y_faces[fg.sign > 0 ? j : j - 1][i];
 }
 
-// The lagged part of the viscous stress on face fg of cell (i, j) for the component c tangential to
-// it, over mu: (d v_n / d x_c) - (d v_c / d n), the remainder of Jasak & Weller (2000) after the
-// implicit 2 mu grad(v_c) (momentum_equation.cpp). vel holds both components as local arrays;
+// The lagged part of the viscous stress on face fg of cell (i, j, k) for the component c tangential
+// to it, over mu: (d v_n / d x_c) - (d v_c / d n), the remainder of Jasak & Weller (2000) after the
+// implicit 2 mu grad(v_c) (momentum_equation.cpp). vel holds the components as local arrays;
 // boundary faces read the ghosts, which encode the boundary condition.
-inline double lagged_transpose_gradient(const Grid& g, const double* const* const vel[2], int i, int j,
+inline double lagged_transpose_gradient(const Grid& g, const VolumeView vel[], int i, int j, int k,
                                         const FaceGeometry& fg, int c) {
-  const int in = i + fg.di, jn = j + fg.dj;
-  const double* const* qn = vel[fg.axis];  // normal component, differentiated along c
-  const double* const* qc = vel[c];        // component c, differentiated along the normal
-  double tangential;
-  if (c == 0)  // d v_n / dx at a north/south face
-    tangential = 0.5 * ((qn[j][i + 1] - qn[j][i - 1]) / (g.xc(i + 1) - g.xc(i - 1)) +
-                        (qn[jn][i + 1] - qn[jn][i - 1]) / (g.xc(i + 1) - g.xc(i - 1)));
-  else  // d v_n / dy at an east/west face
-    tangential = 0.5 * ((qn[j + 1][i] - qn[j - 1][i]) / (g.yc(j + 1) - g.yc(j - 1)) +
-                        (qn[j + 1][in] - qn[j - 1][in]) / (g.yc(j + 1) - g.yc(j - 1)));
-  const double dn = fg.axis == 0 ? g.xc(in) - g.xc(i) : g.yc(jn) - g.yc(j);
-  const double normal = (qc[jn][in] - qc[j][i]) / dn;
+  const int in = i + fg.di, jn = j + fg.dj, kn = k + fg.dk;
+  const VolumeView qn = vel[fg.axis];  // normal component, differentiated along c
+  const VolumeView qc = vel[c];        // component c, differentiated along the normal
+  // d v_n / d x_c, the mean of the central differences in the two cells.
+  const int ci = c == 0, cj = c == 1, ck = c == 2;
+  const int along = index_along(c, i, j, k);
+  const double span = g.centre(c, along + 1) - g.centre(c, along - 1);
+  const double tangential = 0.5 * ((at(qn, i + ci, j + cj, k + ck) - at(qn, i - ci, j - cj, k - ck)) / span +
+                                   (at(qn, in + ci, jn + cj, kn + ck) - at(qn, in - ci, jn - cj, kn - ck)) / span);
+  const double dn = g.centre(fg.axis, index_along(fg.axis, in, jn, kn)) - g.centre(fg.axis, index_along(fg.axis, i, j, k));
+  const double normal = (at(qc, in, jn, kn) - at(qc, i, j, k)) / dn;
   return tangential - normal;
 }
+inline double lagged_transpose_gradient(const Grid& g, const double* const* const vel[2], int i, int j,
+                                        const FaceGeometry& fg, int c) {
+  const PlaneAsVolume u(vel[0]), v(vel[1]);
+  const VolumeView volumes[2] = {u, v};
+  return lagged_transpose_gradient(g, volumes, i, j, 0, fg, c);
+}
 
-// The wall-normal derivative of a velocity component q at the wall face fg of cell (i, j), whose
+// The wall-normal derivative of a velocity component q at the wall face fg of cell (i, j, k), whose
 // value at the wall is `wall`: the two-point (q_1 - wall) / (h/2), or the quadratic through the wall
 // and the first two centres (numerics.wall_gradient = "quadratic", operators/strain_rate.hpp).
 // Its magnitude, not its sign along the normal: the wall's traction on the cell is -mu times it.
+inline double wall_gradient(const Grid& g, VolumeView q, int i, int j, int k, const FaceGeometry& fg, double wall,
+                            bool quadratic) {
+  const int along = index_along(fg.axis, i, j, k), step = fg.sign > 0 ? 1 : -1;
+  const double h1 = g.width(fg.axis, along);
+  const double u1 = at(q, i, j, k);
+  if (!quadratic) return (u1 - wall) / (0.5 * h1);
+  const double h2 = g.width(fg.axis, along - step);
+  return quadratic_wall_derivative(u1, at(q, i - fg.di, j - fg.dj, k - fg.dk), wall, 0.5 * h1, h1 + 0.5 * h2);
+}
 inline double wall_gradient(const Grid& g, const double* const* q, int i, int j, const FaceGeometry& fg, double wall,
                             bool quadratic) {
-  const double h1 = fg.axis == 0 ? g.dx(i) : g.dy(j);
-  const double u1 = q[j][i];
-  if (!quadratic) return (u1 - wall) / (0.5 * h1);
-  const double h2 = fg.axis == 0 ? g.dx(i - fg.di) : g.dy(j - fg.dj);
-  return quadratic_wall_derivative(u1, q[j - fg.dj][i - fg.di], wall, 0.5 * h1, h1 + 0.5 * h2);
+  return wall_gradient(g, PlaneAsVolume(q), i, j, 0, fg, wall, quadratic);
 }
 
 }  // namespace granflow

@@ -252,7 +252,7 @@ class FlowSolver::CoupledRows {
   FlowSolver& f_;
   const Grid& grid_;
   const CellBox& b_;
-  const std::array<double, 2>& g_;
+  const std::array<double, 3>& g_;
   ConstFieldArray rho_, u_, v_, fxv_, fyv_, rx_, ry_, fcx_, fcy_, p_now_;
   const BlockedView mask_;
 };

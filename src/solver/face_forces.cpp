@@ -5,7 +5,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 
+#include "mesh/face_loop.hpp"
 #include "mesh/gather.hpp"
 #include "mesh/obstacles.hpp"
 
@@ -34,7 +36,7 @@ void FlowSolver::set_hydrostatic_pressure() {
   // Every rank needs whole columns of density: gather them (once, at start-up).
   const std::vector<double> rho_all = gather_to_all(grid_, *rho_);
   const int nx = grid_.nx(), ny = grid_.ny();
-  auto rho_at = [&](int i, int j) { return rho_all[size_t(j) * nx + i]; };
+  auto rho_at = [&](int i, int j, int k) { return rho_all[(size_t(k) * ny + j) * nx + i]; };
   // The top at the surroundings' pressure, the level the yield stress is measured from too (and with
   // a closed top and an open side, the open side's p0 at the top's height).
   const double p_top = ambient_pressure(settings_.boundaries);
@@ -42,15 +44,16 @@ void FlowSolver::set_hydrostatic_pressure() {
   std::vector<double> column(ny);
   {
     FieldArray p(grid_.field_dm(), p_->global());
-    for (int i = b.xs; i < b.xe(); ++i) {
-      hydrostatic_column(grid_, gy, p_top, [&](int j) { return rho_at(i, j); }, column);
-      for (int j = b.ys; j < b.ye(); ++j) p[j][i] = column[j];
-    }
+    for (int k = b.zs; k < b.ze(); ++k)
+      for (int i = b.xs; i < b.xe(); ++i) {
+        hydrostatic_column(grid_, gy, p_top, [&](int j) { return rho_at(i, j, k); }, column);
+        for (int j = b.ys; j < b.ye(); ++j) p.volume()[k][j][i] = column[j];
+      }
   }
   fill_scalar_ghosts(*p_);
   update_boundary_heads();
   // Face forces of the resting state: zero at walls (no flux), from the pressure elsewhere.
-  for (int a = 0; a < 2; ++a) face_force_[a]->set(0.0);
+  for (int a = 0; a < dimension_; ++a) face_force_[a]->set(0.0);
   compute_face_forces();
 }
 
@@ -101,63 +104,55 @@ double FlowSolver::boundary_head(Side s, int j, double rho, double y_face) const
   return (s == Side::south && outside > 0.0 ? outside : rho) * settings_.gravity[1] * (y_face - grid_.spec().upper[1]);
 }
 
+double FlowSolver::atmosphere_face_pressure(Side s, int i, int j, int k, VolumeView rho, const VolumeView velocity[],
+                                            const VolumeView face_velocity[]) const {
+  const FaceGeometry& fg = face_on(s);
+  const double d_half = 0.5 * grid_.width(fg.axis, index_along(fg.axis, i, j, k));
+  const double y_face = grid_.yc(j) + (fg.axis == 1 ? fg.sign * d_half : 0.0);
+  double speed2 = 0.0;
+  for (int c = 0; c < dimension_; ++c) speed2 += velocity[c][k][j][i] * velocity[c][k][j][i];
+  return atmosphere_pressure(boundary(settings_.boundaries, s), boundary_head(s, j, rho[k][j][i], y_face),
+                             rho[k][j][i], fg.sign * on_face(face_velocity, i, j, k, fg), speed2);
+}
+
 double FlowSolver::atmosphere_face_pressure(Side s, int i, int j, const double* const* rho, const double* const* u,
                                             const double* const* v, const double* const* fx,
                                             const double* const* fy) const {
-  const int axis = normal_axis(s);
-  const double sign = outward_normal(s, axis);
-  const double d_half = 0.5 * (axis == 0 ? grid_.dx(i) : grid_.dy(j));
-  const double y_face = grid_.yc(j) + (axis == 1 ? sign * d_half : 0.0);
-  const double face_vel = axis == 0 ? (sign > 0 ? fx[j][i] : fx[j][i - 1]) : (sign > 0 ? fy[j][i] : fy[j - 1][i]);
-  return atmosphere_pressure(boundary(settings_.boundaries, s), boundary_head(s, j, rho[j][i], y_face), rho[j][i],
-                             sign * face_vel, u[j][i] * u[j][i] + v[j][i] * v[j][i]);
+  const PlaneAsVolume u3(u), v3(v), fx3(fx), fy3(fy);
+  const VolumeView velocity[2] = {u3, v3}, face_velocity[2] = {fx3, fy3};
+  return atmosphere_face_pressure(s, i, j, 0, PlaneAsVolume(rho), velocity, face_velocity);
 }
 
+// The face forces of the owned cells' faces: -grad(p) + rho_f g between cells, the atmosphere's
+// pressure on an open side, none on a wall or an obstacle's face.
 void FlowSolver::compute_face_forces() {
-  const auto& b = grid_.owned();
-  const int ny = grid_.ny();
   const auto& g = settings_.gravity;
-  ConstFieldArray p = local_read(grid_, *p_), rho = local_read(grid_, *rho_);
-  ConstFieldArray u = local_read(grid_, *vel_[0]), v = local_read(grid_, *vel_[1]);
-  ConstFieldArray fx_vel = local_read(grid_, *face_[0]), fy_vel = local_read(grid_, *face_[1]);
-  FieldArray fx = local_array(grid_, *face_force_[0]), fy = local_array(grid_, *face_force_[1]);
+  const ConstFieldArray p_array = local_read(grid_, *p_), rho_array = local_read(grid_, *rho_);
+  const VolumeView p = p_array.volume(), rho = rho_array.volume();
+  std::optional<ConstFieldArray> vel_arrays[3], face_arrays[3];
+  VolumeView vel[3] = {}, face_vel[3] = {};
+  for (int a = 0; a < dimension_; ++a) {
+    vel[a] = vel_arrays[a].emplace(grid_.field_dm(), vel_[a]->local()).volume();
+    face_vel[a] = face_arrays[a].emplace(grid_.field_dm(), face_[a]->local()).volume();
+  }
   const BlockedView mask(grid_, blocked_);
-  auto boundary_force = [&](Side s, int i, int j) {
-    const int axis = normal_axis(s);
-    const double sign = outward_normal(s, axis);
-    const double d = 0.5 * (axis == 0 ? grid_.dx(i) : grid_.dy(j));
-    const double pb = atmosphere_face_pressure(s, i, j, rho.data(), u.data(), v.data(), fx_vel.data(), fy_vel.data());
-    return -sign * (pb - p[j][i]) / d + rho[j][i] * g[axis];
-  };
-  for (int j = b.ys; j < b.ye(); ++j)
-    for (int i = b.xs - 1; i < b.xe(); ++i) {
-      if (grid_.outside(i, j)) {
-        if (boundary(settings_.boundaries, Side::west).kind == BoundaryKind::atmosphere)
-          fx[j][i] = is_blocked(mask.data(), 0, j) ? 0.0 : boundary_force(Side::west, 0, j);
-      } else if (grid_.outside(i + 1, j)) {
-        if (boundary(settings_.boundaries, Side::east).kind == BoundaryKind::atmosphere)
-          fx[j][i] = is_blocked(mask.data(), i, j) ? 0.0 : boundary_force(Side::east, i, j);
-      } else if (is_blocked(mask.data(), i, j) || is_blocked(mask.data(), i + 1, j)) {
-        fx[j][i] = 0.0;  // an obstacle's wall
-      } else {
-        fx[j][i] = -(p[j][i + 1] - p[j][i]) / (grid_.xc(i + 1) - grid_.xc(i)) + 0.5 * (rho[j][i] + rho[j][i + 1]) * g[0] -
-                   ambient_weight(0);
-      }
-    }
-  for (int j = b.ys - 1; j < b.ye(); ++j)
-    for (int i = b.xs; i < b.xe(); ++i) {
-      if (j == -1) {
-        if (boundary(settings_.boundaries, Side::south).kind == BoundaryKind::atmosphere)
-          fy[j][i] = is_blocked(mask.data(), i, 0) ? 0.0 : boundary_force(Side::south, i, 0);
-      } else if (j == ny - 1) {
-        if (boundary(settings_.boundaries, Side::north).kind == BoundaryKind::atmosphere)
-          fy[j][i] = is_blocked(mask.data(), i, j) ? 0.0 : boundary_force(Side::north, i, j);
-      } else if (is_blocked(mask.data(), i, j) || is_blocked(mask.data(), i, j + 1)) {
-        fy[j][i] = 0.0;
-      } else {
-        fy[j][i] = -(p[j + 1][i] - p[j][i]) / (grid_.yc(j + 1) - grid_.yc(j)) + 0.5 * (rho[j][i] + rho[j + 1][i]) * g[1];
-      }
-    }
+  fill_owned_faces_any(
+      grid_, per_axis(face_force_),
+      [&](int axis, int i, int j, int k) {
+        const int in = i + (axis == 0), jn = j + (axis == 1), kn = k + (axis == 2);
+        const double d = grid_.centre(axis, index_along(axis, in, jn, kn)) - grid_.centre(axis, index_along(axis, i, j, k));
+        return -(p[kn][jn][in] - p[k][j][i]) / d + 0.5 * (rho[k][j][i] + rho[kn][jn][in]) * g[axis] - ambient_weight(axis);
+      },
+      [&](int axis, int i, int j, int k, int sign) {
+        const FaceGeometry& fg = box_faces[2 * axis + (sign < 0)];
+        // An obstacle's wall, or a side's face of a blocked cell.
+        if (!grid_.outside(i + fg.di, j + fg.dj, k + fg.dk) || is_blocked(mask.data(), i, j)) return 0.0;
+        if (boundary(settings_.boundaries, fg.side).kind != BoundaryKind::atmosphere) return 0.0;  // a wall
+        const double d = 0.5 * grid_.width(axis, index_along(axis, i, j, k));
+        const double pb = atmosphere_face_pressure(fg.side, i, j, k, rho, vel, face_vel);
+        return -fg.sign * (pb - p[k][j][i]) / d + rho[k][j][i] * g[axis];
+      },
+      mask.data());
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -174,12 +169,13 @@ void FlowSolver::compute_face_forces() {
 //    With a momentum predictor it overshoots where viscosity dominates a_P; without one (velocity
 //    from HbyA of the previous iterate) it is stable and keeps rigid regions rigid.
 
-double FlowSolver::cell_force(int axis, int i, int j, const double* const* ff, const double* const* rho) const {
-  const int di = axis == 0 ? 1 : 0, dj = 1 - di;
+double FlowSolver::cell_force(int axis, int i, int j, int k, VolumeView ff, VolumeView rho) const {
+  const int di = axis == 0, dj = axis == 1, dk = axis == 2;
+  const double rho_P = rho[k][j][i];
   // A boundary face takes the cell's density; the join of a periodic strip is an interior face.
-  const double rho_hi = grid_.outside(i + di, j + dj) ? rho[j][i] : 0.5 * (rho[j][i] + rho[j + dj][i + di]);
-  const double rho_lo = grid_.outside(i - di, j - dj) ? rho[j][i] : 0.5 * (rho[j][i] + rho[j - dj][i - di]);
-  return rho[j][i] * 0.5 * (ff[j][i] / rho_hi + ff[j - dj][i - di] / rho_lo);
+  const double rho_hi = grid_.outside(i + di, j + dj, k + dk) ? rho_P : 0.5 * (rho_P + rho[k + dk][j + dj][i + di]);
+  const double rho_lo = grid_.outside(i - di, j - dj, k - dk) ? rho_P : 0.5 * (rho_P + rho[k - dk][j - dj][i - di]);
+  return rho_P * 0.5 * (ff[k][j][i] / rho_hi + ff[k - dk][j - dj][i - di] / rho_lo);
 }
 
 }  // namespace granflow

@@ -53,7 +53,7 @@ struct NumericsSettings {
 };
 
 struct FlowSettings {
-  std::array<double, 2> gravity{0.0, 0.0};
+  std::array<double, 3> gravity{0.0, 0.0, 0.0};  // z's is 0 on a planar mesh
   // With periodic x and gravity along x (a slope), the density of the ambient fluid whose weight along
   // x a mean pressure gradient carries, as the atmosphere's own hydrostatic pressure does on a real
   // slope: a periodic pressure cannot, and the air would otherwise fall along the slope without end.
@@ -69,11 +69,12 @@ struct FlowSettings {
   LinearSolverSettings coupled_solver{"preonly", "lu", 1e-10, 1e-14, 1000};
 };
 
-// Whether u and v share one momentum matrix in the segregated steps: not beside a slip wall (its
-// condition differs by component), nor on the axis (the hoop stress is on the radial one's diagonal).
-inline bool momentum_matrix_shared(const FlowSettings& s, bool axisymmetric) {
+// Whether the velocity components share one momentum matrix in the segregated steps: not beside a slip
+// wall (its condition differs by component), nor on the axis (the hoop stress is on the radial one's
+// diagonal).
+inline bool momentum_matrix_shared(const FlowSettings& s, bool axisymmetric, int dimension = 2) {
   if (axisymmetric) return false;
-  for (Side side : planar_sides)
+  for (Side side : sides_of_dimension(dimension))
     if (boundary(s.boundaries, side).kind == BoundaryKind::slip) return false;
   return true;
 }
@@ -81,10 +82,13 @@ inline bool momentum_matrix_shared(const FlowSettings& s, bool axisymmetric) {
 // The linear solvers a flow solver makes, by their PETSc options prefix: the coupled system's, or the
 // segregated steps' momentum solvers (one where u and v share a matrix) and pressure solver.
 inline std::vector<std::pair<std::string, LinearSolverSettings>> solvers_made(const FlowSettings& s,
-                                                                             bool axisymmetric) {
+                                                                             bool axisymmetric, int dimension = 2) {
   if (s.numerics.pressure_coupling == PressureCoupling::coupled) return {{"coupled", s.coupled_solver}};
   std::vector<std::pair<std::string, LinearSolverSettings>> made{{"momentum_x", s.momentum_solver}};
-  if (!momentum_matrix_shared(s, axisymmetric)) made.emplace_back("momentum_y", s.momentum_solver);
+  if (!momentum_matrix_shared(s, axisymmetric, dimension)) {
+    made.emplace_back("momentum_y", s.momentum_solver);
+    if (dimension == 3) made.emplace_back("momentum_z", s.momentum_solver);
+  }
   made.emplace_back("pressure", s.pressure_solver);
   return made;
 }

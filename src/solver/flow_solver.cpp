@@ -8,7 +8,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <stdexcept>
+#include <string>
 
 #include "operators/face_interpolation.hpp"
 #include "solver/velocity_ghosts.hpp"
@@ -20,13 +22,25 @@ namespace {
 std::unique_ptr<Field> make_field(const Grid& g) { return std::make_unique<Field>(g); }
 
 
+// What a mesh of layers does not have yet (docs/method.md, "Known limitations"): the coupled solve, a
+// periodic side, and an atmosphere on a side other than the top and the bottom (whose head is per row).
+void refuse_what_3d_lacks(const Grid& grid, const FlowSettings& settings) {
+  if (grid.dimension() != 3) return;
+  if (settings.numerics.pressure_coupling == PressureCoupling::coupled)
+    throw std::invalid_argument("FlowSolver: a mesh of layers takes the segregated steps (projection or PISO), not the coupled solve");
+  if (grid.periodic_x()) throw std::invalid_argument("FlowSolver: a mesh of layers with a periodic side is not implemented");
+  for (Side s : {Side::west, Side::east, Side::front, Side::back})
+    if (boundary(settings.boundaries, s).kind == BoundaryKind::atmosphere)
+      throw std::invalid_argument(std::string("FlowSolver: an atmosphere on the ") + side_name(s) +
+                                  " side of a mesh of layers is not implemented (only on the top and the bottom)");
+}
+
 }  // namespace
 
-FlowSolver::FlowSolver(const Grid& grid, const FlowSettings& settings) : grid_(grid), settings_(settings) {
-  // The kernels below are two-dimensional (docs/method.md, "Known limitations"); the case file refuses
-  // three cell counts, so only a program's own grid reaches this.
-  if (grid.dimension() == 3) throw std::invalid_argument("FlowSolver: meshes of several layers are not implemented");
-  for (int a = 0; a < 2; ++a) {
+FlowSolver::FlowSolver(const Grid& grid, const FlowSettings& settings)
+    : grid_(grid), settings_(settings), dimension_(grid.dimension()) {
+  refuse_what_3d_lacks(grid, settings);
+  for (int a = 0; a < dimension_; ++a) {
     vel_[a] = make_field(grid);
     vel_old_[a] = make_field(grid);
     outer_start_[a] = make_field(grid);
@@ -43,7 +57,7 @@ FlowSolver::FlowSolver(const Grid& grid, const FlowSettings& settings) : grid_(g
   mu_ = make_field(grid);
   p_->set(0.0);
   if (settings_.numerics.look_ahead_viscosity) {
-    for (int a = 0; a < 2; ++a) {
+    for (int a = 0; a < dimension_; ++a) {
       vel_ahead_[a] = make_field(grid);
       face_mu_now_[a] = make_field(grid);
     }
@@ -55,20 +69,22 @@ FlowSolver::FlowSolver(const Grid& grid, const FlowSettings& settings) : grid_(g
   }
   rho_->set(1.0);
   mu_->set(1.0);
-  for (auto& f : face_mu_) {
-    f = make_field(grid);
-    f->set(1.0);
+  for (int a = 0; a < dimension_; ++a) {
+    face_mu_[a] = make_field(grid);
+    face_mu_[a]->set(1.0);
   }
 
   const auto& box = grid.owned();
-  const size_t n = size_t(box.xm) * box.ym;
-  for (auto* v : {&a_neighbour_[0], &a_neighbour_[1], &a_neighbour_[2], &a_neighbour_[3], &a_centre_[0], &a_centre_[1],
-                  &source_[0], &source_[1]})
-    v->assign(n, 0.0);
+  const size_t n = size_t(box.xm) * box.ym * box.zm;
+  for (const auto& f : cell_faces(dimension_)) a_neighbour_[&f - box_faces].assign(n, 0.0);
+  for (int a = 0; a < dimension_; ++a) {
+    a_centre_[a].assign(n, 0.0);
+    source_[a].assign(n, 0.0);
+  }
 
-  for (Side s : planar_sides)
+  for (Side s : sides_of_dimension(dimension_))
     if (boundary(settings.boundaries, s).kind == BoundaryKind::atmosphere) has_pressure_boundary_ = true;
-  shared_momentum_matrix_ = momentum_matrix_shared(settings, grid.axisymmetric());
+  shared_momentum_matrix_ = momentum_matrix_shared(settings, grid.axisymmetric(), dimension_);
 
   MPI_Comm comm = grid.comm();
   // The segregated steps' matrices, solvers and fields (the second momentum matrix only where u and v
@@ -76,14 +92,14 @@ FlowSolver::FlowSolver(const Grid& grid, const FlowSettings& settings) : grid_(g
   // (coupled_step.cpp), so it is spared their memory.
   const bool segregated = settings.numerics.pressure_coupling != PressureCoupling::coupled;
   if (segregated) {
-    for (int a = 0; a < 2; ++a) {
+    for (int a = 0; a < dimension_; ++a) {
       velocity_without_pressure_[a] = make_field(grid);
       old_time_share_[a] = make_field(grid);
       old_time_share_[a]->set(0.0);  // stays zero under the projection coupling
-      if (a == 1 && shared_momentum_matrix_) continue;
+      if (a > 0 && shared_momentum_matrix_) continue;
       PetscCallAbort(comm, DMCreateMatrix(grid.matrix_dm(), momentum_matrix_[a].put()));
-      momentum_solver_[a] = std::make_unique<LinearSolver>(comm, a == 0 ? "momentum_x" : "momentum_y",
-                                                            settings.momentum_solver);
+      static const char* const prefixes[3] = {"momentum_x", "momentum_y", "momentum_z"};
+      momentum_solver_[a] = std::make_unique<LinearSolver>(comm, prefixes[a], settings.momentum_solver);
     }
     PetscCallAbort(comm, DMCreateMatrix(grid.matrix_dm(), pressure_matrix_.put()));
     pressure_solver_ = std::make_unique<LinearSolver>(comm, "pressure", settings.pressure_solver);
@@ -101,7 +117,7 @@ FlowSolver::FlowSolver(const Grid& grid, const FlowSettings& settings) : grid_(g
 }
 
 void FlowSolver::enable_body_force() {
-  for (int a = 0; a < 2; ++a)
+  for (int a = 0; a < dimension_; ++a)
     if (!body_force_[a]) {
       body_force_[a] = make_field(grid_);
       body_force_[a]->set(0.0);
@@ -115,6 +131,7 @@ FlowSolver::~FlowSolver() = default;
 // boundary conditions (mirror images), so that stencils near walls need no special cases.
 
 void FlowSolver::set_blocked(const Field* mask) {
+  if (mask && dimension_ == 3) throw std::invalid_argument("FlowSolver: obstacles on a mesh of layers are not implemented");
   blocked_ = mask;
   if (solve_region_) solve_region_->set_blocked(mask);
   // The closed domain's pinned row: the open cell nearest the top-left corner, row by row from the top.
@@ -139,14 +156,15 @@ void FlowSolver::set_blocked(const Field* mask) {
 void FlowSolver::fill_scalar_ghosts(Field& f) { fill_copied_ghosts(grid_, blocked_, f); }
 
 void FlowSolver::fill_velocity_ghosts() {
-  for (int a = 0; a < 2; ++a) vel_[a]->scatter_to_local();
-  FieldArray u(grid_.field_dm(), vel_[0]->local()), v(grid_.field_dm(), vel_[1]->local());
-  {
+  for (int a = 0; a < dimension_; ++a) vel_[a]->scatter_to_local();
+  std::optional<FieldArray> arrays[3];
+  double*** components[3] = {};
+  for (int a = 0; a < dimension_; ++a) components[a] = arrays[a].emplace(grid_.field_dm(), vel_[a]->local()).volume();
+  if (blocked_) {  // planar meshes only (set_blocked)
     const BlockedView mask(grid_, blocked_);  // an obstacle's walls are static and no-slip
-    for (auto* f : {u.data(), v.data()}) mirror_into_blocked(grid_, mask.data(), f, -1.0);
+    for (int a = 0; a < 2; ++a) mirror_into_blocked(grid_, mask.data(), components[a][0], -1.0);
   }
-  double*** const components[2] = {u.volume(), v.volume()};
-  fill_velocity_side_ghosts(grid_, settings_.boundaries, components);
+  fill_velocity_side_ghosts(grid_, settings_.boundaries, std::span<double*** const>(components, dimension_));
 }
 
 void FlowSolver::refresh_ghosts() {
@@ -169,11 +187,14 @@ void FlowSolver::update_properties() {
 // cell's. Covers the faces of the owned cells, reading the ghosts of mu.
 void FlowSolver::face_viscosity_from_cells() {
   const auto kind = settings_.numerics.face_viscosity;
-  ConstFieldArray mu = local_read(grid_, *mu_);
-  fill_owned_faces(
-      grid_, *face_mu_[0], *face_mu_[1],
-      [&](int axis, int i, int j) { return face_mean(kind, mu[j][i], axis == 0 ? mu[j][i + 1] : mu[j + 1][i]); },
-      [&](int, int i, int j, int) { return mu[j][i]; }, BlockedView(grid_, blocked_).data());
+  const ConstFieldArray mu_array = local_read(grid_, *mu_);
+  const VolumeView mu = mu_array.volume();
+  fill_owned_faces_any(
+      grid_, per_axis(face_mu_),
+      [&](int axis, int i, int j, int k) {
+        return face_mean(kind, mu[k][j][i], at(mu, i + (axis == 0), j + (axis == 1), k + (axis == 2)));
+      },
+      [&](int, int i, int j, int k, int) { return mu[k][j][i]; }, BlockedView(grid_, blocked_).data());
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -190,6 +211,10 @@ std::vector<std::pair<const char*, Field*>> FlowSolver::named_state_fields() {
   // u^{n-1}, so that a step taken again extrapolates from the same two states.
   if (settings_.numerics.look_ahead_viscosity)
     f.insert(f.end(), {{"u_previous", vel_old_[0].get()}, {"v_previous", vel_old_[1].get()}});
+  if (dimension_ == 3) {  // the third component's, after the planar ones (whose order checkpoints keep)
+    f.insert(f.end(), {{"w", vel_[2].get()}, {"face_w", face_[2].get()}, {"face_force_z", face_force_[2].get()}});
+    if (settings_.numerics.look_ahead_viscosity) f.emplace_back("w_previous", vel_old_[2].get());
+  }
   if (solve_region_) f.emplace_back("solve_region", &solve_region_->cells());
   return f;
 }
@@ -212,7 +237,7 @@ std::string FlowSolver::checkpoint_field_names() {
 // The velocity extrapolated to the end of the step, u^n + ratio (u^n - u^{n-1}) with ratio =
 // dt / dt_previous (on entry vel_old_ still holds u^{n-1}).
 void FlowSolver::extrapolate_velocity(double ratio) {
-  for (int a = 0; a < 2; ++a) vel_ahead_[a]->combine(-ratio, *vel_old_[a], 1.0 + ratio, *vel_[a]);
+  for (int a = 0; a < dimension_; ++a) vel_ahead_[a]->combine(-ratio, *vel_old_[a], 1.0 + ratio, *vel_[a]);
 }
 
 // Properties of the first outer iteration under numerics.first_viscosity = "look_ahead": each cell
@@ -224,12 +249,12 @@ void FlowSolver::extrapolate_velocity(double ratio) {
 void FlowSolver::update_properties_ahead() {
   update_properties();
   mu_now_->copy_from(*mu_);
-  for (int a = 0; a < 2; ++a) face_mu_now_[a]->copy_from(*face_mu_[a]);
-  for (int a = 0; a < 2; ++a) std::swap(vel_[a], vel_ahead_[a]);  // stands in while properties are computed
+  for (int a = 0; a < dimension_; ++a) face_mu_now_[a]->copy_from(*face_mu_[a]);
+  for (int a = 0; a < dimension_; ++a) std::swap(vel_[a], vel_ahead_[a]);  // stands in while properties are computed
   update_properties();
-  for (int a = 0; a < 2; ++a) std::swap(vel_[a], vel_ahead_[a]);
+  for (int a = 0; a < dimension_; ++a) std::swap(vel_[a], vel_ahead_[a]);
   mu_->max_with(*mu_now_);
-  for (int a = 0; a < 2; ++a) face_mu_[a]->max_with(*face_mu_now_[a]);
+  for (int a = 0; a < dimension_; ++a) face_mu_[a]->max_with(*face_mu_now_[a]);
 }
 
 // Properties of an outer iteration after the first under numerics.viscosity_pressure =
@@ -278,13 +303,13 @@ StepReport FlowSolver::step(double dt) {
   StepReport report;
   const bool look_ahead = settings_.numerics.look_ahead_viscosity && dt_previous > 0.0;
   if (look_ahead) extrapolate_velocity(dt / dt_previous);
-  for (int a = 0; a < 2; ++a) {
+  for (int a = 0; a < dimension_; ++a) {
     vel_old_[a]->copy_from(*vel_[a]);
     face_old_[a]->copy_from(*face_[a]);
   }
   const auto& num = settings_.numerics;
   for (int outer = 0; outer < num.outer_iterations; ++outer) {
-    for (int a = 0; a < 2; ++a) PetscCallAbort(grid_.comm(), VecCopy(vel_[a]->global(), outer_start_[a]->global()));
+    for (int a = 0; a < dimension_; ++a) PetscCallAbort(grid_.comm(), VecCopy(vel_[a]->global(), outer_start_[a]->global()));
     if (outer == 0 && look_ahead) update_properties_ahead();
     else if (outer > 0 && num.mean_viscosity_pressure) update_properties_at_mean_pressure();
     else update_properties();
@@ -311,7 +336,7 @@ StepReport FlowSolver::step(double dt) {
     ++report.outer_iterations;
     // Convergence of the outer loop: largest velocity change relative to the largest velocity.
     double change = 0.0, scale = 0.0;
-    for (int a = 0; a < 2; ++a) {
+    for (int a = 0; a < dimension_; ++a) {
       const double nv = max_abs(grid_.comm(), vel_[a]->global());
       const Vec start = outer_start_[a]->global();
       PetscCallAbort(grid_.comm(), VecAXPY(start, -1.0, vel_[a]->global()));

@@ -19,6 +19,7 @@
 #include "mesh/field_snapshot.hpp"
 #include "mesh/grid.hpp"
 #include "mesh/petsc_handle.hpp"
+#include "solver/cell_faces.hpp"
 #include "solver/flow_settings.hpp"
 #include "solver/linear_solver.hpp"
 #include "solver/solve_region.hpp"
@@ -128,7 +129,7 @@ class FlowSolver {
   double max_speed() const;
   // The cell with the largest speed (a NaN counts as largest), on every rank.
   struct FastestCell {
-    double speed = 0.0, x = 0.0, y = 0.0;
+    double speed = 0.0, x = 0.0, y = 0.0, z = 0.0;
   };
   FastestCell fastest_cell() const;
   // Largest |div v| * V over owned cells, from the face velocities (volumetric imbalance, m^2/s in 2D).
@@ -157,9 +158,15 @@ class FlowSolver {
   // The pressure the atmosphere of side s imposes on the boundary face of cell (i, j), from the state
   // in the given local arrays (density, cell velocities, face velocities): p0 plus the head below
   // the top, less rho |v_P|^2 / 2 where it flows in at total pressure.
+  double atmosphere_face_pressure(Side s, int i, int j, int k, VolumeView rho, const VolumeView velocity[],
+                                  const VolumeView face_velocity[]) const;
   double atmosphere_face_pressure(Side s, int i, int j, const double* const* rho, const double* const* u,
                                   const double* const* v, const double* const* fx, const double* const* fy) const;
   void fill_scalar_ghosts(Field& f);
+  // The fields of one quantity per axis as fill_owned_faces_any takes them (null beyond the dimension).
+  static std::array<Field*, 3> per_axis(std::unique_ptr<Field> (&fields)[3]) {
+    return {fields[0].get(), fields[1].get(), fields[2].get()};
+  }
   void face_viscosity_from_cells();
   void compute_face_forces();
   void extrapolate_velocity(double ratio);
@@ -184,9 +191,13 @@ class FlowSolver {
   // The ambient's weight per unit volume along `axis` that its mean pressure gradient carries along a
   // periodic x (FlowSettings::periodic_ambient_density), taken off every face's weight rho_f g; 0 otherwise.
   double ambient_weight(int axis) const { return axis == 0 ? settings_.periodic_ambient_density * settings_.gravity[0] : 0.0; }
-  double cell_force(int axis, int i, int j, const double* const* ff, const double* const* rho) const;
+  // The balanced force per volume on cell (i, j, k) along `axis` from the face forces ff of that axis.
+  double cell_force(int axis, int i, int j, int k, VolumeView ff, VolumeView rho) const;
+  double cell_force(int axis, int i, int j, const double* const* ff, const double* const* rho) const {
+    return cell_force(axis, i, j, 0, PlaneAsVolume(ff), PlaneAsVolume(rho));
+  }
   // Segregated pressure step (segregated_pressure.cpp).
-  double face_coefficient(const double* const* rau, const double* const* rho, int i, int j, int in, int jn) const;
+  double face_coefficient(VolumeView rau, VolumeView rho, int i, int j, int k, const FaceGeometry& fg) const;
   void assemble_pressure_matrix();
   int solve_pressure();  // one pressure step, from the pieces below
   void assemble_pressure_rhs();
@@ -198,35 +209,36 @@ class FlowSolver {
   PropertyUpdate property_update_;
   PropertyUpdate face_viscosity_update_;
 
-  std::unique_ptr<Field> vel_[2], vel_old_[2], face_[2], face_old_[2], face_force_[2];
-  std::unique_ptr<Field> outer_start_[2];  // the velocity an outer iteration starts from, for its change
+  // Per axis of the mesh: [2] only on a mesh of layers.
+  std::unique_ptr<Field> vel_[3], vel_old_[3], face_[3], face_old_[3], face_force_[3];
+  std::unique_ptr<Field> outer_start_[3];  // the velocity an outer iteration starts from, for its change
   // first_viscosity = look_ahead: the extrapolated velocity, and the viscosities at u^n it is weighed against
-  std::unique_ptr<Field> vel_ahead_[2], mu_now_, face_mu_now_[2];
+  std::unique_ptr<Field> vel_ahead_[3], mu_now_, face_mu_now_[3];
   // viscosity_pressure = mean_of_last_two: the pressure the last iteration started from, and the mean
   std::unique_ptr<Field> p_last_iterate_, p_mean_;
-  std::unique_ptr<Field> p_, rho_, mu_, face_mu_[2];
-  std::unique_ptr<Field> body_force_[2];
+  std::unique_ptr<Field> p_, rho_, mu_, face_mu_[3];
+  std::unique_ptr<Field> body_force_[3];
   std::unique_ptr<Field> start_density_, mass_flux_[2];  // enable_mass_transport
   FieldSnapshot saved_;  // save_state()
   // The velocity per unit of force density a cell's momentum row gives (OpenFOAM's rAU): V / a_P under
   // PISO and the coupled solve ([VoF] Eq. 28's A_i d_i / A_P, a cell's V / a_P), dt / rho under the projection.
-  std::unique_ptr<Field> pressure_mobility_[2];
+  std::unique_ptr<Field> pressure_mobility_[3];
   // Segregated steps only: the velocity without the pressure force (OpenFOAM's HbyA), and the share of
   // the old time level in a_P, rho V / (dt a_P).
-  std::unique_ptr<Field> velocity_without_pressure_[2], old_time_share_[2];
+  std::unique_ptr<Field> velocity_without_pressure_[3], old_time_share_[3];
 
   // Momentum coefficients of the owned cells (row-major over the owned box). Off-diagonal
   // coefficients are stored positive (matrix entry = -a_nb) and shared by both components, one array
-  // per face in the order of cell_faces.hpp: east, west, north, south.
-  std::vector<double> a_neighbour_[4];
-  std::vector<double> a_centre_[2], source_[2];
+  // per face in the order of cell_faces.hpp: east, west, north, south, back, front.
+  std::vector<double> a_neighbour_[6];
+  std::vector<double> a_centre_[3], source_[3];
 
   // The segregated steps' systems (none under the coupled solve).
-  OwnedMat momentum_matrix_[2];
+  OwnedMat momentum_matrix_[3];
   OwnedMat pressure_matrix_;
   OwnedNullSpace pressure_null_space_;
   OwnedVec rhs_;
-  std::unique_ptr<LinearSolver> momentum_solver_[2];
+  std::unique_ptr<LinearSolver> momentum_solver_[3];
   std::unique_ptr<LinearSolver> pressure_solver_;
   OwnedDm coupled_dm_;  // (u, v, p) per cell, same layout as the grid
   OwnedMat coupled_matrix_;
@@ -243,7 +255,8 @@ class FlowSolver {
   const Field* blocked_ = nullptr;  // set_blocked
   int pin_i_ = 0, pin_j_ = 0;      // the cell whose continuity row holds a closed domain's level
   long open_cells_ = 0;            // cells not blocked, over all ranks
-  bool shared_momentum_matrix_ = true;  // no slip walls: u and v share their matrix
+  bool shared_momentum_matrix_ = true;  // no slip walls: the components share their matrix
+  int dimension_ = 2;                   // the mesh's: how many velocity components there are
   double dt_ = 0.0;        // the last step's size
   double saved_dt_ = 0.0;  // save_state()
 };

@@ -201,7 +201,7 @@ class SoilPhase {
   rheology::LodeHistogram lode_rate_, lode_energy_;  // this rank's cells: W and J per bin
   std::unique_ptr<Field> overburden_;  // rho_s g times the soil depth above each centre (Pa)
   std::unique_ptr<ColumnDepth> column_depth_;  // made at the first overburden (collective)
-  void compute_overburden(const std::array<double, 2>& gravity);
+  void compute_overburden(const std::array<double, 3>& gravity);
   int sweep_parity_ = 0;
   const Field* blocked_ = nullptr;
   const Field* obstacle_index_ = nullptr;       // with obstacles of their own friction

@@ -184,7 +184,7 @@ void SoilPhase::refresh(const FlowSolver& flow) {
 
 // Depth of soil above each cell centre, sum of c dy over the cells above plus half the cell's own,
 // times rho_s |g|. Columns cross ranks: ColumnDepth carries the sums of the ranks above.
-void SoilPhase::compute_overburden(const std::array<double, 2>& gravity) {
+void SoilPhase::compute_overburden(const std::array<double, 3>& gravity) {
   if (!column_depth_) column_depth_ = std::make_unique<ColumnDepth>(grid_);
   {
     FieldArray o(grid_.field_dm(), overburden_->global());
