@@ -95,11 +95,12 @@ set_tests_properties(vof_sweeps_3d_2_ranks PROPERTIES
   LABELS parallel TIMEOUT 120
   ENVIRONMENT "OMPI_ALLOW_RUN_AS_ROOT=1;OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1;OMPI_MCA_rmaps_base_oversubscribe=1")
 
-# The flow solver on a mesh of layers split over 2 ranks: the layer-independent cavity still gives the
-# planar run's velocities (both on 2 ranks), and flat layers split along the vertical stay at rest.
+# The flow solver and the soil phase on a mesh of layers split over 2 ranks: the layer-independent
+# cavity and water column still give the planar runs (all on 2 ranks), flat layers split along the
+# vertical stay at rest, and a granular column spreads as its axisymmetric twin.
 add_test(NAME flow_3d_2_ranks
          COMMAND ${MPIRUN} -np 2 --oversubscribe $<TARGET_FILE:verification_tests>
-                 --gtest_filter=FlowSolver3d.ALayerIndependentCavityIsThePlanarOne:FlowSolver3d.FlatLayersUnderGravityStayAtRest)
+                 --gtest_filter=FlowSolver3d.ALayerIndependentCavityIsThePlanarOne:FlowSolver3d.FlatLayersUnderGravityStayAtRest:SoilPhase3d.ALayerIndependentWaterColumnIsThePlanarOne:SoilPhase3d.AGranularColumnSpreadsAsTheAxisymmetricOne)
 set_tests_properties(flow_3d_2_ranks PROPERTIES
   LABELS parallel TIMEOUT 300
   ENVIRONMENT "OMPI_ALLOW_RUN_AS_ROOT=1;OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1;OMPI_MCA_rmaps_base_oversubscribe=1")

@@ -74,6 +74,7 @@ const Field& SoilPhase::soil_region(int reach, double floor) const {
 }
 
 double SoilPhase::interface_courant(const FlowSolver& flow, double dt, int substeps) const {
+  if (grid_.dimension() == 3) return interface_courant_3d(flow, dt);  // over the whole mesh
   ConstFieldArray fx = local_read(grid_, flow.face_velocity(0)), fy = local_read(grid_, flow.face_velocity(1));
   ConstFieldArray region(grid_.field_dm(), soil_region(substeps).local());
   const double co = larger_or_nan(
@@ -85,6 +86,7 @@ double SoilPhase::interface_courant(const FlowSolver& flow, double dt, int subst
 }
 
 void SoilPhase::advect(FlowSolver& flow, double dt) {
+  if (grid_.dimension() == 3) return advect_3d(flow, dt);  // no mass transport there (the coupled solve's)
   // A step sized by this limit from these same face velocities lands on it up to round-off, which
   // differs between rank layouts; without the allowance ceil() would take one sweep or two by chance.
   constexpr double allowance = 1e-9;
@@ -249,6 +251,7 @@ void SoilPhase::sweep(int axis, double dt, const Field& from, Field& to, bool fr
 
 void SoilPhase::transport_displacement(const FlowSolver& flow, double dt) {
   if (!settings_.displacement) return;
+  if (grid_.dimension() == 3) return transport_displacement_3d(flow, dt);
   const auto& b = grid_.owned();
   ConstFieldArray c(grid_.field_dm(), c_->local());
   ConstFieldArray fx = local_read(grid_, flow.face_velocity(0)), fy = local_read(grid_, flow.face_velocity(1));

@@ -33,16 +33,25 @@ double largest_over_soil(const Grid& grid, const Field& c_field, F&& f) {
 }  // namespace
 
 double SoilPhase::largest_displacement() const {
+  if (grid_.dimension() == 3) {
+    const Field* const d[3] = {disp_[0].get(), disp_[1].get(), disp_[2].get()};
+    return largest_magnitude_3d(d);
+  }
   ConstFieldArray dx(grid_.field_dm(), disp_[0]->global()), dy(grid_.field_dm(), disp_[1]->global());
   return largest_over_soil(grid_, *c_, [&](int i, int j) { return std::hypot(dx[j][i], dy[j][i]); });
 }
 
 double SoilPhase::largest_speed(const FlowSolver& flow) const {
+  if (grid_.dimension() == 3) {
+    const Field* const v[3] = {&flow.velocity(0), &flow.velocity(1), &flow.velocity(2)};
+    return largest_magnitude_3d(v);
+  }
   ConstFieldArray u(grid_.field_dm(), flow.velocity(0).global()), v(grid_.field_dm(), flow.velocity(1).global());
   return largest_over_soil(grid_, *c_, [&](int i, int j) { return std::hypot(u[j][i], v[j][i]); });
 }
 
 void SoilPhase::compute_diagnostics(const FlowSolver& flow) {
+  if (grid_.dimension() == 3) return compute_diagnostics_3d(flow);
   const auto& b = grid_.owned();
   ConstFieldArray dx(grid_.field_dm(), disp_[0]->local()), dy(grid_.field_dm(), disp_[1]->local());
   ConstFieldArray u = local_read(grid_, flow.velocity(0)), v = local_read(grid_, flow.velocity(1));
@@ -243,6 +252,7 @@ std::vector<double> SoilPhase::material_volumes() const {
 // partly filled cells, so its total (mixture_mass) grows as the interface spreads; energies taken with
 // it would count that growth as potential energy.
 SoilBudget SoilPhase::budget(const FlowSolver& flow) {
+  if (grid_.dimension() == 3) return budget_3d(flow);
   const auto& b = grid_.owned();
   const auto& g = flow_settings_.gravity;
   const double rho_a = settings_.air_density;

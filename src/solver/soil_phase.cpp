@@ -32,7 +32,7 @@ static_assert(rheology::SoilMaterials::max_count == interface::max_materials);
 
 SoilPhase::SoilPhase(const Grid& grid, const FlowSettings& flow, const SoilSettings& settings)
     : grid_(grid), flow_settings_(flow), settings_(settings), ambient_pressure_(ambient_pressure(flow.boundaries)) {
-  if (grid.dimension() == 3) throw std::invalid_argument("SoilPhase: meshes of several layers are not implemented");
+  refuse_what_3d_lacks();
   if (settings.rheology) rheology_.emplace(*settings.rheology);
   auto make = [&] { return std::make_unique<Field>(grid); };
   if (!settings.materials.empty()) {
@@ -72,7 +72,7 @@ SoilPhase::SoilPhase(const Grid& grid, const FlowSettings& flow, const SoilSetti
   stress_ratio_ = make();
   relative_stress_ = make();
   dissipation_ = make();
-  for (int a = 0; a < 2; ++a) {
+  for (int a = 0; a < grid.dimension(); ++a) {
     disp_[a] = make();
     disp_new_[a] = make();
     disp_[a]->set(0.0);
@@ -84,12 +84,13 @@ SoilPhase::SoilPhase(const Grid& grid, const FlowSettings& flow, const SoilSetti
 
 std::vector<Field*> SoilPhase::state_fields() {
   std::vector<Field*> fields{c_.get(), disp_[0].get(), disp_[1].get()};
+  if (disp_[2]) fields.push_back(disp_[2].get());
   for (auto& f : share_) fields.push_back(f.get());
   return fields;
 }
 
 std::string SoilPhase::checkpoint_field_names() const {
-  std::string names = "c displacement_x displacement_y";
+  std::string names = disp_[2] ? "c displacement_x displacement_y displacement_z" : "c displacement_x displacement_y";
   for (const auto& m : settings_.materials) names += " share_" + m.name;
   return names;
 }
@@ -152,6 +153,7 @@ void SoilPhase::restore_state() {
 }
 
 void SoilPhase::initialise() {
+  if (grid_.dimension() == 3) return initialise_3d();
   {
     FieldArray c(grid_.field_dm(), c_->global());
     const interface::ShapeUnion initial_soil(settings_.initial_soil);
@@ -249,6 +251,7 @@ void SoilPhase::fill_fraction_ghosts(Field& f) const {
   const BlockedView mask(grid_, blocked_);
   f.scatter_to_local();
   FieldArray a(grid_.field_dm(), f.local());
+  if (grid_.dimension() == 3) return fill_fraction_side_ghosts(a.volume());  // no obstacles there
   mirror_into_blocked(grid_, mask.data(), a.data(), 1.0);  // an obstacle's walls mirror, as the domain's
   const auto& b = grid_.owned();
   const int nx = grid_.nx(), ny = grid_.ny(), gw = Grid::ghost_width;
@@ -269,7 +272,8 @@ void SoilPhase::fill_fraction_ghosts(Field& f) const {
 }
 
 void SoilPhase::fill_displacement_ghosts() {
-  for (auto& d : disp_) fill_copied_ghosts(grid_, blocked_, *d);
+  for (auto& d : disp_)
+    if (d) fill_copied_ghosts(grid_, blocked_, *d);
 }
 
 }  // namespace granflow

@@ -92,6 +92,7 @@ class SoilPhase {
   Field& soil_fraction() { return *c_; }
   const Field& soil_fraction() const { return *c_; }
   const Field& displacement(int axis) const { return *disp_[axis]; }
+  int dimension() const { return grid_.dimension(); }
   const Field& strain_norm() const { return *strain_norm_; }
   const Field& strain_rate_norm() const { return *rate_norm_; }
   const Field& lode_angle() const { return *lode_; }
@@ -196,12 +197,27 @@ class SoilPhase {
   std::unique_ptr<Field> face_soil_density_[2], soil_mass_through_[2];
   std::unique_ptr<Field> c_, c_tmp_, dilatation_;
   std::unique_ptr<Field> region_[2];  // scratch of soil_region
-  std::unique_ptr<Field> disp_[2], disp_new_[2];
+  std::unique_ptr<Field> disp_[3], disp_new_[3];  // [2] on a mesh of layers
   std::unique_ptr<Field> strain_norm_, rate_norm_, lode_, stress_ratio_, relative_stress_, dissipation_;
   rheology::LodeHistogram lode_rate_, lode_energy_;  // this rank's cells: W and J per bin
   std::unique_ptr<Field> overburden_;  // rho_s g times the soil depth above each centre (Pa)
   std::unique_ptr<ColumnDepth> column_depth_;  // made at the first overburden (collective)
   void compute_overburden(const std::array<double, 3>& gravity);
+  // On a mesh of layers (soil_phase_3d.cpp): the public operations' 3D forms, and what they refuse.
+  void refuse_what_3d_lacks() const;
+  void initialise_3d();
+  void fill_fraction_side_ghosts(double*** c) const;
+  void update_properties_3d(FlowSolver& flow) const;
+  void update_face_viscosity_3d(FlowSolver& flow) const;
+  double interface_courant_3d(const FlowSolver& flow, double dt) const;
+  void advect_3d(const FlowSolver& flow, double dt);
+  void transport_displacement_3d(const FlowSolver& flow, double dt);
+  void compute_diagnostics_3d(const FlowSolver& flow);
+  double compute_dissipation_3d(const FlowSolver& flow);
+  SoilBudget budget_3d(const FlowSolver& flow);
+  template <class F>
+  double largest_over_soil_3d(F&& f) const;
+  double largest_magnitude_3d(const Field* const components[3]) const;
   int sweep_parity_ = 0;
   const Field* blocked_ = nullptr;
   const Field* obstacle_index_ = nullptr;       // with obstacles of their own friction

@@ -67,6 +67,7 @@ std::unique_ptr<ConstFieldArray> SoilPhase::overburden_if_floor() const {
 }
 
 void SoilPhase::update_properties(FlowSolver& flow) const {
+  if (grid_.dimension() == 3) return update_properties_3d(flow);
   const auto& b = grid_.owned();
   ConstFieldArray c(grid_.field_dm(), c_->global());
   ConstFieldArray u = local_read(grid_, flow.velocity(0)), v = local_read(grid_, flow.velocity(1));
@@ -91,6 +92,7 @@ void SoilPhase::update_properties(FlowSolver& flow) const {
 // with the ghost column or row on the low side, so that the operator needs no exchange. Needs the
 // ghosts of c and p (current after the advection and the pressure solve).
 void SoilPhase::update_face_viscosity(FlowSolver& flow) const {
+  if (grid_.dimension() == 3) return update_face_viscosity_3d(flow);
   const auto kind = flow_settings_.numerics.face_viscosity;
   const auto& g = flow_settings_.gravity;
   const bool at_face = settings_.strain_rate == StrainRateAt::face;
@@ -193,9 +195,11 @@ void SoilPhase::compute_overburden(const std::array<double, 3>& gravity) {
     const auto m = share_arrays(false);
     const bool densities = densities_differ();
     const auto& b = grid_.owned();
-    for (int j = b.ys; j < b.ye(); ++j)
-      for (int i = b.xs; i < b.xe(); ++i)
-        o[j][i] = cf[j][i] * grid_.dy(j) * (densities ? cell_soil_density(m, i, j) / settings_.soil_density : 1.0);
+    for (int k = b.zs; k < b.ze(); ++k)
+      for (int j = b.ys; j < b.ye(); ++j)
+        for (int i = b.xs; i < b.xe(); ++i)  // one soil on a mesh of layers (refuse_what_3d_lacks)
+          o.volume()[k][j][i] = cf.volume()[k][j][i] * grid_.dy(j) *
+                                (densities ? cell_soil_density(m, i, j) / settings_.soil_density : 1.0);
   }
   column_depth_->to_centre_depths(*overburden_);
   PetscCallAbort(grid_.comm(), VecScale(overburden_->global(), settings_.soil_density * std::abs(gravity[1])));

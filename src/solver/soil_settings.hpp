@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "models/interface/initial_shapes.hpp"
+#include "models/interface/initial_shapes_3d.hpp"
 #include "models/mixture/mixture_interpolation.hpp"
 #include "models/rheology/parameters.hpp"
 #include "models/rheology/soil_materials.hpp"
@@ -32,6 +33,8 @@ struct SoilSettings {
   mixture::MixtureInterpolation density_mixing;
   mixture::MixtureInterpolation viscosity_mixing;
   std::vector<interface::Shape> initial_soil;
+  // On a mesh of layers: these, and initial_soil's shapes extruded across the whole depth.
+  std::vector<interface::Shape3> initial_soil_3d;
   std::vector<SoilMaterial> materials;  // soils other than the rheology's own, carried with the soil
   // Per initial shape, its soil: 0 the rheology's own, k materials[k - 1]. Where shapes overlap, the
   // last listed holds the point.

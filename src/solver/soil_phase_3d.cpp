@@ -1,0 +1,421 @@
+// The soil phase on a mesh of layers (3D): what soil_phase.cpp, soil_properties.cpp, soil_advection.cpp
+// and soil_diagnostics.cpp do on a planar mesh, for the models a mesh of layers has so far: one soil
+// (no [[soil.materials]]), no obstacles, sides without a friction of their own, and the face's mixture
+// from its two cells (soil.face_fraction = "cells"). The constructor refuses the rest
+// (refuse_what_3d_lacks). The same equations and the same choices as in 2D, each noted where it
+// differs: the soil fraction is carried by the three sweeps of vof_advection_3d.hpp, the displacement
+// has three components, the strain rate and the Euler-Almansi strain are the full 3D tensors.
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <numbers>
+#include <optional>
+#include <stdexcept>
+#include <string>
+
+#include "mesh/axis_views.hpp"
+#include "mesh/face_loop.hpp"
+#include "mesh/gather.hpp"
+#include "mesh/largest.hpp"
+#include "mesh/side_ghosts.hpp"
+#include "models/interface/initial_shapes_3d.hpp"
+#include "models/interface/vof_advection_3d.hpp"
+#include "models/rheology/invariants.hpp"
+#include "models/strain/euler_almansi.hpp"
+#include "operators/face_interpolation.hpp"
+#include "operators/strain_rate.hpp"
+#include "solver/cell_faces.hpp"
+#include "solver/divergence_error.hpp"
+#include "solver/soil_phase.hpp"
+
+namespace granflow {
+
+namespace {
+
+interface::CellWidths3 widths_of(const Grid& g) { return {g.dx_data(), g.dy_data(), g.dz_data()}; }
+
+// Read access to a FlowSolver's per-axis fields (velocity, face velocity, face viscosity), which it
+// hands out one by one.
+class FlowAxisViews {
+ public:
+  template <class Get>
+  FlowAxisViews(const Grid& g, Get get) {
+    for (int a = 0; a < 3; ++a) view[a] = arrays_[a].emplace(g.field_dm(), get(a).local()).volume();
+  }
+  VolumeView view[3] = {};
+  VelocityArrays3 as_velocity() const { return {view[0], view[1], view[2]}; }
+
+ private:
+  std::optional<ConstFieldArray> arrays_[3];
+};
+
+}  // namespace
+
+// What a mesh of layers does not have yet (docs/method.md, "Known limitations").
+void SoilPhase::refuse_what_3d_lacks() const {
+  if (grid_.dimension() != 3) return;
+  auto refuse = [](const std::string& what) {
+    throw std::invalid_argument("SoilPhase: " + what + " on a mesh of layers is not implemented");
+  };
+  if (!settings_.materials.empty()) refuse("[[soil.materials]]");
+  if (settings_.face_fraction == FaceFraction::face) refuse("soil.face_fraction = \"face\"");
+  if (flow_settings_.numerics.quadratic_wall_gradient) refuse("numerics.wall_gradient = \"quadratic\"");
+  for (Side s : box_sides)
+    if (boundary(flow_settings_.boundaries, s).friction) refuse(std::string("a wall friction (") + side_name(s) + " side)");
+}
+
+void SoilPhase::initialise_3d() {
+  // The 3D shapes, and the 2D ones extruded across the whole depth (a planar case's block across a
+  // channel).
+  std::vector<interface::Shape3> shapes = settings_.initial_soil_3d;
+  const double z0 = grid_.spec().lower[2], z1 = grid_.spec().upper[2];
+  for (const auto& s : settings_.initial_soil) shapes.push_back(interface::Extrusion{s, z0, z1});
+  const interface::ShapeUnion3 soil(shapes);
+  {
+    FieldArray c(grid_.field_dm(), c_->global());
+    const auto& b = grid_.owned();
+    for (int k = b.zs; k < b.ze(); ++k)
+      for (int j = b.ys; j < b.ye(); ++j)
+        for (int i = b.xs; i < b.xe(); ++i) {
+          const interface::Point3 lower{grid_.xc(i) - 0.5 * grid_.dx(i), grid_.yc(j) - 0.5 * grid_.dy(j),
+                                        grid_.zc(k) - 0.5 * grid_.dz(k)};
+          c.volume()[k][j][i] =
+              soil.fraction(lower, {lower[0] + grid_.dx(i), lower[1] + grid_.dy(j), lower[2] + grid_.dz(k)});
+        }
+  }
+  fill_fraction_ghosts(*c_);
+}
+
+// Ghosts of c beyond the sides: an atmosphere's hold its inflow fraction, a wall's mirror the cells.
+void SoilPhase::fill_fraction_side_ghosts(double*** c) const {
+  fill_side_ghosts(grid_, c, [&](Side side, double inner, double) {
+    const auto& bc = boundary(flow_settings_.boundaries, side);
+    return bc.kind == BoundaryKind::atmosphere ? bc.inflow_soil_fraction : inner;
+  });
+}
+
+void SoilPhase::update_properties_3d(FlowSolver& flow) const {
+  const auto& b = grid_.owned();
+  const ConstFieldArray c(grid_.field_dm(), c_->global()), p(grid_.field_dm(), flow.pressure().global());
+  const FlowAxisViews vel(grid_, [&](int a) -> const Field& { return flow.velocity(a); });
+  FieldArray rho(grid_.field_dm(), flow.density().global()), mu(grid_.field_dm(), flow.viscosity().global());
+  const auto overburden = overburden_if_floor();
+  for (int k = b.zs; k < b.ze(); ++k)
+    for (int j = b.ys; j < b.ye(); ++j)
+      for (int i = b.xs; i < b.xe(); ++i) {
+        const double cc = c.volume()[k][j][i];
+        rho.volume()[k][j][i] = mixture_density(cc);
+        const double pressure =
+            overburden ? std::max(p.volume()[k][j][i], ambient_pressure_ + overburden->volume()[k][j][i]) : p.volume()[k][j][i];
+        mu.volume()[k][j][i] = mixture_viscosity(cc, pressure, cell_strain_rate(grid_, vel.as_velocity(), i, j, k));
+      }
+}
+
+// As update_face_viscosity in 2D (soil_properties.cpp), with the face's mixture from its two cells.
+void SoilPhase::update_face_viscosity_3d(FlowSolver& flow) const {
+  const auto kind = flow_settings_.numerics.face_viscosity;
+  const auto& g = flow_settings_.gravity;
+  const bool at_face = settings_.strain_rate == StrainRateAt::face;
+  const ConstFieldArray c_array = local_read(grid_, *c_), p_array = local_read(grid_, flow.pressure()),
+                        rho_array = local_read(grid_, flow.density());
+  const VolumeView c = c_array.volume(), p = p_array.volume(), rho = rho_array.volume();
+  const FlowAxisViews vel(grid_, [&](int a) -> const Field& { return flow.velocity(a); });
+  const VelocityArrays3 v = vel.as_velocity();
+  // Face (axis, i, j, k) lies between cell (i, j, k) and its neighbour at +1 along axis.
+  auto face = [&](int axis, int i, int j, int k, double pressure) {
+    const int in = i + (axis == 0), jn = j + (axis == 1), kn = k + (axis == 2);
+    const double c_low = c[k][j][i], c_high = c[kn][jn][in];
+    if (c_low == 0.0 && c_high == 0.0) {  // air on both sides: its viscosity, which reads no strain rate
+      const double air = mixture_viscosity(0.0, pressure, rheology::StrainRate{});
+      return at_face ? air : face_mean(kind, air, air);
+    }
+    if (at_face) {
+      const auto rate = face_strain_rate(grid_, v, axis, i, j, k);
+      if (c_high == c_low) return mixture_viscosity(c_low, pressure, rate);
+      return face_mean(kind, mixture_viscosity(c_low, pressure, rate), mixture_viscosity(c_high, pressure, rate));
+    }
+    return face_mean(kind, mixture_viscosity(c_low, pressure, cell_strain_rate(grid_, v, i, j, k)),
+                     mixture_viscosity(c_high, pressure, cell_strain_rate(grid_, v, in, jn, kn)));
+  };
+  fill_owned_faces_3d(
+      grid_, {&flow.face_viscosity(0), &flow.face_viscosity(1), &flow.face_viscosity(2)},
+      [&](int axis, int i, int j, int k) {
+        const int in = i + (axis == 0), jn = j + (axis == 1), kn = k + (axis == 2);
+        return face(axis, i, j, k, 0.5 * (p[k][j][i] + p[kn][jn][in]));
+      },
+      [&](int axis, int i, int j, int k, int sign) {  // the cell's pressure carried hydrostatically to the wall
+        const double half = 0.5 * sign * grid_.width(axis, index_along(axis, i, j, k));
+        const double pressure = p[k][j][i] + rho[k][j][i] * g[axis] * half;
+        // The face between the ghost and the cell, the ghost's velocity encoding the wall.
+        const int il = i - (sign < 0 && axis == 0), jl = j - (sign < 0 && axis == 1), kl = k - (sign < 0 && axis == 2);
+        const auto rate = at_face ? face_strain_rate(grid_, v, axis, il, jl, kl) : cell_strain_rate(grid_, v, i, j, k);
+        return mixture_viscosity(c[k][j][i], pressure, rate);
+      });
+}
+
+double SoilPhase::interface_courant_3d(const FlowSolver& flow, double dt) const {
+  const FlowAxisViews face(grid_, [&](int a) -> const Field& { return flow.face_velocity(a); });
+  double co = 0.0;
+  for (int axis = 0; axis < 3; ++axis)
+    co = larger_or_nan(co, interface::max_sweep_courant(axis, dt, face.view[axis], widths_of(grid_), grid_.owned()));
+  return mpi_max(grid_.comm(), co);
+}
+
+// The three sweeps of vof_advection_3d.hpp, in as many sub-steps as the sweep's Courant limit needs,
+// over the whole mesh (in 2D the limit is taken only near the soil: soil_region is planar yet).
+void SoilPhase::advect_3d(const FlowSolver& flow, double dt) {
+  const double co = interface_courant_3d(flow, dt);
+  constexpr double max_substeps = 1000, allowance = 1e-9;
+  if (!(co / settings_.interface_courant <= max_substeps))
+    throw DivergenceError(fmt::format("the soil fraction would need {:.3g} sweeps in a step of {:.3g} s: the flow "
+                                      "has diverged (lower time.dt, or let time.adaptive size the step)",
+                                      co / settings_.interface_courant, dt));
+  const int substeps = std::max(1, int(std::ceil(co / settings_.interface_courant - allowance)));
+  const double h = dt / substeps;
+  const auto& b = grid_.owned();
+  const FlowAxisViews face(grid_, [&](int a) -> const Field& { return flow.face_velocity(a); });
+  const interface::DomainCells3 domain{grid_.nx(), grid_.ny(), grid_.nz()};
+  for (int s = 0; s < substeps; ++s) {
+    {
+      const ConstFieldArray c(grid_.field_dm(), c_->local());
+      FieldArray cc(grid_.field_dm(), dilatation_->local());
+      interface::dilatation_indicator(c.volume(), b, cc.volume());
+    }
+    // x y z, then z y x in the next sub-step (Strang's alternation, as x y then y x in 2D): a flow that
+    // does not vary along z is swept as the planar one is.
+    const bool forward = sweep_parity_ == 0;
+    sweep_parity_ = 1 - sweep_parity_;
+    Field* from = c_.get();
+    Field* to = c_tmp_.get();
+    for (int n = 0; n < 3; ++n) {
+      const int axis = forward ? n : 2 - n;
+      {
+        const ConstFieldArray c(grid_.field_dm(), from->local()), cc(grid_.field_dm(), dilatation_->local());
+        FieldArray c_new(grid_.field_dm(), to->global());
+        interface::vof_sweep(axis, h, c.volume(), face.view[axis], cc.volume(), widths_of(grid_), b, c_new.volume(), domain);
+      }
+      fill_fraction_ghosts(*to);
+      std::swap(from, to);
+    }
+    // Three sweeps end in c_tmp_: back to c_.
+    c_->copy_from(*from);
+  }
+}
+
+// Eulerian displacement ([VoF] Eq. 20) with the soil velocity c v: as in 2D (soil_advection.cpp),
+// donor-cell fluxes through all six faces, in as many sweeps as keep it stable.
+void SoilPhase::transport_displacement_3d(const FlowSolver& flow, double dt) {
+  const auto& b = grid_.owned();
+  const ConstFieldArray c_array(grid_.field_dm(), c_->local());
+  const VolumeView c = c_array.volume();
+  const FlowAxisViews face(grid_, [&](int a) -> const Field& { return flow.face_velocity(a); });
+  const FlowAxisViews vel(grid_, [&](int a) -> const Field& { return flow.velocity(a); });
+  const auto faces = cell_faces(3);
+  // Outward soil flux (c v . n A)_f of face fg of cell (i, j, k).
+  auto soil_flux = [&](int i, int j, int k, const FaceGeometry& fg) {
+    const int in = i + fg.di, jn = j + fg.dj, kn = k + fg.dk;
+    const double cf = grid_.outside(in, jn, kn) ? c[k][j][i] : 0.5 * (c[k][j][i] + c[kn][jn][in]);
+    return fg.sign * on_face(face.view, i, j, k, fg) * grid_.face_area(fg.axis, i, j, k, fg.sign) * cf;
+  };
+  double most_out = 0.0;
+  for (int k = b.zs; k < b.ze(); ++k)
+    for (int j = b.ys; j < b.ye(); ++j)
+      for (int i = b.xs; i < b.xe(); ++i) {
+        double out = 0.0;
+        for (const auto& fg : faces) out += std::max(soil_flux(i, j, k, fg), 0.0);
+        most_out = std::max(most_out, out * dt / grid_.volume(i, j, k));
+      }
+  constexpr double most_sweeps = 1000.0;
+  const int sweeps = int(std::clamp(std::ceil(mpi_max(grid_.comm(), most_out) - 1e-12), 1.0, most_sweeps));
+  const double h = dt / sweeps;
+  for (int sweep = 0; sweep < sweeps; ++sweep) {
+    for (int a = 0; a < 3; ++a) {
+      const ConstFieldArray d_array(grid_.field_dm(), disp_[a]->local());
+      const VolumeView d = d_array.volume();
+      FieldArray dn(grid_.field_dm(), disp_new_[a]->global());
+      for (int k = b.zs; k < b.ze(); ++k)
+        for (int j = b.ys; j < b.ye(); ++j)
+          for (int i = b.xs; i < b.xe(); ++i) {
+            double out = 0.0;
+            for (const auto& fg : faces) {
+              const double flux = soil_flux(i, j, k, fg);
+              out += flux * (flux >= 0.0 ? d[k][j][i] : d[k + fg.dk][j + fg.dj][i + fg.di]);
+            }
+            dn.volume()[k][j][i] = d[k][j][i] + h * (c[k][j][i] * vel.view[a][k][j][i] - out / grid_.volume(i, j, k));
+          }
+    }
+    for (int a = 0; a < 3; ++a) PetscCallAbort(grid_.comm(), VecCopy(disp_new_[a]->global(), disp_[a]->global()));
+    fill_displacement_ghosts();
+  }
+}
+
+// ||D|| ([YS] Eq. 8), the Lode angle, the strain norm ([VoF] Eqs. 13-14) and the stress ratios.
+void SoilPhase::compute_diagnostics_3d(const FlowSolver& flow) {
+  const auto& b = grid_.owned();
+  const FlowAxisViews disp(grid_, [&](int a) -> const Field& { return *disp_[a]; });
+  const FlowAxisViews vel(grid_, [&](int a) -> const Field& { return flow.velocity(a); });
+  const ConstFieldArray p(grid_.field_dm(), flow.pressure().global());
+  const auto overburden = overburden_if_floor();
+  FieldArray en(grid_.field_dm(), strain_norm_->global()), rn(grid_.field_dm(), rate_norm_->global()),
+      lo(grid_.field_dm(), lode_->global()), ratio(grid_.field_dm(), stress_ratio_->global()),
+      relative(grid_.field_dm(), relative_stress_->global());
+  for (int k = b.zs; k < b.ze(); ++k)
+    for (int j = b.ys; j < b.ye(); ++j)
+      for (int i = b.xs; i < b.xe(); ++i) {
+        // grad u by central differences: g[a][d] = d u_a / d x_d.
+        strain::DisplacementGradient3 g{};
+        for (int d = 0; d < 3; ++d) {
+          const int di = d == 0, dj = d == 1, dk = d == 2;
+          const int along = index_along(d, i, j, k);
+          const double span = grid_.centre(d, along + 1) - grid_.centre(d, along - 1);
+          for (int a = 0; a < 3; ++a)
+            g.g[a][d] = (disp.view[a][k + dk][j + dj][i + di] - disp.view[a][k - dk][j - dj][i - di]) / span;
+        }
+        strain::AlmansiStrain3 e;
+        strain::almansi_strain(g, e);
+        en.volume()[k][j][i] = strain::deviatoric_norm(e);
+        const auto D = cell_strain_rate(grid_, vel.as_velocity(), i, j, k);
+        rn.volume()[k][j][i] = rheology::norm(rheology::deviatoric(D));
+        lo.volume()[k][j][i] = rheology::lode_angle(D) * 180.0 / std::numbers::pi;
+        const double cell_p = p.volume()[k][j][i];
+        const double pressure =
+            (overburden ? std::max(cell_p, ambient_pressure_ + overburden->volume()[k][j][i]) : cell_p) - ambient_pressure_;
+        ratio.volume()[k][j][i] = rheology_ ? rheology_->stress_ratio_to_drucker_prager(D, pressure) : 1.0;
+        relative.volume()[k][j][i] = rheology_ ? rheology_->relative_shear_stress(D, pressure) : 1.0;
+      }
+}
+
+// The viscous dissipation, face by face as in 2D (soil_diagnostics.cpp): an interior face's work
+// mu_f A d [f_n (dv_n/dn)^2 + sum over tangential c of (dv_c/dn)(dv_c/dn + x dv_n/dx_c)], half to
+// either cell; a wall face's from the two-point wall gradient, all to its cell. Fills dissipation_ and
+// the Lode-binned rates; returns the rank's sum.
+double SoilPhase::compute_dissipation_3d(const FlowSolver& flow) {
+  const auto& b = grid_.owned();
+  const FlowAxisViews vel(grid_, [&](int a) -> const Field& { return flow.velocity(a); });
+  const FlowAxisViews face_mu(grid_, [&](int a) -> const Field& { return flow.face_viscosity(a); });
+  const auto& num = flow_settings_.numerics;
+  const double normal_factor = num.transpose_stress ? 2.0 : 1.0, cross = num.transpose_stress ? 1.0 : 0.0;
+  FieldArray out_array(grid_.field_dm(), dissipation_->global());
+  double*** out = out_array.volume();
+  for (int k = b.zs; k < b.ze(); ++k)
+    for (int j = b.ys; j < b.ye(); ++j)
+      for (int i = b.xs; i < b.xe(); ++i) out[k][j][i] = 0.0;
+  auto owned = [&](int i, int j, int k) {
+    return i >= b.xs && i < b.xe() && j >= b.ys && j < b.ye() && k >= b.zs && k < b.ze();
+  };
+  // The face fg of cell (i, j, k): its work rate.
+  auto face_work = [&](int i, int j, int k, const FaceGeometry& fg) {
+    const int in = i + fg.di, jn = j + fg.dj, kn = k + fg.dk;
+    const double mu_f = on_face(face_mu.view, i, j, k, fg);
+    const double A = grid_.face_area(fg.axis, i, j, k, fg.sign);
+    if (grid_.outside(in, jn, kn)) {
+      const auto& bc = boundary(flow_settings_.boundaries, fg.side);
+      if (bc.kind == BoundaryKind::atmosphere) return 0.0;
+      double work = 0.0;
+      for (int c = 0; c < 3; ++c) {
+        if (bc.kind == BoundaryKind::slip && c != fg.axis) continue;  // no shear on a slip side
+        const double wall = c == fg.axis ? 0.0 : bc.wall_velocity[c];
+        const double gradient = wall_gradient(grid_, vel.view[c], i, j, k, fg, wall, false);
+        work += (c == fg.axis ? normal_factor : 1.0) * mu_f * A * gradient * (vel.view[c][k][j][i] - wall);
+      }
+      return work;
+    }
+    const double d = std::abs(grid_.centre(fg.axis, index_along(fg.axis, in, jn, kn)) -
+                              grid_.centre(fg.axis, index_along(fg.axis, i, j, k)));
+    double sum = 0.0;
+    for (int c = 0; c < 3; ++c) {
+      const double across = (vel.view[c][kn][jn][in] - vel.view[c][k][j][i]) / d;
+      if (c == fg.axis) {
+        sum += normal_factor * across * across;
+        continue;
+      }
+      // d v_n / d x_c: the mean of the two cells' central differences.
+      const int ci = c == 0, cj = c == 1, ck = c == 2;
+      const double span = grid_.centre(c, index_along(c, i, j, k) + 1) - grid_.centre(c, index_along(c, i, j, k) - 1);
+      const VolumeView qn = vel.view[fg.axis];
+      const double along = 0.5 * ((qn[k + ck][j + cj][i + ci] - qn[k - ck][j - cj][i - ci]) +
+                                  (qn[kn + ck][jn + cj][in + ci] - qn[kn - ck][jn - cj][in - ci])) / span;
+      sum += across * (across + cross * along);
+    }
+    return mu_f * A * d * sum;
+  };
+  // Each interior face once from its low cell (and the faces on the block's low sides from the
+  // owned cell above them), half to each owned cell; a boundary face all to its cell.
+  for (int k = b.zs; k < b.ze(); ++k)
+    for (int j = b.ys; j < b.ye(); ++j)
+      for (int i = b.xs; i < b.xe(); ++i)
+        for (const auto& fg : cell_faces(3)) {
+          const int in = i + fg.di, jn = j + fg.dj, kn = k + fg.dk;
+          if (grid_.outside(in, jn, kn)) {
+            out[k][j][i] += face_work(i, j, k, fg);
+          } else if (fg.sign > 0) {
+            const double w = 0.5 * face_work(i, j, k, fg);
+            out[k][j][i] += w;
+            if (owned(in, jn, kn)) out[kn][jn][in] += w;
+          } else if (!owned(in, jn, kn)) {  // a face shared with another rank: its half of it is ours
+            out[k][j][i] += 0.5 * face_work(in, jn, kn, box_faces[2 * fg.axis]);
+          }
+        }
+  std::fill(lode_rate_.values().begin(), lode_rate_.values().end(), 0.0);
+  double rate = 0.0;
+  for (int k = b.zs; k < b.ze(); ++k)
+    for (int j = b.ys; j < b.ye(); ++j)
+      for (int i = b.xs; i < b.xe(); ++i) {
+        rate += out[k][j][i];
+        const double theta = rheology::lode_angle(cell_strain_rate(grid_, vel.as_velocity(), i, j, k));
+        lode_rate_.add(theta * 180.0 / std::numbers::pi, out[k][j][i]);
+      }
+  return rate;
+}
+
+SoilBudget SoilPhase::budget_3d(const FlowSolver& flow) {
+  const auto& b = grid_.owned();
+  const auto& g = flow_settings_.gravity;
+  const double rho_a = settings_.air_density, rho_s = settings_.soil_density;
+  const ConstFieldArray c_array(grid_.field_dm(), c_->global()), rho_array(grid_.field_dm(), flow.density().global());
+  const VolumeView c = c_array.volume(), rho = rho_array.volume();
+  const FlowAxisViews vel(grid_, [&](int a) -> const Field& { return flow.velocity(a); });
+  double s[7] = {0, 0, 0, 0, compute_dissipation_3d(flow), 0, outflow_};
+  for (int k = b.zs; k < b.ze(); ++k)
+    for (int j = b.ys; j < b.ye(); ++j)
+      for (int i = b.xs; i < b.xe(); ++i) {
+        const double V = grid_.volume(i, j, k), cc = c[k][j][i];
+        const double phase_density = rho_s * cc + rho_a * (1.0 - cc);
+        double speed2 = 0.0;
+        for (int a = 0; a < 3; ++a) speed2 += vel.view[a][k][j][i] * vel.view[a][k][j][i];
+        s[0] += cc * V;
+        s[1] += (1.0 - cc) * V;
+        s[2] += 0.5 * phase_density * speed2 * V;
+        s[3] -= phase_density * (g[0] * grid_.xc(i) + g[1] * grid_.yc(j) + g[2] * grid_.zc(k)) * V;
+        s[5] += rho[k][j][i] * V;
+      }
+  double t[7];
+  MPI_Allreduce(s, t, 7, MPI_DOUBLE, MPI_SUM, grid_.comm());
+  return {t[0], t[1], t[2], t[3], t[4], t[5], t[6]};
+}
+
+// The largest of f(i, j, k) over the owned cells with c >= 0.5, over all ranks.
+template <class F>
+double SoilPhase::largest_over_soil_3d(F&& f) const {
+  const ConstFieldArray c(grid_.field_dm(), c_->global());
+  const auto& b = grid_.owned();
+  double largest = 0.0;
+  for (int k = b.zs; k < b.ze(); ++k)
+    for (int j = b.ys; j < b.ye(); ++j)
+      for (int i = b.xs; i < b.xe(); ++i)
+        if (c.volume()[k][j][i] >= 0.5) largest = larger_or_nan(largest, f(i, j, k));
+  return mpi_max(grid_.comm(), largest);
+}
+
+double SoilPhase::largest_magnitude_3d(const Field* const components[3]) const {
+  std::optional<ConstFieldArray> arrays[3];
+  VolumeView q[3];
+  for (int a = 0; a < 3; ++a) q[a] = arrays[a].emplace(grid_.field_dm(), components[a]->global()).volume();
+  return largest_over_soil_3d([&](int i, int j, int k) {
+    return std::sqrt(q[0][k][j][i] * q[0][k][j][i] + q[1][k][j][i] * q[1][k][j][i] + q[2][k][j][i] * q[2][k][j][i]);
+  });
+}
+
+}  // namespace granflow
