@@ -9,8 +9,6 @@
 #include "mesh/face_loop.hpp"
 #include "mesh/field.hpp"
 #include "mesh/grid.hpp"
-#include "solver/flow_solver.hpp"
-#include "solver/soil_phase.hpp"
 
 namespace granflow {
 namespace {
@@ -163,15 +161,6 @@ TEST(GridLayers, TheFaceLoopVisitsEachFaceOfTheCellsOnce) {
           const double expected = along < 0 ? -9.0 : (along + 1 == n[axis] ? -11.0 : 1000.0 * axis + i + 10.0 * j + 100.0 * k);
           EXPECT_EQ(a[axis].volume()[k][j][i], expected) << axis << ": " << i << ", " << j << ", " << k;
         }
-}
-
-// The soil phase is two-dimensional yet: on a mesh of layers it says so at once (what the flow solver
-// refuses there: tests/verification/test_flow_3d.cpp).
-TEST(GridLayers, TheSoilPhaseRefusesAMeshOfLayers) {
-  GridSpec spec;
-  spec.cells = {4, 4, 4};
-  const Grid g(PETSC_COMM_SELF, spec);
-  EXPECT_THROW(SoilPhase(g, FlowSettings{}, SoilSettings{}), std::invalid_argument);
 }
 
 }  // namespace
