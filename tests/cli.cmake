@@ -738,3 +738,11 @@ add_test(NAME cli_stability_restart_continues_the_search
          COMMAND sh ${CMAKE_CURRENT_SOURCE_DIR}/stability_restart.sh $<TARGET_FILE:granflow>
                  ${CMAKE_SOURCE_DIR}/cases/slope_griffiths_lane1999.toml ${CMAKE_CURRENT_BINARY_DIR}/stability_restart)
 set_tests_properties(cli_stability_restart_continues_the_search PROPERTIES LABELS cli TIMEOUT 300)
+
+# A mesh of layers from the case file: the 3D column runs a few steps and writes its fields with three
+# components and z extents, a history without the planar side forces, and its surface as a height map
+# over (x, z); granflow check states its cells and soil volume in m^3; --restart is refused at once.
+add_test(NAME cli_run_a_mesh_of_layers
+         COMMAND sh -c "g=$0; c=$1; d=$2; rm -rf \"$d\"; \"$g\" check \"$c\" | grep -q '(40 x 16 x 40 cells, t_end = 0.5 s. initial soil 0.00314156 m^3)' || exit 1; \"$g\" run \"$c\" -o \"$d\" --set time.end=0.01 --set 'output.times=[0.005]' --set output.progress_seconds=0 > \"$d.log\" 2>&1 || { cat \"$d.log\"; exit 1; }; grep -q 'on 40 x 16 x 40 cells' \"$d.log\" && grep -q 'WholeExtent=\"0 40 0 16 0 40\"' \"$d/fields_00001.vtr\" && head -1 \"$d/history.csv\" | grep -q ',soil_speed$' && test $(grep -c . \"$d/column_height_00002.csv\") -eq 1602 && sed -n 2p \"$d/column_height_00002.csv\" | grep -q '^x,z,height$' && ! test -e \"$d/checkpoint\" && \"$g\" run \"$c\" -o \"$d\" --restart 2>&1 | grep -q 'error: --restart: a mesh of layers writes no checkpoints'"
+                 $<TARGET_FILE:granflow> ${CMAKE_SOURCE_DIR}/cases/lube2004_a05_3d.toml ${CMAKE_CURRENT_BINARY_DIR}/layers_run)
+set_tests_properties(cli_run_a_mesh_of_layers PROPERTIES LABELS cli TIMEOUT 300)

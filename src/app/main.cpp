@@ -154,8 +154,7 @@ int check_case(const std::string& case_file, const std::vector<std::string>& ove
     if (rank == 0) {  // every rank checks the same file alike; one says so
       std::string placed;
       if (c.soil)
-        placed += fmt::format("; initial soil {:.6g} {}", laid_out.soil_volume,
-                              c.mesh.axisymmetric ? "m^3 per radian" : "m^2 per metre of depth");
+        placed += fmt::format("; initial soil {:.6g} {}", laid_out.soil_volume, granflow::volume_unit(c.mesh));
       const auto& volumes = laid_out.material_volumes;
       for (size_t k = 0; k < volumes.size(); ++k)
         placed += fmt::format("{}{} {:.6g}", k == 0 ? ", of which " : ", ",
@@ -168,13 +167,13 @@ int check_case(const std::string& case_file, const std::vector<std::string>& ove
           placed += fmt::format(", which leave out {:.6g} {} of the initial shapes' soil", laid_out.soil_in_obstacles,
                                 c.mesh.axisymmetric ? "m^3 per radian" : "m^2 per metre of depth");
       }
-      fmt::print("{}: valid ({} x {} cells, t_end = {} s{})\n", case_file, c.mesh.cells[0], c.mesh.cells[1], c.time.end,
-                 placed);
+      fmt::print("{}: valid ({} cells, t_end = {} s{})\n", case_file, granflow::cell_counts(c.mesh), c.time.end, placed);
       std::fflush(stdout);  // before the warnings on stderr, also where both go to one file
       for (const auto& line : granflow::case_advice(c)) fmt::print(stderr, "warning: {}\n", line);
     }
     // PETSc's options that the run's solvers would not read, as the run would warn of them at its end.
-    const auto left = granflow::options_left_by_solvers(granflow::solvers_made(c.flow, c.mesh.axisymmetric));
+    const int dimension = c.mesh.cells[2] > 1 ? 3 : 2;
+    const auto left = granflow::options_left_by_solvers(granflow::solvers_made(c.flow, c.mesh.axisymmetric, dimension));
     granflow::warn_unused_petsc_options(rank, &left);
   } catch (const std::exception& e) {
     status = fail(e);

@@ -32,8 +32,10 @@ void check_solver_options(const CaseConfig& c) {
       throw CaseError(fmt::format("{}: solver.{}.{}", c.source.string(), name, problem));
   // The solvers the run makes, as it makes them, under PETSc's options.
   const bool coupled = c.flow.numerics.pressure_coupling == PressureCoupling::coupled;
+  const bool layers = c.mesh.cells[2] > 1;
   const std::pair<const char*, const LinearSolverSettings*> made[] = {
       {"momentum_x", &c.flow.momentum_solver}, {"momentum_y", &c.flow.momentum_solver},
+      {"momentum_z", layers ? &c.flow.momentum_solver : nullptr},
       {"pressure", &c.flow.pressure_solver}, {"coupled", coupled ? &c.flow.coupled_solver : nullptr}};
   for (const auto& [prefix, settings] : made)
     if (settings)
@@ -44,6 +46,9 @@ int run_case(const std::string& case_file, const std::vector<std::string>& overr
              bool restart, bool overwrite) {
   CaseConfig config = load_case(case_file, overrides);
   check_solver_options(config);
+  if (restart && config.mesh.cells[2] > 1)
+    throw CaseError("--restart: a mesh of layers writes no checkpoints yet (output.checkpoints), so there is none to "
+                    "go on from");
   if (out_dir.empty()) out_dir = default_output_directory(case_file, "").string();
   int rank;
   MPI_Comm_rank(PETSC_COMM_WORLD, &rank);
@@ -120,8 +125,8 @@ int run_case(const std::string& case_file, const std::vector<std::string>& overr
     if (rank == 0) remove_left_over_files(out_dir, config.output.lines);
   }
   if (rank == 0)
-    fmt::print("granflow: {} on {} x {} cells {}to t = {} s, output in {}\n", config.title, config.mesh.cells[0],
-               config.mesh.cells[1], restart ? fmt::format("from the checkpoint at t = {:.6g} s ", sim.time()) : "",
+    fmt::print("granflow: {} on {} cells {}to t = {} s, output in {}\n", config.title, cell_counts(config.mesh),
+               restart ? fmt::format("from the checkpoint at t = {:.6g} s ", sim.time()) : "",
                config.time.end, out_dir);
   if (rank == 0)
     for (const auto& line : case_advice(config)) fmt::print(stderr, "warning: {}\n", line);

@@ -1,6 +1,7 @@
 #include "io/case_file.hpp"
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 #include <pthread.h>
 
 #include <algorithm>
@@ -153,8 +154,16 @@ std::optional<rheology::WallFriction> read_wall_friction(TableReader& r, std::ve
   return rheology::WallFriction::from_angle(delta, adhesion);
 }
 
-// two_phase_keys: collects the keys given that only a case with soil uses.
-BoundaryCondition read_boundary(TableReader r, bool& is_axis, std::vector<std::string>& two_phase_keys) {
+// Exactly `count` numbers (a point or a vector of the mesh's dimension), or the fallback.
+std::vector<double> numbers_of_size(TableReader& r, std::string_view key, std::vector<double> fallback, size_t count,
+                                    const char* what) {
+  const auto v = r.numbers(key, std::move(fallback));
+  if (v.size() != count) throw CaseError(fmt::format("{}: expected {} numbers ({}), got {}", r.key_path(key), count, what, v.size()));
+  return v;
+}
+
+// two_phase_keys: collects the keys given that only a case with soil uses; dimension: the mesh's.
+BoundaryCondition read_boundary(TableReader r, bool& is_axis, std::vector<std::string>& two_phase_keys, int dimension) {
   BoundaryCondition bc;
   const std::string type = r.choice("type", "", {"wall", "slip", "symmetry", "atmosphere", "axis", "periodic"});
   is_axis = type == "axis";
@@ -164,8 +173,13 @@ BoundaryCondition read_boundary(TableReader r, bool& is_axis, std::vector<std::s
     bc.kind = BoundaryKind::slip;  // symmetry: u_r = 0, no shear; the face at r = 0 has no area
   } else if (type == "wall") {
     bc.kind = BoundaryKind::wall;
-    const auto velocity = r.pair("velocity", {0.0, 0.0});
-    bc.wall_velocity = {velocity[0], velocity[1], 0.0};
+    if (dimension == 3) {
+      const auto velocity = numbers_of_size(r, "velocity", {0.0, 0.0, 0.0}, 3, "[u, v, w] on a mesh of layers");
+      bc.wall_velocity = {velocity[0], velocity[1], velocity[2]};
+    } else {
+      const auto velocity = r.pair("velocity", {0.0, 0.0});
+      bc.wall_velocity = {velocity[0], velocity[1], 0.0};
+    }
     bc.friction = read_wall_friction(r, two_phase_keys);
   } else if (type == "slip" || type == "symmetry") {
     bc.kind = BoundaryKind::slip;  // a symmetry plane is a slip wall: no normal velocity, no shear
@@ -325,6 +339,41 @@ interface::Shape read_shape(TableReader r, std::string* material = nullptr) {
   return out;
 }
 
+// On a mesh of layers, a shape of its own (interface::Shape3): a box of three-number corners, a sphere,
+// or a vertical cylinder (a granular column); none for a planar shape, which is extruded across the
+// whole depth.
+std::optional<interface::Shape3> read_solid(TableReader r) {
+  const std::string shape = r.choice("shape", "", {"box", "circle", "ring", "polygon", "sphere", "cylinder"});
+  auto point3 = [&](const char* key) {
+    if (!r.has(key)) throw CaseError(r.key_path(key) + ": missing" + r.misspelling_of(key));
+    const auto v = numbers_of_size(r, key, {}, 3, "[x, y, z]");
+    return interface::Point3{v[0], v[1], v[2]};
+  };
+  std::optional<interface::Shape3> out;
+  if (shape == "box" && r.has("lower") && r.numbers("lower", {}).size() == 3) {
+    const interface::Box3 b{point3("lower"), point3("upper")};
+    for (int a = 0; a < 3; ++a)
+      if (!(b.upper[a] > b.lower[a]))
+        throw CaseError(fmt::format("{}.upper: the box is empty (upper must exceed lower in x, y and z)", r.path()));
+    out = b;
+  } else if (shape == "sphere") {
+    const interface::Sphere ball{point3("centre"), r.required_number("radius")};
+    r.require_range("radius", ball.radius, 1e-300, 1e300, "positive");
+    out = ball;
+  } else if (shape == "cylinder") {
+    const auto centre = numbers_of_size(r, "centre", {}, 2, "[x, z] of its vertical axis");
+    const interface::VerticalCylinder column{{centre[0], centre[1]}, r.required_number("radius"),
+                                             r.required_number("bottom"), r.required_number("top")};
+    r.require_range("radius", column.radius, 1e-300, 1e300, "positive");
+    if (!(column.top > column.bottom))
+      throw CaseError(fmt::format("{}: the cylinder is empty (top {} must exceed bottom {})", r.key_path("top"),
+                                  column.top, column.bottom));
+    out = column;
+  }
+  if (out) r.finish();
+  return out;
+}
+
 // One of [[soil.materials]]: a soil of the rheology's regularisation with its own rheology otherwise
 // (each key the rheology's unless given) and density.
 SoilMaterial read_material(TableReader r, const std::optional<rheology::RheologyParameters>& rheology,
@@ -356,7 +405,7 @@ SoilMaterial read_material(TableReader r, const std::optional<rheology::Rheology
 }
 
 // without_effect: collects the keys given that the soil's other choices make of no effect.
-SoilSettings read_soil(TableReader& top, std::vector<std::string>& without_effect) {
+SoilSettings read_soil(TableReader& top, std::vector<std::string>& without_effect, int dimension) {
   SoilSettings s;
   {
     TableReader a = top.table("air");
@@ -440,6 +489,11 @@ SoilSettings read_soil(TableReader& top, std::vector<std::string>& without_effec
     if (!init.present()) throw CaseError("initial: missing table [[initial.soil]] (where the soil starts)" + top.misspelling_of("initial"));
     std::vector<bool> used(s.materials.size(), false);
     for (TableReader shape : init.tables("soil")) {
+      if (dimension == 3)
+        if (auto solid = read_solid(shape)) {
+          s.initial_soil_3d.push_back(*solid);
+          continue;
+        }
       std::string material;
       s.initial_soil.push_back(read_shape(shape, &material));
       int index = 0;
@@ -456,7 +510,8 @@ SoilSettings read_soil(TableReader& top, std::vector<std::string>& without_effec
       }
       s.initial_material.push_back(index);
     }
-    if (s.initial_soil.empty()) throw CaseError("initial.soil: at least one shape is required" + init.misspelling_of("soil"));
+    if (s.initial_soil.empty() && s.initial_soil_3d.empty())
+      throw CaseError("initial.soil: at least one shape is required" + init.misspelling_of("soil"));
     for (size_t k = 0; k < used.size(); ++k)
       if (!used[k])
         throw CaseError(fmt::format("soil.materials[{}]: no initial.soil shape is of material '{}' (give one `material = \"{}\"`)",
@@ -471,47 +526,62 @@ GridSpec read_mesh(TableReader& top) {
   TableReader m = top.table("mesh");
   if (!m.present()) throw CaseError("mesh: missing table [mesh]" + top.misspelling_of("mesh"));
   auto cells = m.numbers("cells", {}, 2);
-  if (cells.size() == 3)
-    throw CaseError("mesh.cells: three counts given, but meshes are two-dimensional, planar or axisymmetric "
-                    "(mesh.geometry); 3D is not implemented");
-  if (cells.size() != 2) throw CaseError("mesh.cells: expected two integers [nx, ny]");
+  if (cells.size() != 2 && cells.size() != 3)
+    throw CaseError("mesh.cells: expected two integers [nx, ny], or three [nx, ny, nz] for a mesh of layers (3D)");
   for (double n : cells) {
     if (n < 1 || n != std::floor(n))
       throw CaseError(fmt::format("mesh.cells: {} is not a positive whole number of cells", n));
     if (n > 1e8) throw CaseError(fmt::format("mesh.cells: {:.0f} cells along an axis, more than 1e8", n));
   }
-  mesh.cells = {int(cells[0]), int(cells[1]), 1};
+  const int dimension = int(cells.size());
+  if (dimension == 3 && cells[2] < 2)
+    throw CaseError("mesh.cells: one cell along z is a planar mesh; give two counts [nx, ny] (a mesh of layers has "
+                    "nz >= 2)");
+  mesh.cells = {int(cells[0]), int(cells[1]), dimension == 3 ? int(cells[2]) : 1};
   // PETSc's indices here are 32-bit; the coupled solve's matrix holds about 3 x 35 entries a cell.
   constexpr double max_cells = 2e7;
-  if (cells[0] * cells[1] > max_cells)
-    throw CaseError(fmt::format("mesh.cells: {} x {} = {:.3g} cells, more than the {:.0e} this build can index",
-                                cells[0], cells[1], cells[0] * cells[1], max_cells));
-  const auto lower = m.pair("lower", {0.0, 0.0}), upper = m.required_pair("upper");
-  mesh.lower = {lower[0], lower[1], 0.0};
-  mesh.upper = {upper[0], upper[1], 1.0};
-  for (int a = 0; a < 2; ++a)
+  const double cell_count = cells[0] * cells[1] * (dimension == 3 ? cells[2] : 1.0);
+  if (cell_count > max_cells)
+    throw CaseError(fmt::format("mesh.cells: {} = {:.3g} cells, more than the {:.0e} this build can index",
+                                fmt::join(cells, " x "), cell_count, max_cells));
+  if (dimension == 3) {
+    const auto lower = numbers_of_size(m, "lower", {0.0, 0.0, 0.0}, 3, "[x, y, z] on a mesh of layers");
+    if (!m.has("upper")) throw CaseError("mesh.upper: missing (the domain's upper corner, [x, y, z])" + m.misspelling_of("upper"));
+    const auto upper = numbers_of_size(m, "upper", {}, 3, "[x, y, z] on a mesh of layers");
+    mesh.lower = {lower[0], lower[1], lower[2]};
+    mesh.upper = {upper[0], upper[1], upper[2]};
+  } else {
+    const auto lower = m.pair("lower", {0.0, 0.0}), upper = m.required_pair("upper");
+    mesh.lower = {lower[0], lower[1], 0.0};
+    mesh.upper = {upper[0], upper[1], 1.0};
+  }
+  constexpr const char* axis_names[3] = {"x", "y", "z"};
+  for (int a = 0; a < dimension; ++a)
     if (!(mesh.upper[a] > mesh.lower[a]))
       throw CaseError(fmt::format("mesh.upper: the domain is empty along {} (upper {} <= lower {})",
-                                  a == 0 ? "x" : "y", mesh.upper[a], mesh.lower[a]));
-  for (int a = 0; a < 2; ++a) {
+                                  axis_names[a], mesh.upper[a], mesh.lower[a]));
+  for (int a = 0; a < dimension; ++a) {
     // Cells narrower than a nanometre are no continuum (a mesh in other units than metres?), and
     // cells far narrower than the coordinates' size lose their faces' positions to round-off.
     const double width = (mesh.upper[a] - mesh.lower[a]) / mesh.cells[a];
     const double reach = std::max(std::abs(mesh.lower[a]), std::abs(mesh.upper[a]));
     if (width < 1e-9)
       throw CaseError(fmt::format("mesh: cells {:.3g} m wide along {}, narrower than a nanometre, where no "
-                                  "continuum model holds (lengths are in metres)", width, a == 0 ? "x" : "y"));
+                                  "continuum model holds (lengths are in metres)", width, axis_names[a]));
     if (width < 1e-9 * reach)
       throw CaseError(fmt::format("mesh: cells {:.3g} m wide along {} at coordinates up to {:.3g} m: fewer than "
                                   "10 significant digits are left for their faces' positions (move mesh.lower "
-                                  "nearer the origin)", width, a == 0 ? "x" : "y", reach));
+                                  "nearer the origin)", width, axis_names[a], reach));
   }
   mesh.axisymmetric = m.choice("geometry", "planar", {"planar", "axisymmetric"}) == "axisymmetric";
+  if (mesh.axisymmetric && dimension == 3)
+    throw CaseError("mesh.geometry: an axisymmetric mesh is one layer (r, z); give two cell counts [nr, nz]");
   if (mesh.axisymmetric && mesh.lower[0] < 0.0)
     throw CaseError(fmt::format("mesh.lower: an axisymmetric mesh needs r >= 0 (x = r), got {}", mesh.lower[0]));
-  const auto grading = m.pair("grading", {1.0, 1.0});
+  const auto grading = dimension == 3 ? numbers_of_size(m, "grading", {1.0, 1.0, 1.0}, 3, "one ratio per axis")
+                                      : numbers_of_size(m, "grading", {1.0, 1.0}, 2, "one ratio per axis");
   for (double g : grading) m.require_range("grading", g, 1e-3, 1e3);
-  mesh.grading = {grading[0], grading[1], 1.0};
+  mesh.grading = {grading[0], grading[1], dimension == 3 ? grading[2] : 1.0};
   m.finish();
   return mesh;
 }
@@ -560,15 +630,22 @@ BoundarySet read_boundaries(TableReader& top, const GridSpec& mesh, std::vector<
   BoundarySet boundaries;
   TableReader b = top.table("boundary");
   if (!b.present()) throw CaseError("boundary: missing table [boundary] (west, east, south, north)" + top.misspelling_of("boundary"));
-  std::vector<TableReader> sides;  // all four read first: a side missing is then not taken for another misspelt
-  for (Side s : planar_sides) sides.push_back(b.table(side_name(s)));
-  for (Side s : planar_sides) {
+  const int dimension = mesh.cells[2] > 1 ? 3 : 2;
+  const auto mesh_sides = sides_of_dimension(dimension);
+  if (dimension == 2)
+    for (Side s : {Side::front, Side::back})
+      if (b.has(side_name(s)))
+        throw CaseError(fmt::format("boundary.{}: a planar mesh has no front and back sides (a mesh of layers has, "
+                                    "mesh.cells = [nx, ny, nz])", side_name(s)));
+  std::vector<TableReader> sides;  // all read first: a side missing is then not taken for another misspelt
+  for (Side s : mesh_sides) sides.push_back(b.table(side_name(s)));
+  for (Side s : mesh_sides) {
     bool is_axis = false;
     TableReader& side = sides[int(s)];
     if (!side.present())
       throw CaseError(fmt::format("{}: missing (every side needs a boundary type){}", side.path(),
                                   b.misspelling_of(side_name(s))));
-    boundaries[int(s)] = read_boundary(side, is_axis, two_phase_keys);
+    boundaries[int(s)] = read_boundary(side, is_axis, two_phase_keys, dimension);
     if (is_axis && !(s == Side::west && mesh.axisymmetric && mesh.lower[0] == 0.0))
       throw CaseError(fmt::format("boundary.{}.type: \"axis\" is the west side at r = 0 of an axisymmetric mesh "
                                   "(mesh.geometry = \"axisymmetric\", mesh.lower[0] = 0)", side_name(s)));
@@ -577,9 +654,9 @@ BoundarySet read_boundaries(TableReader& top, const GridSpec& mesh, std::vector<
   }
   b.finish();
   // Periodic sides come in the west-east pair: flow leaving through one enters through the other.
-  for (Side s : planar_sides) {
+  for (Side s : mesh_sides) {
     if (boundaries[int(s)].kind != BoundaryKind::periodic) continue;
-    if (normal_axis(s) == 1)
+    if (normal_axis(s) != 0)
       throw CaseError(fmt::format("boundary.{}.type: only the west and east sides can be periodic (joined along x)",
                                   side_name(s)));
     const Side other = s == Side::west ? Side::east : Side::west;
@@ -587,7 +664,7 @@ BoundarySet read_boundaries(TableReader& top, const GridSpec& mesh, std::vector<
       throw CaseError(fmt::format("boundary.{}.type: a periodic side needs the opposite side periodic too "
                                   "(boundary.{} = {{ type = \"periodic\" }})", side_name(s), side_name(other)));
   }
-  for (Side s : planar_sides) {
+  for (Side s : mesh_sides) {
     const auto& bc = boundaries[int(s)];
     if (bc.kind == BoundaryKind::wall && bc.wall_velocity[normal_axis(s)] != 0.0)
       throw CaseError(fmt::format("boundary.{}.velocity: a wall cannot move through itself (normal component must be 0)",
@@ -756,10 +833,18 @@ OutputSettings read_output(TableReader& top, const GridSpec& mesh, double end_ti
   if (double(output.times.size()) > max_outputs)
     throw CaseError(fmt::format("output.times: {} times, more than {:.0e} outputs", output.times.size(), max_outputs));
   output.fields = o.boolean("fields", true);
-  output.checkpoints = o.boolean("checkpoints", true);
+  // A checkpoint holds planar fields (io/checkpoint.cpp): none on a mesh of layers.
+  const bool layers = mesh.cells[2] > 1;
+  output.checkpoints = o.boolean("checkpoints", !layers);
+  if (layers && output.checkpoints)
+    throw CaseError("output.checkpoints: not on a mesh of layers yet (its checkpoints would hold planar fields); leave "
+                    "the key out");
   output.progress_seconds = o.number("progress_seconds", 2.0);
   o.require_range("progress_seconds", output.progress_seconds, 0.0, inf, "zero (no progress line) or positive");
-  for (TableReader l : o.tables("line")) output.lines.push_back(read_line_sample(l, mesh, output.lines));
+  for (TableReader l : o.tables("line")) {
+    if (layers) throw CaseError("output.line: line samples are planar yet; a mesh of layers writes its fields (output.fields)");
+    output.lines.push_back(read_line_sample(l, mesh, output.lines));
+  }
   o.finish();
   return output;
 }
@@ -798,9 +883,44 @@ std::string no_area_in_domain(const interface::Shape& shape, const GridSpec& mes
                      mesh.upper[1], outside ? "" : " (less than 1e-12 of it: a shape far smaller than a cell)");
 }
 
+// What a mesh of layers has so far (docs/method.md, "Known limitations"), refused with the key to change.
+void require_what_layers_have(const CaseConfig& c) {
+  if (c.mesh.cells[2] <= 1) return;
+  const auto& num = c.flow.numerics;
+  if (num.pressure_coupling == PressureCoupling::coupled)
+    throw CaseError("numerics.pressure_coupling: the coupled solve is planar yet; a mesh of layers takes \"projection\" "
+                    "(the default there) or \"piso\"");
+  if (c.mesh.periodic_x) throw CaseError("boundary.west.type: periodic sides are planar yet (not on a mesh of layers)");
+  for (Side s : {Side::west, Side::east, Side::front, Side::back})
+    if (boundary(c.flow.boundaries, s).kind == BoundaryKind::atmosphere)
+      throw CaseError(fmt::format("boundary.{}.type: an atmosphere on a side of a mesh of layers is not implemented "
+                                  "yet, only on the top and the bottom (north, south); a wall or a slip wall here",
+                                  side_name(s)));
+  for (Side s : box_sides)
+    if (boundary(c.flow.boundaries, s).friction)
+      throw CaseError(fmt::format("boundary.{}: a wall's friction is planar yet (not on a mesh of layers)", side_name(s)));
+  if (!c.obstacles.empty()) throw CaseError("obstacle: obstacles are planar yet (not on a mesh of layers)");
+  if (num.quadratic_wall_gradient)
+    throw CaseError("numerics.wall_gradient: \"quadratic\" is planar yet; a mesh of layers takes \"two_point\"");
+  if (c.soil && !c.soil->materials.empty())
+    throw CaseError("soil.materials: several soils are planar yet (not on a mesh of layers)");
+  if (c.soil)
+    for (size_t k = 0; k < c.soil->initial_soil_3d.size(); ++k) {
+      const auto [lo, hi] = interface::bounding_box(c.soil->initial_soil_3d[k]);
+      bool inside = true;
+      for (int a = 0; a < 3; ++a) inside = inside && lo[a] < c.mesh.upper[a] && hi[a] > c.mesh.lower[a];
+      if (!inside)
+        throw CaseError(fmt::format("initial.soil: a shape within [{}, {}] x [{}, {}] x [{}, {}] lies outside the "
+                                    "domain [{}, {}] x [{}, {}] x [{}, {}]",
+                                    lo[0], hi[0], lo[1], hi[1], lo[2], hi[2], c.mesh.lower[0], c.mesh.upper[0],
+                                    c.mesh.lower[1], c.mesh.upper[1], c.mesh.lower[2], c.mesh.upper[2]));
+    }
+}
+
 // Rules between tables, once every table is read: shapes within the domain, and what obstacles and
 // the air band need of the rest of the case.
 void require_consistent(const CaseConfig& c) {
+  require_what_layers_have(c);
   if (c.soil) {
     // A shape may reach past the domain (it is clipped), but one wholly outside it holds no soil.
     for (size_t k = 0; k < c.soil->initial_soil.size(); ++k)
@@ -816,7 +936,7 @@ void require_consistent(const CaseConfig& c) {
       throw CaseError(fmt::format("{}: a wall's friction (friction_angle, adhesion) needs soil.yield_pressure = \"face\" "
                                   "(the viscosity is then taken on faces, the wall's among them)", wall));
   };
-  for (Side s : planar_sides)
+  for (Side s : box_sides)
     if (boundary(c.flow.boundaries, s).friction) frictional_wall(fmt::format("boundary.{}", side_name(s)));
   for (size_t k = 0; k < c.obstacle_friction.size(); ++k)
     if (c.obstacle_friction[k]) frictional_wall(fmt::format("obstacle[{}]", k));
@@ -878,8 +998,13 @@ CaseConfig read_case(const toml::table& root, const std::filesystem::path& sourc
   c.time = read_time(top, interface_courant, two_phase_keys, c.keys_without_effect);
   {
     TableReader p = top.table("physics");
-    const auto planar_gravity = p.pair("gravity", {0.0, 0.0});
-    c.flow.gravity = {planar_gravity[0], planar_gravity[1], 0.0};
+    if (c.mesh.cells[2] > 1) {
+      const auto g = numbers_of_size(p, "gravity", {0.0, 0.0, 0.0}, 3, "[gx, gy, gz] on a mesh of layers");
+      c.flow.gravity = {g[0], g[1], g[2]};
+    } else {
+      const auto g = p.pair("gravity", {0.0, 0.0});
+      c.flow.gravity = {g[0], g[1], 0.0};
+    }
     // The flow is the same in every half-plane through the axis: a force along r would point out of
     // each half-plane's own axis in a different direction, which no body force does.
     if (c.mesh.axisymmetric && c.flow.gravity[0] != 0.0)
@@ -890,7 +1015,7 @@ CaseConfig read_case(const toml::table& root, const std::filesystem::path& sourc
   if (top.has("soil")) {
     if (top.has("fluid"))
       throw CaseError("fluid: a two-phase case ([soil] and [air]) takes no [fluid] table (the light phase is [air])");
-    c.soil = read_soil(top, c.keys_without_effect);
+    c.soil = read_soil(top, c.keys_without_effect, c.mesh.cells[2] > 1 ? 3 : 2);
   } else {
     // The tables only a case with soil reads, named as such rather than as unknown.
     for (const char* table : {"air", "mixture", "initial"})
@@ -906,9 +1031,11 @@ CaseConfig read_case(const toml::table& root, const std::filesystem::path& sourc
   // A granular case's coupled solve covers its soil and an air band by default, wide enough for the
   // step's sweeps, where one may be laid (require_consistent): not across periodic sides, nor where
   // the air beyond is not hydrostatic along y.
+  // A mesh of layers has the segregated steps only, the projection by default.
+  const bool layers = c.mesh.cells[2] > 1;
   const bool granular = c.soil && c.soil->rheology;
-  const bool band_allowed = granular && !c.mesh.periodic_x && c.flow.gravity[0] == 0.0;
-  c.flow.numerics = read_numerics(top, granular,
+  const bool band_allowed = granular && !layers && !c.mesh.periodic_x && c.flow.gravity[0] == 0.0;
+  c.flow.numerics = read_numerics(top, granular && !layers,
                                   band_allowed ? std::max(default_air_band, 2 * c.time.interface_substeps + 1) : 0,
                                   c.keys_without_effect);
   read_solvers(top, c.flow);

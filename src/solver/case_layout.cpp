@@ -142,6 +142,19 @@ ObstacleLayout lay_out_obstacles(const Grid& g, const CaseConfig& config, Field&
 }
 
 PlacedSoil initial_soil_placed(const Grid& g, const CaseConfig& config, const Field* mask) {
+  if (g.dimension() == 3) {  // as SoilPhase lays it (soil_phase_3d.cpp); no obstacles there
+    const interface::ShapeUnion3 soil(config.soil->initial_solids(g.spec().lower[2], g.spec().upper[2]));
+    const auto& b = g.owned();
+    double volume = 0.0;
+    for (int k = b.zs; k < b.ze(); ++k)
+      for (int j = b.ys; j < b.ye(); ++j)
+        for (int i = b.xs; i < b.xe(); ++i) {
+          const interface::Point3 lower{g.xc(i) - 0.5 * g.dx(i), g.yc(j) - 0.5 * g.dy(j), g.zc(k) - 0.5 * g.dz(k)};
+          volume += soil.fraction(lower, {lower[0] + g.dx(i), lower[1] + g.dy(j), lower[2] + g.dz(k)}) * g.volume(i, j, k);
+        }
+    MPI_Allreduce(MPI_IN_PLACE, &volume, 1, MPI_DOUBLE, MPI_SUM, g.comm());
+    return {volume, 0.0};
+  }
   const BlockedView blocked(g, mask);
   const interface::ShapeUnion initial_soil(config.soil->initial_soil);
   const auto& b = g.owned();

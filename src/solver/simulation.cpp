@@ -235,9 +235,10 @@ void Simulation::stop_if_diverged(double speed, long steps) {
   const auto f = flow_->fastest_cell();
   const long at_limit = flow_->solves_at_iteration_limit();
   throw DivergenceError(fmt::format("the solution diverged at t = {:.6g} s (step {}): largest speed {} m/s "
-                                    "at x = {:.4g} m, y = {:.4g} m; {}{}",
+                                    "at x = {:.4g} m, y = {:.4g} m{}; {}{}",
                                     time_, steps, std::isnan(f.speed) ? "NaN" : fmt::format("{:.3g}", f.speed), f.x,
-                                    f.y, last_output_kept,
+                                    f.y, grid_->dimension() == 3 ? fmt::format(", z = {:.4g} m", f.z) : std::string(),
+                                    last_output_kept,
                                     at_limit > 0 ? fmt::format(" ({} linear solves had stopped at their "
                                                                "max_iterations)", at_limit)
                                                  : std::string()));
@@ -245,9 +246,9 @@ void Simulation::stop_if_diverged(double speed, long steps) {
 
 // max|dv/dt| / max|v| below time.steady_tolerance, from the velocities before the step (`before`,
 // overwritten with the change).
-bool Simulation::is_steady(OwnedVec (&before)[2], double step_dt, double speed) const {
+bool Simulation::is_steady(OwnedVec (&before)[3], double step_dt, double speed) const {
   double change = 0.0;
-  for (int a = 0; a < 2; ++a) {
+  for (int a = 0; a < grid_->dimension(); ++a) {
     PetscCallAbort(grid_->comm(), VecAXPY(before[a], -1.0, flow_->velocity(a).global()));
     change = larger_or_nan(change, max_abs(grid_->comm(), before[a]));  // NaN is not steady
   }
@@ -266,8 +267,9 @@ RunSummary Simulation::run(const StepObserver& after_step) {
   double dt = !restarted_ ? std::min(tc.dt, tc.max_dt)
                           : (tc.adaptive ? std::min(restart_dt_, tc.max_dt) : std::min(tc.dt, tc.max_dt));
   if (!restarted_) write_output();
-  OwnedVec previous[2];  // freed also when the loop ends in an exception (divergence, an observer that stops the run)
-  for (int a = 0; a < 2; ++a) PetscCallAbort(grid_->comm(), VecDuplicate(flow_->velocity(a).global(), previous[a].put()));
+  OwnedVec previous[3];  // freed also when the loop ends in an exception (divergence, an observer that stops the run)
+  const int components = grid_->dimension();
+  for (int a = 0; a < components; ++a) PetscCallAbort(grid_->comm(), VecDuplicate(flow_->velocity(a).global(), previous[a].put()));
   // Whether the state at hand has been written, and checkpointed: at the start it has been written
   // (just above, or by the run a restart continues), and checkpointed if this is a restart.
   bool output_is_current = true;
@@ -283,7 +285,7 @@ RunSummary Simulation::run(const StepObserver& after_step) {
     double step_dt = dt;
     if (time_ + step_dt > t_land * (1 - 1e-12)) step_dt = t_land - time_;
     else if (time_ + 1.5 * step_dt > t_land) step_dt = 0.5 * (t_land - time_);  // avoid a sliver step
-    for (int a = 0; a < 2; ++a) PetscCallAbort(grid_->comm(), VecCopy(flow_->velocity(a).global(), previous[a]));
+    for (int a = 0; a < components; ++a) PetscCallAbort(grid_->comm(), VecCopy(flow_->velocity(a).global(), previous[a]));
     const StepReport r = take_step(step_dt, summary.retried_steps);
     time_ += step_dt;
     if (soil_) record_history(step_dt);

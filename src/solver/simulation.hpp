@@ -79,6 +79,7 @@ class Simulation {
   void record_history(double dt);
   void update_solve_region();
   void write_history() const;
+  void write_column_heights_3d(const std::vector<double>& c, const std::string& stamp) const;
   void write_soil_lines() const;
   void write_lode_energy() const;
   void write_line_samples(const std::vector<double>& u, const std::vector<double>& v,
@@ -86,7 +87,7 @@ class Simulation {
   double choose_dt(double dt_previous) const;
   StepReport take_step(double& step_dt, long& retried);
   void stop_if_diverged(double speed, long steps);
-  bool is_steady(OwnedVec (&before)[2], double step_dt, double speed) const;
+  bool is_steady(OwnedVec (&before)[3], double step_dt, double speed) const;
   double courant_after(double dt) const;  // flow Courant number of the current velocities over dt
   std::vector<Field*> checkpoint_fields();
   std::string checkpoint_field_names();

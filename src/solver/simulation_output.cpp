@@ -31,26 +31,31 @@ void Simulation::write_output() {
   // The strain norm behind the failure line is a diagnostic: bring it up to date for the soil lines
   // as well as for the fields, which may be switched off.
   if (soil_) soil_->compute_diagnostics(*flow_);
+  const bool layers = g.dimension() == 3;
   auto u = gather_to_root(g, flow_->velocity(0));
   auto v = gather_to_root(g, flow_->velocity(1));
   auto p = gather_to_root(g, flow_->pressure());
+  // Three components as one vector field; the third is zero on a planar mesh.
+  auto vector_of = [&](const std::vector<double>& x, const std::vector<double>& y, const Field* z) {
+    const auto zs = z ? gather_to_root(g, *z) : std::vector<double>();
+    std::vector<double> out(x.size() * 3, 0.0);
+    for (size_t k = 0; k < x.size(); ++k) {
+      out[3 * k] = x[k];
+      out[3 * k + 1] = y[k];
+      if (z) out[3 * k + 2] = zs[k];
+    }
+    return out;
+  };
   if (config_.output.fields) {
     auto rho = gather_to_root(g, flow_->density());
     auto mu = gather_to_root(g, flow_->viscosity());
-    std::vector<double> vel(u.size() * 3, 0.0);
-    for (size_t k = 0; k < u.size(); ++k) {
-      vel[3 * k] = u[k];
-      vel[3 * k + 1] = v[k];
-    }
+    std::vector<double> vel = vector_of(u, v, layers ? &flow_->velocity(2) : nullptr);
     std::vector<CellData> data{{"velocity", 3, vel}, {"pressure", 1, p}, {"density", 1, rho}, {"viscosity", 1, mu}};
     if (blocked_) data.push_back({"obstacle", 1, gather_to_root(g, *blocked_)});  // 1 in a blocked cell
     if (soil_) {
-      auto dx = gather_to_root(g, soil_->displacement(0)), dy = gather_to_root(g, soil_->displacement(1));
-      std::vector<double> disp(dx.size() * 3, 0.0);
-      for (size_t k = 0; k < dx.size(); ++k) {
-        disp[3 * k] = dx[k];
-        disp[3 * k + 1] = dy[k];
-      }
+      std::vector<double> disp = vector_of(gather_to_root(g, soil_->displacement(0)),
+                                           gather_to_root(g, soil_->displacement(1)),
+                                           layers ? &soil_->displacement(2) : nullptr);
       const auto c = gather_to_root(g, soil_->soil_fraction());
       data.push_back({"soil_fraction", 1, c});
       // Each material's volume fraction c m: the soil fraction shared out (the rheology's own soil holds the rest).
@@ -69,8 +74,9 @@ void Simulation::write_output() {
       }
       auto w = gather_to_root(g, soil_->dissipation());  // empty on ranks other than the root
       if (!w.empty())
-        for (int j = 0; j < g.ny(); ++j)
-          for (int i = 0; i < g.nx(); ++i) w[size_t(j) * g.nx() + i] /= g.volume(i, j);
+        for (int k = 0; k < g.nz(); ++k)
+          for (int j = 0; j < g.ny(); ++j)
+            for (int i = 0; i < g.nx(); ++i) w[(size_t(k) * g.ny() + j) * g.nx() + i] /= g.volume(i, j, k);
       data.push_back({"dissipation_rate", 1, w});
     }
     series_->write(g, time_, data);
@@ -134,7 +140,8 @@ void Simulation::write_line_samples(const std::vector<double>& u, const std::vec
 }
 
 namespace {
-// Toe and wall height of the pile from the column heights h(x) = sum_j c dy (gathered on rank 0).
+// Toe and wall height of the pile from the column heights h(x) = sum_j c dy (gathered on rank 0); on
+// a mesh of layers, of the columns h(x, z), the largest over z of each.
 struct PileShape {
   double toe_thickness = 0.0;  // largest x whose column holds at least one cell of soil
   double wall_height = 0.0;    // soil height in the first column
@@ -142,13 +149,21 @@ struct PileShape {
 // wall_column: the first column with an open cell (0 but where obstacles block whole columns at the west).
 PileShape pile_shape(const Grid& g, const std::vector<double>& c, int wall_column) {
   PileShape s;
-  for (int i = 0; i < g.nx(); ++i) {
-    double h = 0.0;
-    for (int j = 0; j < g.ny(); ++j) h += c[size_t(j) * g.nx() + i] * g.dy(j);
-    if (i == wall_column) s.wall_height = h;
-    if (h >= g.dy(0)) s.toe_thickness = g.xf(i);
-  }
+  for (int k = 0; k < g.nz(); ++k)
+    for (int i = 0; i < g.nx(); ++i) {
+      double h = 0.0;
+      for (int j = 0; j < g.ny(); ++j) h += c[(size_t(k) * g.ny() + j) * g.nx() + i] * g.dy(j);
+      if (i == wall_column) s.wall_height = std::max(s.wall_height, h);
+      if (h >= g.dy(0)) s.toe_thickness = std::max(s.toe_thickness, g.xf(i));
+    }
   return s;
+}
+// The layers of a gathered field, one plane [j * nx + i] each (one on a planar mesh).
+std::vector<std::vector<double>> planes_of(const Grid& g, const std::vector<double>& f) {
+  const size_t plane = size_t(g.nx()) * g.ny();
+  std::vector<std::vector<double>> planes;
+  for (int k = 0; k < g.nz(); ++k) planes.emplace_back(f.begin() + long(k * plane), f.begin() + long((k + 1) * plane));
+  return planes;
 }
 double toe_of(const std::vector<Segment>& surface) {
   double toe = 0.0;
@@ -202,16 +217,21 @@ void Simulation::record_history(double dt) {
   dissipated_energy_ += b.dissipation_rate * dt;
   soil_->accumulate_lode_energy(dt);
   const auto c = gather_to_root(*grid_, soil_->soil_fraction());
-  const auto [force, obstacle] = flow_->wall_forces();
+  const bool layers = grid_->dimension() == 3;
+  // The forces on the sides are planar yet: a mesh of layers' history has no columns of them.
+  const FlowSolver::WallForces forces = layers ? FlowSolver::WallForces{} : flow_->wall_forces();
+  const auto& [force, obstacle] = forces;
   soil_speed_ = soil_->largest_speed(*flow_);  // what time.rest_speed reads, once per step
   if (rank_ != 0) return;
   const PileShape shape = pile_shape(*grid_, c, wall_column_);
-  const double toe_contour = toe_of(iso_line(*grid_, c, 0.5, open_square()));
+  double toe_contour = 0.0;  // on a mesh of layers, the furthest of the layers' surfaces
+  for (const auto& plane : planes_of(*grid_, c)) toe_contour = std::max(toe_contour, toe_of(iso_line(*grid_, plane, 0.5, open_square())));
   std::string row = fmt::format("{:.12g},{:.12g},{:.15g},{:.15g},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g},{:.12g},{:.15g},{:.6g}",
                                 time_, dt, b.soil_volume, b.air_volume, b.kinetic_energy, b.potential_energy,
                                 dissipated_energy_, toe_contour, shape.toe_thickness, shape.wall_height, b.mixture_mass,
                                 b.soil_outflow, soil_speed_);
-  for (const auto& f : force) row += fmt::format(",{:.12g},{:.12g}", f[0], f[1]);
+  if (!layers)
+    for (const auto& f : force) row += fmt::format(",{:.12g},{:.12g}", f[0], f[1]);
   if (blocked_) row += fmt::format(",{:.12g},{:.12g}", obstacle[0], obstacle[1]);
   history_.push_back(std::move(row));
 }
@@ -221,7 +241,8 @@ void Simulation::write_history() const {
   write_file_atomically(out_ / "history.csv", [&](std::ostream& out) {
     fmt::print(out, "time,dt,soil_volume,air_volume,kinetic_energy,potential_energy,dissipated_energy,"
                     "toe_contour,toe_one_cell,wall_height,mixture_mass,soil_outflow,soil_speed");
-    for (Side side : planar_sides) fmt::print(out, ",force_{0}_x,force_{0}_y", side_name(side));
+    if (grid_->dimension() == 2)
+      for (Side side : planar_sides) fmt::print(out, ",force_{0}_x,force_{0}_y", side_name(side));
     if (blocked_) fmt::print(out, ",force_obstacle_x,force_obstacle_y");
     fmt::print(out, "\n");
     for (const auto& row : history_) fmt::print(out, "{}\n", row);
@@ -250,6 +271,7 @@ void Simulation::write_soil_lines() const {
   const auto e = gather_to_root(g, soil_->strain_norm());
   if (rank_ != 0) return;
   const std::string stamp = fmt::format("{:05d}", output_index_);
+  if (g.dimension() == 3) return write_column_heights_3d(c, stamp);
   auto write_segments = [&](const std::string& name, const std::vector<Segment>& segs) {
     write_file_atomically(out_ / fmt::format("{}_{}.csv", name, stamp), [&](std::ostream& out) {
       fmt::print(out, "# {} at t = {:.9g} s\nx0,y0,x1,y1\n", name, time_);
@@ -274,6 +296,22 @@ void Simulation::write_soil_lines() const {
       for (int j = 0; j < g.ny(); ++j) h += c[size_t(j) * nx + i] * g.dy(j);
       fmt::print(out, "{:.9g},{:.9g},{:.9g},{:.9g}\n", g.xc(i), h, g.xf(i), g.dy(0));
     }
+  });
+}
+
+// On a mesh of layers: the soil's height over each (x, z) column, the surface as a height map. Its
+// surface and failure line as surfaces are in the fields (a contour of soil_fraction at 0.5, of
+// strain_norm at soil.failure_strain, in ParaView).
+void Simulation::write_column_heights_3d(const std::vector<double>& c, const std::string& stamp) const {
+  const Grid& g = *grid_;
+  write_file_atomically(out_ / fmt::format("column_height_{}.csv", stamp), [&](std::ostream& out) {
+    fmt::print(out, "# soil height per column (sum of c dy) at t = {:.9g} s\nx,z,height\n", time_);
+    for (int k = 0; k < g.nz(); ++k)
+      for (int i = 0; i < g.nx(); ++i) {
+        double h = 0.0;
+        for (int j = 0; j < g.ny(); ++j) h += c[(size_t(k) * g.ny() + j) * g.nx() + i] * g.dy(j);
+        fmt::print(out, "{:.9g},{:.9g},{:.9g}\n", g.xc(i), g.zc(k), h);
+      }
   });
 }
 

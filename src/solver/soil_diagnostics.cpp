@@ -232,17 +232,18 @@ std::vector<double> SoilPhase::material_volumes() const {
   const auto m = share_arrays(false);
   const BlockedView mask(grid_, blocked_);
   std::vector<double> volume(share_.size() + 1, 0.0);
-  for (int j = b.ys; j < b.ye(); ++j)
-    for (int i = b.xs; i < b.xe(); ++i) {
-      if (is_blocked(mask.data(), i, j)) continue;
-      const double soil = c[j][i] * grid_.volume(i, j);
-      double rest = soil;
-      for (size_t k = 0; k < m.size(); ++k) {
-        volume[k + 1] += soil * m[k][j][i];
-        rest -= soil * m[k][j][i];
+  for (int layer = b.zs; layer < b.ze(); ++layer)  // one soil on a mesh of layers, no obstacles
+    for (int j = b.ys; j < b.ye(); ++j)
+      for (int i = b.xs; i < b.xe(); ++i) {
+        if (is_blocked(mask.data(), i, j)) continue;
+        const double soil = c.volume()[layer][j][i] * grid_.volume(i, j, layer);
+        double rest = soil;
+        for (size_t k = 0; k < m.size(); ++k) {
+          volume[k + 1] += soil * m[k][j][i];
+          rest -= soil * m[k][j][i];
+        }
+        volume[0] += rest;
       }
-      volume[0] += rest;
-    }
   MPI_Allreduce(MPI_IN_PLACE, volume.data(), int(volume.size()), MPI_DOUBLE, MPI_SUM, grid_.comm());
   return volume;
 }

@@ -1,7 +1,7 @@
 // The soil phase on a mesh of layers (3D): what soil_phase.cpp, soil_properties.cpp, soil_advection.cpp
 // and soil_diagnostics.cpp do on a planar mesh, for the models a mesh of layers has so far: one soil
-// (no [[soil.materials]]), no obstacles, sides without a friction of their own, and the face's mixture
-// from its two cells (soil.face_fraction = "cells"). The constructor refuses the rest
+// (no [[soil.materials]]), no obstacles, and sides without a friction of their own. The constructor
+// refuses the rest
 // (refuse_what_3d_lacks). The same equations and the same choices as in 2D, each noted where it
 // differs: the soil fraction is carried by the three sweeps of vof_advection_3d.hpp, the displacement
 // has three components, the strain rate and the Euler-Almansi strain are the full 3D tensors.
@@ -22,6 +22,7 @@
 #include "mesh/side_ghosts.hpp"
 #include "models/interface/initial_shapes_3d.hpp"
 #include "models/interface/vof_advection_3d.hpp"
+#include "models/interface/wetted_fraction.hpp"
 #include "models/rheology/invariants.hpp"
 #include "models/strain/euler_almansi.hpp"
 #include "operators/face_interpolation.hpp"
@@ -60,7 +61,6 @@ void SoilPhase::refuse_what_3d_lacks() const {
     throw std::invalid_argument("SoilPhase: " + what + " on a mesh of layers is not implemented");
   };
   if (!settings_.materials.empty()) refuse("[[soil.materials]]");
-  if (settings_.face_fraction == FaceFraction::face) refuse("soil.face_fraction = \"face\"");
   if (flow_settings_.numerics.quadratic_wall_gradient) refuse("numerics.wall_gradient = \"quadratic\"");
   for (Side s : box_sides)
     if (boundary(flow_settings_.boundaries, s).friction) refuse(std::string("a wall friction (") + side_name(s) + " side)");
@@ -69,10 +69,7 @@ void SoilPhase::refuse_what_3d_lacks() const {
 void SoilPhase::initialise_3d() {
   // The 3D shapes, and the 2D ones extruded across the whole depth (a planar case's block across a
   // channel).
-  std::vector<interface::Shape3> shapes = settings_.initial_soil_3d;
-  const double z0 = grid_.spec().lower[2], z1 = grid_.spec().upper[2];
-  for (const auto& s : settings_.initial_soil) shapes.push_back(interface::Extrusion{s, z0, z1});
-  const interface::ShapeUnion3 soil(shapes);
+  const interface::ShapeUnion3 soil(settings_.initial_solids(grid_.spec().lower[2], grid_.spec().upper[2]));
   {
     FieldArray c(grid_.field_dm(), c_->global());
     const auto& b = grid_.owned();
@@ -113,11 +110,12 @@ void SoilPhase::update_properties_3d(FlowSolver& flow) const {
       }
 }
 
-// As update_face_viscosity in 2D (soil_properties.cpp), with the face's mixture from its two cells.
+// As update_face_viscosity in 2D (soil_properties.cpp).
 void SoilPhase::update_face_viscosity_3d(FlowSolver& flow) const {
   const auto kind = flow_settings_.numerics.face_viscosity;
   const auto& g = flow_settings_.gravity;
   const bool at_face = settings_.strain_rate == StrainRateAt::face;
+  const bool face_fraction = settings_.face_fraction == FaceFraction::face;
   const ConstFieldArray c_array = local_read(grid_, *c_), p_array = local_read(grid_, flow.pressure()),
                         rho_array = local_read(grid_, flow.density());
   const VolumeView c = c_array.volume(), p = p_array.volume(), rho = rho_array.volume();
@@ -133,7 +131,8 @@ void SoilPhase::update_face_viscosity_3d(FlowSolver& flow) const {
     }
     if (at_face) {
       const auto rate = face_strain_rate(grid_, v, axis, i, j, k);
-      if (c_high == c_low) return mixture_viscosity(c_low, pressure, rate);
+      // One evaluation at the face's soil fraction; also where both sides hold the same mixture (the bulk).
+      if (face_fraction || c_high == c_low) return mixture_viscosity(0.5 * (c_low + c_high), pressure, rate);
       return face_mean(kind, mixture_viscosity(c_low, pressure, rate), mixture_viscosity(c_high, pressure, rate));
     }
     return face_mean(kind, mixture_viscosity(c_low, pressure, cell_strain_rate(grid_, v, i, j, k)),
@@ -150,8 +149,13 @@ void SoilPhase::update_face_viscosity_3d(FlowSolver& flow) const {
         const double pressure = p[k][j][i] + rho[k][j][i] * g[axis] * half;
         // The face between the ghost and the cell, the ghost's velocity encoding the wall.
         const int il = i - (sign < 0 && axis == 0), jl = j - (sign < 0 && axis == 1), kl = k - (sign < 0 && axis == 2);
-        const auto rate = at_face ? face_strain_rate(grid_, v, axis, il, jl, kl) : cell_strain_rate(grid_, v, i, j, k);
-        return mixture_viscosity(c[k][j][i], pressure, rate);
+        if (!at_face) return mixture_viscosity(c[k][j][i], pressure, cell_strain_rate(grid_, v, i, j, k));
+        // The face's own soil fraction: how much of it the cell's soil covers (a film on the floor
+        // covers all of the floor under it).
+        const double cf = face_fraction ? interface::wetted_side_fraction(c, grid_.dx_data(), grid_.dy_data(),
+                                                                          grid_.dz_data(), i, j, k, axis, sign)
+                                        : c[k][j][i];
+        return mixture_viscosity(cf, pressure, face_strain_rate(grid_, v, axis, il, jl, kl));
       });
 }
 

@@ -41,6 +41,13 @@ struct SoilSettings {
   std::vector<int> initial_material;
   // Whether some material's density is not soil_density: the mixture's density then follows the
   // cells' shares (otherwise the one-density forms run, to the bit).
+  // On a mesh of layers from z_lower to z_upper: every initial shape as a solid, the planar ones
+  // extruded across the whole depth.
+  std::vector<interface::Shape3> initial_solids(double z_lower, double z_upper) const {
+    std::vector<interface::Shape3> solids = initial_soil_3d;
+    for (const auto& s : initial_soil) solids.push_back(interface::Extrusion{s, z_lower, z_upper});
+    return solids;
+  }
   bool materials_differ_in_density() const {
     for (const auto& m : materials)
       if (m.rheology.density != soil_density) return true;

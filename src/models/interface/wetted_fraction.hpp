@@ -17,4 +17,10 @@ namespace granflow::interface {
 double wetted_side_fraction(const double* const* c, const double* dx, const double* dy, int i, int j,
                             int axis, int sign, const double* radius_centre = nullptr);
 
+// The same on a mesh of layers: the area fraction of face (axis, sign) of cell (i, j, k) (axis 2 = z)
+// under the cell's PLIC plane (the mixed Youngs-centred normal of its 3 x 3 x 3 block, read from a
+// ghosted [k][j][i] array).
+double wetted_side_fraction(const double* const* const* c, const double* dx, const double* dy, const double* dz,
+                            int i, int j, int k, int axis, int sign);
+
 }  // namespace granflow::interface

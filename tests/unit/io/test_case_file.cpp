@@ -379,7 +379,6 @@ TEST(CaseFile, MessagesStateTheRuleBroken) {
   EXPECT_NE(error_of(minimal, {"mesh.cells=[100000001, 1]"}).find("more than 1e8"), std::string::npos);
   // An integer beyond what a double holds exactly is still the number it says.
   EXPECT_NE(error_of(minimal, {"mesh.cells=[9223372036854775807, 1]"}).find("more than 1e8"), std::string::npos);
-  EXPECT_NE(error_of(minimal, {"mesh.cells=[8, 8, 8]"}).find("3D is not implemented"), std::string::npos);
   // A step below a nanosecond fails in the solve (V / a_P underflows), so it is refused here.
   for (const char* key : {"time.end=1e-20", "time.dt=1e-12", "time.max_dt=0", "time.end=-1"}) {
     const std::string e = error_of(minimal, {key});
@@ -1019,6 +1018,112 @@ TEST(CaseFile, DeeplyNestedKeyIsReadNotAStackOverflow) {
   for (int i = 0; i < 100000; ++i) key += "a.";
   const std::string e = error_of(std::string(minimal) + "[extra]\n" + key + "b = 1\n");
   EXPECT_NE(e.find("extra: unknown key"), std::string::npos) << e.substr(0, 200);
+}
+
+// A mesh of layers: three cell counts, corners and gradings of three numbers, a front and a back side,
+// gravity and wall velocities of three components, and solids among the initial shapes (planar shapes
+// extruded across the depth). What it does not have yet is refused naming the key.
+const char* layered = R"(
+[mesh]
+cells = [8, 6, 4]
+lower = [0.0, 0.0, -0.2]
+upper = [0.8, 0.6, 0.2]
+grading = [1.0, 1.0, 0.5]
+[time]
+end = 0.1
+[physics]
+gravity = [0.0, -9.81, 0.0]
+[air]
+density = 1.0
+viscosity = 1e-5
+[soil]
+density = 1500.0
+[soil.rheology]
+friction_angle = 30.0
+[[initial.soil]]
+shape = "cylinder"
+centre = [0.2, 0.0]
+radius = 0.1
+bottom = 0.0
+top = 0.2
+[[initial.soil]]
+shape = "box"
+lower = [0.5, 0.0, -0.2]
+upper = [0.8, 0.1, 0.0]
+[[initial.soil]]
+shape = "sphere"
+centre = [0.6, 0.4, 0.1]
+radius = 0.05
+[[initial.soil]]
+shape = "circle"
+centre = [0.0, 0.0]
+radius = 0.1
+[boundary]
+west = { type = "wall" }
+east = { type = "slip" }
+south = { type = "wall", velocity = [0.0, 0.0, 0.1] }
+north = { type = "atmosphere" }
+front = { type = "symmetry" }
+back = { type = "wall" }
+)";
+
+TEST(CaseFile, AMeshOfLayersReadsItsThirdAxis) {
+  const CaseConfig c = parse_case(layered);
+  EXPECT_EQ(c.mesh.cells[2], 4);
+  EXPECT_EQ(c.mesh.lower[2], -0.2);
+  EXPECT_EQ(c.mesh.upper[2], 0.2);
+  EXPECT_EQ(c.mesh.grading[2], 0.5);
+  EXPECT_EQ(c.flow.boundaries[int(Side::front)].kind, BoundaryKind::slip);
+  EXPECT_EQ(c.flow.boundaries[int(Side::back)].kind, BoundaryKind::wall);
+  EXPECT_EQ(c.flow.boundaries[int(Side::south)].wall_velocity[2], 0.1);
+  ASSERT_TRUE(c.soil);
+  ASSERT_EQ(c.soil->initial_soil_3d.size(), 3u);  // the cylinder, the box of three-number corners, the sphere
+  EXPECT_TRUE(std::holds_alternative<interface::VerticalCylinder>(c.soil->initial_soil_3d[0]));
+  EXPECT_TRUE(std::holds_alternative<interface::Box3>(c.soil->initial_soil_3d[1]));
+  EXPECT_TRUE(std::holds_alternative<interface::Sphere>(c.soil->initial_soil_3d[2]));
+  ASSERT_EQ(c.soil->initial_soil.size(), 1u);  // the circle, extruded
+  EXPECT_EQ(c.soil->initial_solids(-0.2, 0.2).size(), 4u);
+  // A granular soil there takes the projection (the coupled solve is planar yet), no air band, and
+  // writes no checkpoints.
+  EXPECT_EQ(c.flow.numerics.pressure_coupling, PressureCoupling::projection);
+  EXPECT_EQ(c.flow.numerics.air_band, 0);
+  EXPECT_FALSE(c.output.checkpoints);
+  EXPECT_EQ(c.soil->face_fraction, FaceFraction::face);
+  EXPECT_EQ(parse_case(layered, {"physics.gravity=[0.0, -9.81, 1.5]"}).flow.gravity[2], 1.5);
+  EXPECT_EQ(cell_counts(c.mesh), "8 x 6 x 4");
+  EXPECT_EQ(std::string(volume_unit(c.mesh)), "m^3");
+}
+
+TEST(CaseFile, AMeshOfLayersRefusesWhatItLacks) {
+  const std::pair<std::vector<std::string>, const char*> refused[] = {
+      {{"mesh.cells=[8, 6, 1]"}, "one cell along z is a planar mesh"},
+      {{"mesh.upper=[0.8, 0.6]"}, "mesh.upper: expected 3 numbers"},
+      {{"mesh.grading=[1.0, 2.0]"}, "mesh.grading: expected 3 numbers"},
+      {{"mesh.geometry=\"axisymmetric\""}, "an axisymmetric mesh is one layer"},
+      {{"physics.gravity=[0.0, -9.81]"}, "physics.gravity: expected 3 numbers"},
+      {{"boundary.south={type=\"wall\", velocity=[0.0, 0.1]}"}, "boundary.south.velocity: expected 3 numbers"},
+      {{"numerics.pressure_coupling=\"coupled\""}, "the coupled solve is planar yet"},
+      {{"boundary.east={type=\"atmosphere\"}"}, "boundary.east.type: an atmosphere on a side of a mesh of layers"},
+      {{"boundary.back={type=\"wall\", friction_angle=20.0}"}, "boundary.back: a wall's friction is planar yet"},
+      {{"numerics.wall_gradient=\"quadratic\""}, "numerics.wall_gradient"},
+      {{"output.checkpoints=true"}, "output.checkpoints: not on a mesh of layers"},
+      {{"output.line=[{name=\"a\", start=[0.0, 0.1], end=[0.5, 0.1]}]"}, "output.line: line samples are planar yet"},
+      {{"obstacle=[{shape=\"box\", lower=[0.0, 0.0], upper=[0.1, 0.1]}]"}, "obstacle: obstacles are planar yet"},
+      {{"initial.soil=[{shape=\"sphere\", centre=[5.0, 5.0, 5.0], radius=0.1}]"}, "lies outside the domain"},
+      {{"initial.soil=[{shape=\"cylinder\", centre=[0.1, 0.0], radius=0.1, bottom=0.2, top=0.1}]"}, "the cylinder is empty"},
+      {{"initial.soil=[{shape=\"box\", lower=[0.0, 0.0, 0.0], upper=[0.1, 0.1]}]"}, "initial.soil[0].upper: expected 3 numbers"},
+  };
+  for (const auto& [overrides, message] : refused) {
+    const std::string e = error_of(layered, overrides);
+    EXPECT_NE(e.find(message), std::string::npos) << overrides.front() << ": " << e;
+  }
+  // The front and back belong to a mesh of layers; a planar one says so.
+  EXPECT_NE(error_of(minimal, {"boundary.front={type=\"wall\"}"}).find("a planar mesh has no front and back sides"),
+            std::string::npos);
+  // A side missing is named.
+  std::string without_back = layered;
+  without_back.erase(without_back.find("back = { type = \"wall\" }"));
+  EXPECT_NE(error_of(without_back).find("boundary.back: missing"), std::string::npos) << error_of(without_back);
 }
 
 }  // namespace
