@@ -891,11 +891,6 @@ void require_what_layers_have(const CaseConfig& c) {
     throw CaseError("numerics.pressure_coupling: the coupled solve is planar yet; a mesh of layers takes \"projection\" "
                     "(the default there) or \"piso\"");
   if (c.mesh.periodic_x) throw CaseError("boundary.west.type: periodic sides are planar yet (not on a mesh of layers)");
-  for (Side s : {Side::west, Side::east, Side::front, Side::back})
-    if (boundary(c.flow.boundaries, s).kind == BoundaryKind::atmosphere)
-      throw CaseError(fmt::format("boundary.{}.type: an atmosphere on a side of a mesh of layers is not implemented "
-                                  "yet, only on the top and the bottom (north, south); a wall or a slip wall here",
-                                  side_name(s)));
   for (Side s : box_sides)
     if (boundary(c.flow.boundaries, s).friction)
       throw CaseError(fmt::format("boundary.{}: a wall's friction is planar yet (not on a mesh of layers)", side_name(s)));

@@ -68,36 +68,48 @@ double atmosphere_pressure(const BoundaryCondition& bc, double hydrostatic_head,
   return p;
 }
 
-// Hydrostatic head of the fluid in the boundary columns of the west and east sides, integrated down
-// from the top like the initial pressure. An open side then carries the weight of what actually lies
-// in its column: soil leaving through it is not pushed back by a column of soil reaching to the top
-// (which the adjacent cell's density would imply), and a layer at rest across it stays at rest.
+// Hydrostatic head of the fluid in the boundary columns of the open upright sides (west and east, and
+// front and back on a mesh of layers), integrated down from the top like the initial pressure. An open
+// side then carries the weight of what actually lies in its column: soil leaving through it is not
+// pushed back by a column of soil reaching to the top (which the adjacent cell's density would
+// imply), and a layer at rest across it stays at rest. A side's columns run along it: one per layer
+// on the west and east sides, one per x on the front and back.
 void FlowSolver::update_boundary_heads() {
-  // Read at an atmosphere on the west or east side only; elsewhere the collective is skipped.
-  const auto open = [&](Side s) { return boundary(settings_.boundaries, s).kind == BoundaryKind::atmosphere; };
-  if (!open(Side::west) && !open(Side::east)) return;
-  const int nx = grid_.nx(), ny = grid_.ny();
+  const int nx = grid_.nx(), ny = grid_.ny(), nz = grid_.nz();
   const auto& b = grid_.owned();
   const double gy = settings_.gravity[1];
-  std::vector<double> rho_column(2 * size_t(ny), 0.0), all(2 * size_t(ny), 0.0);
-  {
-    ConstFieldArray rho(grid_.field_dm(), rho_->global());
-    for (int j = b.ys; j < b.ye(); ++j) {
-      if (b.xs == 0) rho_column[j] = rho[j][0];
-      if (b.xe() == nx) rho_column[ny + j] = rho[j][nx - 1];
+  for (Side s : {Side::west, Side::east, Side::front, Side::back}) {
+    // Read at an atmosphere only; elsewhere the collective is skipped.
+    if (boundary(settings_.boundaries, s).kind != BoundaryKind::atmosphere || !grid_.bounded(s)) continue;
+    const bool along_z = normal_axis(s) == 0;
+    const int columns = along_z ? nz : nx;
+    std::vector<double> rho_column(size_t(columns) * ny, 0.0), all(rho_column.size(), 0.0);
+    if (grid_.owns_boundary(s)) {
+      const ConstFieldArray rho_array(grid_.field_dm(), rho_->global());
+      const VolumeView rho = rho_array.volume();
+      const int at = s == Side::west ? 0 : s == Side::east ? nx - 1 : s == Side::front ? 0 : nz - 1;
+      // The slab of cells next to the side.
+      const int k0 = along_z ? b.zs : at, k1 = along_z ? b.ze() : at + 1;
+      const int i0 = along_z ? at : b.xs, i1 = along_z ? at + 1 : b.xe();
+      for (int k = k0; k < k1; ++k)
+        for (int j = b.ys; j < b.ye(); ++j)
+          for (int i = i0; i < i1; ++i) rho_column[size_t(along_z ? k : i) * ny + j] = rho[k][j][i];
     }
-  }
-  MPI_Allreduce(rho_column.data(), all.data(), 2 * ny, MPI_DOUBLE, MPI_SUM, grid_.comm());
-  for (int s = 0; s < 2; ++s) {
-    const double* r = all.data() + size_t(s) * ny;
-    side_head_[s].resize(ny);
-    hydrostatic_column(grid_, gy, 0.0, [r](int j) { return r[j]; }, side_head_[s]);
+    MPI_Allreduce(rho_column.data(), all.data(), int(all.size()), MPI_DOUBLE, MPI_SUM, grid_.comm());
+    auto& heads = side_head_[static_cast<int>(s)];
+    heads.resize(all.size());
+    std::vector<double> column(ny);
+    for (int n = 0; n < columns; ++n) {
+      const double* r = all.data() + size_t(n) * ny;
+      hydrostatic_column(grid_, gy, 0.0, [r](int j) { return r[j]; }, column);
+      std::copy(column.begin(), column.end(), heads.begin() + long(n) * ny);
+    }
   }
 }
 
-double FlowSolver::boundary_head(Side s, int j, double rho, double y_face) const {
-  if (s == Side::west) return side_head_[0][j];
-  if (s == Side::east) return side_head_[1][j];
+double FlowSolver::boundary_head(Side s, int i, int j, int k, double rho, double y_face) const {
+  if (s != Side::south && s != Side::north)
+    return side_head_[static_cast<int>(s)][size_t(normal_axis(s) == 0 ? k : i) * grid_.ny() + j];
   // The top's head is zero. An open bottom lies under what is beyond it: with the adjacent cell's
   // density soil there took the head of a column of soil up to the top and was held up, as by a floor.
   const double outside = boundary(settings_.boundaries, s).outside_density;
@@ -111,7 +123,7 @@ double FlowSolver::atmosphere_face_pressure(Side s, int i, int j, int k, VolumeV
   const double y_face = grid_.yc(j) + (fg.axis == 1 ? fg.sign * d_half : 0.0);
   double speed2 = 0.0;
   for (int c = 0; c < dimension_; ++c) speed2 += velocity[c][k][j][i] * velocity[c][k][j][i];
-  return atmosphere_pressure(boundary(settings_.boundaries, s), boundary_head(s, j, rho[k][j][i], y_face),
+  return atmosphere_pressure(boundary(settings_.boundaries, s), boundary_head(s, i, j, k, rho[k][j][i], y_face),
                              rho[k][j][i], fg.sign * on_face(face_velocity, i, j, k, fg), speed2);
 }
 

@@ -22,17 +22,13 @@ namespace {
 std::unique_ptr<Field> make_field(const Grid& g) { return std::make_unique<Field>(g); }
 
 
-// What a mesh of layers does not have yet (docs/method.md, "Known limitations"): the coupled solve, a
-// periodic side, and an atmosphere on a side other than the top and the bottom (whose head is per row).
+// What a mesh of layers does not have yet (docs/method.md, "Known limitations"): the coupled solve and
+// a periodic side.
 void refuse_what_3d_lacks(const Grid& grid, const FlowSettings& settings) {
   if (grid.dimension() != 3) return;
   if (settings.numerics.pressure_coupling == PressureCoupling::coupled)
     throw std::invalid_argument("FlowSolver: a mesh of layers takes the segregated steps (projection or PISO), not the coupled solve");
   if (grid.periodic_x()) throw std::invalid_argument("FlowSolver: a mesh of layers with a periodic side is not implemented");
-  for (Side s : {Side::west, Side::east, Side::front, Side::back})
-    if (boundary(settings.boundaries, s).kind == BoundaryKind::atmosphere)
-      throw std::invalid_argument(std::string("FlowSolver: an atmosphere on the ") + side_name(s) +
-                                  " side of a mesh of layers is not implemented (only on the top and the bottom)");
 }
 
 }  // namespace

@@ -153,8 +153,9 @@ class FlowSolver {
   std::vector<Field*> state_fields();  // what a step starts from: velocities, face velocities and forces, p
   std::vector<std::pair<const char*, Field*>> named_state_fields();
   void update_boundary_heads();
-  // Hydrostatic head below the top at an atmosphere face of side s in row j (y_face: the face's height).
-  double boundary_head(Side s, int j, double rho, double y_face) const;
+  // Hydrostatic head below the top at the atmosphere face of side s of cell (i, j, k) (y_face: the
+  // face's height).
+  double boundary_head(Side s, int i, int j, int k, double rho, double y_face) const;
   // The pressure the atmosphere of side s imposes on the boundary face of cell (i, j), from the state
   // in the given local arrays (density, cell velocities, face velocities): p0 plus the head below
   // the top, less rho |v_P|^2 / 2 where it flows in at total pressure.
@@ -249,7 +250,9 @@ class FlowSolver {
   // The atmosphere's pressure on each boundary face as the last coupled system took it, per side
   // along the side (NaN where the system held no row).
   std::array<std::vector<double>, 4> solved_boundary_pressure_;
-  std::vector<double> side_head_[2];  // west, east: hydrostatic head of the boundary column per row
+  // The open upright sides' hydrostatic heads, indexed by Side (south and north unused): [n * ny + j]
+  // for column n along the side (its layer k on west and east, its x index on front and back).
+  std::vector<double> side_head_[6];
   bool has_pressure_boundary_ = false;
   bool pins_pressure_level_ = false;  // the last coupled system held the level in a row (closed domain)
   const Field* blocked_ = nullptr;  // set_blocked

@@ -199,6 +199,7 @@ void SoilPhase::advect_3d(const FlowSolver& flow, double dt) {
         const ConstFieldArray c(grid_.field_dm(), from->local()), cc(grid_.field_dm(), dilatation_->local());
         FieldArray c_new(grid_.field_dm(), to->global());
         interface::vof_sweep(axis, h, c.volume(), face.view[axis], cc.volume(), widths_of(grid_), b, c_new.volume(), domain);
+        outflow_ += interface::boundary_outflow(axis, h, c.volume(), face.view[axis], widths_of(grid_), b, domain);
       }
       fill_fraction_ghosts(*to);
       std::swap(from, to);

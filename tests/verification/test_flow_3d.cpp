@@ -293,14 +293,11 @@ TEST(FlowSolver3d, RefusesWhatAMeshOfLayersLacks) {
   FlowSettings coupled = walls_everywhere();
   coupled.numerics.pressure_coupling = PressureCoupling::coupled;
   refused(coupled, "coupled");
-  FlowSettings open_side = walls_everywhere();
-  open_side.boundaries[int(Side::back)].kind = BoundaryKind::atmosphere;
-  refused(open_side, "back side");
   GridSpec strip = spec;
   strip.periodic_x = true;
   const Grid periodic(PETSC_COMM_SELF, strip);
   EXPECT_THROW(FlowSolver(periodic, walls_everywhere()), std::invalid_argument);
-  FlowSolver flow(g, walls_everywhere());  // walls, slip walls and an open top are what it has
+  FlowSolver flow(g, walls_everywhere());
   Field mask(g);
   mask.set(0.0);
   EXPECT_THROW(flow.set_blocked(&mask), std::invalid_argument);

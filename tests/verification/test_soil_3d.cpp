@@ -129,6 +129,41 @@ TEST(SoilPhase3d, ALayerIndependentWaterColumnIsThePlanarOne) {
   EXPECT_LT(std::abs(layered[3][0]), 1e-11);  // to the pressure solve's divergence (5e-13 in 2D)
 }
 
+// The water column in a shorter channel whose east end is open (an atmosphere): the water leaves
+// through it. On 24 x 24 cells and on 24 x 24 x 3 with slip front and back, to t = 0.2 s: each layer
+// is the planar run (the open side's hydrostatic head taken per layer), the soil that left is the
+// planar run's, and the soil in the domain plus the soil that left is the initial soil to 1e-11.
+TEST(SoilPhase3d, WaterLeavesThroughAnOpenSideAsInThePlanarRun) {
+  auto run = [](int layers) {
+    GridSpec spec;
+    spec.cells = {24, 24, layers};
+    spec.upper = {0.3, 0.3, 0.1};
+    FlowSettings flow = channel_flow();
+    flow.boundaries[int(Side::east)].kind = BoundaryKind::atmosphere;
+    TwoPhaseRun r(spec, flow, water_column());
+    const double volume0 = r.soil.budget(r.flow).soil_volume;
+    for (int step = 0; step < 100; ++step) r.step(2e-3);
+    const SoilBudget b = r.soil.budget(r.flow);
+    const double depth = layers > 1 ? spec.upper[2] : 1.0;
+    return std::vector<std::vector<double>>{gather_to_all(r.grid, r.soil.soil_fraction()),
+                                            {b.soil_outflow / volume0, (b.soil_volume + b.soil_outflow) / volume0 - 1.0,
+                                             b.kinetic_energy / depth}};
+  };
+  const auto planar = run(1), layered = run(3);
+  const size_t plane = planar[0].size();
+  double c_difference = 0.0;
+  for (size_t k = 0; k < 3; ++k)
+    for (size_t n = 0; n < plane; ++n) c_difference = std::max(c_difference, std::abs(layered[0][k * plane + n] - planar[0][n]));
+  std::printf("water leaving through an open side by t = 0.2 s: %.4f of it (planar %.4f); balance %.1e (planar %.1e); "
+              "largest difference of c from the planar run %.2e; kinetic energy per metre %.6g J (planar %.6g)\n",
+              layered[1][0], planar[1][0], layered[1][1], planar[1][1], c_difference, layered[1][2], planar[1][2]);
+  EXPECT_GT(planar[1][0], 0.05);  // a good share of it left
+  EXPECT_NEAR(layered[1][0], planar[1][0], 1e-8);
+  EXPECT_LT(std::abs(layered[1][1]), 1e-11);  // to the pressure solve's divergence, as in the planar run
+  EXPECT_LT(c_difference, 1e-6);
+  EXPECT_NEAR(layered[1][2], planar[1][2], 1e-6 * planar[1][2]);
+}
+
 // Lube et al.'s (2004) column of a = h0 / r0 = 1/2 (cases/lube2004_a05.toml: r0 = 0.2 m, sand at
 // 36.5 degrees), a quarter of it on 20 x 10 x 20 cells of 2 cm about the corner of slip (symmetry)
 // planes x = 0 and z = 0, against the axisymmetric run on 20 x 10 cells of the same size; both under

@@ -118,6 +118,31 @@ void vof_sweep(int axis, double dt, const double* const* const* c, const double*
       }
 }
 
+double boundary_outflow(int axis, double dt, const double* const* const* c, const double* const* const* u,
+                        CellWidths3 w, CellBox o, DomainCells3 domain) {
+  const int n[3] = {domain.nx, domain.ny, domain.nz};
+  const int start[3] = {o.xs, o.ys, o.zs}, end[3] = {o.xe(), o.ye(), o.ze()};
+  double out = 0.0;
+  // The low boundary's faces (index -1 along the axis) and the high one's (n - 1), where owned.
+  for (const int s : {-1, n[axis] - 1}) {
+    if (s == -1 ? start[axis] != 0 : end[axis] != n[axis]) continue;
+    int lo[3] = {start[0], start[1], start[2]}, hi[3] = {end[0], end[1], end[2]};
+    lo[axis] = s;
+    hi[axis] = s + 1;
+    const double sign = s == -1 ? -1.0 : 1.0;  // outward
+    for (int k = lo[2]; k < hi[2]; ++k)
+      for (int j = lo[1]; j < hi[1]; ++j)
+        for (int i = lo[0]; i < hi[0]; ++i) {
+          if (u[k][j][i] == 0.0) continue;
+          const int t1 = axis == 0 ? 1 : 0, t2 = axis == 2 ? 1 : 2;  // the face's two tangential axes
+          const Index p{i, j, k};
+          const double area = w.along(t1)[p[t1]] * w.along(t2)[p[t2]];
+          out += sign * face_flux(c, u[k][j][i], dt, w, p, axis, domain).f * area;
+        }
+  }
+  return out;
+}
+
 void dilatation_indicator(const double* const* const* c, CellBox o, double*** cc) {
   for (int k = o.zs; k < o.ze(); ++k)
     for (int j = o.ys; j < o.ye(); ++j)

@@ -43,6 +43,12 @@ void vof_sweep(int axis, double dt, const double* const* const* c, const double*
                const double* const* const* cc, CellWidths3 widths, CellBox owned, double*** c_new,
                DomainCells3 domain = {});
 
+// Soil volume that the sweep of `axis` carries out of the domain through the boundary faces of the
+// owned cells (negative for inflow): the same face fluxes as vof_sweep given the same domain, so that
+// the soil in the domain plus the outflow of such sweeps is conserved. Needs domain.nx > 0.
+double boundary_outflow(int axis, double dt, const double* const* const* c, const double* const* const* face_velocity,
+                        CellWidths3 widths, CellBox owned, DomainCells3 domain);
+
 // cc = 1 where c > 0.5, else 0, on the owned cells; once per step, before the first sweep.
 void dilatation_indicator(const double* const* const* c, CellBox owned, double*** cc);
 

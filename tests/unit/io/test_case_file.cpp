@@ -1103,7 +1103,6 @@ TEST(CaseFile, AMeshOfLayersRefusesWhatItLacks) {
       {{"physics.gravity=[0.0, -9.81]"}, "physics.gravity: expected 3 numbers"},
       {{"boundary.south={type=\"wall\", velocity=[0.0, 0.1]}"}, "boundary.south.velocity: expected 3 numbers"},
       {{"numerics.pressure_coupling=\"coupled\""}, "the coupled solve is planar yet"},
-      {{"boundary.east={type=\"atmosphere\"}"}, "boundary.east.type: an atmosphere on a side of a mesh of layers"},
       {{"boundary.back={type=\"wall\", friction_angle=20.0}"}, "boundary.back: a wall's friction is planar yet"},
       {{"numerics.wall_gradient=\"quadratic\""}, "numerics.wall_gradient"},
       {{"output.checkpoints=true"}, "output.checkpoints: not on a mesh of layers"},
