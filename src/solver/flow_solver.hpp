@@ -134,22 +134,22 @@ class FlowSolver {
   FastestCell fastest_cell() const;
   // Largest |div v| * V over owned cells, from the face velocities (volumetric imbalance, m^2/s in 2D).
   double max_divergence() const;
-  // Force of the flow on each side of the domain, indexed by Side, summed over ranks (N per metre of
-  // depth; per radian in axisymmetric cases): the pressure and viscous traction on a wall or slip
-  // side, the boundary pressure on an atmosphere side (side_force.cpp). Collective.
-  std::array<std::array<double, 2>, 4> side_forces() const;
+  // Force of the flow on each side of the domain, (x, y, z) indexed by Side, summed over ranks (N per
+  // metre of depth on a planar mesh, per radian in axisymmetric cases, N on a mesh of layers; z and
+  // the front and back 0 on one layer): the pressure and viscous traction on a wall or slip side, the
+  // boundary pressure on an atmosphere side (side_force.cpp). Collective.
+  std::array<std::array<double, 3>, 6> side_forces() const;
   // Force of the flow on the obstacles, all together (N/m), as on a static no-slip wall. Collective.
-  std::array<double, 2> obstacle_force() const;
+  std::array<double, 3> obstacle_force() const;
   // Both at once, in one pass over the faces and one reduction (the history's, every step).
   struct WallForces {
-    std::array<std::array<double, 2>, 4> sides;
-    std::array<double, 2> obstacle;
+    std::array<std::array<double, 3>, 6> sides;
+    std::array<double, 3> obstacle;
   };
   WallForces wall_forces() const;
 
  private:
   void fill_velocity_ghosts();
-  std::array<double, 10> wall_force_sums() const;  // side_forces, then obstacle_force (side_force.cpp)
   std::vector<Field*> state_fields();  // what a step starts from: velocities, face velocities and forces, p
   std::vector<std::pair<const char*, Field*>> named_state_fields();
   void update_boundary_heads();

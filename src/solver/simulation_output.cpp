@@ -217,10 +217,7 @@ void Simulation::record_history(double dt) {
   dissipated_energy_ += b.dissipation_rate * dt;
   soil_->accumulate_lode_energy(dt);
   const auto c = gather_to_root(*grid_, soil_->soil_fraction());
-  const bool layers = grid_->dimension() == 3;
-  // The forces on the sides are planar yet: a mesh of layers' history has no columns of them.
-  const FlowSolver::WallForces forces = layers ? FlowSolver::WallForces{} : flow_->wall_forces();
-  const auto& [force, obstacle] = forces;
+  const auto [force, obstacle] = flow_->wall_forces();
   soil_speed_ = soil_->largest_speed(*flow_);  // what time.rest_speed reads, once per step
   if (rank_ != 0) return;
   const PileShape shape = pile_shape(*grid_, c, wall_column_);
@@ -230,8 +227,11 @@ void Simulation::record_history(double dt) {
                                 time_, dt, b.soil_volume, b.air_volume, b.kinetic_energy, b.potential_energy,
                                 dissipated_energy_, toe_contour, shape.toe_thickness, shape.wall_height, b.mixture_mass,
                                 b.soil_outflow, soil_speed_);
-  if (!layers)
-    for (const auto& f : force) row += fmt::format(",{:.12g},{:.12g}", f[0], f[1]);
+  // (x, y) on the four sides of a planar mesh, (x, y, z) on the six of a mesh of layers.
+  if (grid_->dimension() == 2)
+    for (Side side : planar_sides) row += fmt::format(",{:.12g},{:.12g}", force[int(side)][0], force[int(side)][1]);
+  else
+    for (const auto& f : force) row += fmt::format(",{:.12g},{:.12g},{:.12g}", f[0], f[1], f[2]);
   if (blocked_) row += fmt::format(",{:.12g},{:.12g}", obstacle[0], obstacle[1]);
   history_.push_back(std::move(row));
 }
@@ -243,6 +243,8 @@ void Simulation::write_history() const {
                     "toe_contour,toe_one_cell,wall_height,mixture_mass,soil_outflow,soil_speed");
     if (grid_->dimension() == 2)
       for (Side side : planar_sides) fmt::print(out, ",force_{0}_x,force_{0}_y", side_name(side));
+    else
+      for (Side side : box_sides) fmt::print(out, ",force_{0}_x,force_{0}_y,force_{0}_z", side_name(side));
     if (blocked_) fmt::print(out, ",force_obstacle_x,force_obstacle_y");
     fmt::print(out, "\n");
     for (const auto& row : history_) fmt::print(out, "{}\n", row);

@@ -221,6 +221,10 @@ TEST(FlowSolver3d, ALayerIndependentCavityIsThePlanarOne) {
     for (int step = 0; step < 100; ++step) flow.step(5e-3);
     std::vector<std::vector<double>> velocity;
     for (int c = 0; c < g->dimension(); ++c) velocity.push_back(gather_to_all(*g, flow.velocity(c)));
+    // The forces on the lid and the floor, per metre of depth (the layered mesh is a metre deep).
+    const auto forces = flow.side_forces();
+    velocity.push_back({forces[int(Side::north)][0], forces[int(Side::north)][1], forces[int(Side::south)][0],
+                        forces[int(Side::south)][1], forces[int(Side::front)][2], forces[int(Side::back)][2]});
     return velocity;
   };
   const auto planar = run(1), layered = run(4);
@@ -233,8 +237,16 @@ TEST(FlowSolver3d, ALayerIndependentCavityIsThePlanarOne) {
       for (int c = 0; c < 2; ++c) difference = std::max(difference, std::abs(layered[c][k * plane + n] - planar[c][n]));
       w_largest = std::max(w_largest, std::abs(layered[2][k * plane + n]));
     }
-  std::printf("layer-independent cavity: largest difference from the planar run %.2e, largest |w| %.2e, of %.3f\n",
-              difference, w_largest, scale);
+  std::printf("layer-independent cavity: largest difference from the planar run %.2e, largest |w| %.2e, of %.3f; "
+              "force on the lid (%.9g, %.9g) N against (%.9g, %.9g), on the floor (%.9g, %.9g) against (%.9g, %.9g); "
+              "on the slip front and back %.3g and %.3g N\n",
+              difference, w_largest, scale, layered[3][0], layered[3][1], planar[2][0], planar[2][1], layered[3][2],
+              layered[3][3], planar[2][2], planar[2][3], layered[3][4], layered[3][5]);
+  // The lid's drag and the floor's, viscous and pressure parts, as the planar run's per metre of depth;
+  // the slip front and back carry the pressure, equal and opposite.
+  for (int n = 0; n < 4; ++n) EXPECT_NEAR(layered[3][n], planar[2][n], 1e-6 * std::abs(planar[2][0])) << n;
+  EXPECT_GT(std::abs(planar[2][0]), 1e-3);
+  EXPECT_NEAR(layered[3][4], -layered[3][5], 1e-9 * std::abs(layered[3][4]));
   EXPECT_GT(scale, 0.5);  // the lid's flow is there
   EXPECT_LT(difference, 1e-6 * scale);
   EXPECT_LT(w_largest, 1e-6 * scale);
@@ -265,6 +277,30 @@ TEST(FlowSolver3d, FlatLayersUnderGravityStayAtRest) {
   const std::vector<double> p0 = gather_to_all(g, flow.pressure());
   for (int step = 0; step < 200; ++step) flow.step(1e-3);
   const std::vector<double> p = gather_to_all(g, flow.pressure());
+  // The floor carries the layers' weight, the open top none of it; opposite sides push alike. The
+  // weight as the discrete hydrostatic balance integrates it down a column: half the top cell, the
+  // trapezoidal rule between centres, half the floor cell; on these graded cells with density jumps
+  // it lies 0.11 % above sum rho g V.
+  const auto force = flow.side_forces();
+  double weight = 0.0, trapezoidal = 0.0;
+  const double floor_area = (spec.upper[0] - spec.lower[0]) * (spec.upper[2] - spec.lower[2]);
+  const auto rho_of = [&](int j) { return std::array{2650.0, 1000.0, 1.0}[layer(g.yc(j))]; };
+  for (int j = 0; j < g.ny(); ++j) {
+    weight += rho_of(j) * 9.81 * g.dy(j) * floor_area;
+    const double below = j == 0 ? 0.5 * g.dy(0) * rho_of(0) : 0.5 * (rho_of(j - 1) + rho_of(j)) * (g.yc(j) - g.yc(j - 1));
+    trapezoidal += below * 9.81 * floor_area;
+  }
+  trapezoidal += 0.5 * g.dy(g.ny() - 1) * rho_of(g.ny() - 1) * 9.81 * floor_area;
+  std::printf("flat layers at rest: force on the floor %.9g N against a weight of %.9g N (sum rho g V %.9g N); on "
+              "the west and east sides %.6g and %.6g N, on the front and back %.6g and %.6g N\n",
+              force[int(Side::south)][1], trapezoidal, weight, force[int(Side::west)][0], force[int(Side::east)][0],
+              force[int(Side::front)][2], force[int(Side::back)][2]);
+  EXPECT_NEAR(force[int(Side::south)][1], -trapezoidal, 1e-9 * trapezoidal);
+  EXPECT_NEAR(trapezoidal, weight, 2e-3 * weight);
+  EXPECT_LT(std::abs(force[int(Side::north)][1]), 1e-9 * trapezoidal);
+  EXPECT_GT(force[int(Side::east)][0], 0.0);
+  EXPECT_NEAR(force[int(Side::west)][0], -force[int(Side::east)][0], 1e-12 * force[int(Side::east)][0]);
+  EXPECT_NEAR(force[int(Side::front)][2], -force[int(Side::back)][2], 1e-12 * force[int(Side::back)][2]);
   double p_scale = 0.0, p_change = 0.0;
   for (size_t n = 0; n < p.size(); ++n) {
     p_scale = std::max(p_scale, std::abs(p0[n]));

@@ -33,8 +33,9 @@ Collapse collapse(std::vector<std::string> overrides) {
   o.u = gather_to_root(sim.grid(), sim.flow().velocity(0));
   o.v = gather_to_root(sim.grid(), sim.flow().velocity(1));
   const auto sides = sim.flow().side_forces();
-  o.forces.assign(sides.begin(), sides.end());
-  o.forces.push_back(sim.flow().obstacle_force());
+  for (Side side : planar_sides) o.forces.push_back({sides[int(side)][0], sides[int(side)][1]});
+  const auto obstacle = sim.flow().obstacle_force();
+  o.forces.push_back({obstacle[0], obstacle[1]});
   const SoilBudget b = sim.soil()->budget(sim.flow());
   o.kinetic = b.kinetic_energy;
   o.volume_error = std::abs(s.soil_volume_error);

@@ -133,7 +133,7 @@ InclineResult slide_on_incline(double theta, double end, const std::string& bed 
   InclineResult r{sim.time(), 0.0};
   if (test::is_root()) r.mean_velocity = mean_soil_velocity(grid, c, u, 0.16, 0.24);
   const auto force = sim.flow().side_forces();
-  r.bed_force = force[static_cast<int>(Side::south)];
+  r.bed_force = {force[static_cast<int>(Side::south)][0], force[static_cast<int>(Side::south)][1]};
   for (const auto& f : force)
     for (int c = 0; c < 2; ++c) r.sides_force[c] += f[c];
   r.mass = sim.soil()->budget(sim.flow()).mixture_mass;
