@@ -172,7 +172,7 @@ int check_case(const std::string& case_file, const std::vector<std::string>& ove
       for (const auto& line : granflow::case_advice(c)) fmt::print(stderr, "warning: {}\n", line);
     }
     // PETSc's options that the run's solvers would not read, as the run would warn of them at its end.
-    const int dimension = c.mesh.cells[2] > 1 ? 3 : 2;
+    const int dimension = c.mesh.dimension();
     const auto left = granflow::options_left_by_solvers(granflow::solvers_made(c.flow, c.mesh.axisymmetric, dimension));
     granflow::warn_unused_petsc_options(rank, &left);
   } catch (const std::exception& e) {

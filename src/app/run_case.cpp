@@ -32,7 +32,7 @@ void check_solver_options(const CaseConfig& c) {
       throw CaseError(fmt::format("{}: solver.{}.{}", c.source.string(), name, problem));
   // The solvers the run makes, as it makes them, under PETSc's options.
   const bool coupled = c.flow.numerics.pressure_coupling == PressureCoupling::coupled;
-  const bool layers = c.mesh.cells[2] > 1;
+  const bool layers = c.mesh.dimension() == 3;
   const std::pair<const char*, const LinearSolverSettings*> made[] = {
       {"momentum_x", &c.flow.momentum_solver}, {"momentum_y", &c.flow.momentum_solver},
       {"momentum_z", layers ? &c.flow.momentum_solver : nullptr},
@@ -46,7 +46,7 @@ int run_case(const std::string& case_file, const std::vector<std::string>& overr
              bool restart, bool overwrite) {
   CaseConfig config = load_case(case_file, overrides);
   check_solver_options(config);
-  if (restart && config.mesh.cells[2] > 1)
+  if (restart && config.mesh.dimension() == 3)
     throw CaseError("--restart: a mesh of layers writes no checkpoints yet (output.checkpoints), so there is none to "
                     "go on from");
   if (out_dir.empty()) out_dir = default_output_directory(case_file, "").string();

@@ -16,10 +16,12 @@ std::vector<std::string> case_advice(const CaseConfig& config) {
   // Valid values that are most often a slip in a granular case (a Newtonian pair of fluids may be
   // driven by its walls, or light): no gravity, gravity upwards, grams per cubic centimetre, radians.
   const auto& g = config.flow.gravity;
-  if (g[0] == 0.0 && g[1] == 0.0)
-    advice.push_back("physics.gravity is [0, 0] (the default without [physics]): the soil has no weight");
+  const bool layers = config.mesh.dimension() == 3;
+  const std::string given = layers ? fmt::format("[{}, {}, {}]", g[0], g[1], g[2]) : fmt::format("[{}, {}]", g[0], g[1]);
+  if (g[0] == 0.0 && g[1] == 0.0 && g[2] == 0.0)
+    advice.push_back(fmt::format("physics.gravity is {} (the default without [physics]): the soil has no weight", given));
   else if (g[1] > 0.0)
-    advice.push_back(fmt::format("physics.gravity = [{}, {}] points up (+y): the soil falls towards the top", g[0], g[1]));
+    advice.push_back(fmt::format("physics.gravity = {} points up (+y): the soil falls towards the top", given));
   if (config.soil->soil_density < 100.0)
     advice.push_back(fmt::format("soil.density = {} kg/m^3 is lighter than any soil (a density in g/cm^3 is 1000 times "
                                  "smaller than in kg/m^3)", config.soil->soil_density));
@@ -52,7 +54,7 @@ std::vector<std::string> case_advice(const CaseConfig& config) {
   auto wall_radians = [&](const std::optional<rheology::WallFriction>& friction, const std::string& wall) {
     if (friction) radians_hint(friction->friction_angle_degrees, wall + ".friction_angle");
   };
-  for (Side side : planar_sides)
+  for (Side side : sides_of_dimension(layers ? 3 : 2))
     wall_radians(boundary(config.flow.boundaries, side).friction, fmt::format("boundary.{}", side_name(side)));
   for (size_t k = 0; k < config.obstacle_friction.size(); ++k)
     wall_radians(config.obstacle_friction[k], fmt::format("obstacle[{}]", k));
@@ -62,7 +64,7 @@ std::vector<std::string> case_advice(const CaseConfig& config) {
   const bool exponential = config.soil->rheology->regularisation == rheology::Regularisation::exponential;
   const bool holds_rest = config.flow.numerics.pressure_coupling == PressureCoupling::coupled &&
                           config.soil->face_fraction == FaceFraction::face;
-  if (exponential && !holds_rest)
+  if (exponential && !holds_rest && !layers)  // a mesh of layers has no coupled solve yet
     advice.push_back(fmt::format(
         "soil.rheology.regularisation = \"exponential\" with numerics.pressure_coupling = \"{}\" and "
         "soil.face_fraction = \"{}\": a pile may not come to rest next to air. Soil at the exponential "

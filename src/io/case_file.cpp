@@ -630,7 +630,7 @@ BoundarySet read_boundaries(TableReader& top, const GridSpec& mesh, std::vector<
   BoundarySet boundaries;
   TableReader b = top.table("boundary");
   if (!b.present()) throw CaseError("boundary: missing table [boundary] (west, east, south, north)" + top.misspelling_of("boundary"));
-  const int dimension = mesh.cells[2] > 1 ? 3 : 2;
+  const int dimension = mesh.dimension();
   const auto mesh_sides = sides_of_dimension(dimension);
   if (dimension == 2)
     for (Side s : {Side::front, Side::back})
@@ -834,7 +834,7 @@ OutputSettings read_output(TableReader& top, const GridSpec& mesh, double end_ti
     throw CaseError(fmt::format("output.times: {} times, more than {:.0e} outputs", output.times.size(), max_outputs));
   output.fields = o.boolean("fields", true);
   // A checkpoint holds planar fields (io/checkpoint.cpp): none on a mesh of layers.
-  const bool layers = mesh.cells[2] > 1;
+  const bool layers = mesh.dimension() == 3;
   output.checkpoints = o.boolean("checkpoints", !layers);
   if (layers && output.checkpoints)
     throw CaseError("output.checkpoints: not on a mesh of layers yet (its checkpoints would hold planar fields); leave "
@@ -885,7 +885,7 @@ std::string no_area_in_domain(const interface::Shape& shape, const GridSpec& mes
 
 // What a mesh of layers has so far (docs/method.md, "Known limitations"), refused with the key to change.
 void require_what_layers_have(const CaseConfig& c) {
-  if (c.mesh.cells[2] <= 1) return;
+  if (c.mesh.dimension() == 2) return;
   const auto& num = c.flow.numerics;
   if (num.pressure_coupling == PressureCoupling::coupled)
     throw CaseError("numerics.pressure_coupling: the coupled solve is planar yet; a mesh of layers takes \"projection\" "
@@ -993,7 +993,7 @@ CaseConfig read_case(const toml::table& root, const std::filesystem::path& sourc
   c.time = read_time(top, interface_courant, two_phase_keys, c.keys_without_effect);
   {
     TableReader p = top.table("physics");
-    if (c.mesh.cells[2] > 1) {
+    if (c.mesh.dimension() == 3) {
       const auto g = numbers_of_size(p, "gravity", {0.0, 0.0, 0.0}, 3, "[gx, gy, gz] on a mesh of layers");
       c.flow.gravity = {g[0], g[1], g[2]};
     } else {
@@ -1010,7 +1010,7 @@ CaseConfig read_case(const toml::table& root, const std::filesystem::path& sourc
   if (top.has("soil")) {
     if (top.has("fluid"))
       throw CaseError("fluid: a two-phase case ([soil] and [air]) takes no [fluid] table (the light phase is [air])");
-    c.soil = read_soil(top, c.keys_without_effect, c.mesh.cells[2] > 1 ? 3 : 2);
+    c.soil = read_soil(top, c.keys_without_effect, c.mesh.dimension());
   } else {
     // The tables only a case with soil reads, named as such rather than as unknown.
     for (const char* table : {"air", "mixture", "initial"})
@@ -1027,7 +1027,7 @@ CaseConfig read_case(const toml::table& root, const std::filesystem::path& sourc
   // step's sweeps, where one may be laid (require_consistent): not across periodic sides, nor where
   // the air beyond is not hydrostatic along y.
   // A mesh of layers has the segregated steps only, the projection by default.
-  const bool layers = c.mesh.cells[2] > 1;
+  const bool layers = c.mesh.dimension() == 3;
   const bool granular = c.soil && c.soil->rheology;
   const bool band_allowed = granular && !layers && !c.mesh.periodic_x && c.flow.gravity[0] == 0.0;
   c.flow.numerics = read_numerics(top, granular && !layers,

@@ -57,11 +57,11 @@ struct PhaseSettings {
 
 // The mesh's cell counts as text ("300 x 100", "40 x 20 x 10"), and the unit its volumes are in.
 inline std::string cell_counts(const GridSpec& mesh) {
-  return mesh.cells[2] > 1 ? fmt::format("{} x {} x {}", mesh.cells[0], mesh.cells[1], mesh.cells[2])
+  return mesh.dimension() == 3 ? fmt::format("{} x {} x {}", mesh.cells[0], mesh.cells[1], mesh.cells[2])
                            : fmt::format("{} x {}", mesh.cells[0], mesh.cells[1]);
 }
 inline const char* volume_unit(const GridSpec& mesh) {
-  return mesh.cells[2] > 1 ? "m^3" : mesh.axisymmetric ? "m^3 per radian" : "m^2 per metre of depth";
+  return mesh.dimension() == 3 ? "m^3" : mesh.axisymmetric ? "m^3 per radian" : "m^2 per metre of depth";
 }
 
 struct CaseConfig {

@@ -3,6 +3,7 @@
 // components, the faces normal to each axis): view[a] for the first `count` axes, null beyond.
 #include <memory>
 #include <optional>
+#include <type_traits>
 
 #include "mesh/field.hpp"
 
@@ -17,6 +18,12 @@ class AxisViews {
   }
   // One per axis of the mesh.
   AxisViews(const Grid& g, const std::unique_ptr<Field> (&fields)[3]) : AxisViews(g, fields, g.dimension()) {}
+  // The local arrays of field(a) for each axis a of the mesh (a class's fields handed out one by one).
+  template <class Get>
+    requires std::is_invocable_r_v<const Field&, Get, int>
+  AxisViews(const Grid& g, Get field) {
+    for (int a = 0; a < g.dimension(); ++a) view[a] = arrays_[a].emplace(g.field_dm(), field(a).local()).volume();
+  }
   AxisViews(const AxisViews&) = delete;
   AxisViews& operator=(const AxisViews&) = delete;
 

@@ -63,6 +63,8 @@ struct GridSpec {
   // The west and east sides joined (an infinite strip, e.g. a uniform flow down a slope): the cell
   // beyond the east side is the first cell, and ghosts along x are the other end's cells.
   bool periodic_x = false;
+  // 2 for one layer along z (planar or axisymmetric), 3 for a mesh of layers.
+  int dimension() const { return cells[2] > 1 ? 3 : 2; }
 };
 
 // The mesh cannot be laid out as asked (too many ranks for its cells); thrown on every rank alike.
@@ -88,7 +90,7 @@ class Grid {
   int ny() const { return spec_.cells[1]; }
   int nz() const { return spec_.cells[2]; }
   // 2 for a planar or axisymmetric mesh (one layer along z), 3 otherwise.
-  int dimension() const { return nz() > 1 ? 3 : 2; }
+  int dimension() const { return spec_.dimension(); }
   long cell_count() const { return long(nx()) * ny() * nz(); }
   const GridSpec& spec() const { return spec_; }
   const CellBox& owned() const { return owned_; }
@@ -124,10 +126,6 @@ class Grid {
   double face_area(int axis, int i, int j, double sign) const {
     assert(dimension() == 2 && axis < 2);
     return axis == 0 ? dy(j) * radius_f(sign > 0 ? i : i - 1) : dx(i) * radius_c(i);
-  }
-  // Area of a face normal to `axis` of cell (i, j, k) of a 3D mesh.
-  double face_area_3d(int axis, int i, int j, int k) const {
-    return axis == 0 ? dy(j) * dz(k) : (axis == 1 ? dx(i) * dz(k) : dx(i) * dy(j));
   }
   // Area of the face of cell (i, j, k) normal to `axis` on its high (sign > 0) or low side, on a mesh
   // of any dimension; on one layer it is face_area(axis, i, j, sign) to the bit.

@@ -20,11 +20,11 @@ CaseError case_error(const CaseConfig& config, const std::string& text) {
 
 CaseError no_initial_soil(const CaseConfig& config, const Grid& g, bool obstacles) {
   if (obstacles)
-    return case_error(config, fmt::format("initial.soil: the shapes place no soil in any open cell on this {} x {} mesh "
+    return case_error(config, fmt::format("initial.soil: the shapes place no soil in any open cell on this {} mesh "
                                           "(what they cover lies in the obstacles' blocked cells, or a shape is far "
-                                          "smaller than a cell)", g.nx(), g.ny()));
-  return case_error(config, fmt::format("initial.soil: the shapes cover no part of any cell's samples on this {} x {} "
-                                        "mesh (a shape far smaller than a cell)", g.nx(), g.ny()));
+                                          "smaller than a cell)", cell_counts(g.spec())));
+  return case_error(config, fmt::format("initial.soil: the shapes cover no part of any cell's samples on this {} "
+                                        "mesh (a shape far smaller than a cell)", cell_counts(g.spec())));
 }
 
 // Each soil material holds some soil once the shapes are laid out: one whose shapes all lie under

@@ -129,6 +129,12 @@ FlowSolver::~FlowSolver() = default;
 void FlowSolver::set_blocked(const Field* mask) {
   if (mask && dimension_ == 3) throw std::invalid_argument("FlowSolver: obstacles on a mesh of layers are not implemented");
   blocked_ = mask;
+  if (!mask) {  // every cell open; the closed domain's level held in the top-left cell, as constructed
+    open_cells_ = grid_.cell_count();
+    pin_i_ = 0;
+    pin_j_ = grid_.ny() - 1;
+    return;
+  }
   if (solve_region_) solve_region_->set_blocked(mask);
   // The closed domain's pinned row: the open cell nearest the top-left corner, row by row from the top.
   long key = grid_.cell_count();

@@ -249,7 +249,7 @@ class FlowSolver {
   std::unique_ptr<Field> cell_force_[2];  // lagged balanced cell force of the Rhie-Chow flux
   // The atmosphere's pressure on each boundary face as the last coupled system took it, per side
   // along the side (NaN where the system held no row).
-  std::array<std::vector<double>, 4> solved_boundary_pressure_;
+  std::array<std::vector<double>, 6> solved_boundary_pressure_;  // indexed by Side; front and back stay empty
   // The open upright sides' hydrostatic heads, indexed by Side (south and north unused): [n * ny + j]
   // for column n along the side (its layer k on west and east, its x index on front and back).
   std::vector<double> side_head_[6];

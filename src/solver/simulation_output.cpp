@@ -146,15 +146,21 @@ struct PileShape {
   double toe_thickness = 0.0;  // largest x whose column holds at least one cell of soil
   double wall_height = 0.0;    // soil height in the first column
 };
+// The soil's height sum_j c dy over column (i, k) of a gathered soil fraction.
+double column_height(const Grid& g, const std::vector<double>& c, int i, int k) {
+  double h = 0.0;
+  for (int j = 0; j < g.ny(); ++j) h += c[(size_t(k) * g.ny() + j) * g.nx() + i] * g.dy(j);
+  return h;
+}
 // wall_column: the first column with an open cell (0 but where obstacles block whole columns at the west).
 PileShape pile_shape(const Grid& g, const std::vector<double>& c, int wall_column) {
   PileShape s;
   for (int k = 0; k < g.nz(); ++k)
     for (int i = 0; i < g.nx(); ++i) {
-      double h = 0.0;
-      for (int j = 0; j < g.ny(); ++j) h += c[(size_t(k) * g.ny() + j) * g.nx() + i] * g.dy(j);
-      if (i == wall_column) s.wall_height = std::max(s.wall_height, h);
-      if (h >= g.dy(0)) s.toe_thickness = std::max(s.toe_thickness, g.xf(i));
+      const double h = column_height(g, c, i, k);
+      // The first layer's as they are (a planar mesh's), the later layers' where they go further.
+      if (i == wall_column) s.wall_height = k == 0 ? h : std::max(s.wall_height, h);
+      if (h >= g.dy(0)) s.toe_thickness = k == 0 ? g.xf(i) : std::max(s.toe_thickness, g.xf(i));
     }
   return s;
 }
@@ -256,8 +262,8 @@ void Simulation::write_lode_energy() const {
   const auto h = soil_->lode_energy();
   if (rank_ != 0) return;
   write_file_atomically(out_ / "lode_dissipation.csv", [&](std::ostream& out) {
-    fmt::print(out, "# energy dissipated up to t = {:.9g} s by Lode angle (J per {})\n", time_,
-               grid_->axisymmetric() ? "radian" : "metre depth");
+    fmt::print(out, "# energy dissipated up to t = {:.9g} s by Lode angle ({})\n", time_,
+               grid_->dimension() == 3 ? "J" : grid_->axisymmetric() ? "J per radian" : "J per metre depth");
     fmt::print(out, "theta_deg,theta_low_deg,theta_high_deg,energy\n");
     for (int k = 0; k < h.bins(); ++k)
       fmt::print(out, "{:.6g},{:.6g},{:.6g},{:.9g}\n", h.centre_deg(k), h.lower_edge_deg(k), h.lower_edge_deg(k + 1),
@@ -293,11 +299,8 @@ void Simulation::write_soil_lines() const {
     // With each column's east face and the floor cell's height, so that a script reads the toe of a
     // layer one cell thick as the history does, on any cells (graded, not square).
     fmt::print(out, "# soil height per column (sum of c dy) at t = {:.9g} s\nx,height,x_east,floor_cell_height\n", time_);
-    for (int i = 0; i < nx; ++i) {
-      double h = 0.0;
-      for (int j = 0; j < g.ny(); ++j) h += c[size_t(j) * nx + i] * g.dy(j);
-      fmt::print(out, "{:.9g},{:.9g},{:.9g},{:.9g}\n", g.xc(i), h, g.xf(i), g.dy(0));
-    }
+    for (int i = 0; i < nx; ++i)
+      fmt::print(out, "{:.9g},{:.9g},{:.9g},{:.9g}\n", g.xc(i), column_height(g, c, i, 0), g.xf(i), g.dy(0));
   });
 }
 
@@ -309,11 +312,8 @@ void Simulation::write_column_heights_3d(const std::vector<double>& c, const std
   write_file_atomically(out_ / fmt::format("column_height_{}.csv", stamp), [&](std::ostream& out) {
     fmt::print(out, "# soil height per column (sum of c dy) at t = {:.9g} s\nx,z,height\n", time_);
     for (int k = 0; k < g.nz(); ++k)
-      for (int i = 0; i < g.nx(); ++i) {
-        double h = 0.0;
-        for (int j = 0; j < g.ny(); ++j) h += c[(size_t(k) * g.ny() + j) * g.nx() + i] * g.dy(j);
-        fmt::print(out, "{:.9g},{:.9g},{:.9g}\n", g.xc(i), g.zc(k), h);
-      }
+      for (int i = 0; i < g.nx(); ++i)
+        fmt::print(out, "{:.9g},{:.9g},{:.9g}\n", g.xc(i), g.zc(k), column_height(g, c, i, k));
   });
 }
 

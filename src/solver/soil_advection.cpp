@@ -11,6 +11,7 @@
 #include <optional>
 
 #include "io/collective_failure.hpp"
+#include "mesh/axis_views.hpp"
 #include "mesh/face_loop.hpp"
 #include "mesh/gather.hpp"
 #include "mesh/largest.hpp"
@@ -249,58 +250,61 @@ void SoilPhase::sweep(int axis, double dt, const Field& from, Field& to, bool fr
     for (auto& f : from_shares ? share_tmp_ : share_) fill_share_ghosts(*f);
 }
 
+// Eulerian displacement ([VoF] Eq. 20) with the soil velocity c v: donor-cell fluxes through each
+// face of a cell (four on a planar mesh, six on a mesh of layers). Face areas carry the radius in
+// axisymmetric geometry; with no swirl the r-component of div(c v u) has no extra hoop term, so the
+// planar form holds component by component.
 void SoilPhase::transport_displacement(const FlowSolver& flow, double dt) {
   if (!settings_.displacement) return;
-  if (grid_.dimension() == 3) return transport_displacement_3d(flow, dt);
   const auto& b = grid_.owned();
-  ConstFieldArray c(grid_.field_dm(), c_->local());
-  ConstFieldArray fx = local_read(grid_, flow.face_velocity(0)), fy = local_read(grid_, flow.face_velocity(1));
-  ConstFieldArray u = local_read(grid_, flow.velocity(0)), v = local_read(grid_, flow.velocity(1));
-  const double* const* vel[2] = {u.data(), v.data()};
-  // Soil flux (c v . n A)_f of a face of (i, j) ([VoF] Eq. 20), outward.
-  auto soil_flux = [&](int i, int j, double face_vel, int in, int jn, double area, double sign) {
-    const bool outside = grid_.outside(in, jn);
-    const double cf = outside ? c[j][i] : 0.5 * (c[j][i] + c[jn][in]);
-    return sign * face_vel * area * cf;
-  };
-  // Face areas carry the radius in axisymmetric geometry; with no swirl the r-component of
-  // div(c v u) has no extra hoop term, so the planar form holds component by component.
-  auto faces = [&](int i, int j, auto&& visit) {
-    visit(soil_flux(i, j, fx[j][i], i + 1, j, grid_.face_area(0, i, j, 1.0), 1.0), i + 1, j);
-    visit(soil_flux(i, j, fx[j][i - 1], i - 1, j, grid_.face_area(0, i, j, -1.0), -1.0), i - 1, j);
-    visit(soil_flux(i, j, fy[j][i], i, j + 1, grid_.face_area(1, i, j, 1.0), 1.0), i, j + 1);
-    visit(soil_flux(i, j, fy[j - 1][i], i, j - 1, grid_.face_area(1, i, j, -1.0), -1.0), i, j - 1);
+  const int dim = grid_.dimension();
+  const ConstFieldArray c_array(grid_.field_dm(), c_->local());
+  const VolumeView c = c_array.volume();
+  const AxisViews face(grid_, [&](int a) -> const Field& { return flow.face_velocity(a); });
+  const AxisViews vel(grid_, [&](int a) -> const Field& { return flow.velocity(a); });
+  const auto faces = cell_faces(dim);
+  // Outward soil flux (c v . n A)_f of face fg of cell (i, j, k).
+  auto soil_flux = [&](int i, int j, int k, const FaceGeometry& fg) {
+    const int in = i + fg.di, jn = j + fg.dj, kn = k + fg.dk;
+    const double cf = grid_.outside(in, jn, kn) ? c[k][j][i] : 0.5 * (c[k][j][i] + c[kn][jn][in]);
+    return fg.sign * on_face(face.view, i, j, k, fg) * grid_.face_area(fg.axis, i, j, k, fg.sign) * cf;
   };
   // The donor-cell update is stable while no cell sends out more than it holds in one sweep: the
   // flow step may be longer (time.courant > 1, several VoF sweeps), so the step is split as needed.
   double most_out = 0.0;
-  for (int j = b.ys; j < b.ye(); ++j)
-    for (int i = b.xs; i < b.xe(); ++i) {
-      double out = 0.0;  // a blocked cell's faces are walls, of no flux
-      faces(i, j, [&](double flux, int, int) { out += std::max(flux, 0.0); });
-      most_out = std::max(most_out, out * dt / grid_.volume(i, j));
-    }
+  for (int k = b.zs; k < b.ze(); ++k)
+    for (int j = b.ys; j < b.ye(); ++j)
+      for (int i = b.xs; i < b.xe(); ++i) {
+        double out = 0.0;  // a blocked cell's faces are walls, of no flux
+        for (const auto& fg : faces) out += std::max(soil_flux(i, j, k, fg), 0.0);
+        most_out = std::max(most_out, out * dt / grid_.volume(i, j, k));
+      }
   // A flow that runs away (the step's divergence check comes after) gets no more than a bounded count.
   constexpr double most_sweeps = 1000.0;
   const int sweeps = int(std::clamp(std::ceil(mpi_max(grid_.comm(), most_out) - 1e-12), 1.0, most_sweeps));
   const double h = dt / sweeps;
-  const BlockedView mask(grid_, blocked_);
+  const BlockedView mask(grid_, blocked_);  // planar meshes only
   for (int sweep = 0; sweep < sweeps; ++sweep) {
-    for (int a = 0; a < 2; ++a) {
-      ConstFieldArray d(grid_.field_dm(), disp_[a]->local());
+    for (int a = 0; a < dim; ++a) {
+      const ConstFieldArray d_array(grid_.field_dm(), disp_[a]->local());
+      const VolumeView d = d_array.volume();
       FieldArray dn(grid_.field_dm(), disp_new_[a]->global());
-      for (int j = b.ys; j < b.ye(); ++j)
-        for (int i = b.xs; i < b.xe(); ++i) {
-          if (is_blocked(mask.data(), i, j)) {  // its local values mirror the soil's
-            dn[j][i] = 0.0;
-            continue;
+      for (int k = b.zs; k < b.ze(); ++k)
+        for (int j = b.ys; j < b.ye(); ++j)
+          for (int i = b.xs; i < b.xe(); ++i) {
+            if (is_blocked(mask.data(), i, j)) {  // its local values mirror the soil's
+              dn.volume()[k][j][i] = 0.0;
+              continue;
+            }
+            double out = 0.0;  // donor-cell displacement
+            for (const auto& fg : faces) {
+              const double flux = soil_flux(i, j, k, fg);
+              out += flux * (flux >= 0.0 ? d[k][j][i] : d[k + fg.dk][j + fg.dj][i + fg.di]);
+            }
+            dn.volume()[k][j][i] = d[k][j][i] + h * (c[k][j][i] * vel.view[a][k][j][i] - out / grid_.volume(i, j, k));
           }
-          double out = 0.0;  // donor-cell displacement
-          faces(i, j, [&](double flux, int in, int jn) { out += flux * (flux >= 0.0 ? d[j][i] : d[jn][in]); });
-          dn[j][i] = d[j][i] + h * (c[j][i] * vel[a][j][i] - out / grid_.volume(i, j));
-        }
     }
-    for (int a = 0; a < 2; ++a) PetscCallAbort(grid_.comm(), VecCopy(disp_new_[a]->global(), disp_[a]->global()));
+    for (int a = 0; a < dim; ++a) PetscCallAbort(grid_.comm(), VecCopy(disp_new_[a]->global(), disp_[a]->global()));
     // Every change of the displacement ends with its ghosts filled, as c's does: the next sweep reads
     // them, and a step's snapshot and a checkpoint copy the local vectors.
     fill_displacement_ghosts();

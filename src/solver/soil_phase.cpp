@@ -6,6 +6,7 @@
 #include "mesh/face_loop.hpp"
 #include "mesh/gather.hpp"
 #include "mesh/obstacles.hpp"
+#include "mesh/side_ghosts.hpp"
 
 #include <fmt/format.h>
 
@@ -251,24 +252,11 @@ void SoilPhase::fill_fraction_ghosts(Field& f) const {
   const BlockedView mask(grid_, blocked_);
   f.scatter_to_local();
   FieldArray a(grid_.field_dm(), f.local());
-  if (grid_.dimension() == 3) return fill_fraction_side_ghosts(a.volume());  // no obstacles there
-  mirror_into_blocked(grid_, mask.data(), a.data(), 1.0);  // an obstacle's walls mirror, as the domain's
-  const auto& b = grid_.owned();
-  const int nx = grid_.nx(), ny = grid_.ny(), gw = Grid::ghost_width;
-  auto value = [&](Side s, double mirror) {
-    const auto& bc = boundary(flow_settings_.boundaries, s);
-    return bc.kind == BoundaryKind::atmosphere ? bc.inflow_soil_fraction : mirror;
-  };
-  for (int k = 1; k <= gw; ++k)
-    for (int j = b.ys - gw; j < b.ye() + gw; ++j) {
-      if (grid_.owns_boundary(Side::west)) a[j][-k] = value(Side::west, a[j][k - 1]);
-      if (grid_.owns_boundary(Side::east)) a[j][nx - 1 + k] = value(Side::east, a[j][nx - k]);
-    }
-  for (int k = 1; k <= gw; ++k)
-    for (int i = b.xs - gw; i < b.xe() + gw; ++i) {
-      if (b.ys == 0) a[-k][i] = value(Side::south, a[k - 1][i]);
-      if (b.ye() == ny) a[ny - 1 + k][i] = value(Side::north, a[ny - k][i]);
-    }
+  if (blocked_) mirror_into_blocked(grid_, mask.data(), a.data(), 1.0);  // an obstacle's walls mirror, as the domain's
+  fill_side_ghosts(grid_, a.volume(), [&](Side side, double inner, double) {
+    const auto& bc = boundary(flow_settings_.boundaries, side);
+    return bc.kind == BoundaryKind::atmosphere ? bc.inflow_soil_fraction : inner;
+  });
 }
 
 void SoilPhase::fill_displacement_ghosts() {

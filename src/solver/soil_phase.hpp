@@ -206,12 +206,10 @@ class SoilPhase {
   // On a mesh of layers (soil_phase_3d.cpp): the public operations' 3D forms, and what they refuse.
   void refuse_what_3d_lacks() const;
   void initialise_3d();
-  void fill_fraction_side_ghosts(double*** c) const;
   void update_properties_3d(FlowSolver& flow) const;
   void update_face_viscosity_3d(FlowSolver& flow) const;
   double interface_courant_3d(const FlowSolver& flow, double dt) const;
   void advect_3d(const FlowSolver& flow, double dt);
-  void transport_displacement_3d(const FlowSolver& flow, double dt);
   void compute_diagnostics_3d(const FlowSolver& flow);
   double compute_dissipation_3d(const FlowSolver& flow);
   SoilBudget budget_3d(const FlowSolver& flow);

@@ -19,7 +19,6 @@
 #include "mesh/face_loop.hpp"
 #include "mesh/gather.hpp"
 #include "mesh/largest.hpp"
-#include "mesh/side_ghosts.hpp"
 #include "models/interface/initial_shapes_3d.hpp"
 #include "models/interface/vof_advection_3d.hpp"
 #include "models/interface/wetted_fraction.hpp"
@@ -37,20 +36,7 @@ namespace {
 
 interface::CellWidths3 widths_of(const Grid& g) { return {g.dx_data(), g.dy_data(), g.dz_data()}; }
 
-// Read access to a FlowSolver's per-axis fields (velocity, face velocity, face viscosity), which it
-// hands out one by one.
-class FlowAxisViews {
- public:
-  template <class Get>
-  FlowAxisViews(const Grid& g, Get get) {
-    for (int a = 0; a < 3; ++a) view[a] = arrays_[a].emplace(g.field_dm(), get(a).local()).volume();
-  }
-  VolumeView view[3] = {};
-  VelocityArrays3 as_velocity() const { return {view[0], view[1], view[2]}; }
-
- private:
-  std::optional<ConstFieldArray> arrays_[3];
-};
+VelocityArrays3 velocity_arrays(const AxisViews& v) { return {v.view[0], v.view[1], v.view[2]}; }
 
 }  // namespace
 
@@ -85,18 +71,10 @@ void SoilPhase::initialise_3d() {
   fill_fraction_ghosts(*c_);
 }
 
-// Ghosts of c beyond the sides: an atmosphere's hold its inflow fraction, a wall's mirror the cells.
-void SoilPhase::fill_fraction_side_ghosts(double*** c) const {
-  fill_side_ghosts(grid_, c, [&](Side side, double inner, double) {
-    const auto& bc = boundary(flow_settings_.boundaries, side);
-    return bc.kind == BoundaryKind::atmosphere ? bc.inflow_soil_fraction : inner;
-  });
-}
-
 void SoilPhase::update_properties_3d(FlowSolver& flow) const {
   const auto& b = grid_.owned();
   const ConstFieldArray c(grid_.field_dm(), c_->global()), p(grid_.field_dm(), flow.pressure().global());
-  const FlowAxisViews vel(grid_, [&](int a) -> const Field& { return flow.velocity(a); });
+  const AxisViews vel(grid_, [&](int a) -> const Field& { return flow.velocity(a); });
   FieldArray rho(grid_.field_dm(), flow.density().global()), mu(grid_.field_dm(), flow.viscosity().global());
   const auto overburden = overburden_if_floor();
   for (int k = b.zs; k < b.ze(); ++k)
@@ -106,7 +84,7 @@ void SoilPhase::update_properties_3d(FlowSolver& flow) const {
         rho.volume()[k][j][i] = mixture_density(cc);
         const double pressure =
             overburden ? std::max(p.volume()[k][j][i], ambient_pressure_ + overburden->volume()[k][j][i]) : p.volume()[k][j][i];
-        mu.volume()[k][j][i] = mixture_viscosity(cc, pressure, cell_strain_rate(grid_, vel.as_velocity(), i, j, k));
+        mu.volume()[k][j][i] = mixture_viscosity(cc, pressure, cell_strain_rate(grid_, velocity_arrays(vel), i, j, k));
       }
 }
 
@@ -119,8 +97,8 @@ void SoilPhase::update_face_viscosity_3d(FlowSolver& flow) const {
   const ConstFieldArray c_array = local_read(grid_, *c_), p_array = local_read(grid_, flow.pressure()),
                         rho_array = local_read(grid_, flow.density());
   const VolumeView c = c_array.volume(), p = p_array.volume(), rho = rho_array.volume();
-  const FlowAxisViews vel(grid_, [&](int a) -> const Field& { return flow.velocity(a); });
-  const VelocityArrays3 v = vel.as_velocity();
+  const AxisViews vel(grid_, [&](int a) -> const Field& { return flow.velocity(a); });
+  const VelocityArrays3 v = velocity_arrays(vel);
   // Face (axis, i, j, k) lies between cell (i, j, k) and its neighbour at +1 along axis.
   auto face = [&](int axis, int i, int j, int k, double pressure) {
     const int in = i + (axis == 0), jn = j + (axis == 1), kn = k + (axis == 2);
@@ -160,7 +138,7 @@ void SoilPhase::update_face_viscosity_3d(FlowSolver& flow) const {
 }
 
 double SoilPhase::interface_courant_3d(const FlowSolver& flow, double dt) const {
-  const FlowAxisViews face(grid_, [&](int a) -> const Field& { return flow.face_velocity(a); });
+  const AxisViews face(grid_, [&](int a) -> const Field& { return flow.face_velocity(a); });
   double co = 0.0;
   for (int axis = 0; axis < 3; ++axis)
     co = larger_or_nan(co, interface::max_sweep_courant(axis, dt, face.view[axis], widths_of(grid_), grid_.owned()));
@@ -179,7 +157,7 @@ void SoilPhase::advect_3d(const FlowSolver& flow, double dt) {
   const int substeps = std::max(1, int(std::ceil(co / settings_.interface_courant - allowance)));
   const double h = dt / substeps;
   const auto& b = grid_.owned();
-  const FlowAxisViews face(grid_, [&](int a) -> const Field& { return flow.face_velocity(a); });
+  const AxisViews face(grid_, [&](int a) -> const Field& { return flow.face_velocity(a); });
   const interface::DomainCells3 domain{grid_.nx(), grid_.ny(), grid_.nz()};
   for (int s = 0; s < substeps; ++s) {
     {
@@ -209,58 +187,11 @@ void SoilPhase::advect_3d(const FlowSolver& flow, double dt) {
   }
 }
 
-// Eulerian displacement ([VoF] Eq. 20) with the soil velocity c v: as in 2D (soil_advection.cpp),
-// donor-cell fluxes through all six faces, in as many sweeps as keep it stable.
-void SoilPhase::transport_displacement_3d(const FlowSolver& flow, double dt) {
-  const auto& b = grid_.owned();
-  const ConstFieldArray c_array(grid_.field_dm(), c_->local());
-  const VolumeView c = c_array.volume();
-  const FlowAxisViews face(grid_, [&](int a) -> const Field& { return flow.face_velocity(a); });
-  const FlowAxisViews vel(grid_, [&](int a) -> const Field& { return flow.velocity(a); });
-  const auto faces = cell_faces(3);
-  // Outward soil flux (c v . n A)_f of face fg of cell (i, j, k).
-  auto soil_flux = [&](int i, int j, int k, const FaceGeometry& fg) {
-    const int in = i + fg.di, jn = j + fg.dj, kn = k + fg.dk;
-    const double cf = grid_.outside(in, jn, kn) ? c[k][j][i] : 0.5 * (c[k][j][i] + c[kn][jn][in]);
-    return fg.sign * on_face(face.view, i, j, k, fg) * grid_.face_area(fg.axis, i, j, k, fg.sign) * cf;
-  };
-  double most_out = 0.0;
-  for (int k = b.zs; k < b.ze(); ++k)
-    for (int j = b.ys; j < b.ye(); ++j)
-      for (int i = b.xs; i < b.xe(); ++i) {
-        double out = 0.0;
-        for (const auto& fg : faces) out += std::max(soil_flux(i, j, k, fg), 0.0);
-        most_out = std::max(most_out, out * dt / grid_.volume(i, j, k));
-      }
-  constexpr double most_sweeps = 1000.0;
-  const int sweeps = int(std::clamp(std::ceil(mpi_max(grid_.comm(), most_out) - 1e-12), 1.0, most_sweeps));
-  const double h = dt / sweeps;
-  for (int sweep = 0; sweep < sweeps; ++sweep) {
-    for (int a = 0; a < 3; ++a) {
-      const ConstFieldArray d_array(grid_.field_dm(), disp_[a]->local());
-      const VolumeView d = d_array.volume();
-      FieldArray dn(grid_.field_dm(), disp_new_[a]->global());
-      for (int k = b.zs; k < b.ze(); ++k)
-        for (int j = b.ys; j < b.ye(); ++j)
-          for (int i = b.xs; i < b.xe(); ++i) {
-            double out = 0.0;
-            for (const auto& fg : faces) {
-              const double flux = soil_flux(i, j, k, fg);
-              out += flux * (flux >= 0.0 ? d[k][j][i] : d[k + fg.dk][j + fg.dj][i + fg.di]);
-            }
-            dn.volume()[k][j][i] = d[k][j][i] + h * (c[k][j][i] * vel.view[a][k][j][i] - out / grid_.volume(i, j, k));
-          }
-    }
-    for (int a = 0; a < 3; ++a) PetscCallAbort(grid_.comm(), VecCopy(disp_new_[a]->global(), disp_[a]->global()));
-    fill_displacement_ghosts();
-  }
-}
-
 // ||D|| ([YS] Eq. 8), the Lode angle, the strain norm ([VoF] Eqs. 13-14) and the stress ratios.
 void SoilPhase::compute_diagnostics_3d(const FlowSolver& flow) {
   const auto& b = grid_.owned();
-  const FlowAxisViews disp(grid_, [&](int a) -> const Field& { return *disp_[a]; });
-  const FlowAxisViews vel(grid_, [&](int a) -> const Field& { return flow.velocity(a); });
+  const AxisViews disp(grid_, disp_);
+  const AxisViews vel(grid_, [&](int a) -> const Field& { return flow.velocity(a); });
   const ConstFieldArray p(grid_.field_dm(), flow.pressure().global());
   const auto overburden = overburden_if_floor();
   FieldArray en(grid_.field_dm(), strain_norm_->global()), rn(grid_.field_dm(), rate_norm_->global()),
@@ -281,7 +212,7 @@ void SoilPhase::compute_diagnostics_3d(const FlowSolver& flow) {
         strain::AlmansiStrain3 e;
         strain::almansi_strain(g, e);
         en.volume()[k][j][i] = strain::deviatoric_norm(e);
-        const auto D = cell_strain_rate(grid_, vel.as_velocity(), i, j, k);
+        const auto D = cell_strain_rate(grid_, velocity_arrays(vel), i, j, k);
         rn.volume()[k][j][i] = rheology::norm(rheology::deviatoric(D));
         lo.volume()[k][j][i] = rheology::lode_angle(D) * 180.0 / std::numbers::pi;
         const double cell_p = p.volume()[k][j][i];
@@ -298,8 +229,8 @@ void SoilPhase::compute_diagnostics_3d(const FlowSolver& flow) {
 // the Lode-binned rates; returns the rank's sum.
 double SoilPhase::compute_dissipation_3d(const FlowSolver& flow) {
   const auto& b = grid_.owned();
-  const FlowAxisViews vel(grid_, [&](int a) -> const Field& { return flow.velocity(a); });
-  const FlowAxisViews face_mu(grid_, [&](int a) -> const Field& { return flow.face_viscosity(a); });
+  const AxisViews vel(grid_, [&](int a) -> const Field& { return flow.velocity(a); });
+  const AxisViews face_mu(grid_, [&](int a) -> const Field& { return flow.face_viscosity(a); });
   const auto& num = flow_settings_.numerics;
   const double normal_factor = num.transpose_stress ? 2.0 : 1.0, cross = num.transpose_stress ? 1.0 : 0.0;
   FieldArray out_array(grid_.field_dm(), dissipation_->global());
@@ -369,7 +300,7 @@ double SoilPhase::compute_dissipation_3d(const FlowSolver& flow) {
     for (int j = b.ys; j < b.ye(); ++j)
       for (int i = b.xs; i < b.xe(); ++i) {
         rate += out[k][j][i];
-        const double theta = rheology::lode_angle(cell_strain_rate(grid_, vel.as_velocity(), i, j, k));
+        const double theta = rheology::lode_angle(cell_strain_rate(grid_, velocity_arrays(vel), i, j, k));
         lode_rate_.add(theta * 180.0 / std::numbers::pi, out[k][j][i]);
       }
   return rate;
@@ -381,7 +312,7 @@ SoilBudget SoilPhase::budget_3d(const FlowSolver& flow) {
   const double rho_a = settings_.air_density, rho_s = settings_.soil_density;
   const ConstFieldArray c_array(grid_.field_dm(), c_->global()), rho_array(grid_.field_dm(), flow.density().global());
   const VolumeView c = c_array.volume(), rho = rho_array.volume();
-  const FlowAxisViews vel(grid_, [&](int a) -> const Field& { return flow.velocity(a); });
+  const AxisViews vel(grid_, [&](int a) -> const Field& { return flow.velocity(a); });
   double s[7] = {0, 0, 0, 0, compute_dissipation_3d(flow), 0, outflow_};
   for (int k = b.zs; k < b.ze(); ++k)
     for (int j = b.ys; j < b.ye(); ++j)

@@ -57,9 +57,9 @@ TEST(GridLayers, SeveralLayersAreGradedCellsFillingTheBox) {
     for (int j = 0; j < 4; ++j)
       for (int i = 0; i < 3; ++i) volume += g.volume(i, j, k);
   EXPECT_NEAR(volume, 0.3 * 2.0 * 1.0, 1e-14);
-  EXPECT_DOUBLE_EQ(g.face_area_3d(0, 1, 2, 3), g.dy(2) * g.dz(3));
-  EXPECT_DOUBLE_EQ(g.face_area_3d(1, 1, 2, 3), g.dx(1) * g.dz(3));
-  EXPECT_DOUBLE_EQ(g.face_area_3d(2, 1, 2, 3), g.dx(1) * g.dy(2));
+  EXPECT_DOUBLE_EQ(g.face_area(0, 1, 2, 3, 1.0), g.dy(2) * g.dz(3));
+  EXPECT_DOUBLE_EQ(g.face_area(1, 1, 2, 3, 1.0), g.dx(1) * g.dz(3));
+  EXPECT_DOUBLE_EQ(g.face_area(2, 1, 2, 3, 1.0), g.dx(1) * g.dy(2));
   EXPECT_NEAR(g.min_spacing(), g.dz(0), 1e-15);  // the first layer, 0.2 / 2.5 of a mean one
   EXPECT_TRUE(g.outside(0, 0, -1));
   EXPECT_TRUE(g.outside(0, 0, 5));

@@ -48,10 +48,10 @@ double poisson_error(int n) {
       [&](int axis, int sign, int i, int j, int k) {
         const int in = i + (axis == 0 ? sign : 0), jn = j + (axis == 1 ? sign : 0), kn = k + (axis == 2 ? sign : 0);
         const double d = 0.5 * (width(axis, i, j, k) + width(axis, in, jn, kn));
-        return face_k(axis, sign, i, j, k) * g.face_area_3d(axis, i, j, k) / d;
+        return face_k(axis, sign, i, j, k) * g.face_area(axis, i, j, k, 1.0) / d;
       },
       [&](int axis, int sign, int i, int j, int k) {  // p = 0 held on the face
-        return face_k(axis, sign, i, j, k) * g.face_area_3d(axis, i, j, k) / (0.5 * width(axis, i, j, k));
+        return face_k(axis, sign, i, j, k) * g.face_area(axis, i, j, k, 1.0) / (0.5 * width(axis, i, j, k));
       });
   Field p(g), rhs(g);
   {
