@@ -254,7 +254,8 @@ void expect_layer_independent_cavity(PressureCoupling coupling, double tolerance
   for (int n = 0; n < 4; ++n) EXPECT_NEAR(layered[3][n], planar[2][n], tolerance * std::abs(planar[2][0])) << n;
   EXPECT_GT(std::abs(planar[2][0]), 1e-3);
   EXPECT_GT(std::abs(layered[3][4]), 1e-3);
-  EXPECT_NEAR(layered[3][4], -layered[3][5], 1e-9 * std::abs(layered[3][4]));
+  // To the solvers' tolerance (1.1e-9 of it on two ranks).
+  EXPECT_NEAR(layered[3][4], -layered[3][5], 1e-7 * std::abs(layered[3][4]));
   EXPECT_GT(scale, 0.5);  // the lid's flow is there
   EXPECT_LT(difference, tolerance * scale);
   EXPECT_LT(w_largest, tolerance * scale);
