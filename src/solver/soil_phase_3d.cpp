@@ -1,10 +1,10 @@
 // The soil phase on a mesh of layers (3D): what soil_phase.cpp, soil_properties.cpp, soil_advection.cpp
 // and soil_diagnostics.cpp do on a planar mesh, for the models a mesh of layers has so far: one soil
-// (no [[soil.materials]]), no obstacles, and sides without a friction of their own. The constructor
-// refuses the rest
-// (refuse_what_3d_lacks). The same equations and the same choices as in 2D, each noted where it
-// differs: the soil fraction is carried by the three sweeps of vof_advection_3d.hpp, the displacement
-// has three components, the strain rate and the Euler-Almansi strain are the full 3D tensors.
+// (no [[soil.materials]]), no obstacles, and sides without a friction of their own; the constructor
+// refuses the rest (refuse_what_3d_lacks). The same equations and the same choices as in 2D, each
+// noted where it differs: the soil fraction is carried by the three sweeps of vof_advection_3d.hpp,
+// the strain rate and the Euler-Almansi strain are the full 3D tensors (docs/method.md, "In three
+// dimensions"). The displacement's transport serves both (soil_advection.cpp).
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -40,7 +40,8 @@ VelocityArrays3 velocity_arrays(const AxisViews& v) { return {v.view[0], v.view[
 
 }  // namespace
 
-// What a mesh of layers does not have yet (docs/method.md, "Known limitations").
+// What a mesh of layers does not have yet (docs/method.md, "Known limitations"); the case file refuses
+// the same, naming the keys (require_what_layers_have in io/case_file.cpp), and so does FlowSolver.
 void SoilPhase::refuse_what_3d_lacks() const {
   if (grid_.dimension() != 3) return;
   auto refuse = [](const std::string& what) {
