@@ -675,7 +675,7 @@ BoundarySet read_boundaries(TableReader& top, const GridSpec& mesh, std::vector<
 
 // granular: the case's soil has a rheology, whose cases default to the coupled solve; band: the air
 // band that solve takes by default (0 where none may be laid).
-NumericsSettings read_numerics(TableReader& top, bool granular, int band,
+NumericsSettings read_numerics(TableReader& top, bool granular, bool layers, int band,
                                std::vector<std::string>& keys_without_effect) {
   NumericsSettings num;
   TableReader n = top.table("numerics");
@@ -715,9 +715,13 @@ NumericsSettings read_numerics(TableReader& top, bool granular, int band,
   // Conservative transport needs the coupled solve, whose continuity rows take each cell's own
   // momentum coefficient; the projection's mobility dt/rho cannot follow the mass a cell's momentum
   // then accelerates (docs/method.md, "Momentum").
+  // On a mesh of layers the soil's sweeps do not add up their mass fluxes yet: advective there.
   const bool coupled = num.pressure_coupling == PressureCoupling::coupled;
-  num.conservative_momentum = n.choice("momentum_transport", coupled ? "conservative" : "advective",
+  num.conservative_momentum = n.choice("momentum_transport", coupled && !layers ? "conservative" : "advective",
                                        {"conservative", "advective"}) == "conservative";
+  if (num.conservative_momentum && layers)
+    throw CaseError("numerics.momentum_transport: \"conservative\" is planar yet; a mesh of layers takes \"advective\" "
+                    "(the default there)");
   if (num.conservative_momentum && !coupled)
     throw CaseError(fmt::format("numerics.momentum_transport: \"conservative\" needs numerics.pressure_coupling = "
                                 "\"coupled\" (it is \"{}\"); use \"advective\" with the projection and PISO",
@@ -887,9 +891,9 @@ std::string no_area_in_domain(const interface::Shape& shape, const GridSpec& mes
 void require_what_layers_have(const CaseConfig& c) {
   if (c.mesh.dimension() == 2) return;
   const auto& num = c.flow.numerics;
-  if (num.pressure_coupling == PressureCoupling::coupled)
-    throw CaseError("numerics.pressure_coupling: the coupled solve is planar yet; a mesh of layers takes \"projection\" "
-                    "(the default there) or \"piso\"");
+  if (num.pressure_coupling == PressureCoupling::coupled && num.air_band > 0)
+    throw CaseError("numerics.air_band: the air band's region is planar yet; a mesh of layers' coupled solve covers the "
+                    "whole domain (numerics.air_band = 0, the default there)");
   if (c.mesh.periodic_x) throw CaseError("boundary.west.type: periodic sides are planar yet (not on a mesh of layers)");
   for (Side s : box_sides)
     if (boundary(c.flow.boundaries, s).friction)
@@ -1026,11 +1030,11 @@ CaseConfig read_case(const toml::table& root, const std::filesystem::path& sourc
   // A granular case's coupled solve covers its soil and an air band by default, wide enough for the
   // step's sweeps, where one may be laid (require_consistent): not across periodic sides, nor where
   // the air beyond is not hydrostatic along y.
-  // A mesh of layers has the segregated steps only, the projection by default.
+  // A mesh of layers takes the projection by default, and its coupled solve covers the whole domain.
   const bool layers = c.mesh.dimension() == 3;
   const bool granular = c.soil && c.soil->rheology;
   const bool band_allowed = granular && !layers && !c.mesh.periodic_x && c.flow.gravity[0] == 0.0;
-  c.flow.numerics = read_numerics(top, granular && !layers,
+  c.flow.numerics = read_numerics(top, granular && !layers, layers,
                                   band_allowed ? std::max(default_air_band, 2 * c.time.interface_substeps + 1) : 0,
                                   c.keys_without_effect);
   read_solvers(top, c.flow);

@@ -6,7 +6,10 @@
 // does in a segregated (SIMPLE/PISO) pressure step.
 #include <algorithm>
 #include <cmath>
+#include <optional>
 
+#include "mesh/axis_views.hpp"
+#include "mesh/face_loop.hpp"
 #include "mesh/obstacles.hpp"
 #include "operators/face_interpolation.hpp"
 #include "solver/flow_solver.hpp"
@@ -14,21 +17,53 @@
 namespace granflow {
 
 namespace {
-enum Unknown { U = 0, V = 1, P = 2 };
+
+// The coupled system's unknowns of a cell: the velocity's components 0 .. dimension - 1, then the
+// pressure, interleaved cell by cell as a DMDA with that many degrees of freedom lays them out.
+// Entry (i, j, k, unknown) of the rank's part of such a vector, of any dimension.
+class CellUnknowns {
+ public:
+  CellUnknowns(MPI_Comm comm, Vec v, const CellBox& b, int per_cell) : comm_(comm), v_(v), b_(b), per_cell_(per_cell) {
+    PetscCallAbort(comm_, VecGetArray(v_, &a_));
+  }
+  ~CellUnknowns() { PetscCallAbort(comm_, VecRestoreArray(v_, &a_)); }
+  CellUnknowns(const CellUnknowns&) = delete;
+  CellUnknowns& operator=(const CellUnknowns&) = delete;
+  double& operator()(int i, int j, int k, int unknown) const {
+    return a_[((size_t(k - b_.zs) * b_.ym + (j - b_.ys)) * b_.xm + (i - b_.xs)) * per_cell_ + unknown];
+  }
+
+ private:
+  MPI_Comm comm_;
+  Vec v_;
+  const CellBox& b_;
+  int per_cell_;
+  PetscScalar* a_ = nullptr;
+};
+
+// The face of a cell on the `sign` side along `axis`.
+const FaceGeometry& face_along(int axis, int sign) { return box_faces[2 * axis + (sign < 0)]; }
+
 }  // namespace
 
 void FlowSolver::create_coupled_system() {
   MPI_Comm comm = grid_.comm();
-  PetscInt m, n;
-  const PetscInt *lx, *ly;
-  PetscCallAbort(comm, DMDAGetInfo(grid_.field_dm(), nullptr, nullptr, nullptr, nullptr, &m, &n, nullptr, nullptr,
+  const int unknowns = dimension_ + 1;  // (u, v, p), or (u, v, w, p) on a mesh of layers
+  PetscInt m, n, p;
+  const PetscInt *lx, *ly, *lz;
+  PetscCallAbort(comm, DMDAGetInfo(grid_.field_dm(), nullptr, nullptr, nullptr, nullptr, &m, &n, &p, nullptr,
                                    nullptr, nullptr, nullptr, nullptr, nullptr));
-  PetscCallAbort(comm, DMDAGetOwnershipRanges(grid_.field_dm(), &lx, &ly, nullptr));
-  PetscCallAbort(comm, DMDACreate2d(comm, grid_.matrix_x_sides(), DM_BOUNDARY_NONE, DMDA_STENCIL_STAR, grid_.nx(),
-                                    grid_.ny(), m, n, 3, 1, lx, ly, coupled_dm_.put()));
+  PetscCallAbort(comm, DMDAGetOwnershipRanges(grid_.field_dm(), &lx, &ly, &lz));
+  if (dimension_ == 3)
+    PetscCallAbort(comm, DMDACreate3d(comm, grid_.matrix_x_sides(), DM_BOUNDARY_NONE, DM_BOUNDARY_NONE,
+                                      DMDA_STENCIL_STAR, grid_.nx(), grid_.ny(), grid_.nz(), m, n, p, unknowns, 1, lx,
+                                      ly, lz, coupled_dm_.put()));
+  else
+    PetscCallAbort(comm, DMDACreate2d(comm, grid_.matrix_x_sides(), DM_BOUNDARY_NONE, DMDA_STENCIL_STAR, grid_.nx(),
+                                      grid_.ny(), m, n, unknowns, 1, lx, ly, coupled_dm_.put()));
   PetscCallAbort(comm, DMSetUp(coupled_dm_));
   PetscCallAbort(comm, DMCreateGlobalVector(coupled_dm_, coupled_solution_.put()));
-  // Over the soil and its air band (the region makes its own system), or over the whole domain.
+  // Over the soil and its air band (the region makes its own system; planar meshes), or over the whole domain.
   if (settings_.numerics.air_band > 0) {
     solve_region_ = std::make_unique<SolveRegion>(grid_, settings_.coupled_solver);
   } else {
@@ -37,7 +72,7 @@ void FlowSolver::create_coupled_system() {
     PetscCallAbort(comm, VecDuplicate(coupled_solution_, coupled_rhs_.put()));
     coupled_solver_ = std::make_unique<LinearSolver>(comm, "coupled", settings_.coupled_solver);
   }
-  for (int a = 0; a < 2; ++a) {
+  for (int a = 0; a < dimension_; ++a) {
     cell_force_[a] = std::make_unique<Field>(grid_);
     cell_force_[a]->set(0.0);
   }
@@ -60,9 +95,20 @@ double FlowSolver::pressure_at_rest(double rho, int j) const {
   return ambient_pressure(settings_.boundaries) - rho * settings_.gravity[1] * (y_top - grid_.yc(j));
 }
 
-// Rhie-Chow mobility of the face between (i,j) and its neighbour (in,jn): harmonic mean of V/a_P.
-double FlowSolver::coupled_mobility(const double* const* rau, int i, int j, int in, int jn) const {
-  return face_mean(FaceViscosity::harmonic, rau[j][i], rau[jn][in]);
+// Rhie-Chow mobility of the face between (i, j, k) and its neighbour (in, jn, kn): harmonic mean of V/a_P.
+double FlowSolver::coupled_mobility(VolumeView rau, int i, int j, int k, int in, int jn, int kn) const {
+  return face_mean(FaceViscosity::harmonic, rau[k][j][i], rau[kn][jn][in]);
+}
+
+// Where the coupled system's atmosphere pressure of the face of (i, j, k) on side s is kept in
+// solved_boundary_pressure_[s]: by the face's place on the side, (k, j) on west and east, (k, i) on
+// south and north, (j, i) on front and back; on a planar mesh j or i.
+size_t FlowSolver::boundary_face_index(Side s, int i, int j, int k) const {
+  switch (normal_axis(s)) {
+    case 0: return size_t(k) * grid_.ny() + j;
+    case 1: return size_t(k) * grid_.nx() + i;
+    default: return size_t(j) * grid_.nx() + i;
+  }
 }
 
 // Balanced cell force rho_P mean(f_face / rho_face) from the current pressure, kept for the lagged
@@ -70,201 +116,216 @@ double FlowSolver::coupled_mobility(const double* const* rau, int i, int j, int 
 void FlowSolver::store_cell_forces() {
   compute_face_forces();
   const auto& b = grid_.owned();
-  ConstFieldArray rho = local_read(grid_, *rho_);
-  for (int c = 0; c < 2; ++c) {
-    ConstFieldArray ff = local_read(grid_, *face_force_[c]);
+  const ConstFieldArray rho_array = local_read(grid_, *rho_);
+  const AxisViews ff(grid_, face_force_);
+  for (int c = 0; c < dimension_; ++c) {
     FieldArray fc(grid_.field_dm(), cell_force_[c]->global());
-    for (int j = b.ys; j < b.ye(); ++j)
-      for (int i = b.xs; i < b.xe(); ++i) fc[j][i] = cell_force(c, i, j, ff.data(), rho.data());
+    for (int k = b.zs; k < b.ze(); ++k)
+      for (int j = b.ys; j < b.ye(); ++j)
+        for (int i = b.xs; i < b.xe(); ++i)
+          fc.volume()[k][j][i] = cell_force(c, i, j, k, ff.view[c], rho_array.volume());
   }
-  for (int c = 0; c < 2; ++c) cell_force_[c]->scatter_to_local();
+  for (int c = 0; c < dimension_; ++c) cell_force_[c]->scatter_to_local();
 }
 
 // The Rhie-Chow mobilities V / a_P per component, with ghosts.
 void FlowSolver::compute_mobilities() {
   const auto& b = grid_.owned();
-  {
-    for (int c = 0; c < 2; ++c) {
-      FieldArray r(grid_.field_dm(), pressure_mobility_[c]->global());
+  for (int c = 0; c < dimension_; ++c) {
+    FieldArray r(grid_.field_dm(), pressure_mobility_[c]->global());
+    for (int k = b.zs; k < b.ze(); ++k)
       for (int j = b.ys; j < b.ye(); ++j)
         for (int i = b.xs; i < b.xe(); ++i)
-          r[j][i] = grid_.volume(i, j) / a_centre_[c][size_t(j - b.ys) * b.xm + (i - b.xs)];
-    }
-    for (int c = 0; c < 2; ++c) pressure_mobility_[c]->scatter_to_local();
+          r.volume()[k][j][i] =
+              grid_.volume(i, j, k) / a_centre_[c][(size_t(k - b.zs) * b.ym + (j - b.ys)) * b.xm + (i - b.xs)];
   }
+  for (int c = 0; c < dimension_; ++c) pressure_mobility_[c]->scatter_to_local();
 }
 
 // The rows of one outer iteration's coupled system, cell by cell, from the state they are linearised
-// at: each row is handed to `emit(i, j, unknown, n, cols, vals, rhs)`. A blocked cell's faces to open
-// cells are walls (mesh/obstacles.hpp): no flux, no face force, no coupling; the cell itself has no
-// unknowns (outside the region, or held at rest).
+// at: each row is handed to `emit(i, j, k, unknown, n, cols, vals, rhs)`. A blocked cell's faces to
+// open cells are walls (mesh/obstacles.hpp, planar meshes): no flux, no face force, no coupling; the
+// cell itself has no unknowns (outside the region, or held at rest).
 class FlowSolver::CoupledRows {
  public:
   explicit CoupledRows(FlowSolver& flow)
       : f_(flow),
         grid_(flow.grid_),
         b_(flow.grid_.owned()),
+        dim_(flow.dimension_),
+        pressure_(flow.dimension_),
         g_(flow.settings_.gravity),
-        rho_(local_read(grid_, *flow.rho_)),
-        u_(local_read(grid_, *flow.vel_[0])),
-        v_(local_read(grid_, *flow.vel_[1])),
-        fxv_(local_read(grid_, *flow.face_[0])),
-        fyv_(local_read(grid_, *flow.face_[1])),
-        rx_(local_read(grid_, *flow.pressure_mobility_[0])),
-        ry_(local_read(grid_, *flow.pressure_mobility_[1])),
-        fcx_(local_read(grid_, *flow.cell_force_[0])),
-        fcy_(local_read(grid_, *flow.cell_force_[1])),
-        p_now_(local_read(grid_, *flow.p_)),
+        rho_array_(local_read(grid_, *flow.rho_)),
+        p_array_(local_read(grid_, *flow.p_)),
+        rho_(rho_array_.volume()),
+        p_now_(p_array_.volume()),
+        vel_(grid_, flow.vel_),
+        face_vel_(grid_, flow.face_),
+        mobility_(grid_, flow.pressure_mobility_),
+        cell_force_(grid_, flow.cell_force_),
         mask_(flow.grid_, flow.blocked_) {}
 
-  double density(int i, int j) const { return rho_[j][i]; }
+  double density(int i, int j, int k) const { return rho_[k][j][i]; }
 
-  // The rows of cell (i, j): held at rest if blocked, else its two momentum rows and its continuity row.
+  // The rows of cell (i, j, k): held at rest if blocked, else its momentum rows, one per component,
+  // and its continuity row.
   template <class Emit>
-  void cell(int i, int j, Emit&& emit) {
+  void cell(int i, int j, int k, Emit&& emit) {
     if (is_blocked(mask_.data(), i, j)) {  // at rest, its pressure kept
       const double one = 1.0;
-      for (int unknown : {int(U), int(V), int(P)}) {
-        const MatStencil row{0, j, i, unknown};
-        emit(i, j, unknown, 1, &row, &one, unknown == P ? p_now_[j][i] : 0.0);
+      for (int unknown = 0; unknown <= pressure_; ++unknown) {
+        const MatStencil row{k, j, i, unknown};
+        emit(i, j, k, unknown, 1, &row, &one, unknown == pressure_ ? p_now_[k][j][i] : 0.0);
       }
       return;
     }
-    for (int c = 0; c < 2; ++c) momentum(i, j, c, emit);
-    continuity(i, j, emit);
+    for (int c = 0; c < dim_; ++c) momentum(i, j, k, c, emit);
+    continuity(i, j, k, emit);
   }
 
  private:
-  bool open_neighbour(int in, int jn) const { return !grid_.outside(in, jn) && !is_blocked(mask_.data(), in, jn); }
+  bool open_neighbour(int in, int jn, int kn) const {
+    return !grid_.outside(in, jn, kn) && !is_blocked(mask_.data(), in, jn);
+  }
 
-  // The pressure pb of the atmosphere at the boundary face of (i, j) on side s along `axis`, recorded
-  // as the system took it; false where the side is a wall.
-  bool boundary_pressure(int axis, int s, int i, int j, double& pb) {
-    const Side bs = axis == 0 ? (s > 0 ? Side::east : Side::west) : (s > 0 ? Side::north : Side::south);
-    if (boundary(f_.settings_.boundaries, bs).kind != BoundaryKind::atmosphere) return false;
-    pb = f_.atmosphere_face_pressure(bs, i, j, rho_.data(), u_.data(), v_.data(), fxv_.data(), fyv_.data());
-    f_.solved_boundary_pressure_[static_cast<int>(bs)][axis == 0 ? j : i] = pb;
+  // The pressure pb of the atmosphere at the boundary face fg of (i, j, k), recorded as the system
+  // took it; false where the side is a wall.
+  bool boundary_pressure(const FaceGeometry& fg, int i, int j, int k, double& pb) {
+    if (boundary(f_.settings_.boundaries, fg.side).kind != BoundaryKind::atmosphere) return false;
+    pb = f_.atmosphere_face_pressure(fg.side, i, j, k, rho_, vel_.view, face_vel_.view);
+    f_.solved_boundary_pressure_[static_cast<int>(fg.side)][f_.boundary_face_index(fg.side, i, j, k)] = pb;
     return true;
+  }
+
+  // The distance between the centres of (i, j, k) and its neighbour across fg.
+  double centre_distance(const FaceGeometry& fg, int i, int j, int k) const {
+    return std::abs(grid_.centre(fg.axis, index_along(fg.axis, i + fg.di, j + fg.dj, k + fg.dk)) -
+                    grid_.centre(fg.axis, index_along(fg.axis, i, j, k)));
   }
 
   // Momentum row of component c: a_P v_P - sum a_nb v_nb - V f_cell(p) = source.
   template <class Emit>
-  void momentum(int i, int j, int c, Emit&& emit) {
-    const size_t k = size_t(j - b_.ys) * b_.xm + (i - b_.xs);
-    const double Vol = grid_.volume(i, j), rhoP = rho_[j][i];
-    MatStencil row{0, j, i, c};
-    MatStencil cols[8];
-    double vals[8];
-    int n = 0;
-    cols[n] = row;
-    vals[n++] = f_.a_centre_[c][k];
-    const int di[4] = {1, -1, 0, 0}, dj[4] = {0, 0, 1, -1};
-    for (int f = 0; f < 4; ++f) {
-      const int in = i + di[f], jn = j + dj[f];
-      if (!open_neighbour(in, jn)) continue;
-      cols[n] = MatStencil{0, jn, in, c};
-      vals[n++] = -f_.a_neighbour_[f][k];
+  void momentum(int i, int j, int k, int c, Emit&& emit) {
+    const size_t n = (size_t(k - b_.zs) * b_.ym + (j - b_.ys)) * b_.xm + (i - b_.xs);
+    const double Vol = grid_.volume(i, j, k), rhoP = rho_[k][j][i];
+    const MatStencil row{k, j, i, c};
+    MatStencil cols[10];  // the cell, six neighbours, two pressures and its own
+    double vals[10];
+    int m = 0;
+    cols[m] = row;
+    vals[m++] = f_.a_centre_[c][n];
+    for (const FaceGeometry& fg : cell_faces(dim_)) {
+      const int in = i + fg.di, jn = j + fg.dj, kn = k + fg.dk;
+      if (!open_neighbour(in, jn, kn)) continue;
+      cols[m] = MatStencil{kn, jn, in, c};
+      vals[m++] = -f_.a_neighbour_[&fg - box_faces][n];
     }
-    double r = f_.source_[c][k];
+    double r = f_.source_[c][n];
     double p_centre = 0.0;
-    for (int side = 0; side < 2; ++side) {  // high then low face along c
-      const int s = side == 0 ? 1 : -1;
-      const int in = i + (c == 0 ? s : 0), jn = j + (c == 1 ? s : 0);
+    for (int s : {1, -1}) {  // high then low face along c
+      const FaceGeometry& fg = face_along(c, s);
+      const int in = i + fg.di, jn = j + fg.dj, kn = k + fg.dk;
       if (is_blocked(mask_.data(), in, jn)) continue;  // an obstacle's wall carries no face force
-      if (grid_.outside(in, jn)) {
-        const double d = 0.5 * (c == 0 ? grid_.dx(i) : grid_.dy(j));
+      if (grid_.outside(in, jn, kn)) {
+        const double d = 0.5 * grid_.width(c, index_along(c, i, j, k));
         double pb;
-        if (!boundary_pressure(c, s, i, j, pb)) continue;  // walls carry no face force
+        if (!boundary_pressure(fg, i, j, k, pb)) continue;  // walls carry no face force
         // -V/2 f_b with f_b = -s (p_b - p_P)/d + rho_P g_c: p_b enters like a neighbour pressure.
         const double w = Vol / (2 * d);
         p_centre += -s * w;
         r += -s * w * pb + 0.5 * Vol * rhoP * g_[c];
         continue;
       }
-      const double d = c == 0 ? std::abs(grid_.xc(in) - grid_.xc(i)) : std::abs(grid_.yc(jn) - grid_.yc(j));
-      const double rho_f = 0.5 * (rhoP + rho_[jn][in]);
+      const double d = centre_distance(fg, i, j, k);
+      const double rho_f = 0.5 * (rhoP + rho_[kn][jn][in]);
       const double w = Vol * rhoP / (2 * rho_f * d);  // -V rho_P/(2 rho_f) * (-s (p_N - p_P)/d)
-      cols[n] = MatStencil{0, jn, in, P};
-      vals[n++] = s * w;
+      cols[m] = MatStencil{kn, jn, in, pressure_};
+      vals[m++] = s * w;
       p_centre += -s * w;
       r += 0.5 * Vol * rhoP * (g_[c] - f_.ambient_weight(c) / rho_f);
     }
-    cols[n] = MatStencil{0, j, i, P};
-    vals[n++] = p_centre;
-    emit(i, j, c, n, cols, vals, r);
+    cols[m] = MatStencil{k, j, i, pressure_};
+    vals[m++] = p_centre;
+    emit(i, j, k, c, m, cols, vals, r);
   }
 
   // Continuity row: sum_f s A U_f = 0, U_f = mean(v_n) + m_f (f_f(p) - mean(f_cell)_lagged).
   template <class Emit>
-  void continuity(int i, int j, Emit&& emit) {
-    const double rhoP = rho_[j][i];
-    const double* const* rau[2] = {rx_.data(), ry_.data()};
-    const double* const* fcell[2] = {fcx_.data(), fcy_.data()};
-    MatStencil row{0, j, i, P};
-    MatStencil cols[12];
-    double vals[12];
-    int n = 0;
-    double u_centre[2] = {0.0, 0.0}, p_centre = 0.0, r = 0.0;
-    for (int f = 0; f < 4; ++f) {
-      const int axis = f < 2 ? 0 : 1;
-      const int s = (f % 2 == 0) ? 1 : -1;
-      const int in = i + (axis == 0 ? s : 0), jn = j + (axis == 1 ? s : 0);
-      const double area = grid_.face_area(axis, i, j, s);
+  void continuity(int i, int j, int k, Emit&& emit) {
+    const double rhoP = rho_[k][j][i];
+    const MatStencil row{k, j, i, pressure_};
+    MatStencil cols[16];
+    double vals[16];
+    int m = 0;
+    double u_centre[3] = {0.0, 0.0, 0.0}, p_centre = 0.0, r = 0.0;
+    for (const FaceGeometry& fg : cell_faces(dim_)) {
+      const int axis = fg.axis;
+      const int s = fg.sign > 0 ? 1 : -1;
+      const int in = i + fg.di, jn = j + fg.dj, kn = k + fg.dk;
+      const VolumeView rau = mobility_.view[axis], fcell = cell_force_.view[axis];
+      const double area = grid_.face_area(axis, i, j, k, s);
       if (is_blocked(mask_.data(), in, jn)) continue;  // no flux through an obstacle's wall
-      if (grid_.outside(in, jn)) {
-        const double d = 0.5 * (axis == 0 ? grid_.dx(i) : grid_.dy(j));
+      if (grid_.outside(in, jn, kn)) {
+        const double d = 0.5 * grid_.width(axis, index_along(axis, i, j, k));
         double pb;
-        if (!boundary_pressure(axis, s, i, j, pb)) continue;
-        const double m = rau[axis][j][i];
+        if (!boundary_pressure(fg, i, j, k, pb)) continue;
+        const double mob = rau[k][j][i];
         u_centre[axis] += s * area;
-        p_centre += m * area / d;
-        r += m * area / d * pb - s * area * m * rhoP * g_[axis] + s * area * m * fcell[axis][j][i];
+        p_centre += mob * area / d;
+        r += mob * area / d * pb - s * area * mob * rhoP * g_[axis] + s * area * mob * fcell[k][j][i];
         continue;
       }
-      const double d = axis == 0 ? std::abs(grid_.xc(in) - grid_.xc(i)) : std::abs(grid_.yc(jn) - grid_.yc(j));
-      const double m = f_.coupled_mobility(rau[axis], i, j, in, jn);
-      const double rho_f = 0.5 * (rhoP + rho_[jn][in]);
+      const double d = centre_distance(fg, i, j, k);
+      const double mob = f_.coupled_mobility(rau, i, j, k, in, jn, kn);
+      const double rho_f = 0.5 * (rhoP + rho_[kn][jn][in]);
       u_centre[axis] += 0.5 * s * area;
-      cols[n] = MatStencil{0, jn, in, axis};
-      vals[n++] = 0.5 * s * area;
-      p_centre += m * area / d;
-      cols[n] = MatStencil{0, jn, in, P};
-      vals[n++] = -m * area / d;
-      r += -s * area * m * rho_f * g_[axis] + s * area * m * f_.ambient_weight(axis) +
-           s * area * m * 0.5 * (fcell[axis][j][i] + fcell[axis][jn][in]);
+      cols[m] = MatStencil{kn, jn, in, axis};
+      vals[m++] = 0.5 * s * area;
+      p_centre += mob * area / d;
+      cols[m] = MatStencil{kn, jn, in, pressure_};
+      vals[m++] = -mob * area / d;
+      r += -s * area * mob * rho_f * g_[axis] + s * area * mob * f_.ambient_weight(axis) +
+           s * area * mob * 0.5 * (fcell[k][j][i] + fcell[kn][jn][in]);
     }
-    cols[n] = MatStencil{0, j, i, U};
-    vals[n++] = u_centre[0];
-    cols[n] = MatStencil{0, j, i, V};
-    vals[n++] = u_centre[1];
-    cols[n] = row;
-    vals[n++] = p_centre;
-    if (f_.pins_pressure_level_ && i == f_.pin_i_ && j == f_.pin_j_) {
+    for (int c = 0; c < dim_; ++c) {
+      cols[m] = MatStencil{k, j, i, c};
+      vals[m++] = u_centre[c];
+    }
+    cols[m] = row;
+    vals[m++] = p_centre;
+    if (f_.pins_pressure_level_ && i == f_.pin_i_ && j == f_.pin_j_ && k == f_.pin_k_) {
       // A closed domain's continuity rows sum to zero (every face's flux enters two of them with
       // opposite signs), so one of them is implied by the others; this cell's holds the pressure
       // level at the last iterate's instead, scaled like the row it replaces.
-      std::fill(vals, vals + n - 1, 0.0);
-      r = p_centre * p_now_[j][i];
+      std::fill(vals, vals + m - 1, 0.0);
+      r = p_centre * p_now_[k][j][i];
     }
-    emit(i, j, int(P), n, cols, vals, r);
+    emit(i, j, k, pressure_, m, cols, vals, r);
   }
 
   FlowSolver& f_;
   const Grid& grid_;
   const CellBox& b_;
+  const int dim_, pressure_;  // the pressure's unknown follows the velocity's components
   const std::array<double, 3>& g_;
-  ConstFieldArray rho_, u_, v_, fxv_, fyv_, rx_, ry_, fcx_, fcy_, p_now_;
+  const ConstFieldArray rho_array_, p_array_;
+  const VolumeView rho_, p_now_;
+  const AxisViews vel_, face_vel_, mobility_, cell_force_;
   const BlockedView mask_;
 };
 
 // The coupled rows of velocity and pressure, over the air band's region or the whole domain.
 void FlowSolver::fill_coupled_rows() {
   const auto& b = grid_.owned();
-  const int nx = grid_.nx(), ny = grid_.ny();
-  for (Side side : planar_sides)  // NaN: a face the system below does not hold (outside the air band's region)
-    solved_boundary_pressure_[static_cast<int>(side)].assign(normal_axis(side) == 0 ? ny : nx, std::nan(""));
+  const int nx = grid_.nx(), ny = grid_.ny(), nz = grid_.nz();
+  const int pressure = dimension_;
+  for (Side side : sides_of_dimension(dimension_)) {  // NaN: a face the system below does not hold
+    const int axis = normal_axis(side);             // (outside the air band's region)
+    const size_t faces = axis == 0 ? size_t(ny) * nz : (axis == 1 ? size_t(nx) * nz : size_t(nx) * ny);
+    solved_boundary_pressure_[static_cast<int>(side)].assign(faces, std::nan(""));
+  }
   CoupledRows rows(*this);
-  if (solve_region_) {
+  if (solve_region_) {  // planar meshes
     // Only the region's rows; outside, air at rest under the pressure of the air column above it.
     const long region_cells = solve_region_->prepare();
     // Without an open side nothing else fixes the pressure's level, unless the region leaves out some
@@ -273,27 +334,28 @@ void FlowSolver::fill_coupled_rows() {
     pins_pressure_level_ = !has_pressure_boundary_ && region_cells == (blocked_ ? open_cells_ : long(nx) * ny);
     if (region_cells == 0) return;
     auto outside = [&](int i, int j, int unknown) {
-      return unknown == P ? pressure_at_rest(rows.density(i, j), j) : 0.0;
+      return unknown == pressure ? pressure_at_rest(rows.density(i, j, 0), j) : 0.0;
     };
     SolveRegion::RowWriter region_rows(*solve_region_);
-    auto emit = [&](int i, int j, int unknown, int n, const MatStencil* cols, const double* vals, double r) {
+    auto emit = [&](int i, int j, int, int unknown, int n, const MatStencil* cols, const double* vals, double r) {
       region_rows.set(i, j, unknown, n, cols, vals, r, outside);
     };
     for (int j = b.ys; j < b.ye(); ++j)
       for (int i = b.xs; i < b.xe(); ++i)
-        if (region_rows.inside(i, j)) rows.cell(i, j, emit);
+        if (region_rows.inside(i, j)) rows.cell(i, j, 0, emit);
   } else {
     pins_pressure_level_ = !has_pressure_boundary_;
-    PetscScalar*** rhs;
-    PetscCallAbort(grid_.comm(), DMDAVecGetArrayDOF(coupled_dm_, coupled_rhs_, &rhs));
-    auto emit = [&](int i, int j, int unknown, int n, const MatStencil* cols, const double* vals, double r) {
-      const MatStencil row{0, j, i, unknown};
-      PetscCallAbort(PETSC_COMM_SELF, MatSetValuesStencil(coupled_matrix_, 1, &row, n, cols, vals, INSERT_VALUES));
-      rhs[j][i][unknown] = r;
-    };
-    for (int j = b.ys; j < b.ye(); ++j)
-      for (int i = b.xs; i < b.xe(); ++i) rows.cell(i, j, emit);
-    PetscCallAbort(grid_.comm(), DMDAVecRestoreArrayDOF(coupled_dm_, coupled_rhs_, &rhs));
+    {
+      const CellUnknowns rhs(grid_.comm(), coupled_rhs_, b, dimension_ + 1);
+      auto emit = [&](int i, int j, int k, int unknown, int n, const MatStencil* cols, const double* vals, double r) {
+        const MatStencil row{k, j, i, unknown};
+        PetscCallAbort(PETSC_COMM_SELF, MatSetValuesStencil(coupled_matrix_, 1, &row, n, cols, vals, INSERT_VALUES));
+        rhs(i, j, k, unknown) = r;
+      };
+      for (int k = b.zs; k < b.ze(); ++k)
+        for (int j = b.ys; j < b.ye(); ++j)
+          for (int i = b.xs; i < b.xe(); ++i) rows.cell(i, j, k, emit);
+    }
     PetscCallAbort(grid_.comm(), MatAssemblyBegin(coupled_matrix_, MAT_FINAL_ASSEMBLY));
     PetscCallAbort(grid_.comm(), MatAssemblyEnd(coupled_matrix_, MAT_FINAL_ASSEMBLY));
   }
@@ -303,33 +365,25 @@ void FlowSolver::fill_coupled_rows() {
 // outside a band's region at rest and hydrostatic. Returns the iterations.
 int FlowSolver::solve_coupled_rows(bool by_first_factorisation) {
   const auto& b = grid_.owned();
-  // Initial guess: the current state.
+  const int pressure = dimension_;
+  // Initial guess: the current state; outside a band's region (planar meshes), air at rest under the
+  // pressure of the air column above it.
   {
-    PetscScalar*** x;
-    PetscCallAbort(grid_.comm(), DMDAVecGetArrayDOF(coupled_dm_, coupled_solution_, &x));
-    ConstFieldArray u(grid_.field_dm(), vel_[0]->global()), v(grid_.field_dm(), vel_[1]->global()),
-        p(grid_.field_dm(), p_->global());
-    for (int j = b.ys; j < b.ye(); ++j)
-      for (int i = b.xs; i < b.xe(); ++i) {
-        x[j][i][U] = u[j][i];
-        x[j][i][V] = v[j][i];
-        x[j][i][P] = p[j][i];
-      }
-    PetscCallAbort(grid_.comm(), DMDAVecRestoreArrayDOF(coupled_dm_, coupled_solution_, &x));
+    const CellUnknowns x(grid_.comm(), coupled_solution_, b, dimension_ + 1);
+    const AxisViews vel(grid_, vel_, dimension_, true);
+    const ConstFieldArray p(grid_.field_dm(), p_->global()), rho(grid_.field_dm(), rho_->global());
+    std::optional<ConstFieldArray> inside;
+    if (solve_region_) inside.emplace(grid_.field_dm(), solve_region_->cells().global());
+    for (int k = b.zs; k < b.ze(); ++k)
+      for (int j = b.ys; j < b.ye(); ++j)
+        for (int i = b.xs; i < b.xe(); ++i) {
+          const bool at_rest = inside && inside->volume()[k][j][i] == 0.0;
+          for (int c = 0; c < dimension_; ++c) x(i, j, k, c) = at_rest ? 0.0 : vel.view[c][k][j][i];
+          x(i, j, k, pressure) = at_rest ? pressure_at_rest(rho.volume()[k][j][i], j) : p.volume()[k][j][i];
+        }
   }
   int iterations = 0;
   if (solve_region_) {
-    // Outside the region: air at rest under the pressure of the air column above it.
-    ConstFieldArray inside(grid_.field_dm(), solve_region_->cells().global()), rho(grid_.field_dm(), rho_->global());
-    PetscScalar*** x;
-    PetscCallAbort(grid_.comm(), DMDAVecGetArrayDOF(coupled_dm_, coupled_solution_, &x));
-    for (int j = b.ys; j < b.ye(); ++j)
-      for (int i = b.xs; i < b.xe(); ++i)
-        if (inside[j][i] == 0.0) {
-          x[j][i][U] = x[j][i][V] = 0.0;
-          x[j][i][P] = pressure_at_rest(rho[j][i], j);
-        }
-    PetscCallAbort(grid_.comm(), DMDAVecRestoreArrayDOF(coupled_dm_, coupled_solution_, &x));
     if (solve_region_->cell_count() > 0)
       iterations = by_first_factorisation ? solve_region_->solve_by_last_factorisation(
                                                 coupled_dm_, coupled_solution_, settings_.numerics.krylov_iterations)
@@ -342,24 +396,22 @@ int FlowSolver::solve_coupled_rows(bool by_first_factorisation) {
     iterations = coupled_solver_->solve(coupled_rhs_, coupled_solution_);
   }
   {
-    PetscScalar*** x;
-    PetscCallAbort(grid_.comm(), DMDAVecGetArrayDOF(coupled_dm_, coupled_solution_, &x));
-    FieldArray u(grid_.field_dm(), vel_[0]->global()), v(grid_.field_dm(), vel_[1]->global()),
-        p(grid_.field_dm(), p_->global());
-    for (int j = b.ys; j < b.ye(); ++j)
-      for (int i = b.xs; i < b.xe(); ++i) {
-        u[j][i] = x[j][i][U];
-        v[j][i] = x[j][i][V];
-        p[j][i] = x[j][i][P];
-      }
-    PetscCallAbort(grid_.comm(), DMDAVecRestoreArrayDOF(coupled_dm_, coupled_solution_, &x));
+    const CellUnknowns x(grid_.comm(), coupled_solution_, b, dimension_ + 1);
+    std::optional<FieldArray> vel[3];
+    for (int c = 0; c < dimension_; ++c) vel[c].emplace(grid_.field_dm(), vel_[c]->global());
+    FieldArray p(grid_.field_dm(), p_->global());
+    for (int k = b.zs; k < b.ze(); ++k)
+      for (int j = b.ys; j < b.ye(); ++j)
+        for (int i = b.xs; i < b.xe(); ++i) {
+          for (int c = 0; c < dimension_; ++c) vel[c]->volume()[k][j][i] = x(i, j, k, c);
+          p.volume()[k][j][i] = x(i, j, k, pressure);
+        }
   }
   return iterations;
 }
 
 void FlowSolver::update_coupled_face_velocities() {
   const auto& b = grid_.owned();
-  const int nx = grid_.nx(), ny = grid_.ny();
   const auto& g = settings_.gravity;
   // Face velocities with exactly the flux of the continuity rows (divergence-free to the tolerance).
   // An atmosphere face keeps the pressure the rows were built with: with total pressure, inflow
@@ -367,71 +419,50 @@ void FlowSolver::update_coupled_face_velocities() {
   // a falling water column a flux of its own, and the water's volume grew by 2e-5.
   compute_face_forces();
   {
-    ConstFieldArray p = local_read(grid_, *p_), rho = local_read(grid_, *rho_);
-    for (int c = 0; c < 2; ++c) {
-      FieldArray ff = local_array(grid_, *face_force_[c]);
-      for (Side side : planar_sides) {
-        if (normal_axis(side) != c) continue;
-        const double sign = outward_normal(side, c);
-        const auto& solved = solved_boundary_pressure_[static_cast<int>(side)];
-        const bool low = sign < 0;
-        if (c == 0 && grid_.owns_boundary(side))
-          for (int j = b.ys; j < b.ye(); ++j) {
-            const int i = low ? 0 : nx - 1;
-            if (!std::isnan(solved[j]))
-              ff[j][low ? -1 : i] = -sign * (solved[j] - p[j][i]) / (0.5 * grid_.dx(i)) + rho[j][i] * g[0];
+    const ConstFieldArray p_array = local_read(grid_, *p_), rho_array = local_read(grid_, *rho_);
+    const VolumeView p = p_array.volume(), rho = rho_array.volume();
+    for (Side side : sides_of_dimension(dimension_)) {
+      if (!grid_.owns_boundary(side)) continue;
+      const FaceGeometry& fg = face_on(side);
+      const int axis = fg.axis;
+      const auto& solved = solved_boundary_pressure_[static_cast<int>(side)];
+      FieldArray ff_array = local_array(grid_, *face_force_[axis]);
+      double*** ff = ff_array.volume();
+      // The owned cells next to the side.
+      int lo[3] = {b.xs, b.ys, b.zs}, hi[3] = {b.xe(), b.ye(), b.ze()};
+      if (fg.sign < 0) hi[axis] = lo[axis] + 1;
+      else lo[axis] = hi[axis] - 1;
+      const bool low = fg.sign < 0;
+      for (int k = lo[2]; k < hi[2]; ++k)
+        for (int j = lo[1]; j < hi[1]; ++j)
+          for (int i = lo[0]; i < hi[0]; ++i) {
+            const double pb = solved[boundary_face_index(side, i, j, k)];
+            if (std::isnan(pb)) continue;
+            const double d = 0.5 * grid_.width(axis, index_along(axis, i, j, k));
+            ff[k - (low && axis == 2)][j - (low && axis == 1)][i - (low && axis == 0)] =
+                -fg.sign * (pb - p[k][j][i]) / d + rho[k][j][i] * g[axis];
           }
-        if (c == 1 && (low ? b.ys == 0 : b.ye() == ny))
-          for (int i = b.xs; i < b.xe(); ++i) {
-            const int j = low ? 0 : ny - 1;
-            if (!std::isnan(solved[i]))
-              ff[low ? -1 : j][i] = -sign * (solved[i] - p[j][i]) / (0.5 * grid_.dy(j)) + rho[j][i] * g[1];
-          }
-      }
     }
   }
-  {
-    ConstFieldArray u = local_read(grid_, *vel_[0]), v = local_read(grid_, *vel_[1]);
-    ConstFieldArray rx = local_read(grid_, *pressure_mobility_[0]), ry = local_read(grid_, *pressure_mobility_[1]);
-    ConstFieldArray fcx = local_read(grid_, *cell_force_[0]), fcy = local_read(grid_, *cell_force_[1]);
-    ConstFieldArray ffx = local_read(grid_, *face_force_[0]), ffy = local_read(grid_, *face_force_[1]);
-    FieldArray fxv = local_array(grid_, *face_[0]), fyv = local_array(grid_, *face_[1]);
-    const BlockedView mask(grid_, blocked_);
-    for (int j = b.ys; j < b.ye(); ++j)
-      for (int i = b.xs - 1; i < b.xe(); ++i) {
-        if (is_blocked(mask.data(), i, j) || is_blocked(mask.data(), i + 1, j)) {
-          fxv[j][i] = 0.0;  // an obstacle's wall
-          continue;
-        }
-        if (grid_.outside(i, j) || grid_.outside(i + 1, j)) {
-          const Side s = i == -1 ? Side::west : Side::east;
-          const int ic = i == -1 ? 0 : i;
-          fxv[j][i] = boundary(settings_.boundaries, s).kind == BoundaryKind::atmosphere
-                          ? u[j][ic] + rx[j][ic] * (ffx[j][i] - fcx[j][ic])
-                          : 0.0;
-          continue;
-        }
-        fxv[j][i] = 0.5 * (u[j][i] + u[j][i + 1]) +
-                    coupled_mobility(rx.data(), i, j, i + 1, j) * (ffx[j][i] - 0.5 * (fcx[j][i] + fcx[j][i + 1]));
-      }
-    for (int j = b.ys - 1; j < b.ye(); ++j)
-      for (int i = b.xs; i < b.xe(); ++i) {
-        if (is_blocked(mask.data(), i, j) || is_blocked(mask.data(), i, j + 1)) {
-          fyv[j][i] = 0.0;
-          continue;
-        }
-        if (j == -1 || j == ny - 1) {
-          const Side s = j == -1 ? Side::south : Side::north;
-          const int jc = j == -1 ? 0 : j;
-          fyv[j][i] = boundary(settings_.boundaries, s).kind == BoundaryKind::atmosphere
-                          ? v[jc][i] + ry[jc][i] * (ffy[j][i] - fcy[jc][i])
-                          : 0.0;
-          continue;
-        }
-        fyv[j][i] = 0.5 * (v[j][i] + v[j + 1][i]) +
-                    coupled_mobility(ry.data(), i, j, i, j + 1) * (ffy[j][i] - 0.5 * (fcy[j][i] + fcy[j + 1][i]));
-      }
-  }
+  const AxisViews vel(grid_, vel_), mobility(grid_, pressure_mobility_), fcell(grid_, cell_force_),
+      ff(grid_, face_force_);
+  fill_owned_faces_any(
+      grid_, per_axis(face_),
+      [&](int axis, int i, int j, int k) {
+        const VolumeView q = vel.view[axis], fc = fcell.view[axis];
+        const int in = i + (axis == 0), jn = j + (axis == 1), kn = k + (axis == 2);
+        return 0.5 * (q[k][j][i] + q[kn][jn][in]) + coupled_mobility(mobility.view[axis], i, j, k, in, jn, kn) *
+                                                        (ff.view[axis][k][j][i] - 0.5 * (fc[k][j][i] + fc[kn][jn][in]));
+      },
+      [&](int axis, int i, int j, int k, int sign) {
+        const FaceGeometry& fg = face_along(axis, sign);
+        // An obstacle's wall, or a wall side: no flux.
+        if (!grid_.outside(i + fg.di, j + fg.dj, k + fg.dk)) return 0.0;
+        if (boundary(settings_.boundaries, fg.side).kind != BoundaryKind::atmosphere) return 0.0;
+        return vel.view[axis][k][j][i] +
+               mobility.view[axis][k][j][i] * (on_face(ff.view, i, j, k, fg) - fcell.view[axis][k][j][i]);
+      },
+      BlockedView(grid_, blocked_).data());
 }
 
 int FlowSolver::solve_coupled(bool by_first_factorisation) {

@@ -22,12 +22,13 @@ namespace {
 std::unique_ptr<Field> make_field(const Grid& g) { return std::make_unique<Field>(g); }
 
 
-// What a mesh of layers does not have yet (docs/method.md, "Known limitations"): the coupled solve and
-// a periodic side.
+// What a mesh of layers does not have yet (docs/method.md, "Known limitations"): the coupled solve
+// over an air band's region (it solves the whole domain), and a periodic side. The case file refuses
+// the same, naming the keys (require_what_layers_have in io/case_file.cpp), and so does SoilPhase.
 void refuse_what_3d_lacks(const Grid& grid, const FlowSettings& settings) {
   if (grid.dimension() != 3) return;
-  if (settings.numerics.pressure_coupling == PressureCoupling::coupled)
-    throw std::invalid_argument("FlowSolver: a mesh of layers takes the segregated steps (projection or PISO), not the coupled solve");
+  if (settings.numerics.pressure_coupling == PressureCoupling::coupled && settings.numerics.air_band > 0)
+    throw std::invalid_argument("FlowSolver: the coupled solve on a mesh of layers covers the whole domain (air_band = 0)");
   if (grid.periodic_x()) throw std::invalid_argument("FlowSolver: a mesh of layers with a periodic side is not implemented");
 }
 
@@ -216,6 +217,7 @@ std::vector<std::pair<const char*, Field*>> FlowSolver::named_state_fields() {
   if (dimension_ == 3) {  // the third component's, after the planar ones (whose order checkpoints keep)
     f.insert(f.end(), {{"w", vel_[2].get()}, {"face_w", face_[2].get()}, {"face_force_z", face_force_[2].get()}});
     if (settings_.numerics.look_ahead_viscosity) f.emplace_back("w_previous", vel_old_[2].get());
+    if (cell_force_[2]) f.emplace_back("cell_force_z", cell_force_[2].get());
   }
   if (solve_region_) f.emplace_back("solve_region", &solve_region_->cells());
   return f;
@@ -274,6 +276,9 @@ void FlowSolver::update_properties_at_mean_pressure() {
 }
 
 void FlowSolver::enable_mass_transport() {
+  // The soil's sweeps on a mesh of layers do not add up their mass fluxes yet (soil_phase_3d.cpp).
+  if (dimension_ == 3)
+    throw std::invalid_argument("FlowSolver: conservative momentum transport on a mesh of layers is not implemented");
   start_density_ = make_field(grid_);
   start_density_->copy_from(*rho_);
   for (auto& f : mass_flux_) {

@@ -187,7 +187,8 @@ class FlowSolver {
   void fill_coupled_rows();
   int solve_coupled_rows(bool by_first_factorisation);
   void update_coupled_face_velocities();
-  double coupled_mobility(const double* const* rau, int i, int j, int in, int jn) const;
+  double coupled_mobility(VolumeView rau, int i, int j, int k, int in, int jn, int kn) const;
+  size_t boundary_face_index(Side s, int i, int j, int k) const;  // into solved_boundary_pressure_[s]
   double pressure_at_rest(double rho, int j) const;  // air outside the solve region
   // The ambient's weight per unit volume along `axis` that its mean pressure gradient carries along a
   // periodic x (FlowSettings::periodic_ambient_density), taken off every face's weight rho_f g; 0 otherwise.
@@ -241,22 +242,22 @@ class FlowSolver {
   OwnedVec rhs_;
   std::unique_ptr<LinearSolver> momentum_solver_[3];
   std::unique_ptr<LinearSolver> pressure_solver_;
-  OwnedDm coupled_dm_;  // (u, v, p) per cell, same layout as the grid
+  OwnedDm coupled_dm_;  // (u, v, p) per cell, (u, v, w, p) on a mesh of layers; the grid's layout
   OwnedMat coupled_matrix_;
   OwnedVec coupled_rhs_, coupled_solution_;
   std::unique_ptr<LinearSolver> coupled_solver_;  // numerics.air_band = 0
   std::unique_ptr<SolveRegion> solve_region_;      // numerics.air_band > 0
-  std::unique_ptr<Field> cell_force_[2];  // lagged balanced cell force of the Rhie-Chow flux
-  // The atmosphere's pressure on each boundary face as the last coupled system took it, per side
-  // along the side (NaN where the system held no row).
-  std::array<std::vector<double>, 6> solved_boundary_pressure_;  // indexed by Side; front and back stay empty
+  std::unique_ptr<Field> cell_force_[3];  // lagged balanced cell force of the Rhie-Chow flux, per axis
+  // The atmosphere's pressure on each boundary face as the last coupled system took it, per side, at
+  // boundary_face_index (NaN where the system held no row).
+  std::array<std::vector<double>, 6> solved_boundary_pressure_;  // indexed by Side
   // The open upright sides' hydrostatic heads, indexed by Side (south and north unused): [n * ny + j]
   // for column n along the side (its layer k on west and east, its x index on front and back).
   std::vector<double> side_head_[6];
   bool has_pressure_boundary_ = false;
   bool pins_pressure_level_ = false;  // the last coupled system held the level in a row (closed domain)
   const Field* blocked_ = nullptr;  // set_blocked
-  int pin_i_ = 0, pin_j_ = 0;      // the cell whose continuity row holds a closed domain's level
+  int pin_i_ = 0, pin_j_ = 0, pin_k_ = 0;  // the cell whose continuity row holds a closed domain's level
   long open_cells_ = 0;            // cells not blocked, over all ranks
   bool shared_momentum_matrix_ = true;  // no slip walls: the components share their matrix
   int dimension_ = 2;                   // the mesh's: how many velocity components there are

@@ -53,11 +53,11 @@ FlowSolver::WallForces FlowSolver::wall_forces() const {
       for (int c = 0; c < dim; ++c)
         if (c != axis) f[c] -= sign * mu * lagged_transpose_gradient(grid_, vel.view, i, j, k, fg, c) * area;
     if (bc.kind == BoundaryKind::atmosphere) {
-      // The coupled solve's own boundary pressure where it held the face (coupled_step.cpp, planar);
-      // else as the segregated step takes it, from the present state.
+      // The coupled solve's own boundary pressure where it held the face (coupled_step.cpp); else as
+      // the segregated step takes it, from the present state.
       const auto& solved = solved_boundary_pressure_[static_cast<int>(s)];
-      const size_t along = size_t(axis == 0 ? j : i);
-      double pb = dim == 2 && along < solved.size() ? solved[along] : std::nan("");
+      const size_t at = boundary_face_index(s, i, j, k);
+      double pb = at < solved.size() ? solved[at] : std::nan("");
       if (std::isnan(pb)) pb = atmosphere_face_pressure(s, i, j, k, rho, vel.view, face_vel.view);
       f[axis] += pb * area * sign;
       return;
