@@ -891,9 +891,6 @@ std::string no_area_in_domain(const interface::Shape& shape, const GridSpec& mes
 void require_what_layers_have(const CaseConfig& c) {
   if (c.mesh.dimension() == 2) return;
   const auto& num = c.flow.numerics;
-  if (num.pressure_coupling == PressureCoupling::coupled && num.air_band > 0)
-    throw CaseError("numerics.air_band: the air band's region is planar yet; a mesh of layers' coupled solve covers the "
-                    "whole domain (numerics.air_band = 0, the default there)");
   if (c.mesh.periodic_x) throw CaseError("boundary.west.type: periodic sides are planar yet (not on a mesh of layers)");
   for (Side s : box_sides)
     if (boundary(c.flow.boundaries, s).friction)
@@ -970,7 +967,7 @@ void require_consistent(const CaseConfig& c) {
     if (c.flow.numerics.pressure_coupling != PressureCoupling::coupled)
       throw CaseError("numerics.air_band: applies to pressure_coupling = \"coupled\" only");
     if (!c.soil) throw CaseError("numerics.air_band: needs a [soil] phase to solve around");
-    if (c.flow.gravity[0] != 0.0)
+    if (c.flow.gravity[0] != 0.0 || c.flow.gravity[2] != 0.0)
       throw CaseError("numerics.air_band: needs gravity along y (the air beyond the band is hydrostatic)");
     // The band is laid again once the soil comes within half of it of its edge; in between, each of a
     // step's sweeps may carry a sliver of soil one cell further (as SoilPhase::advect reckons), and
@@ -1030,10 +1027,10 @@ CaseConfig read_case(const toml::table& root, const std::filesystem::path& sourc
   // A granular case's coupled solve covers its soil and an air band by default, wide enough for the
   // step's sweeps, where one may be laid (require_consistent): not across periodic sides, nor where
   // the air beyond is not hydrostatic along y.
-  // A mesh of layers takes the projection by default, and its coupled solve covers the whole domain.
+  // A mesh of layers takes the projection by default.
   const bool layers = c.mesh.dimension() == 3;
   const bool granular = c.soil && c.soil->rheology;
-  const bool band_allowed = granular && !layers && !c.mesh.periodic_x && c.flow.gravity[0] == 0.0;
+  const bool band_allowed = granular && !c.mesh.periodic_x && c.flow.gravity[0] == 0.0 && c.flow.gravity[2] == 0.0;
   c.flow.numerics = read_numerics(top, granular && !layers, layers,
                                   band_allowed ? std::max(default_air_band, 2 * c.time.interface_substeps + 1) : 0,
                                   c.keys_without_effect);

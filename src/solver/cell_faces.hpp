@@ -25,6 +25,8 @@ inline constexpr std::span<const FaceGeometry, 4> faces_of_cell{box_faces, 4};
 inline std::span<const FaceGeometry> cell_faces(int dimension) {
   return {box_faces, std::size_t(dimension == 3 ? 6 : 4)};
 }
+// The face of a cell on the `sign` side along `axis`.
+constexpr const FaceGeometry& face_along(int axis, int sign) { return box_faces[2 * axis + (sign < 0)]; }
 // The face of a cell that lies on side s of the domain when the cell is next to it.
 constexpr const FaceGeometry& face_on(Side s) {
   for (const auto& f : box_faces)

@@ -9,42 +9,13 @@
 #include <optional>
 
 #include "mesh/axis_views.hpp"
+#include "mesh/cell_unknowns.hpp"
 #include "mesh/face_loop.hpp"
 #include "mesh/obstacles.hpp"
 #include "operators/face_interpolation.hpp"
 #include "solver/flow_solver.hpp"
 
 namespace granflow {
-
-namespace {
-
-// The coupled system's unknowns of a cell: the velocity's components 0 .. dimension - 1, then the
-// pressure, interleaved cell by cell as a DMDA with that many degrees of freedom lays them out.
-// Entry (i, j, k, unknown) of the rank's part of such a vector, of any dimension.
-class CellUnknowns {
- public:
-  CellUnknowns(MPI_Comm comm, Vec v, const CellBox& b, int per_cell) : comm_(comm), v_(v), b_(b), per_cell_(per_cell) {
-    PetscCallAbort(comm_, VecGetArray(v_, &a_));
-  }
-  ~CellUnknowns() { PetscCallAbort(comm_, VecRestoreArray(v_, &a_)); }
-  CellUnknowns(const CellUnknowns&) = delete;
-  CellUnknowns& operator=(const CellUnknowns&) = delete;
-  double& operator()(int i, int j, int k, int unknown) const {
-    return a_[((size_t(k - b_.zs) * b_.ym + (j - b_.ys)) * b_.xm + (i - b_.xs)) * per_cell_ + unknown];
-  }
-
- private:
-  MPI_Comm comm_;
-  Vec v_;
-  const CellBox& b_;
-  int per_cell_;
-  PetscScalar* a_ = nullptr;
-};
-
-// The face of a cell on the `sign` side along `axis`.
-const FaceGeometry& face_along(int axis, int sign) { return box_faces[2 * axis + (sign < 0)]; }
-
-}  // namespace
 
 void FlowSolver::create_coupled_system() {
   MPI_Comm comm = grid_.comm();
@@ -63,7 +34,7 @@ void FlowSolver::create_coupled_system() {
                                       grid_.ny(), m, n, unknowns, 1, lx, ly, coupled_dm_.put()));
   PetscCallAbort(comm, DMSetUp(coupled_dm_));
   PetscCallAbort(comm, DMCreateGlobalVector(coupled_dm_, coupled_solution_.put()));
-  // Over the soil and its air band (the region makes its own system; planar meshes), or over the whole domain.
+  // Over the soil and its air band (the region makes its own system), or over the whole domain.
   if (settings_.numerics.air_band > 0) {
     solve_region_ = std::make_unique<SolveRegion>(grid_, settings_.coupled_solver);
   } else {
@@ -325,24 +296,25 @@ void FlowSolver::fill_coupled_rows() {
     solved_boundary_pressure_[static_cast<int>(side)].assign(faces, std::nan(""));
   }
   CoupledRows rows(*this);
-  if (solve_region_) {  // planar meshes
+  if (solve_region_) {
     // Only the region's rows; outside, air at rest under the pressure of the air column above it.
     const long region_cells = solve_region_->prepare();
     // Without an open side nothing else fixes the pressure's level, unless the region leaves out some
     // cells, whose air at rest under a zero top then holds it. Blocked cells are never in the region:
     // it covers every open cell if it holds as many.
-    pins_pressure_level_ = !has_pressure_boundary_ && region_cells == (blocked_ ? open_cells_ : long(nx) * ny);
+    pins_pressure_level_ = !has_pressure_boundary_ && region_cells == (blocked_ ? open_cells_ : grid_.cell_count());
     if (region_cells == 0) return;
-    auto outside = [&](int i, int j, int unknown) {
-      return unknown == pressure ? pressure_at_rest(rows.density(i, j, 0), j) : 0.0;
+    auto outside = [&](int i, int j, int k, int unknown) {
+      return unknown == pressure ? pressure_at_rest(rows.density(i, j, k), j) : 0.0;
     };
     SolveRegion::RowWriter region_rows(*solve_region_);
-    auto emit = [&](int i, int j, int, int unknown, int n, const MatStencil* cols, const double* vals, double r) {
-      region_rows.set(i, j, unknown, n, cols, vals, r, outside);
+    auto emit = [&](int i, int j, int k, int unknown, int n, const MatStencil* cols, const double* vals, double r) {
+      region_rows.set(i, j, k, unknown, n, cols, vals, r, outside);
     };
-    for (int j = b.ys; j < b.ye(); ++j)
-      for (int i = b.xs; i < b.xe(); ++i)
-        if (region_rows.inside(i, j)) rows.cell(i, j, 0, emit);
+    for (int k = b.zs; k < b.ze(); ++k)
+      for (int j = b.ys; j < b.ye(); ++j)
+        for (int i = b.xs; i < b.xe(); ++i)
+          if (region_rows.inside(i, j, k)) rows.cell(i, j, k, emit);
   } else {
     pins_pressure_level_ = !has_pressure_boundary_;
     {
@@ -386,8 +358,8 @@ int FlowSolver::solve_coupled_rows(bool by_first_factorisation) {
   if (solve_region_) {
     if (solve_region_->cell_count() > 0)
       iterations = by_first_factorisation ? solve_region_->solve_by_last_factorisation(
-                                                coupled_dm_, coupled_solution_, settings_.numerics.krylov_iterations)
-                                          : solve_region_->solve(coupled_dm_, coupled_solution_);
+                                                coupled_solution_, settings_.numerics.krylov_iterations)
+                                          : solve_region_->solve(coupled_solution_);
   } else if (by_first_factorisation) {
     iterations = coupled_solver_->solve_by_last_factorisation(coupled_rhs_, coupled_solution_,
                                                                settings_.numerics.krylov_iterations);

@@ -22,13 +22,11 @@ namespace {
 std::unique_ptr<Field> make_field(const Grid& g) { return std::make_unique<Field>(g); }
 
 
-// What a mesh of layers does not have yet (docs/method.md, "Known limitations"): the coupled solve
-// over an air band's region (it solves the whole domain), and a periodic side. The case file refuses
-// the same, naming the keys (require_what_layers_have in io/case_file.cpp), and so does SoilPhase.
-void refuse_what_3d_lacks(const Grid& grid, const FlowSettings& settings) {
+// What a mesh of layers does not have yet (docs/method.md, "Known limitations"): a periodic side. The
+// case file refuses the same, naming the keys (require_what_layers_have in io/case_file.cpp), and so
+// does SoilPhase.
+void refuse_what_3d_lacks(const Grid& grid, const FlowSettings&) {
   if (grid.dimension() != 3) return;
-  if (settings.numerics.pressure_coupling == PressureCoupling::coupled && settings.numerics.air_band > 0)
-    throw std::invalid_argument("FlowSolver: the coupled solve on a mesh of layers covers the whole domain (air_band = 0)");
   if (grid.periodic_x()) throw std::invalid_argument("FlowSolver: a mesh of layers with a periodic side is not implemented");
 }
 

@@ -25,10 +25,6 @@ double predicted_face_velocity(int i, int j, int k, const FaceGeometry& fg, Volu
          0.5 * (w[k][j][i] + w[kn][jn][in]) * (face_old - 0.5 * (q0[k][j][i] + q0[kn][jn][in]));
 }
 
-
-// The face of a cell on the `sign` side along `axis`.
-const FaceGeometry& face_along(int axis, int sign) { return box_faces[2 * axis + (sign < 0)]; }
-
 }  // namespace
 
 double FlowSolver::face_coefficient(VolumeView rau, VolumeView rho, int i, int j, int k, const FaceGeometry& fg) const {

@@ -18,6 +18,7 @@
 #include "mesh/obstacles.hpp"
 #include "models/interface/material_transport.hpp"
 #include "models/interface/vof_advection.hpp"
+#include "models/interface/vof_advection_3d.hpp"
 #include "models/interface/wetted_fraction.hpp"
 #include "models/rheology/invariants.hpp"
 #include "operators/face_interpolation.hpp"
@@ -52,13 +53,14 @@ const Field& SoilPhase::soil_region(int reach, double floor) const {
     in = region_[1].get();
   }
   // Beyond the mesh's longer side a wider reach covers no more cells (each pass widens by one).
-  const int passes = std::clamp(reach, 1, std::max(grid_.nx(), grid_.ny()));
+  const int passes = std::clamp(reach, 1, std::max({grid_.nx(), grid_.ny(), grid_.nz()}));
   for (int k = 0; k < passes; ++k) {
     Field& out = *region_[k % 2];
     {
       ConstFieldArray a(grid_.field_dm(), in->local());
       FieldArray r(grid_.field_dm(), out.global());
-      interface::soil_region(a.data(), grid_.owned(), r.data(), k == 0 ? floor : 0.0);
+      if (grid_.dimension() == 3) interface::soil_region(a.volume(), grid_.owned(), r.volume(), k == 0 ? floor : 0.0);
+      else interface::soil_region(a.data(), grid_.owned(), r.data(), k == 0 ? floor : 0.0);
     }
     out.scatter_to_local();
     if (k == 0 && in == region_[1].get()) {  // the copy's ghosts outside the domain: back to the region's 0

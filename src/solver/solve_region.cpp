@@ -1,16 +1,26 @@
 #include "solver/solve_region.hpp"
 
+#include "mesh/cell_unknowns.hpp"
 #include "mesh/obstacles.hpp"
 
 namespace granflow {
 
 namespace {
-// Rows of a region cell's equations: its u, v and continuity rows have at most 11 entries.
-constexpr PetscInt entries_per_row = 12;
+// Entries of a region cell's rows: its continuity row has the most, two per face and one per unknown
+// of its own (12 on a planar mesh, 16 on a mesh of layers).
+PetscInt entries_per_row(int dimension) { return 4 * dimension + 4; }
+
+// The owned cell at offset `at` = ((k - zs) ym + (j - ys)) xm + (i - xs) of the rank's block.
+struct OwnedCell {
+  int i, j, k;
+};
+OwnedCell owned_cell(const CellBox& b, int at) {
+  return {b.xs + at % b.xm, b.ys + (at / b.xm) % b.ym, b.zs + at / (b.xm * b.ym)};
+}
 }  // namespace
 
 SolveRegion::SolveRegion(const Grid& grid, const LinearSolverSettings& solver)
-    : grid_(grid), solver_settings_(solver), cells_(grid), index_(grid) {
+    : grid_(grid), unknowns_per_cell_(grid.dimension() + 1), solver_settings_(solver), cells_(grid), index_(grid) {
   cells_.set(0.0);  // empty until assigned: the first step lays the band
   index_.set(-1.0);
   // The solver is made with the region's first matrix, in the first step. Made once now, it reads
@@ -25,15 +35,17 @@ SolveRegion::~SolveRegion() {
 
 bool SolveRegion::covers(const Field& needed) const {
   const auto& b = grid_.owned();
-  ConstFieldArray in(grid_.field_dm(), needed.global()), mine(grid_.field_dm(), cells_.global());
-  const BlockedView mask(grid_, blocked_);
+  const ConstFieldArray in_array(grid_.field_dm(), needed.global()), mine_array(grid_.field_dm(), cells_.global());
+  const VolumeView in = in_array.volume(), mine = mine_array.volume();
+  const BlockedView mask(grid_, blocked_);  // planar meshes only
   int missing = 0;
-  for (int j = b.ys; j < b.ye() && !missing; ++j)
-    for (int i = b.xs; i < b.xe(); ++i)
-      if (in[j][i] != 0.0 && mine[j][i] == 0.0 && !is_blocked(mask.data(), i, j)) {
-        missing = 1;
-        break;
-      }
+  for (int k = b.zs; k < b.ze() && !missing; ++k)
+    for (int j = b.ys; j < b.ye() && !missing; ++j)
+      for (int i = b.xs; i < b.xe(); ++i)
+        if (in[k][j][i] != 0.0 && mine[k][j][i] == 0.0 && !is_blocked(mask.data(), i, j)) {
+          missing = 1;
+          break;
+        }
   int any = 0;
   MPI_Allreduce(&missing, &any, 1, MPI_INT, MPI_MAX, grid_.comm());
   return any == 0;
@@ -48,11 +60,13 @@ bool SolveRegion::laid() const {
 void SolveRegion::assign(const Field& wanted) {
   const auto& b = grid_.owned();
   {
-    ConstFieldArray in(grid_.field_dm(), wanted.global());
+    const ConstFieldArray in(grid_.field_dm(), wanted.global());
     FieldArray mine(grid_.field_dm(), cells_.global());
     const BlockedView mask(grid_, blocked_);
-    for (int j = b.ys; j < b.ye(); ++j)
-      for (int i = b.xs; i < b.xe(); ++i) mine[j][i] = in[j][i] != 0.0 && !is_blocked(mask.data(), i, j) ? 1.0 : 0.0;
+    for (int k = b.zs; k < b.ze(); ++k)
+      for (int j = b.ys; j < b.ye(); ++j)
+        for (int i = b.xs; i < b.xe(); ++i)
+          mine.volume()[k][j][i] = in.volume()[k][j][i] != 0.0 && !is_blocked(mask.data(), i, j) ? 1.0 : 0.0;
   }
   cells_.scatter_to_local();
 }
@@ -62,10 +76,12 @@ long SolveRegion::prepare() {
   const auto& box = grid_.owned();
   candidate_.clear();
   {
-    ConstFieldArray mine(grid_.field_dm(), cells_.global());
-    for (int j = box.ys; j < box.ye(); ++j)
-      for (int i = box.xs; i < box.xe(); ++i)
-        if (mine[j][i] != 0.0) candidate_.push_back((j - box.ys) * box.xm + (i - box.xs));
+    const ConstFieldArray mine(grid_.field_dm(), cells_.global());
+    for (int k = box.zs; k < box.ze(); ++k)
+      for (int j = box.ys; j < box.ye(); ++j)
+        for (int i = box.xs; i < box.xe(); ++i)
+          if (mine.volume()[k][j][i] != 0.0)
+            candidate_.push_back(((k - box.zs) * box.ym + (j - box.ys)) * box.xm + (i - box.xs));
   }
   // The mask is compared rather than tracked: a retried step or a restart restores it directly.
   int changed = (!numbered_ || candidate_ != owned_) ? 1 : 0, any_changed = 0;
@@ -86,25 +102,25 @@ long SolveRegion::prepare() {
   int rank;
   MPI_Comm_rank(comm, &rank);
   if (rank == 0) first = 0;  // MPI_Exscan leaves rank 0's result undefined
-  first_row_ = unknowns_per_cell * PetscInt(first);
+  first_row_ = unknowns_per_cell_ * PetscInt(first);
   index_.set(-1.0);
   {
     FieldArray index(grid_.field_dm(), index_.global());
-    for (size_t k = 0; k < owned_.size(); ++k) {
-      const int c = owned_[k];
-      index[box.ys + c / box.xm][box.xs + c % box.xm] = double(first + long(k));
+    for (size_t n = 0; n < owned_.size(); ++n) {
+      const auto [i, j, k] = owned_cell(box, owned_[n]);
+      index.volume()[k][j][i] = double(first + long(n));
     }
   }
   index_.scatter_to_local();
   if (cell_count_ == 0) return 0;  // no soil left: nothing but air at rest
 
-  const PetscInt rows = unknowns_per_cell * PetscInt(local);
+  const PetscInt rows = unknowns_per_cell_ * PetscInt(local), entries = entries_per_row(grid_.dimension());
   PetscCallAbort(comm, MatCreate(comm, matrix_.put()));
   PetscCallAbort(comm, MatSetSizes(matrix_, rows, rows, PETSC_DETERMINE, PETSC_DETERMINE));
   PetscCallAbort(comm, MatSetType(matrix_, MATAIJ));
-  PetscCallAbort(comm, MatSetBlockSize(matrix_, unknowns_per_cell));
-  PetscCallAbort(comm, MatSeqAIJSetPreallocation(matrix_, entries_per_row, nullptr));
-  PetscCallAbort(comm, MatMPIAIJSetPreallocation(matrix_, entries_per_row, nullptr, entries_per_row, nullptr));
+  PetscCallAbort(comm, MatSetBlockSize(matrix_, unknowns_per_cell_));
+  PetscCallAbort(comm, MatSeqAIJSetPreallocation(matrix_, entries, nullptr));
+  PetscCallAbort(comm, MatMPIAIJSetPreallocation(matrix_, entries, nullptr, entries, nullptr));
   PetscCallAbort(comm, MatSetOption(matrix_, MAT_NO_OFF_PROC_ENTRIES, PETSC_TRUE));  // rows are set where owned
   PetscCallAbort(comm, MatCreateVecs(matrix_, solution_.put(), rhs_.put()));
   // A new pattern needs a new factorisation analysis; a fresh solver also takes the new sizes.
@@ -115,7 +131,9 @@ long SolveRegion::prepare() {
 }
 
 SolveRegion::RowWriter::RowWriter(SolveRegion& region)
-    : region_(region), index_(region.grid_.field_dm(), region.index_.local()) {
+    : region_(region),
+      index_array_(region.grid_.field_dm(), region.index_.local()),
+      index_(index_array_.volume()) {
   PetscCallAbort(region_.grid_.comm(), VecGetArray(region_.rhs_, &rhs_));
 }
 
@@ -127,36 +145,33 @@ SolveRegion::RowWriter::~RowWriter() {
 }
 
 // Copies the coupled state's region cells into the region's vector (into_region) or back.
-void SolveRegion::copy_solution(DM coupled_dm, Vec x, bool into_region) {
+void SolveRegion::copy_solution(Vec x, bool into_region) {
   const auto& box = grid_.owned();
-  PetscScalar*** full;
+  const CellUnknowns full(grid_.comm(), x, box, unknowns_per_cell_);
   PetscScalar* region;
-  PetscCallAbort(grid_.comm(), DMDAVecGetArrayDOF(coupled_dm, x, &full));
   PetscCallAbort(grid_.comm(), VecGetArray(solution_, &region));
-  for (size_t k = 0; k < owned_.size(); ++k) {
-    const int c = owned_[k];
-    PetscScalar* cell = full[box.ys + c / box.xm][box.xs + c % box.xm];
-    for (int u = 0; u < unknowns_per_cell; ++u) {
-      if (into_region) region[unknowns_per_cell * k + u] = cell[u];
-      else cell[u] = region[unknowns_per_cell * k + u];
+  for (size_t n = 0; n < owned_.size(); ++n) {
+    const auto [i, j, k] = owned_cell(box, owned_[n]);
+    for (int u = 0; u < unknowns_per_cell_; ++u) {
+      if (into_region) region[unknowns_per_cell_ * n + u] = full(i, j, k, u);
+      else full(i, j, k, u) = region[unknowns_per_cell_ * n + u];
     }
   }
   PetscCallAbort(grid_.comm(), VecRestoreArray(solution_, &region));
-  PetscCallAbort(grid_.comm(), DMDAVecRestoreArrayDOF(coupled_dm, x, &full));
 }
 
-int SolveRegion::solve(DM coupled_dm, Vec x) {
-  copy_solution(coupled_dm, x, true);  // the initial guess of an iterative solver
+int SolveRegion::solve(Vec x) {
+  copy_solution(x, true);  // the initial guess of an iterative solver
   solver_->set_operator(matrix_);
   const int iterations = solver_->solve(rhs_, solution_);
-  copy_solution(coupled_dm, x, false);
+  copy_solution(x, false);
   return iterations;
 }
 
-int SolveRegion::solve_by_last_factorisation(DM coupled_dm, Vec x, int krylov_iterations) {
-  copy_solution(coupled_dm, x, true);
+int SolveRegion::solve_by_last_factorisation(Vec x, int krylov_iterations) {
+  copy_solution(x, true);
   const int applications = solver_->solve_by_last_factorisation(rhs_, solution_, krylov_iterations);
-  copy_solution(coupled_dm, x, false);
+  copy_solution(x, false);
   return applications;
 }
 

@@ -23,8 +23,6 @@ namespace granflow {
 
 class SolveRegion {
  public:
-  static constexpr int unknowns_per_cell = 3;  // u, v, p
-
   SolveRegion(const Grid& grid, const LinearSolverSettings& solver);
   ~SolveRegion();
   SolveRegion(const SolveRegion&) = delete;
@@ -57,7 +55,7 @@ class SolveRegion {
 
   // Fills the region's rows, one (cell, unknown) at a time, while it lives; the matrix is
   // assembled when it goes. Columns are given as grid stencils; those outside the region are
-  // moved to the right-hand side with the value `outside(i, j, unknown)`.
+  // moved to the right-hand side with the value `outside(i, j, k, unknown)`.
   class RowWriter {
    public:
     explicit RowWriter(SolveRegion& region);
@@ -65,26 +63,27 @@ class SolveRegion {
     RowWriter(const RowWriter&) = delete;
     RowWriter& operator=(const RowWriter&) = delete;
 
-    bool inside(int i, int j) const { return index_[j][i] >= 0.0; }
+    bool inside(int i, int j, int k) const { return index_[k][j][i] >= 0.0; }
     template <class Outside>
-    void set(int i, int j, int unknown, int n, const MatStencil* cols, const double* vals, double rhs,
+    void set(int i, int j, int k, int unknown, int n, const MatStencil* cols, const double* vals, double rhs,
              Outside&& outside) {
       constexpr int most_columns = 16;
       PetscCheckAbort(n <= most_columns, PETSC_COMM_SELF, PETSC_ERR_ARG_OUTOFRANGE,
                       "a coupled row of %d columns (at most %d)", n, most_columns);
+      const int per_cell = region_.unknowns_per_cell_;
       PetscInt region_cols[most_columns];
       double region_vals[most_columns];
       int m = 0;
-      for (int k = 0; k < n; ++k) {
-        const double c = index_[cols[k].j][cols[k].i];
+      for (int e = 0; e < n; ++e) {
+        const double c = index_[cols[e].k][cols[e].j][cols[e].i];
         if (c >= 0.0) {
-          region_cols[m] = unknowns_per_cell * PetscInt(c) + cols[k].c;
-          region_vals[m++] = vals[k];
+          region_cols[m] = per_cell * PetscInt(c) + cols[e].c;
+          region_vals[m++] = vals[e];
         } else {
-          rhs -= vals[k] * outside(cols[k].i, cols[k].j, cols[k].c);
+          rhs -= vals[e] * outside(cols[e].i, cols[e].j, cols[e].k, cols[e].c);
         }
       }
-      const PetscInt row = unknowns_per_cell * PetscInt(index_[j][i]) + unknown;
+      const PetscInt row = per_cell * PetscInt(index_[k][j][i]) + unknown;
       PetscCallAbort(PETSC_COMM_SELF,
                      MatSetValues(region_.matrix_, 1, &row, m, region_cols, region_vals, INSERT_VALUES));
       rhs_[row - region_.first_row_] = rhs;
@@ -92,27 +91,29 @@ class SolveRegion {
 
    private:
     SolveRegion& region_;
-    ConstFieldArray index_;
+    ConstFieldArray index_array_;
+    VolumeView index_;
     PetscScalar* rhs_ = nullptr;
   };
 
   // Solves the region's system (after a RowWriter filled it) and writes the region's unknowns into
-  // `x`, a (u, v, p) vector of the whole grid laid out as the grid; the other entries of x are left
+  // `x`, a (u, v, p) or (u, v, w, p) vector of the whole grid laid out as the grid; the other entries of x are left
   // as they are. `x` also gives the initial guess of an iterative solver. Returns the iterations.
-  int solve(DM coupled_dm, Vec x);
+  int solve(Vec x);
   // The same by the factorisation of the last solve() (LinearSolver::solve_by_last_factorisation).
-  int solve_by_last_factorisation(DM coupled_dm, Vec x, int krylov_iterations);
+  int solve_by_last_factorisation(Vec x, int krylov_iterations);
   // Whether the last solve()'s factorisation is there for that: not after a new pattern (prepare()).
   bool has_factorisation() const { return solver_ && solver_->has_preconditioner(); }
 
  private:
-  void copy_solution(DM coupled_dm, Vec x, bool into_region);
+  void copy_solution(Vec x, bool into_region);
   const Grid& grid_;
+  const int unknowns_per_cell_;  // the velocity's components and the pressure
   LinearSolverSettings solver_settings_;
   Field cells_;
   Field index_;                 // region number of each cell (-1 outside), with ghosts
   const Field* blocked_ = nullptr;
-  std::vector<int> owned_;      // owned region cells as (j - ys) xm + (i - xs), of the last prepare()
+  std::vector<int> owned_;      // owned region cells as ((k - zs) ym + (j - ys)) xm + (i - xs), of the last prepare()
   std::vector<int> candidate_;  // the same for the present mask, kept to reuse its memory
   bool numbered_ = false;       // prepare() has numbered a region (an empty one has no matrix)
   long cell_count_ = 0;

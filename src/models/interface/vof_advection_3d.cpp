@@ -143,6 +143,18 @@ double boundary_outflow(int axis, double dt, const double* const* const* c, cons
   return out;
 }
 
+void soil_region(const double* const* const* in, CellBox o, double*** region, double floor) {
+  for (int k = o.zs; k < o.ze(); ++k)
+    for (int j = o.ys; j < o.ye(); ++j)
+      for (int i = o.xs; i < o.xe(); ++i) {
+        bool any = false;
+        for (int dk = -1; dk <= 1; ++dk)
+          for (int dj = -1; dj <= 1; ++dj)
+            for (int di = -1; di <= 1; ++di) any = any || std::abs(in[k + dk][j + dj][i + di]) > floor;
+        region[k][j][i] = any ? 1.0 : 0.0;
+      }
+}
+
 void dilatation_indicator(const double* const* const* c, CellBox o, double*** cc) {
   for (int k = o.zs; k < o.ze(); ++k)
     for (int j = o.ys; j < o.ye(); ++j)

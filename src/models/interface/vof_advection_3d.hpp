@@ -57,4 +57,8 @@ void dilatation_indicator(const double* const* const* c, CellBox owned, double**
 double max_sweep_courant(int axis, double dt, const double* const* const* face_velocity, CellWidths3 widths,
                          CellBox owned);
 
+// region_out = 1 on the owned cells with |in| > `floor` anywhere in their 3 x 3 x 3 box, else 0: the
+// 3D soil_region of vof_advection.hpp, which says why n passes bound n sub-steps' sweeps.
+void soil_region(const double* const* const* in, CellBox owned, double*** region_out, double floor = 0.0);
+
 }  // namespace granflow::interface
