@@ -675,7 +675,7 @@ BoundarySet read_boundaries(TableReader& top, const GridSpec& mesh, std::vector<
 
 // granular: the case's soil has a rheology, whose cases default to the coupled solve; band: the air
 // band that solve takes by default (0 where none may be laid).
-NumericsSettings read_numerics(TableReader& top, bool granular, bool layers, int band,
+NumericsSettings read_numerics(TableReader& top, bool granular, int band,
                                std::vector<std::string>& keys_without_effect) {
   NumericsSettings num;
   TableReader n = top.table("numerics");
@@ -715,13 +715,9 @@ NumericsSettings read_numerics(TableReader& top, bool granular, bool layers, int
   // Conservative transport needs the coupled solve, whose continuity rows take each cell's own
   // momentum coefficient; the projection's mobility dt/rho cannot follow the mass a cell's momentum
   // then accelerates (docs/method.md, "Momentum").
-  // On a mesh of layers the soil's sweeps do not add up their mass fluxes yet: advective there.
   const bool coupled = num.pressure_coupling == PressureCoupling::coupled;
-  num.conservative_momentum = n.choice("momentum_transport", coupled && !layers ? "conservative" : "advective",
+  num.conservative_momentum = n.choice("momentum_transport", coupled ? "conservative" : "advective",
                                        {"conservative", "advective"}) == "conservative";
-  if (num.conservative_momentum && layers)
-    throw CaseError("numerics.momentum_transport: \"conservative\" is planar yet; a mesh of layers takes \"advective\" "
-                    "(the default there)");
   if (num.conservative_momentum && !coupled)
     throw CaseError(fmt::format("numerics.momentum_transport: \"conservative\" needs numerics.pressure_coupling = "
                                 "\"coupled\" (it is \"{}\"); use \"advective\" with the projection and PISO",
@@ -1031,7 +1027,7 @@ CaseConfig read_case(const toml::table& root, const std::filesystem::path& sourc
   const bool layers = c.mesh.dimension() == 3;
   const bool granular = c.soil && c.soil->rheology;
   const bool band_allowed = granular && !c.mesh.periodic_x && c.flow.gravity[0] == 0.0 && c.flow.gravity[2] == 0.0;
-  c.flow.numerics = read_numerics(top, granular && !layers, layers,
+  c.flow.numerics = read_numerics(top, granular && !layers,
                                   band_allowed ? std::max(default_air_band, 2 * c.time.interface_substeps + 1) : 0,
                                   c.keys_without_effect);
   read_solvers(top, c.flow);

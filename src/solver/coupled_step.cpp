@@ -418,6 +418,7 @@ void FlowSolver::update_coupled_face_velocities() {
   }
   const AxisViews vel(grid_, vel_), mobility(grid_, pressure_mobility_), fcell(grid_, cell_force_),
       ff(grid_, face_force_);
+  const BlockedView mask(grid_, blocked_);
   fill_owned_faces_any(
       grid_, per_axis(face_),
       [&](int axis, int i, int j, int k) {
@@ -428,13 +429,13 @@ void FlowSolver::update_coupled_face_velocities() {
       },
       [&](int axis, int i, int j, int k, int sign) {
         const FaceGeometry& fg = face_along(axis, sign);
-        // An obstacle's wall, or a wall side: no flux.
-        if (!grid_.outside(i + fg.di, j + fg.dj, k + fg.dk)) return 0.0;
+        // An obstacle's wall, a side of an obstacle's cell, or a wall side: no flux.
+        if (!grid_.outside(i + fg.di, j + fg.dj, k + fg.dk) || is_blocked(mask.data(), i, j)) return 0.0;
         if (boundary(settings_.boundaries, fg.side).kind != BoundaryKind::atmosphere) return 0.0;
         return vel.view[axis][k][j][i] +
                mobility.view[axis][k][j][i] * (on_face(ff.view, i, j, k, fg) - fcell.view[axis][k][j][i]);
       },
-      BlockedView(grid_, blocked_).data());
+      mask.data());
 }
 
 int FlowSolver::solve_coupled(bool by_first_factorisation) {

@@ -274,14 +274,11 @@ void FlowSolver::update_properties_at_mean_pressure() {
 }
 
 void FlowSolver::enable_mass_transport() {
-  // The soil's sweeps on a mesh of layers do not add up their mass fluxes yet (soil_phase_3d.cpp).
-  if (dimension_ == 3)
-    throw std::invalid_argument("FlowSolver: conservative momentum transport on a mesh of layers is not implemented");
   start_density_ = make_field(grid_);
   start_density_->copy_from(*rho_);
-  for (auto& f : mass_flux_) {
-    f = make_field(grid_);
-    f->set(0.0);
+  for (int a = 0; a < dimension_; ++a) {
+    mass_flux_[a] = make_field(grid_);
+    mass_flux_[a]->set(0.0);
   }
 }
 

@@ -220,7 +220,7 @@ class FlowSolver {
   std::unique_ptr<Field> p_last_iterate_, p_mean_;
   std::unique_ptr<Field> p_, rho_, mu_, face_mu_[3];
   std::unique_ptr<Field> body_force_[3];
-  std::unique_ptr<Field> start_density_, mass_flux_[2];  // enable_mass_transport
+  std::unique_ptr<Field> start_density_, mass_flux_[3];  // enable_mass_transport, mass flux per axis of the mesh
   FieldSnapshot saved_;  // save_state()
   // The velocity per unit of force density a cell's momentum row gives (OpenFOAM's rAU): V / a_P under
   // PISO and the coupled solve ([VoF] Eq. 28's A_i d_i / A_P, a cell's V / a_P), dt / rho under the projection.

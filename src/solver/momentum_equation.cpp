@@ -88,9 +88,9 @@ void FlowSolver::assemble_momentum(double dt) {
   std::optional<ConstFieldArray> rho0_array;
   std::optional<AxisViews> mass_flux;
   VolumeView rho0 = nullptr;
-  if (carries_mass_transport()) {  // planar meshes only (the coupled solve)
+  if (carries_mass_transport()) {  // the coupled solve
     rho0 = rho0_array.emplace(grid_.field_dm(), start_density_->local()).volume();
-    mass_flux.emplace(grid_, mass_flux_, 2);
+    mass_flux.emplace(grid_, mass_flux_);
   }
   std::optional<AxisViews> body_force;
   if (body_force_[0]) body_force.emplace(grid_, body_force_, dim, true);

@@ -89,7 +89,7 @@ double SoilPhase::interface_courant(const FlowSolver& flow, double dt, int subst
 }
 
 void SoilPhase::advect(FlowSolver& flow, double dt) {
-  if (grid_.dimension() == 3) return advect_3d(flow, dt);  // no mass transport there (the coupled solve's)
+  if (grid_.dimension() == 3) return advect_3d(flow, dt);
   // A step sized by this limit from these same face velocities lands on it up to round-off, which
   // differs between rank layouts; without the allowance ceil() would take one sweep or two by chance.
   constexpr double allowance = 1e-9;

@@ -209,7 +209,7 @@ class SoilPhase {
   void update_properties_3d(FlowSolver& flow) const;
   void update_face_viscosity_3d(FlowSolver& flow) const;
   double interface_courant_3d(const FlowSolver& flow, double dt) const;
-  void advect_3d(const FlowSolver& flow, double dt);
+  void advect_3d(FlowSolver& flow, double dt);
   void compute_diagnostics_3d(const FlowSolver& flow);
   double compute_dissipation_3d(const FlowSolver& flow);
   SoilBudget budget_3d(const FlowSolver& flow);

@@ -148,7 +148,7 @@ double SoilPhase::interface_courant_3d(const FlowSolver& flow, double dt) const 
 
 // The three sweeps of vof_advection_3d.hpp, in as many sub-steps as the sweep's Courant limit needs,
 // over the whole mesh (in 2D the limit is taken only near the soil: soil_region is planar yet).
-void SoilPhase::advect_3d(const FlowSolver& flow, double dt) {
+void SoilPhase::advect_3d(FlowSolver& flow, double dt) {
   const double co = interface_courant_3d(flow, dt);
   constexpr double max_substeps = 1000, allowance = 1e-9;
   if (!(co / settings_.interface_courant <= max_substeps))
@@ -160,6 +160,23 @@ void SoilPhase::advect_3d(const FlowSolver& flow, double dt) {
   const auto& b = grid_.owned();
   const AxisViews face(grid_, [&](int a) -> const Field& { return flow.face_velocity(a); });
   const interface::DomainCells3 domain{grid_.nx(), grid_.ny(), grid_.nz()};
+  // Under the conservative momentum transport the soil volume per unit area through each face adds up
+  // in the flow's mass fluxes, which become mass fluxes below, as in 2D (soil_advection.cpp); one soil.
+  const bool carry_mass = flow.carries_mass_transport();
+  std::optional<FieldArray> soil_through[3];
+  if (carry_mass) {
+    {
+      const ConstFieldArray c(grid_.field_dm(), c_->global());
+      FieldArray rho0 = local_array(grid_, flow.start_density());
+      for (int k = b.zs; k < b.ze(); ++k)
+        for (int j = b.ys; j < b.ye(); ++j)
+          for (int i = b.xs; i < b.xe(); ++i) rho0.volume()[k][j][i] = mixture_density(c.volume()[k][j][i]);
+    }
+    for (int a = 0; a < 3; ++a) {
+      flow.mass_flux(a).set(0.0);
+      soil_through[a].emplace(grid_.field_dm(), flow.mass_flux(a).local());
+    }
+  }
   for (int s = 0; s < substeps; ++s) {
     {
       const ConstFieldArray c(grid_.field_dm(), c_->local());
@@ -177,7 +194,8 @@ void SoilPhase::advect_3d(const FlowSolver& flow, double dt) {
       {
         const ConstFieldArray c(grid_.field_dm(), from->local()), cc(grid_.field_dm(), dilatation_->local());
         FieldArray c_new(grid_.field_dm(), to->global());
-        interface::vof_sweep(axis, h, c.volume(), face.view[axis], cc.volume(), widths_of(grid_), b, c_new.volume(), domain);
+        interface::vof_sweep(axis, h, c.volume(), face.view[axis], cc.volume(), widths_of(grid_), b, c_new.volume(), domain,
+                             carry_mass ? soil_through[axis]->volume() : nullptr);
         outflow_ += interface::boundary_outflow(axis, h, c.volume(), face.view[axis], widths_of(grid_), b, domain);
       }
       fill_fraction_ghosts(*to);
@@ -185,6 +203,23 @@ void SoilPhase::advect_3d(const FlowSolver& flow, double dt) {
     }
     // Three sweeps end in c_tmp_: back to c_.
     c_->copy_from(*from);
+  }
+  if (!carry_mass) return;
+  // Mass flux = u rho(c_swept), the mixture density of what crossed the face, c_swept = s / (u dt)
+  // with s the soil volume per unit area through it over the step (soil_advection.cpp says why).
+  const int start[3] = {b.xs, b.ys, b.zs}, end[3] = {b.xe(), b.ye(), b.ze()};
+  for (int axis = 0; axis < 3; ++axis) {
+    double*** m = soil_through[axis]->volume();
+    const VolumeView u = face.view[axis];
+    int lo[3] = {start[0], start[1], start[2]};
+    --lo[axis];  // the faces on the block's low side too, as the sweeps visit them
+    for (int k = lo[2]; k < end[2]; ++k)
+      for (int j = lo[1]; j < end[1]; ++j)
+        for (int i = lo[0]; i < end[0]; ++i) {
+          const double q = u[k][j][i];
+          const double swept = q != 0.0 ? std::clamp(m[k][j][i] / (dt * q), 0.0, 1.0) : 0.0;
+          m[k][j][i] = q * mixture_density(swept);
+        }
   }
 }
 

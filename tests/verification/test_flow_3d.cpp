@@ -363,14 +363,6 @@ TEST(FlowSolver3d, RefusesWhatAMeshOfLayersLacks) {
       EXPECT_NE(std::string(e.what()).find(reason), std::string::npos) << e.what();
     }
   };
-  FlowSettings banded = walls_everywhere();
-  banded.numerics.pressure_coupling = PressureCoupling::coupled;
-  banded.numerics.air_band = 12;
-  refused(banded, "air_band = 0");
-  FlowSettings coupled = banded;
-  coupled.numerics.air_band = 0;
-  FlowSolver whole(g, coupled);
-  EXPECT_THROW(whole.enable_mass_transport(), std::invalid_argument);
   GridSpec strip = spec;
   strip.periodic_x = true;
   const Grid periodic(PETSC_COMM_SELF, strip);

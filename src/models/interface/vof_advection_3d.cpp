@@ -92,7 +92,8 @@ FaceFlux face_flux(const double* const* const* c, double u, double dt, CellWidth
 // visited once, x innermost whatever the axis (as the 2D y sweep walks its rows), and its fluxes
 // added to the owned cells on both its sides.
 void vof_sweep(int axis, double dt, const double* const* const* c, const double* const* const* u,
-               const double* const* const* cc, CellWidths3 w, CellBox o, double*** c_new, DomainCells3 domain) {
+               const double* const* const* cc, CellWidths3 w, CellBox o, double*** c_new, DomainCells3 domain,
+               double*** face_soil) {
   for (int k = o.zs; k < o.ze(); ++k)
     for (int j = o.ys; j < o.ye(); ++j)
       for (int i = o.xs; i < o.xe(); ++i) c_new[k][j][i] = c[k][j][i];
@@ -107,6 +108,7 @@ void vof_sweep(int axis, double dt, const double* const* const* c, const double*
         if (velocity == 0.0) continue;
         const Index low{i, j, k};
         const FaceFlux flux = face_flux(c, velocity, dt, w, low, axis, domain);
+        if (face_soil) face_soil[k][j][i] += flux.f;
         const int s = low[axis];
         if (s >= start[axis])  // the face is the high face of the owned cell below it
           c_new[k][j][i] += cc[k][j][i] > 0.5 ? flux.g / h[s] : -flux.f / h[s];

@@ -38,10 +38,12 @@ struct DomainCells3 {
 // with F the volume per unit face area of the upwind cell's soil swept through a face in dt. Writes
 // c_new on the owned cells only (it must not alias c). Reads c on the owned cells and two ghost
 // layers (one across the axis, corners included), the face velocities on the faces bounding the owned
-// cells along the axis, and cc on the owned cells.
+// cells along the axis, and cc on the owned cells. With `face_soil` (non-null, laid out like the face
+// velocities), F of every face the sweep computes (the low ghost face included) is added to it: the
+// soil volume per unit face area that crossed it, so that momentum can move with the same mass.
 void vof_sweep(int axis, double dt, const double* const* const* c, const double* const* const* face_velocity,
                const double* const* const* cc, CellWidths3 widths, CellBox owned, double*** c_new,
-               DomainCells3 domain = {});
+               DomainCells3 domain = {}, double*** face_soil = nullptr);
 
 // Soil volume that the sweep of `axis` carries out of the domain through the boundary faces of the
 // owned cells (negative for inflow): the same face fluxes as vof_sweep given the same domain, so that

@@ -1084,13 +1084,14 @@ TEST(CaseFile, AMeshOfLayersReadsItsThirdAxis) {
   ASSERT_EQ(c.soil->initial_soil.size(), 1u);  // the circle, extruded
   EXPECT_EQ(c.soil->initial_solids(-0.2, 0.2).size(), 4u);
   // A granular soil there takes the projection, no air band, and writes no checkpoints; the coupled
-  // solve, when asked for, covers the whole domain and carries momentum advectively.
+  // solve, when asked for, covers the soil and an air band, and moves momentum with the VoF's mass, as
+  // on a planar mesh.
   EXPECT_EQ(c.flow.numerics.pressure_coupling, PressureCoupling::projection);
   EXPECT_EQ(c.flow.numerics.air_band, 0);
   const CaseConfig coupled = parse_case(layered, {"numerics.pressure_coupling=\"coupled\""});
   EXPECT_EQ(coupled.flow.numerics.pressure_coupling, PressureCoupling::coupled);
-  EXPECT_EQ(coupled.flow.numerics.air_band, 0);
-  EXPECT_FALSE(coupled.flow.numerics.conservative_momentum);
+  EXPECT_EQ(coupled.flow.numerics.air_band, std::max(12, 2 * coupled.time.interface_substeps + 1));
+  EXPECT_TRUE(coupled.flow.numerics.conservative_momentum);
   EXPECT_FALSE(c.output.checkpoints);
   EXPECT_EQ(c.soil->face_fraction, FaceFraction::face);
   EXPECT_EQ(parse_case(layered, {"physics.gravity=[0.0, -9.81, 1.5]"}).flow.gravity[2], 1.5);
@@ -1106,9 +1107,8 @@ TEST(CaseFile, AMeshOfLayersRefusesWhatItLacks) {
       {{"mesh.geometry=\"axisymmetric\""}, "an axisymmetric mesh is one layer"},
       {{"physics.gravity=[0.0, -9.81]"}, "physics.gravity: expected 3 numbers"},
       {{"boundary.south={type=\"wall\", velocity=[0.0, 0.1]}"}, "boundary.south.velocity: expected 3 numbers"},
-      {{"numerics.pressure_coupling=\"coupled\"", "numerics.air_band=12"}, "numerics.air_band: the air band's region is planar yet"},
-      {{"numerics.pressure_coupling=\"coupled\"", "numerics.momentum_transport=\"conservative\""},
-       "numerics.momentum_transport: \"conservative\" is planar yet"},
+      {{"numerics.pressure_coupling=\"coupled\"", "numerics.air_band=12", "physics.gravity=[0.0, -9.81, 1.0]"},
+       "numerics.air_band: needs gravity along y"},
       {{"boundary.back={type=\"wall\", friction_angle=20.0}"}, "boundary.back: a wall's friction is planar yet"},
       {{"numerics.wall_gradient=\"quadratic\""}, "numerics.wall_gradient"},
       {{"output.checkpoints=true"}, "output.checkpoints: not on a mesh of layers"},
