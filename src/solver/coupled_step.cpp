@@ -1,5 +1,5 @@
 // The coupled velocity-pressure solve of FlowSolver: momentum and continuity of one outer iteration
-// as one linear system in (u, v, p), so that no splitting error decides how a face responds to a
+// as one linear system in (u, v, p), or (u, v, w, p) on a mesh of layers, so that no splitting error decides how a face responds to a
 // pressure jump. Faces carry Rhie-Chow fluxes with the mobility V/a_P (harmonic between the two
 // cells): where viscosity holds a cell, its faces barely respond to pressure, so a rigid block next
 // to air stays rigid; solved together with momentum, this small mobility cannot overshoot the way it
@@ -338,8 +338,8 @@ void FlowSolver::fill_coupled_rows() {
 int FlowSolver::solve_coupled_rows(bool by_first_factorisation) {
   const auto& b = grid_.owned();
   const int pressure = dimension_;
-  // Initial guess: the current state; outside a band's region (planar meshes), air at rest under the
-  // pressure of the air column above it.
+  // Initial guess: the current state; outside a band's region, air at rest under the pressure of the
+  // air column above it.
   {
     const CellUnknowns x(grid_.comm(), coupled_solution_, b, dimension_ + 1);
     const AxisViews vel(grid_, vel_, dimension_, true);

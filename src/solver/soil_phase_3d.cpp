@@ -147,7 +147,7 @@ double SoilPhase::interface_courant_3d(const FlowSolver& flow, double dt) const 
 }
 
 // The three sweeps of vof_advection_3d.hpp, in as many sub-steps as the sweep's Courant limit needs,
-// over the whole mesh (in 2D the limit is taken only near the soil: soil_region is planar yet).
+// taken over the whole mesh (in 2D only near the soil, SoilPhase::interface_courant).
 void SoilPhase::advect_3d(FlowSolver& flow, double dt) {
   const double co = interface_courant_3d(flow, dt);
   constexpr double max_substeps = 1000, allowance = 1e-9;

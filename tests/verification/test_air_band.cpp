@@ -219,7 +219,7 @@ TEST(AirBand, AColumnOnAMeshOfLayersMovesAsInTheWholeDomain) {
   EXPECT_LE(std::abs(band.toe - whole.toe), 0.02 + 1e-12);
   EXPECT_LT(band.volume_error, 1e-12);
   EXPECT_LT(band.region_cells, nx3 * ny3 * nz3 / 2);
-  EXPECT_EQ(whole.region_cells, nx3 * ny3 * nz3);
+  EXPECT_GT(band.region_cells, nx3 * ny3 * nz3 / 5);  // the soil and its band
   EXPECT_GT(far_cells, 0);
   EXPECT_EQ(far_speed, 0.0);
   EXPECT_LT(far_pressure_error, 1e-12);

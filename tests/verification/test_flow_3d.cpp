@@ -209,6 +209,10 @@ TEST(FlowSolver3d, ManufacturedSolutionSecondOrderUnderTheCoupledSolve) {
   expect_second_order_3d("3D manufactured, coupled", sizes, e, 1.6);
 }
 
+const char* name_of(PressureCoupling coupling) {
+  return coupling == PressureCoupling::piso ? "PISO" : (coupling == PressureCoupling::coupled ? "coupled" : "projection");
+}
+
 // A lid-driven cavity (Re 100) run on 32 x 32 cells and on 32 x 32 x 4 with slip front and back: the
 // flow does not vary along z, so every layer holds the planar run's velocities, to the linear solvers'
 // tolerance, after 100 steps of the transient; w stays at that level; so do the forces on the lid and
@@ -217,10 +221,6 @@ TEST(FlowSolver3d, ManufacturedSolutionSecondOrderUnderTheCoupledSolve) {
 // front and back have one such face, the others two, so their Rhie-Chow terms differ, and the flow
 // varies along z by that much. Measured under PISO: velocities 1.6e-4 from the planar run's, |w|
 // 6.3e-6, forces 5e-5 of the lid's drag; asserted within `tolerance` = 1e-3 of the scales.
-const char* name_of(PressureCoupling coupling) {
-  return coupling == PressureCoupling::piso ? "PISO" : (coupling == PressureCoupling::coupled ? "coupled" : "projection");
-}
-
 void expect_layer_independent_cavity(PressureCoupling coupling, double tolerance) {
   auto run = [coupling](int layers) {
     GridSpec spec;
