@@ -46,9 +46,6 @@ int run_case(const std::string& case_file, const std::vector<std::string>& overr
              bool restart, bool overwrite) {
   CaseConfig config = load_case(case_file, overrides);
   check_solver_options(config);
-  if (restart && config.mesh.dimension() == 3)
-    throw CaseError("--restart: a mesh of layers writes no checkpoints yet (output.checkpoints), so there is none to "
-                    "go on from");
   if (out_dir.empty()) out_dir = default_output_directory(case_file, "").string();
   int rank;
   MPI_Comm_rank(PETSC_COMM_WORLD, &rank);

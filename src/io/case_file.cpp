@@ -833,12 +833,8 @@ OutputSettings read_output(TableReader& top, const GridSpec& mesh, double end_ti
   if (double(output.times.size()) > max_outputs)
     throw CaseError(fmt::format("output.times: {} times, more than {:.0e} outputs", output.times.size(), max_outputs));
   output.fields = o.boolean("fields", true);
-  // A checkpoint holds planar fields (io/checkpoint.cpp): none on a mesh of layers.
   const bool layers = mesh.dimension() == 3;
-  output.checkpoints = o.boolean("checkpoints", !layers);
-  if (layers && output.checkpoints)
-    throw CaseError("output.checkpoints: not on a mesh of layers yet (its checkpoints would hold planar fields); leave "
-                    "the key out");
+  output.checkpoints = o.boolean("checkpoints", true);
   output.progress_seconds = o.number("progress_seconds", 2.0);
   o.require_range("progress_seconds", output.progress_seconds, 0.0, inf, "zero (no progress line) or positive");
   for (TableReader l : o.tables("line")) {

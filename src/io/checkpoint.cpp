@@ -50,14 +50,25 @@ std::pair<std::string, std::string> materials_and_other_fields(const std::string
 // the whole mesh; version 2 held one file per rank, version 1 a history without the side forces.
 constexpr std::uint64_t magic = 0x33544b43464e5247ull;  // "GRNFCKT3"
 constexpr std::uint64_t magic_version_1 = 0x31544b43464e5247ull;
+// The same format on a mesh of layers, whose header adds nz.
+constexpr std::uint64_t magic_layers = 0x334c4b43464e5247ull;  // "GRNFCKL3"
 
 // fields.bin: this header; then each field as (nx + 2 ghosts) x (ny + 2 ghosts) doubles in rows of
 // constant j, the ghost cells beyond the mesh's sides included (they hold boundary values and the
-// blocked cells' mirrors); then, rank by rank, the `shared` and `summed` numbers of the ranks that wrote it.
+// blocked cells' mirrors), on a mesh of layers (nz + 2 ghosts) such planes of constant k; then, rank
+// by rank, the `shared` and `summed` numbers of the ranks that wrote it.
 struct FieldsHeader {
   std::uint64_t magic;
   std::int64_t nx, ny, ghosts, fields, ranks, shared, summed;
+  std::int64_t nz = 1;  // in the file only on a mesh of layers (magic_layers), after the rest
 };
+// The header's words in the file: 8, or 9 on a mesh of layers.
+std::uint64_t header_words(const FieldsHeader& h) { return h.magic == magic_layers ? 9 : 8; }
+int header_bytes(const FieldsHeader& h) { return int(header_words(h) * sizeof(std::uint64_t)); }
+// The ghosted mesh's extent along each axis: one layer has no ghosts along z.
+std::array<std::int64_t, 3> full_extent(const FieldsHeader& h) {
+  return {h.nx + 2 * h.ghosts, h.ny + 2 * h.ghosts, h.nz == 1 ? 1 : h.nz + 2 * h.ghosts};
+}
 
 constexpr const char* fields_file = "fields.bin";
 
@@ -87,47 +98,69 @@ std::uint64_t text_checksum(std::string_view text) {
   return h;
 }
 
-std::string other_mesh(std::int64_t nx, std::int64_t ny, std::int64_t case_nx, std::int64_t case_ny) {
-  return fmt::format("the checkpoint is of a {} x {} mesh, the case has {} x {} cells", nx, ny, case_nx, case_ny);
+std::string other_mesh(const FieldsHeader& h, const std::array<int, 3>& cells) {
+  auto counts = [](std::int64_t nx, std::int64_t ny, std::int64_t nz) {
+    return nz == 1 ? fmt::format("{} x {}", nx, ny) : fmt::format("{} x {} x {}", nx, ny, nz);
+  };
+  return fmt::format("the checkpoint is of a {} mesh, the case has {} cells", counts(h.nx, h.ny, h.nz),
+                     counts(cells[0], cells[1], cells[2]));
+}
+bool same_mesh(const FieldsHeader& h, const std::array<int, 3>& cells) {
+  return h.nx == cells[0] && h.ny == cells[1] && h.nz == cells[2];
 }
 
 // The header alone, where the file has one.
 std::optional<FieldsHeader> read_header(const std::filesystem::path& path) {
   std::ifstream in(path, std::ios::binary);
   FieldsHeader h{};
-  if (!in.read(reinterpret_cast<char*>(&h), sizeof h) || h.magic != magic) return std::nullopt;
+  if (!in.read(reinterpret_cast<char*>(&h), 8 * sizeof(std::uint64_t)) || (h.magic != magic && h.magic != magic_layers))
+    return std::nullopt;
+  if (h.magic == magic_layers && !in.read(reinterpret_cast<char*>(&h.nz), sizeof h.nz)) return std::nullopt;
   return h;
 }
 
-// This rank's rectangle of the whole ghosted mesh, in its coordinates (cell i at i + ghosts):
-// `window` is what its local vectors hold, `own` what it writes (its cells, and the ghosts beyond
-// the mesh's sides it touches), so that the ranks together write every value once.
-struct Rectangle {
-  int x0, y0, width, height;
+// This rank's box of the whole ghosted mesh, in its coordinates (cell i at i + ghosts): `window` is
+// what its local vectors hold, `own` what it writes (its cells, and the ghosts beyond the mesh's sides
+// it touches), so that the ranks together write every value once. One layer: z0 = 0, depth 1.
+struct Box {
+  int x0, y0, z0, width, height, depth;
+  std::size_t values() const { return std::size_t(width) * std::size_t(height) * std::size_t(depth); }
 };
 struct RankLayout {
-  int full_x, full_y;  // the whole ghosted mesh
-  Rectangle window, own;
+  int full_x, full_y, full_z;  // the whole ghosted mesh
+  Box window, own;
+  // The start, in a local array of `window`, of row (y, z) of `own`.
+  std::size_t own_row_in_window(int y, int z) const {
+    return (std::size_t(own.z0 - window.z0 + z) * std::size_t(window.height) + std::size_t(own.y0 - window.y0 + y)) *
+               std::size_t(window.width) +
+           std::size_t(own.x0 - window.x0);
+  }
 };
 
-RankLayout rank_layout(DM dm, int nx, int ny) {
-  PetscInt xs, ys, xm, ym, gxs, gys, gxm, gym, g;
-  PetscCallAbort(PETSC_COMM_WORLD, DMDAGetCorners(dm, &xs, &ys, nullptr, &xm, &ym, nullptr));
-  PetscCallAbort(PETSC_COMM_WORLD, DMDAGetGhostCorners(dm, &gxs, &gys, nullptr, &gxm, &gym, nullptr));
+RankLayout rank_layout(DM dm, const std::array<int, 3>& cells) {
+  PetscInt xs, ys, zs, xm, ym, zm, gxs, gys, gzs, gxm, gym, gzm, g;
+  PetscCallAbort(PETSC_COMM_WORLD, DMDAGetCorners(dm, &xs, &ys, &zs, &xm, &ym, &zm));
+  PetscCallAbort(PETSC_COMM_WORLD, DMDAGetGhostCorners(dm, &gxs, &gys, &gzs, &gxm, &gym, &gzm));
   PetscCallAbort(PETSC_COMM_WORLD, DMDAGetInfo(dm, nullptr, nullptr, nullptr, nullptr, nullptr, nullptr, nullptr, nullptr, &g, nullptr, nullptr,
                                    nullptr, nullptr));
-  const int w = int(g);
+  const int w = int(g), wz = cells[2] == 1 ? 0 : w;  // one layer has no ghosts along z
+  const int nx = cells[0], ny = cells[1], nz = cells[2];
   const int x0 = xs == 0 ? 0 : int(xs) + w, x1 = xs + xm == nx ? nx + 2 * w : int(xs + xm) + w;
   const int y0 = ys == 0 ? 0 : int(ys) + w, y1 = ys + ym == ny ? ny + 2 * w : int(ys + ym) + w;
-  return {nx + 2 * w, ny + 2 * w, {int(gxs) + w, int(gys) + w, int(gxm), int(gym)}, {x0, y0, x1 - x0, y1 - y0}};
+  const int z0 = zs == 0 ? 0 : int(zs) + wz, z1 = zs + zm == nz ? nz + 2 * wz : int(zs + zm) + wz;
+  return {nx + 2 * w,
+          ny + 2 * w,
+          nz + 2 * wz,
+          {int(gxs) + w, int(gys) + w, int(gzs) + wz, int(gxm), int(gym), int(gzm)},
+          {x0, y0, z0, x1 - x0, y1 - y0, z1 - z0}};
 }
 
-// A rectangle of a row-major array of full_x x full_y doubles, as an MPI datatype.
+// A box of a row-major array of full_x x full_y x full_z doubles, as an MPI datatype.
 struct Subarray {
   MPI_Datatype type = MPI_DATATYPE_NULL;
-  Subarray(int full_x, int full_y, const Rectangle& r) {
-    const int sizes[2] = {full_y, full_x}, sub[2] = {r.height, r.width}, starts[2] = {r.y0, r.x0};
-    MPI_Type_create_subarray(2, sizes, sub, starts, MPI_ORDER_C, MPI_DOUBLE, &type);
+  Subarray(int full_x, int full_y, int full_z, const Box& r) {
+    const int sizes[3] = {full_z, full_y, full_x}, sub[3] = {r.depth, r.height, r.width}, starts[3] = {r.z0, r.y0, r.x0};
+    MPI_Type_create_subarray(3, sizes, sub, starts, MPI_ORDER_C, MPI_DOUBLE, &type);
     MPI_Type_commit(&type);
   }
   ~Subarray() { MPI_Type_free(&type); }
@@ -171,7 +204,8 @@ class MpiFile {
 };
 
 MPI_Offset field_offset(const FieldsHeader& h, std::int64_t k) {
-  return MPI_Offset(sizeof h) + MPI_Offset(sizeof(double)) * (h.nx + 2 * h.ghosts) * (h.ny + 2 * h.ghosts) * k;
+  const auto full = full_extent(h);
+  return MPI_Offset(header_bytes(h)) + MPI_Offset(sizeof(double)) * full[0] * full[1] * full[2] * k;
 }
 
 // This rank's part of the fields file's checksum: the header (on rank 0), the rows of numbers
@@ -182,26 +216,31 @@ std::uint64_t checksum_part(MPI_Comm comm, const FieldsHeader& h, std::span<Fiel
   int rank;
   MPI_Comm_rank(comm, &rank);
   std::uint64_t sum = 0;
+  const std::uint64_t words = header_words(h);
   if (rank == 0) {
-    const std::int64_t counts[] = {h.nx, h.ny, h.ghosts, h.fields, h.ranks, h.shared, h.summed};
+    const std::int64_t counts[] = {h.nx, h.ny, h.ghosts, h.fields, h.ranks, h.shared, h.summed, h.nz};
     sum += hash_at(0, h.magic);
-    for (std::uint64_t w = 0; w < std::size(counts); ++w) sum += hash_at(1 + w, counts[w]);
+    for (std::uint64_t w = 0; w + 1 < words; ++w) sum += hash_at(1 + w, counts[w]);
   }
-  const std::uint64_t header_words = 8, full_x = std::uint64_t(h.nx + 2 * h.ghosts),
-                      full = full_x * std::uint64_t(h.ny + 2 * h.ghosts);
-  const std::uint64_t first_row = header_words + full * std::uint64_t(h.fields) +
+  const auto extent = full_extent(h);
+  const std::uint64_t full_x = std::uint64_t(extent[0]), full_y = std::uint64_t(extent[1]),
+                      full = full_x * full_y * std::uint64_t(extent[2]);
+  const std::uint64_t first_row = words + full * std::uint64_t(h.fields) +
                                   std::uint64_t(first_rank) * std::uint64_t(h.shared + h.summed);
   for (std::size_t s = 0; s < rows.size(); ++s) sum += hash_at(first_row + s, rows[s]);
   if (fields.empty()) return sum;
-  const RankLayout l = rank_layout(fields[0]->dm(), int(h.nx), int(h.ny));
+  const RankLayout l = rank_layout(fields[0]->dm(), {int(h.nx), int(h.ny), int(h.nz)});
   for (std::size_t k = 0; k < fields.size(); ++k) {
     const PetscScalar* a;
     PetscCallAbort(PETSC_COMM_WORLD, VecGetArrayRead(fields[k]->local(), &a));
-    for (int y = 0; y < l.own.height; ++y) {
-      const PetscScalar* line = a + size_t(l.own.y0 - l.window.y0 + y) * size_t(l.window.width) + (l.own.x0 - l.window.x0);
-      const std::uint64_t place = header_words + full * k + std::uint64_t(l.own.y0 + y) * full_x + std::uint64_t(l.own.x0);
-      for (int x = 0; x < l.own.width; ++x) sum += hash_at(place + std::uint64_t(x), line[x]);
-    }
+    for (int z = 0; z < l.own.depth; ++z)
+      for (int y = 0; y < l.own.height; ++y) {
+        const PetscScalar* line = a + l.own_row_in_window(y, z);
+        const std::uint64_t place = words + full * k +
+                                    (std::uint64_t(l.own.z0 + z) * full_y + std::uint64_t(l.own.y0 + y)) * full_x +
+                                    std::uint64_t(l.own.x0);
+        for (int x = 0; x < l.own.width; ++x) sum += hash_at(place + std::uint64_t(x), line[x]);
+      }
     PetscCallAbort(PETSC_COMM_WORLD, VecRestoreArrayRead(fields[k]->local(), &a));
   }
   return sum;
@@ -221,14 +260,15 @@ std::string send_fields(MPI_Comm comm, const std::filesystem::path& path, const 
   MpiFile file(comm, path, MPI_MODE_WRONLY | MPI_MODE_CREATE);
   if (!file.problem().empty()) return file.problem();
   MPI_Status status;
-  file.agreed(rank == 0 ? MPI_File_write_at(file.get(), 0, &h, int(sizeof h), MPI_BYTE, &status) : MPI_SUCCESS, "write");
+  file.agreed(rank == 0 ? MPI_File_write_at(file.get(), 0, &h, header_bytes(h), MPI_BYTE, &status) : MPI_SUCCESS, "write");
   const MPI_Offset rows = field_offset(h, h.fields) + MPI_Offset(sizeof(double)) * rank * MPI_Offset(row.size());
   file.agreed(MPI_File_write_at_all(file.get(), rows, row.data(), int(row.size()), MPI_DOUBLE, &status), "write");
   if (!fields.empty()) {
-    const RankLayout l = rank_layout(fields[0]->dm(), int(h.nx), int(h.ny));
-    const Subarray in_file(l.full_x, l.full_y, l.own);
-    const Rectangle own_in_window{l.own.x0 - l.window.x0, l.own.y0 - l.window.y0, l.own.width, l.own.height};
-    const Subarray in_memory(l.window.width, l.window.height, own_in_window);
+    const RankLayout l = rank_layout(fields[0]->dm(), {int(h.nx), int(h.ny), int(h.nz)});
+    const Subarray in_file(l.full_x, l.full_y, l.full_z, l.own);
+    const Box own_in_window{l.own.x0 - l.window.x0, l.own.y0 - l.window.y0, l.own.z0 - l.window.z0,
+                            l.own.width,           l.own.height,           l.own.depth};
+    const Subarray in_memory(l.window.width, l.window.height, l.window.depth, own_in_window);
     for (size_t k = 0; k < fields.size() && file.problem().empty(); ++k) {
       file.agreed(MPI_File_set_view(file.get(), field_offset(h, std::int64_t(k)), MPI_DOUBLE, in_file.type, "native",
                                     MPI_INFO_NULL), "write");
@@ -253,27 +293,29 @@ std::string verify_fields(MPI_Comm comm, const std::filesystem::path& path, cons
   MPI_Status status;
   bool same = true;
   FieldsHeader read_back{};
-  file.agreed(rank == 0 ? MPI_File_read_at(file.get(), 0, &read_back, int(sizeof h), MPI_BYTE, &status) : MPI_SUCCESS,
+  file.agreed(rank == 0 ? MPI_File_read_at(file.get(), 0, &read_back, header_bytes(h), MPI_BYTE, &status) : MPI_SUCCESS,
               "read back");
-  if (rank == 0) same = std::memcmp(&read_back, &h, sizeof h) == 0;
+  if (rank == 0) same = std::memcmp(&read_back, &h, size_t(header_bytes(h))) == 0;
   std::vector<double> buffer(row.size());
   const MPI_Offset rows = field_offset(h, h.fields) + MPI_Offset(sizeof(double)) * rank * MPI_Offset(row.size());
   file.agreed(MPI_File_read_at_all(file.get(), rows, buffer.data(), int(buffer.size()), MPI_DOUBLE, &status), "read back");
   same = same && std::memcmp(buffer.data(), row.data(), row.size() * sizeof(double)) == 0;
   if (!fields.empty()) {
-    const RankLayout l = rank_layout(fields[0]->dm(), int(h.nx), int(h.ny));
-    const Subarray in_file(l.full_x, l.full_y, l.own);
-    buffer.resize(size_t(l.own.width) * size_t(l.own.height));
+    const RankLayout l = rank_layout(fields[0]->dm(), {int(h.nx), int(h.ny), int(h.nz)});
+    const Subarray in_file(l.full_x, l.full_y, l.full_z, l.own);
+    buffer.resize(l.own.values());
     for (size_t k = 0; k < fields.size() && file.problem().empty(); ++k) {
       file.agreed(MPI_File_set_view(file.get(), field_offset(h, std::int64_t(k)), MPI_DOUBLE, in_file.type, "native",
                                     MPI_INFO_NULL), "read back");
       file.agreed(MPI_File_read_all(file.get(), buffer.data(), int(buffer.size()), MPI_DOUBLE, &status), "read back");
       const PetscScalar* a;
       PetscCallAbort(PETSC_COMM_WORLD, VecGetArrayRead(fields[k]->local(), &a));
-      for (int y = 0; y < l.own.height && same; ++y) {
-        const PetscScalar* line = a + size_t(l.own.y0 - l.window.y0 + y) * size_t(l.window.width) + (l.own.x0 - l.window.x0);
-        same = std::memcmp(line, buffer.data() + size_t(y) * size_t(l.own.width), size_t(l.own.width) * sizeof(double)) == 0;
-      }
+      for (int z = 0; z < l.own.depth && same; ++z)
+        for (int y = 0; y < l.own.height && same; ++y) {
+          const PetscScalar* line = a + l.own_row_in_window(y, z);
+          const size_t row = size_t(z) * size_t(l.own.height) + size_t(y);
+          same = std::memcmp(line, buffer.data() + row * size_t(l.own.width), size_t(l.own.width) * sizeof(double)) == 0;
+        }
       PetscCallAbort(PETSC_COMM_WORLD, VecRestoreArrayRead(fields[k]->local(), &a));
     }
   }
@@ -293,7 +335,7 @@ std::string write_fields(MPI_Comm comm, const std::filesystem::path& path, const
 
 // Reads the fields and this rank's scalars, and the file's checksum (checksum_part) into `checksum`;
 // returns an empty string or what is wrong (the same on every rank).
-std::string read_fields(MPI_Comm comm, const std::filesystem::path& path, int nx, int ny,
+std::string read_fields(MPI_Comm comm, const std::filesystem::path& path, const std::array<int, 3>& cells,
                         std::span<Field* const> fields, CheckpointScalars& scalars, std::uint64_t& checksum) {
   int rank, size;
   MPI_Comm_rank(comm, &rank);
@@ -302,12 +344,17 @@ std::string read_fields(MPI_Comm comm, const std::filesystem::path& path, int nx
   if (!file.problem().empty()) return file.problem();
   FieldsHeader h{};
   MPI_Status status;
-  file.agreed(MPI_File_read_at_all(file.get(), 0, &h, int(sizeof h), MPI_BYTE, &status), "read");
   MPI_Offset bytes = 0;
   file.agreed(MPI_File_get_size(file.get(), &bytes), "read");
+  // The planar header's 8 words, and a mesh of layers' ninth where the file is long enough to hold it.
+  const int header_read = bytes >= MPI_Offset(9 * sizeof(std::uint64_t)) ? 9 : 8;
+  file.agreed(MPI_File_read_at_all(file.get(), 0, &h, header_read * int(sizeof(std::uint64_t)), MPI_BYTE, &status), "read");
   if (!file.problem().empty()) return file.problem();
-  if (bytes < MPI_Offset(sizeof h) || h.magic != magic) return fmt::format("{} is not a granflow checkpoint", path.string());
-  if (h.nx != nx || h.ny != ny) return other_mesh(h.nx, h.ny, nx, ny);
+  if (h.magic != magic_layers) h.nz = 1;
+  if (bytes < MPI_Offset(header_bytes(h)) || (h.magic != magic && h.magic != magic_layers) ||
+      (h.magic == magic_layers && h.nz < 2))
+    return fmt::format("{} is not a granflow checkpoint", path.string());
+  if (!same_mesh(h, cells)) return other_mesh(h, cells);
   if (h.fields != std::int64_t(fields.size()))
     return fmt::format("the checkpoint holds {} fields, this case needs {} (a different model or numerics)", h.fields,
                        fields.size());
@@ -335,14 +382,14 @@ std::string read_fields(MPI_Comm comm, const std::filesystem::path& path, int nx
       scalars.summed[size_t(s)] = rank == 0 ? total : 0.0;
     }
   if (!fields.empty()) {
-    const RankLayout l = rank_layout(fields[0]->dm(), nx, ny);
-    const Subarray in_file(l.full_x, l.full_y, l.window);
+    const RankLayout l = rank_layout(fields[0]->dm(), cells);
+    const Subarray in_file(l.full_x, l.full_y, l.full_z, l.window);
     for (size_t k = 0; k < fields.size() && file.problem().empty(); ++k) {
       file.agreed(MPI_File_set_view(file.get(), field_offset(h, std::int64_t(k)), MPI_DOUBLE, in_file.type, "native",
                                     MPI_INFO_NULL), "read");
       PetscScalar* a;
       PetscCallAbort(PETSC_COMM_WORLD, VecGetArray(fields[k]->local(), &a));
-      file.agreed(MPI_File_read_all(file.get(), a, l.window.width * l.window.height, MPI_DOUBLE, &status), "read");
+      file.agreed(MPI_File_read_all(file.get(), a, int(l.window.values()), MPI_DOUBLE, &status), "read");
       PetscCallAbort(PETSC_COMM_WORLD, VecRestoreArray(fields[k]->local(), &a));
       fields[k]->gather_from_local();
     }
@@ -361,14 +408,17 @@ std::string non_finite_value(std::span<Field* const> fields, const std::string& 
                              const CheckpointScalars& scalars) {
   const std::vector<std::string> names = field_name_list(field_names);
   for (std::size_t k = 0; k < fields.size(); ++k) {
-    PetscInt xs, ys, xm, ym;
-    PetscCallAbort(PETSC_COMM_WORLD, DMDAGetCorners(fields[k]->dm(), &xs, &ys, nullptr, &xm, &ym, nullptr));
+    PetscInt xs, ys, zs, xm, ym, zm;
+    PetscCallAbort(PETSC_COMM_WORLD, DMDAGetCorners(fields[k]->dm(), &xs, &ys, &zs, &xm, &ym, &zm));
     const ConstFieldArray a(fields[k]->dm(), fields[k]->global());
-    for (PetscInt j = ys; j < ys + ym; ++j)
-      for (PetscInt i = xs; i < xs + xm; ++i)
-        if (!std::isfinite(a[j][i]))
-          return fmt::format("the checkpoint is damaged: its field {} holds {} in cell ({}, {})",
-                             names.size() == fields.size() ? names[k] : std::to_string(k), a[j][i], i, j);
+    const auto name = names.size() == fields.size() ? names[k] : std::to_string(k);
+    for (PetscInt z = zs; z < zs + zm; ++z)
+      for (PetscInt j = ys; j < ys + ym; ++j)
+        for (PetscInt i = xs; i < xs + xm; ++i)
+          if (const double v = a.volume()[z][j][i]; !std::isfinite(v))
+            return zm == 1 && zs == 0 ? fmt::format("the checkpoint is damaged: its field {} holds {} in cell ({}, {})", name, v, i, j)
+                                      : fmt::format("the checkpoint is damaged: its field {} holds {} in cell ({}, {}, {})", name,
+                                                    v, i, j, z);
   }
   for (const auto* numbers : {&scalars.shared, &scalars.summed})
     for (const double x : *numbers)
@@ -486,8 +536,8 @@ void agree(MPI_Comm comm, const std::string& mine) {
 
 }  // namespace
 
-void write_checkpoint(MPI_Comm comm, const std::filesystem::path& dir, int nx, int ny, const RunCheckpoint& run,
-                      std::span<Field* const> fields, const CheckpointScalars& scalars) {
+void write_checkpoint(MPI_Comm comm, const std::filesystem::path& dir, const std::array<int, 3>& cells,
+                      const RunCheckpoint& run, std::span<Field* const> fields, const CheckpointScalars& scalars) {
   int rank, size;
   MPI_Comm_rank(comm, &rank);
   MPI_Comm_size(comm, &size);
@@ -509,8 +559,15 @@ void write_checkpoint(MPI_Comm comm, const std::filesystem::path& dir, int nx, i
     std::filesystem::remove_all(partial);
     std::filesystem::create_directories(partial);
   });
-  const FieldsHeader h{magic, nx, ny, Grid::ghost_width, std::int64_t(fields.size()), size,
-                       std::int64_t(scalars.shared.size()), std::int64_t(scalars.summed.size())};
+  const FieldsHeader h{cells[2] == 1 ? magic : magic_layers,
+                       cells[0],
+                       cells[1],
+                       Grid::ghost_width,
+                       std::int64_t(fields.size()),
+                       size,
+                       std::int64_t(scalars.shared.size()),
+                       std::int64_t(scalars.summed.size()),
+                       cells[2]};
   std::vector<double> row = scalars.shared;
   row.insert(row.end(), scalars.summed.begin(), scalars.summed.end());
   if (auto problem = write_fields(comm, partial / fields_file, h, fields, row); !problem.empty())
@@ -530,7 +587,7 @@ void write_checkpoint(MPI_Comm comm, const std::filesystem::path& dir, int nx, i
   });
 }
 
-RunCheckpoint read_checkpoint(MPI_Comm comm, const std::filesystem::path& dir, int nx, int ny,
+RunCheckpoint read_checkpoint(MPI_Comm comm, const std::filesystem::path& dir, const std::array<int, 3>& cells,
                               const std::string& domain, const std::string& field_names,
                               std::span<Field* const> fields, CheckpointScalars& scalars) {
   int rank, size;
@@ -557,8 +614,8 @@ RunCheckpoint read_checkpoint(MPI_Comm comm, const std::filesystem::path& dir, i
     if (problem.empty() && !run.domain.empty() && run.domain != domain) {
       // Another mesh blocks other cells of the same obstacles: name the mesh, the cause.
       const auto h = read_header(from / fields_file);
-      problem = h && (h->nx != nx || h->ny != ny)
-                    ? other_mesh(h->nx, h->ny, nx, ny)
+      problem = h && !same_mesh(*h, cells)
+                    ? other_mesh(*h, cells)
                     : fmt::format("the checkpoint is of the domain {}; the case's is {}", run.domain, domain);
     }
     // Other numerics may keep as many fields, of other meanings (cell forces where the look-ahead
@@ -584,7 +641,7 @@ RunCheckpoint read_checkpoint(MPI_Comm comm, const std::filesystem::path& dir, i
   }
   agree(comm, problem);
   std::uint64_t checksum = 0;
-  agree(comm, read_fields(comm, from / fields_file, nx, ny, fields, scalars, checksum));
+  agree(comm, read_fields(comm, from / fields_file, cells, fields, scalars, checksum));
   agree(comm, non_finite_value(fields, field_names, scalars));
   std::uint64_t recorded[2] = {recorded_checksum.has_value(), recorded_checksum.value_or(0)};
   MPI_Bcast(recorded, 2, MPI_UINT64_T, 0, comm);

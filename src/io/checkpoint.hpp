@@ -7,6 +7,7 @@
 // use the same mesh.
 #include <mpi.h>
 
+#include <array>
 #include <filesystem>
 #include <span>
 #include <stdexcept>
@@ -48,8 +49,9 @@ struct CheckpointScalars {
 
 // Writes the checkpoint into dir/checkpoint/ (collective). It is assembled in checkpoint.partial/ and
 // swapped in whole, so a run killed while writing keeps the previous checkpoint.
-void write_checkpoint(MPI_Comm comm, const std::filesystem::path& dir, int nx, int ny, const RunCheckpoint& run,
-                      std::span<Field* const> fields, const CheckpointScalars& scalars);
+// `cells`: the mesh's nx, ny and nz (1 on a planar or axisymmetric mesh).
+void write_checkpoint(MPI_Comm comm, const std::filesystem::path& dir, const std::array<int, 3>& cells,
+                      const RunCheckpoint& run, std::span<Field* const> fields, const CheckpointScalars& scalars);
 
 // Reads the checkpoint of dir back (collective): the fields in the same order as written, each rank's
 // window of them with its ghosts; the scalars into `scalars` (this rank's own where the number of
@@ -59,7 +61,7 @@ void write_checkpoint(MPI_Comm comm, const std::filesystem::path& dir, int nx, i
 // checkpoint records them, against `field_names`), a domain other than `domain`, or a file that does
 // not match its checksum (where run.txt gives them: older checkpoints do not). Nothing is read
 // into the fields unless the run's record matches.
-RunCheckpoint read_checkpoint(MPI_Comm comm, const std::filesystem::path& dir, int nx, int ny,
+RunCheckpoint read_checkpoint(MPI_Comm comm, const std::filesystem::path& dir, const std::array<int, 3>& cells,
                               const std::string& domain, const std::string& field_names,
                               std::span<Field* const> fields, CheckpointScalars& scalars);
 

@@ -25,6 +25,13 @@ std::string Simulation::checkpoint_field_names() {
 // The domain as a checkpoint records it, so that a restart cannot take the fields of another one.
 std::string Simulation::domain() const {
   const auto& m = config_.mesh;
+  if (m.dimension() == 3) {  // a mesh of layers: its depth and grading along z too
+    std::string text = fmt::format("[{:.9g}, {:.9g}] x [{:.9g}, {:.9g}] x [{:.9g}, {:.9g}] (layers)", m.lower[0],
+                                   m.upper[0], m.lower[1], m.upper[1], m.lower[2], m.upper[2]);
+    if (m.grading[0] != 1.0 || m.grading[1] != 1.0 || m.grading[2] != 1.0)
+      text += fmt::format(", grading [{:.9g}, {:.9g}, {:.9g}]", m.grading[0], m.grading[1], m.grading[2]);
+    return text + obstacles_;
+  }
   std::string text = fmt::format("[{:.9g}, {:.9g}] x [{:.9g}, {:.9g}] ({})", m.lower[0], m.upper[0], m.lower[1],
                                  m.upper[1], m.axisymmetric ? "axisymmetric" : "planar");
   // Graded cells lie elsewhere: a restart on other grading would read the fields into wrong cells.
@@ -57,7 +64,9 @@ std::string material_record(const rheology::RheologyParameters& r) {
 // The materials and gravity, as a checkpoint records them: a restart with others is most likely
 // the wrong case file, though a deliberate change is allowed.
 std::string Simulation::physics() const {
-  std::string text = fmt::format("gravity [{:.9g}, {:.9g}]", config_.flow.gravity[0], config_.flow.gravity[1]);
+  const auto& g = config_.flow.gravity;
+  std::string text = config_.mesh.dimension() == 3 ? fmt::format("gravity [{:.9g}, {:.9g}, {:.9g}]", g[0], g[1], g[2])
+                                                   : fmt::format("gravity [{:.9g}, {:.9g}]", g[0], g[1]);
   if (!config_.soil) return text + fmt::format("; fluid {:.9g} kg/m^3, {:.9g} Pa s", config_.fluid.density, config_.fluid.viscosity);
   const SoilSettings& s = *config_.soil;
   text += fmt::format("; air {:.9g} kg/m^3, {:.9g} Pa s; soil {:.9g} kg/m^3", s.air_density, s.air_viscosity, s.soil_density);
@@ -80,12 +89,15 @@ std::string Simulation::physics() const {
 // written before they were recorded is not taken for one of other physics).
 std::string Simulation::boundaries() const {
   std::string text;
-  for (Side side : planar_sides) {
+  const bool layers = config_.mesh.dimension() == 3;
+  for (Side side : sides_of_dimension(config_.mesh.dimension())) {
     const BoundaryCondition& bc = boundary(config_.flow.boundaries, side);
     text += fmt::format("{}{} ", text.empty() ? "" : "; ", side_name(side));
     switch (bc.kind) {
       case BoundaryKind::wall:
-        text += fmt::format("wall [{:.9g}, {:.9g}] m/s", bc.wall_velocity[0], bc.wall_velocity[1]);
+        text += layers ? fmt::format("wall [{:.9g}, {:.9g}, {:.9g}] m/s", bc.wall_velocity[0], bc.wall_velocity[1],
+                                     bc.wall_velocity[2])
+                       : fmt::format("wall [{:.9g}, {:.9g}] m/s", bc.wall_velocity[0], bc.wall_velocity[1]);
         if (bc.friction)  // a wall without friction reads as before its friction could be given
           text += fmt::format(", friction {:.9g}, adhesion {:.9g} Pa", bc.friction->friction_coefficient,
                               bc.friction->adhesion);
@@ -116,7 +128,7 @@ void Simulation::write_checkpoint(double next_dt) {
     scalars.summed = own.summed;
   }
   const auto fields = checkpoint_fields();
-  granflow::write_checkpoint(grid_->comm(), out_, grid_->nx(), grid_->ny(), run, fields, scalars);
+  granflow::write_checkpoint(grid_->comm(), out_, {grid_->nx(), grid_->ny(), grid_->nz()}, run, fields, scalars);
   // A run restarted from here builds its preconditioners afresh; so does this one, to go on alike.
   flow_->rebuild_preconditioners();
 }
@@ -125,7 +137,7 @@ void Simulation::restart() {
   if (out_.empty()) throw CheckpointError("a restart needs the output directory of the earlier run");
   const auto fields = checkpoint_fields();
   CheckpointScalars scalars;
-  RunCheckpoint run = read_checkpoint(grid_->comm(), out_, grid_->nx(), grid_->ny(), domain(), checkpoint_field_names(),
+  RunCheckpoint run = read_checkpoint(grid_->comm(), out_, {grid_->nx(), grid_->ny(), grid_->nz()}, domain(), checkpoint_field_names(),
                                       fields, scalars);
   flow_->clear_blocked_cells();  // the fields were read with their ghosts, the blocked cells' mirrors among them
   if (soil_) {

@@ -126,15 +126,19 @@ void SoilPhase::check_restored_fraction() const {
   // beyond this margin was damaged after it was written, and would run on with soil made or lost.
   constexpr double margin = 1e-6;
   std::string problem;
-  const ConstFieldArray c(grid_.field_dm(), c_->global());
+  const ConstFieldArray c_array(grid_.field_dm(), c_->global());
+  const VolumeView c = c_array.volume();
   const auto& b = grid_.owned();
-  for (int j = b.ys; j < b.ye() && problem.empty(); ++j)
-    for (int i = b.xs; i < b.xe(); ++i)
-      if (!(c[j][i] >= -margin && c[j][i] <= 1 + margin)) {
-        problem = fmt::format("the checkpoint is damaged: its soil fraction c is {} in cell ({}, {}), outside [0, 1]",
-                              c[j][i], i, j);
-        break;
-      }
+  const bool layers = grid_.dimension() == 3;
+  for (int k = b.zs; k < b.ze() && problem.empty(); ++k)
+    for (int j = b.ys; j < b.ye() && problem.empty(); ++j)
+      for (int i = b.xs; i < b.xe(); ++i)
+        if (!(c[k][j][i] >= -margin && c[k][j][i] <= 1 + margin)) {
+          const std::string cell = layers ? fmt::format("({}, {}, {})", i, j, k) : fmt::format("({}, {})", i, j);
+          problem = fmt::format("the checkpoint is damaged: its soil fraction c is {} in cell {}, outside [0, 1]",
+                                c[k][j][i], cell);
+          break;
+        }
   if (auto text = first_failure(grid_.comm(), problem); !text.empty()) throw CheckpointError(text);
 }
 

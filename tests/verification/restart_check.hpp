@@ -29,12 +29,12 @@ inline std::string file_text(const std::filesystem::path& p) {
 struct EndState {
   double time = 0.0;
   long steps = 0;
-  std::vector<std::vector<double>> fields;  // u, v, p (and c, and the soil materials' shares)
+  std::vector<std::vector<double>> fields;  // u, v (w), p (and c, and the soil materials' shares)
 };
 
 inline EndState end_state(Simulation& sim, long steps) {
   EndState e{sim.time(), steps, {}};
-  for (int a = 0; a < 2; ++a) e.fields.push_back(gather_to_root(sim.grid(), sim.flow().velocity(a)));
+  for (int a = 0; a < sim.grid().dimension(); ++a) e.fields.push_back(gather_to_root(sim.grid(), sim.flow().velocity(a)));
   e.fields.push_back(gather_to_root(sim.grid(), sim.flow().pressure()));
   if (sim.soil()) e.fields.push_back(gather_to_root(sim.grid(), sim.soil()->soil_fraction()));
   if (sim.soil())

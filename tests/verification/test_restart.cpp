@@ -43,6 +43,16 @@ TEST(Restart, CollapseContinuesExactlyFromItsLastCheckpoint) {
   std::printf("collapse restarted from its checkpoint at t = %.3g s\n", t);
 }
 
+// A mesh of layers: the quarter sand column of cases/lube2004_a05_3d.toml on cells of 2 cm under its
+// coupled solve with an air band and momentum moved with the soil's mass; the checkpoint holds the
+// third velocity and displacement components and planes of every layer with their ghosts.
+TEST(Restart, AColumnOnAMeshOfLayersContinuesExactlyFromItsLastCheckpoint) {
+  const double t = expect_restart_reproduces(
+      "cases/lube2004_a05_3d.toml",
+      {"mesh.cells=[20,8,20]", "time.end=0.1", "output.times=[0.05]", "output.progress_seconds=0"}, 16, true);
+  std::printf("3D column restarted from its checkpoint at t = %.3g s\n", t);
+}
+
 // Two soil materials of two densities: their shares are part of the checkpoint.
 TEST(Restart, LayeredCollapseContinuesExactlyFromItsLastCheckpoint) {
   const double t = expect_restart_reproduces(
@@ -167,6 +177,38 @@ TEST(Restart, MaxStepsCountsTheWholeRunAndItsLastOutputOnce) {
   }
   test::remove_scratch(whole_dir);
   test::remove_scratch(split_dir);
+}
+
+// A checkpoint of a mesh of layers is refused by a case of another depth in cells, and by a planar
+// case, each naming both meshes.
+TEST(Restart, RefusesACheckpointOfLayersOfAnotherMesh) {
+  const auto dir = scratch("restart_layers_foreign");
+  std::filesystem::remove_all(dir);
+  const std::vector<std::string> small{"mesh.cells=[10,4,10]", "mesh.upper=[0.4,0.16,0.4]", "time.end=0.01",
+                                       "output.times=[0.005]", "output.progress_seconds=0", "output.fields=false"};
+  {
+    Simulation sim(PETSC_COMM_WORLD, load_case(test::repo_path("cases/lube2004_a05_3d.toml"), small), dir);
+    sim.run();
+  }
+  auto refusal = [&](const std::string& case_file, const std::vector<std::string>& overrides) -> std::string {
+    Simulation sim(PETSC_COMM_WORLD, load_case(test::repo_path(case_file), overrides), dir);
+    try {
+      sim.restart();
+    } catch (const CheckpointError& e) {
+      return e.what();
+    }
+    ADD_FAILURE() << "a foreign checkpoint was taken";
+    return {};
+  };
+  auto deeper = small;
+  deeper[0] = "mesh.cells=[10,4,8]";
+  const std::string layers = refusal("cases/lube2004_a05_3d.toml", deeper);
+  EXPECT_NE(layers.find("the checkpoint is of a 10 x 4 x 10 mesh, the case has 10 x 4 x 8 cells"), std::string::npos)
+      << layers;
+  const std::string planar = refusal("cases/lube2004_a05.toml", {"mesh.cells=[10,4]", "time.end=0.1"});
+  EXPECT_NE(planar.find("the checkpoint is of a 10 x 4 x 10 mesh, the case has 10 x 4 cells"), std::string::npos)
+      << planar;
+  test::remove_scratch(dir);
 }
 
 TEST(Restart, RefusesAMissingOrForeignCheckpoint) {

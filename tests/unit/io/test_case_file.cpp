@@ -1083,7 +1083,7 @@ TEST(CaseFile, AMeshOfLayersReadsItsThirdAxis) {
   EXPECT_TRUE(std::holds_alternative<interface::Sphere>(c.soil->initial_soil_3d[2]));
   ASSERT_EQ(c.soil->initial_soil.size(), 1u);  // the circle, extruded
   EXPECT_EQ(c.soil->initial_solids(-0.2, 0.2).size(), 4u);
-  // A granular soil there takes the projection, no air band, and writes no checkpoints; the coupled
+  // A granular soil there takes the projection and no air band, and writes checkpoints; the coupled
   // solve, when asked for, covers the soil and an air band, and moves momentum with the VoF's mass, as
   // on a planar mesh.
   EXPECT_EQ(c.flow.numerics.pressure_coupling, PressureCoupling::projection);
@@ -1092,7 +1092,7 @@ TEST(CaseFile, AMeshOfLayersReadsItsThirdAxis) {
   EXPECT_EQ(coupled.flow.numerics.pressure_coupling, PressureCoupling::coupled);
   EXPECT_EQ(coupled.flow.numerics.air_band, std::max(12, 2 * coupled.time.interface_substeps + 1));
   EXPECT_TRUE(coupled.flow.numerics.conservative_momentum);
-  EXPECT_FALSE(c.output.checkpoints);
+  EXPECT_TRUE(c.output.checkpoints);
   EXPECT_EQ(c.soil->face_fraction, FaceFraction::face);
   EXPECT_EQ(parse_case(layered, {"physics.gravity=[0.0, -9.81, 1.5]"}).flow.gravity[2], 1.5);
   EXPECT_EQ(cell_counts(c.mesh), "8 x 6 x 4");
@@ -1111,7 +1111,6 @@ TEST(CaseFile, AMeshOfLayersRefusesWhatItLacks) {
        "numerics.air_band: needs gravity along y"},
       {{"boundary.back={type=\"wall\", friction_angle=20.0}"}, "boundary.back: a wall's friction is planar yet"},
       {{"numerics.wall_gradient=\"quadratic\""}, "numerics.wall_gradient"},
-      {{"output.checkpoints=true"}, "output.checkpoints: not on a mesh of layers"},
       {{"output.line=[{name=\"a\", start=[0.0, 0.1], end=[0.5, 0.1]}]"}, "output.line: line samples are planar yet"},
       {{"obstacle=[{shape=\"box\", lower=[0.0, 0.0], upper=[0.1, 0.1]}]"}, "obstacle: obstacles are planar yet"},
       {{"initial.soil=[{shape=\"sphere\", centre=[5.0, 5.0, 5.0], radius=0.1}]"}, "lies outside the domain"},
