@@ -6,6 +6,7 @@
 #include <array>
 #include <cmath>
 #include <numbers>
+#include <optional>
 
 #include "mesh/gather.hpp"
 #include "mesh/largest.hpp"
@@ -18,36 +19,37 @@
 
 namespace granflow {
 
-namespace {
-// The largest of f(i, j) over the owned cells with c >= 0.5, over all ranks.
-template <class F>
-double largest_over_soil(const Grid& grid, const Field& c_field, F&& f) {
-  ConstFieldArray c(grid.field_dm(), c_field.global());
-  const auto& b = grid.owned();
+// The largest magnitude of a vector, one field per axis of the mesh, over the owned cells with
+// c >= 0.5, over all ranks: hypot of the two components on a planar mesh, the root of the three
+// squares on a mesh of layers.
+double SoilPhase::largest_magnitude_over_soil(const Field* const components[3]) const {
+  const bool layers = grid_.dimension() == 3;
+  std::optional<ConstFieldArray> arrays[3];
+  VolumeView q[3] = {};
+  for (int a = 0; a < grid_.dimension(); ++a) q[a] = arrays[a].emplace(grid_.field_dm(), components[a]->global()).volume();
+  const ConstFieldArray c_array(grid_.field_dm(), c_->global());
+  const VolumeView c = c_array.volume();
+  const auto& b = grid_.owned();
   double largest = 0.0;
-  for (int j = b.ys; j < b.ye(); ++j)
-    for (int i = b.xs; i < b.xe(); ++i)
-      if (c[j][i] >= 0.5) largest = larger_or_nan(largest, f(i, j));  // a NaN soil is not at rest
-  return mpi_max(grid.comm(), largest);
+  for (int k = b.zs; k < b.ze(); ++k)
+    for (int j = b.ys; j < b.ye(); ++j)
+      for (int i = b.xs; i < b.xe(); ++i) {
+        if (!(c[k][j][i] >= 0.5)) continue;
+        const double x = q[0][k][j][i], y = q[1][k][j][i];
+        const double size = layers ? std::sqrt(x * x + y * y + q[2][k][j][i] * q[2][k][j][i]) : std::hypot(x, y);
+        largest = larger_or_nan(largest, size);  // a NaN soil is not at rest
+      }
+  return mpi_max(grid_.comm(), largest);
 }
-}  // namespace
 
 double SoilPhase::largest_displacement() const {
-  if (grid_.dimension() == 3) {
-    const Field* const d[3] = {disp_[0].get(), disp_[1].get(), disp_[2].get()};
-    return largest_magnitude_3d(d);
-  }
-  ConstFieldArray dx(grid_.field_dm(), disp_[0]->global()), dy(grid_.field_dm(), disp_[1]->global());
-  return largest_over_soil(grid_, *c_, [&](int i, int j) { return std::hypot(dx[j][i], dy[j][i]); });
+  const Field* const d[3] = {disp_[0].get(), disp_[1].get(), disp_[2].get()};
+  return largest_magnitude_over_soil(d);
 }
 
 double SoilPhase::largest_speed(const FlowSolver& flow) const {
-  if (grid_.dimension() == 3) {
-    const Field* const v[3] = {&flow.velocity(0), &flow.velocity(1), &flow.velocity(2)};
-    return largest_magnitude_3d(v);
-  }
-  ConstFieldArray u(grid_.field_dm(), flow.velocity(0).global()), v(grid_.field_dm(), flow.velocity(1).global());
-  return largest_over_soil(grid_, *c_, [&](int i, int j) { return std::hypot(u[j][i], v[j][i]); });
+  const Field* const v[3] = {&flow.velocity(0), &flow.velocity(1), grid_.dimension() == 3 ? &flow.velocity(2) : nullptr};
+  return largest_magnitude_over_soil(v);
 }
 
 void SoilPhase::compute_diagnostics(const FlowSolver& flow) {

@@ -213,9 +213,7 @@ class SoilPhase {
   void compute_diagnostics_3d(const FlowSolver& flow);
   double compute_dissipation_3d(const FlowSolver& flow);
   SoilBudget budget_3d(const FlowSolver& flow);
-  template <class F>
-  double largest_over_soil_3d(F&& f) const;
-  double largest_magnitude_3d(const Field* const components[3]) const;
+  double largest_magnitude_over_soil(const Field* const components[3]) const;
   int sweep_parity_ = 0;
   const Field* blocked_ = nullptr;
   const Field* obstacle_index_ = nullptr;       // with obstacles of their own friction

@@ -368,26 +368,4 @@ SoilBudget SoilPhase::budget_3d(const FlowSolver& flow) {
   return {t[0], t[1], t[2], t[3], t[4], t[5], t[6]};
 }
 
-// The largest of f(i, j, k) over the owned cells with c >= 0.5, over all ranks.
-template <class F>
-double SoilPhase::largest_over_soil_3d(F&& f) const {
-  const ConstFieldArray c(grid_.field_dm(), c_->global());
-  const auto& b = grid_.owned();
-  double largest = 0.0;
-  for (int k = b.zs; k < b.ze(); ++k)
-    for (int j = b.ys; j < b.ye(); ++j)
-      for (int i = b.xs; i < b.xe(); ++i)
-        if (c.volume()[k][j][i] >= 0.5) largest = larger_or_nan(largest, f(i, j, k));
-  return mpi_max(grid_.comm(), largest);
-}
-
-double SoilPhase::largest_magnitude_3d(const Field* const components[3]) const {
-  std::optional<ConstFieldArray> arrays[3];
-  VolumeView q[3];
-  for (int a = 0; a < 3; ++a) q[a] = arrays[a].emplace(grid_.field_dm(), components[a]->global()).volume();
-  return largest_over_soil_3d([&](int i, int j, int k) {
-    return std::sqrt(q[0][k][j][i] * q[0][k][j][i] + q[1][k][j][i] * q[1][k][j][i] + q[2][k][j][i] * q[2][k][j][i]);
-  });
-}
-
 }  // namespace granflow
