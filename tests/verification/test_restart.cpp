@@ -179,6 +179,17 @@ TEST(Restart, MaxStepsCountsTheWholeRunAndItsLastOutputOnce) {
   test::remove_scratch(split_dir);
 }
 
+// What a restart that must be refused says.
+std::string refusal(Simulation& sim) {
+  try {
+    sim.restart();
+  } catch (const CheckpointError& e) {
+    return e.what();
+  }
+  ADD_FAILURE() << "a foreign checkpoint was taken";
+  return {};
+}
+
 // A checkpoint of a mesh of layers is refused by a case of another depth in cells, and by a planar
 // case, each naming both meshes.
 TEST(Restart, RefusesACheckpointOfLayersOfAnotherMesh) {
@@ -190,22 +201,16 @@ TEST(Restart, RefusesACheckpointOfLayersOfAnotherMesh) {
     Simulation sim(PETSC_COMM_WORLD, load_case(test::repo_path("cases/lube2004_a05_3d.toml"), small), dir);
     sim.run();
   }
-  auto refusal = [&](const std::string& case_file, const std::vector<std::string>& overrides) -> std::string {
+  auto refusal_of = [&](const std::string& case_file, const std::vector<std::string>& overrides) {
     Simulation sim(PETSC_COMM_WORLD, load_case(test::repo_path(case_file), overrides), dir);
-    try {
-      sim.restart();
-    } catch (const CheckpointError& e) {
-      return e.what();
-    }
-    ADD_FAILURE() << "a foreign checkpoint was taken";
-    return {};
+    return refusal(sim);
   };
   auto deeper = small;
   deeper[0] = "mesh.cells=[10,4,8]";
-  const std::string layers = refusal("cases/lube2004_a05_3d.toml", deeper);
+  const std::string layers = refusal_of("cases/lube2004_a05_3d.toml", deeper);
   EXPECT_NE(layers.find("the checkpoint is of a 10 x 4 x 10 mesh, the case has 10 x 4 x 8 cells"), std::string::npos)
       << layers;
-  const std::string planar = refusal("cases/lube2004_a05.toml", {"mesh.cells=[10,4]", "time.end=0.1"});
+  const std::string planar = refusal_of("cases/lube2004_a05.toml", {"mesh.cells=[10,4]", "time.end=0.1"});
   EXPECT_NE(planar.find("the checkpoint is of a 10 x 4 x 10 mesh, the case has 10 x 4 cells"), std::string::npos)
       << planar;
   test::remove_scratch(dir);
@@ -221,16 +226,6 @@ TEST(Restart, RefusesAMissingOrForeignCheckpoint) {
     EXPECT_THROW(sim.restart(), CheckpointError);  // nothing written yet
     sim.run();
   }
-  // What a restart that must be refused says.
-  auto refusal = [](Simulation& sim) -> std::string {
-    try {
-      sim.restart();
-    } catch (const CheckpointError& e) {
-      return e.what();
-    }
-    ADD_FAILURE() << "a foreign checkpoint was taken";
-    return {};
-  };
   auto other = small;
   other[0] = "mesh.cells=[32,10]";
   Simulation sim(PETSC_COMM_WORLD, load_case(test::repo_path("cases/bui2008_experiment.toml"), other), dir);
