@@ -27,9 +27,14 @@ constexpr long stop_after = 70;
 // that some soil leaves the domain. Each rank factorises the whole region itself (PCREDUNDANT), so
 // that one and two ranks solve the same systems (docs/benchmarks.md: MUMPS's factorisation
 // distributed over ranks sums in an order that depends on timing, which the collapse amplifies).
-CaseConfig collapse() {
+// Each rank factorises the whole region itself (with solver.coupled.pc_type = "redundant").
+void factorise_on_every_rank() {
   PetscOptionsSetValue(nullptr, "-coupled_redundant_pc_type", "lu");
   PetscOptionsSetValue(nullptr, "-coupled_redundant_pc_factor_mat_solver_type", "mumps");
+}
+
+CaseConfig collapse() {
+  factorise_on_every_rank();
   return load_case(test::repo_path("cases/bui2008_experiment.toml"),
                    {"mesh.cells=[60,20]", "mesh.upper=[0.3,0.2]", "time.end=0.4", "output.interval=0.1",
                     "output.progress_seconds=0", "numerics.air_band=5", "solver.coupled.pc_type=redundant"});
@@ -98,27 +103,38 @@ void expect_same_run(const Finished& resumed, const Finished& whole, const char*
   EXPECT_LT(test::max_difference(lode_resumed, lode_whole), 1e-9 * total);
 }
 
+// The case run whole on rank 0, and into another directory stopped there after `stop_after` steps
+// and continued from its checkpoint on every rank (scratch directories named after `name`).
+struct OneThenTwo {
+  Finished whole, resumed;  // on rank 0
+  double checkpoint_time = 0.0;
+};
+OneThenTwo one_rank_then_two(const CaseConfig& config, const std::string& name, long steps) {
+  int rank;
+  MPI_Comm_rank(PETSC_COMM_WORLD, &rank);
+  const auto whole_dir = test::scratch(name + "_whole"), split_dir = test::scratch(name + "_split");
+  test::remove_scratch(whole_dir);
+  test::remove_scratch(split_dir);
+  OneThenTwo r;
+  if (rank == 0) {
+    r.whole = run_whole(PETSC_COMM_SELF, config, whole_dir);
+    test::run_and_kill(PETSC_COMM_SELF, config, split_dir, steps);
+  }
+  MPI_Barrier(PETSC_COMM_WORLD);
+  r.resumed = restart(PETSC_COMM_WORLD, config, split_dir, r.checkpoint_time);
+  test::remove_scratch(whole_dir);
+  test::remove_scratch(split_dir);
+  return r;
+}
+
 TEST(RestartOtherRanks, CollapseStoppedOnOneRankContinuesOnTwo) {
   int rank;
   MPI_Comm_rank(PETSC_COMM_WORLD, &rank);
-  const auto whole_dir = test::scratch("one_to_two_whole"), split_dir = test::scratch("one_to_two_split");
-  test::remove_scratch(whole_dir);
-  test::remove_scratch(split_dir);
-  const CaseConfig config = collapse();
-  Finished whole;
+  const OneThenTwo r = one_rank_then_two(collapse(), "one_to_two", stop_after);
   if (rank == 0) {
-    whole = run_whole(PETSC_COMM_SELF, config, whole_dir);
-    test::run_and_kill(PETSC_COMM_SELF, config, split_dir, stop_after);
+    EXPECT_GE(r.checkpoint_time, 0.2 - 1e-12);
+    expect_same_run(r.resumed, r.whole, "one rank, then two");
   }
-  MPI_Barrier(PETSC_COMM_WORLD);
-  double checkpoint_time = 0.0;
-  const Finished resumed = restart(PETSC_COMM_WORLD, config, split_dir, checkpoint_time);
-  if (rank == 0) {
-    EXPECT_GE(checkpoint_time, 0.2 - 1e-12);
-    expect_same_run(resumed, whole, "one rank, then two");
-  }
-  test::remove_scratch(whole_dir);
-  test::remove_scratch(split_dir);
 }
 
 TEST(RestartOtherRanks, CollapseStoppedOnTwoRanksContinuesOnOne) {
@@ -153,24 +169,13 @@ TEST(RestartOtherRanks, CollapseStoppedOnTwoRanksContinuesOnOne) {
 TEST(RestartOtherRanks, AColumnOnAMeshOfLayersStoppedOnOneRankContinuesOnTwo) {
   int rank;
   MPI_Comm_rank(PETSC_COMM_WORLD, &rank);
-  const auto whole_dir = test::scratch("layers_one_to_two_whole"), split_dir = test::scratch("layers_one_to_two_split");
-  test::remove_scratch(whole_dir);
-  test::remove_scratch(split_dir);
-  PetscOptionsSetValue(nullptr, "-coupled_redundant_pc_type", "lu");
-  PetscOptionsSetValue(nullptr, "-coupled_redundant_pc_factor_mat_solver_type", "mumps");
+  factorise_on_every_rank();
   const CaseConfig config =
       load_case(test::repo_path("cases/lube2004_a05_3d.toml"),
                 {"mesh.cells=[20,8,20]", "time.end=0.1", "output.times=[0.05]", "output.progress_seconds=0",
                  "output.fields=false", "solver.coupled.pc_type=redundant",
                  "numerics.later_iterations=\"own_factorisation\""});
-  Finished whole;
-  if (rank == 0) {
-    whole = run_whole(PETSC_COMM_SELF, config, whole_dir);
-    test::run_and_kill(PETSC_COMM_SELF, config, split_dir, 16);  // of 19 steps
-  }
-  MPI_Barrier(PETSC_COMM_WORLD);
-  double checkpoint_time = 0.0;
-  const Finished resumed = restart(PETSC_COMM_WORLD, config, split_dir, checkpoint_time);
+  const auto [whole, resumed, checkpoint_time] = one_rank_then_two(config, "layers_one_to_two", 16);  // of 19 steps
   if (rank == 0) {
     EXPECT_GE(checkpoint_time, 0.05 - 1e-12);
     EXPECT_EQ(resumed.end.time, whole.end.time);
@@ -186,8 +191,6 @@ TEST(RestartOtherRanks, AColumnOnAMeshOfLayersStoppedOnOneRankContinuesOnTwo) {
     const auto& kinetic = whole.history.at("kinetic_energy");
     EXPECT_NEAR(resumed.history.at("kinetic_energy").back(), kinetic.back(), 1e-9 * kinetic.back());
   }
-  test::remove_scratch(whole_dir);
-  test::remove_scratch(split_dir);
 }
 
 }  // namespace
