@@ -303,6 +303,12 @@ add_test(NAME cli_check_says_what_obstacles_leave_out
                  --set "initial.soil=[{shape='box', lower=[0.0,0.0], upper=[0.41,0.1]}]")
 set_tests_properties(cli_check_says_what_obstacles_leave_out PROPERTIES LABELS cli
                      PASS_REGULAR_EXPRESSION "valid [(]150 x 50 cells, t_end = 2 s. initial soil 0[.]04072 m\\^2 per metre of depth. 21 cells blocked by obstacles, which leave out 0[.]00028 m\\^2 per metre of depth of the initial shapes' soil[)]")
+# On a mesh of layers obstacles are solids (a sphere here), laid out and checked as on a planar one:
+# check counts the cells they block, and names a wall one cell thick by its three coordinates.
+add_test(NAME cli_check_lays_out_obstacles_of_layers
+         COMMAND sh -c "out=$(\"$0\" check \"$1\" --set \"obstacle=[{shape='sphere', centre=[0.3,0.0,0.3], radius=0.05}]\" 2>&1) && echo \"$out\" | grep -q '40 x 16 x 40 cells.*276 cells blocked by obstacles' || { echo \"$out\"; exit 1; }; out=$(\"$0\" check \"$1\" --set \"obstacle=[{shape='box', lower=[0.25,0,0.2], upper=[0.35,0.05,0.21]}]\" 2>&1); test $? -eq 2 && echo \"$out\" | grep -q 'x = 0.255 m, y = 0.005 m, z = 0.205 m is a wall one cell thick' || { echo \"$out\"; exit 1; }"
+                 $<TARGET_FILE:granflow> ${CMAKE_SOURCE_DIR}/cases/lube2004_a05_3d.toml)
+set_tests_properties(cli_check_lays_out_obstacles_of_layers PROPERTIES LABELS cli)
 # ... and with soil materials, each one's soil; a material whose shapes all lie under later shapes
 # holds none, which check finds as a run does (exit 2, the message naming it).
 add_test(NAME cli_check_says_each_materials_soil

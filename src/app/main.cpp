@@ -159,7 +159,7 @@ int check_case(const std::string& case_file, const std::vector<std::string>& ove
       for (size_t k = 0; k < volumes.size(); ++k)
         placed += fmt::format("{}{} {:.6g}", k == 0 ? ", of which " : ", ",
                               k == 0 ? std::string("the rheology's own soil") : c.soil->materials[k - 1].name, volumes[k]);
-      if (!c.obstacles.empty()) {
+      if (c.has_obstacles()) {
         placed += fmt::format("; {} cells blocked by obstacles", laid_out.blocked_cells);
         // A shape may reach into an obstacle on purpose (soil laid over terrain); the part inside is
         // left out, and said, so that a shape placed there by mistake is seen.

@@ -879,6 +879,17 @@ std::string no_area_in_domain(const interface::Shape& shape, const GridSpec& mes
                      mesh.upper[1], outside ? "" : " (less than 1e-12 of it: a shape far smaller than a cell)");
 }
 
+// A solid of a mesh of layers must reach into the domain; `what` names it in the message.
+void require_solid_in_domain(const interface::Shape3& solid, const GridSpec& mesh, const std::string& what) {
+  const auto [lo, hi] = interface::bounding_box(solid);
+  bool inside = true;
+  for (int a = 0; a < 3; ++a) inside = inside && lo[a] < mesh.upper[a] && hi[a] > mesh.lower[a];
+  if (!inside)
+    throw CaseError(fmt::format("{} within [{}, {}] x [{}, {}] x [{}, {}] lies outside the domain [{}, {}] x [{}, {}] x "
+                                "[{}, {}]", what, lo[0], hi[0], lo[1], hi[1], lo[2], hi[2], mesh.lower[0], mesh.upper[0],
+                                mesh.lower[1], mesh.upper[1], mesh.lower[2], mesh.upper[2]));
+}
+
 // What a mesh of layers has so far (docs/method.md, "Known limitations"), refused with the key to change.
 void require_what_layers_have(const CaseConfig& c) {
   if (c.mesh.dimension() == 2) return;
@@ -887,22 +898,17 @@ void require_what_layers_have(const CaseConfig& c) {
   for (Side s : box_sides)
     if (boundary(c.flow.boundaries, s).friction)
       throw CaseError(fmt::format("boundary.{}: a wall's friction is planar yet (not on a mesh of layers)", side_name(s)));
-  if (!c.obstacles.empty()) throw CaseError("obstacle: obstacles are planar yet (not on a mesh of layers)");
+  for (size_t k = 0; k < c.obstacle_friction.size(); ++k)
+    if (c.obstacle_friction[k])
+      throw CaseError(fmt::format("obstacle[{}]: an obstacle's own friction is planar yet (not on a mesh of layers)", k));
   if (num.quadratic_wall_gradient)
     throw CaseError("numerics.wall_gradient: \"quadratic\" is planar yet; a mesh of layers takes \"two_point\"");
   if (c.soil && !c.soil->materials.empty())
     throw CaseError("soil.materials: several soils are planar yet (not on a mesh of layers)");
   if (c.soil)
-    for (size_t k = 0; k < c.soil->initial_soil_3d.size(); ++k) {
-      const auto [lo, hi] = interface::bounding_box(c.soil->initial_soil_3d[k]);
-      bool inside = true;
-      for (int a = 0; a < 3; ++a) inside = inside && lo[a] < c.mesh.upper[a] && hi[a] > c.mesh.lower[a];
-      if (!inside)
-        throw CaseError(fmt::format("initial.soil: a shape within [{}, {}] x [{}, {}] x [{}, {}] lies outside the "
-                                    "domain [{}, {}] x [{}, {}] x [{}, {}]",
-                                    lo[0], hi[0], lo[1], hi[1], lo[2], hi[2], c.mesh.lower[0], c.mesh.upper[0],
-                                    c.mesh.lower[1], c.mesh.upper[1], c.mesh.lower[2], c.mesh.upper[2]));
-    }
+    for (const auto& solid : c.soil->initial_soil_3d) require_solid_in_domain(solid, c.mesh, "initial.soil: a shape");
+  for (size_t k = 0; k < c.obstacle_solids.size(); ++k)
+    require_solid_in_domain(c.obstacle_solids[k], c.mesh, fmt::format("obstacle[{}]: the shape", k));
 }
 
 // Rules between tables, once every table is read: shapes within the domain, and what obstacles and
@@ -931,7 +937,7 @@ void require_consistent(const CaseConfig& c) {
   for (size_t k = 0; k < c.obstacles.size(); ++k)
     if (!interface::overlaps(c.obstacles[k], plane_lower(c.mesh), plane_upper(c.mesh)))
       throw CaseError(fmt::format("obstacle[{}]: {}", k, no_area_in_domain(c.obstacles[k], c.mesh)));
-  if (!c.obstacles.empty()) {
+  if (c.has_obstacles()) {
     // The obstacles' walls are built into the coupled solve's rows and the operators it uses.
     if (c.flow.numerics.pressure_coupling != PressureCoupling::coupled)
       throw CaseError("obstacle: needs numerics.pressure_coupling = \"coupled\" (the projection and PISO do not "
@@ -1030,7 +1036,12 @@ CaseConfig read_case(const toml::table& root, const std::filesystem::path& sourc
   c.output = read_output(top, c.mesh, c.time.end);
   for (TableReader obstacle : top.tables("obstacle")) {
     c.obstacle_friction.push_back(read_wall_friction(obstacle, two_phase_keys));
-    c.obstacles.push_back(read_shape(obstacle));
+    if (layers) {  // a solid, or a planar shape across the whole depth (a terrain profile's ridge)
+      if (auto solid = read_solid(obstacle)) c.obstacle_solids.push_back(*solid);
+      else c.obstacle_solids.push_back(interface::Extrusion{read_shape(obstacle), c.mesh.lower[2], c.mesh.upper[2]});
+    } else {
+      c.obstacles.push_back(read_shape(obstacle));
+    }
   }
   top.finish();
   for (auto& bc : c.flow.boundaries)

@@ -74,8 +74,11 @@ struct CaseConfig {
   std::optional<SoilSettings> soil;  // two-phase soil and air runs
   OutputSettings output;
   // Obstacles and terrain ([[obstacle]]): a cell whose centre lies in any of these shapes is blocked,
-  // and its faces to open cells are no-slip walls (mesh/obstacles.hpp).
+  // and its faces to open cells are no-slip walls (mesh/obstacles.hpp). A planar mesh's shapes; on a
+  // mesh of layers the solids, a planar shape extruded across the whole depth (and `obstacles` empty).
   std::vector<interface::Shape> obstacles;
+  std::vector<interface::Shape3> obstacle_solids;
+  bool has_obstacles() const { return !obstacles.empty() || !obstacle_solids.empty(); }
   // Each obstacle's own friction against the soil (friction_angle, adhesion), or none: its faces then
   // hold the soil as its own strength does, as the domain's walls (solver/boundary.hpp).
   std::vector<std::optional<rheology::WallFriction>> obstacle_friction;

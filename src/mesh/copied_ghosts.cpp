@@ -3,16 +3,12 @@
 #include "mesh/obstacles.hpp"
 #include "mesh/side_ghosts.hpp"
 
-#include <stdexcept>
-
 namespace granflow {
 
 void fill_copied_ghosts(const Grid& grid, const Field* blocked, Field& f) {
   f.scatter_to_local();
   FieldArray a = local_array(grid, f);
-  if (grid.dimension() == 3 && blocked)
-    throw std::logic_error("fill_copied_ghosts: obstacles on a mesh of several layers are not implemented");
-  if (grid.dimension() == 2) mirror_into_blocked(grid, BlockedView(grid, blocked).data(), a.data(), 1.0);
+  mirror_into_blocked(grid, BlockedView(grid, blocked).data(), a.volume(), 1.0);
   fill_side_ghosts(grid, a.volume(), [](Side, double, double first) { return first; });
 }
 

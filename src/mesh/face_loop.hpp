@@ -20,14 +20,14 @@ namespace granflow {
 // cell's boundary face too (an obstacle's wall), and a face between two blocked cells is 0.
 template <class Interior, class Boundary>
 void fill_owned_faces(const Grid& g, Field& x_faces, Field& y_faces, Interior interior, Boundary boundary,
-                      const double* const* blocked = nullptr) {
+                      VolumeView blocked = nullptr) {
   const auto& b = g.owned();
   const int nx = g.nx(), ny = g.ny();
   FieldArray fx = local_array(g, x_faces), fy = local_array(g, y_faces);
   // The face between (i, j) and (i + di, j + dj), both in the domain.
   auto inner = [&](int axis, int i, int j) {
     const int in = i + (axis == 0), jn = j + (axis == 1);
-    const bool low = is_blocked(blocked, i, j), high = is_blocked(blocked, in, jn);
+    const bool low = is_blocked(blocked, i, j, 0), high = is_blocked(blocked, in, jn, 0);
     if (low && high) return 0.0;
     if (low) return boundary(axis, in, jn, -1);
     if (high) return boundary(axis, i, j, 1);
@@ -49,10 +49,10 @@ void fill_owned_faces(const Grid& g, Field& x_faces, Field& y_faces, Interior in
 // On a mesh of several layers: faces[a] holds the faces normal to axis a, [k][j][i] the face between
 // cell (i, j, k) and its neighbour at +1 along a, index -1 along a the low boundary face; each owned
 // cell's six faces, those on the low side of the block included. interior(axis, i, j, k) and
-// boundary(axis, i, j, k, sign) as above, without obstacles (not laid out on layers yet) or periodic
-// sides.
+// boundary(axis, i, j, k, sign) as above, obstacles' walls too; no periodic sides.
 template <class Interior, class Boundary>
-void fill_owned_faces_3d(const Grid& g, const std::array<Field*, 3>& faces, Interior interior, Boundary boundary) {
+void fill_owned_faces_3d(const Grid& g, const std::array<Field*, 3>& faces, Interior interior, Boundary boundary,
+                         VolumeView blocked = nullptr) {
   assert(g.dimension() == 3 && !g.periodic_x());
   const auto& b = g.owned();
   const int n[3] = {g.nx(), g.ny(), g.nz()};
@@ -66,21 +66,31 @@ void fill_owned_faces_3d(const Grid& g, const std::array<Field*, 3>& faces, Inte
       for (int j = lo[1]; j < end[1]; ++j)
         for (int i = lo[0]; i < end[0]; ++i) {
           const int along = axis == 0 ? i : (axis == 1 ? j : k);
-          if (along < 0) a[k][j][i] = boundary(axis, i + (axis == 0), j + (axis == 1), k + (axis == 2), -1);
-          else if (along + 1 == n[axis]) a[k][j][i] = boundary(axis, i, j, k, 1);
+          const int in = i + (axis == 0), jn = j + (axis == 1), kn = k + (axis == 2);
+          if (along < 0) {
+            a[k][j][i] = boundary(axis, in, jn, kn, -1);
+            continue;
+          }
+          if (along + 1 == n[axis]) {
+            a[k][j][i] = boundary(axis, i, j, k, 1);
+            continue;
+          }
+          const bool low = is_blocked(blocked, i, j, k), high = is_blocked(blocked, in, jn, kn);
+          if (low && high) a[k][j][i] = 0.0;
+          else if (low) a[k][j][i] = boundary(axis, in, jn, kn, -1);
+          else if (high) a[k][j][i] = boundary(axis, i, j, k, 1);
           else a[k][j][i] = interior(axis, i, j, k);
         }
   }
 }
 
 // Either of the two above, by the mesh's dimension: interior(axis, i, j, k) and boundary(axis, i, j, k,
-// sign) with k = 0 on a planar mesh, whose faces[2] is not read. Obstacles on a planar mesh only.
+// sign) with k = 0 on a planar mesh, whose faces[2] is not read.
 template <class Interior, class Boundary>
 void fill_owned_faces_any(const Grid& g, const std::array<Field*, 3>& faces, Interior interior, Boundary boundary,
-                          const double* const* blocked = nullptr) {
+                          VolumeView blocked = nullptr) {
   if (g.dimension() == 3) {
-    assert(blocked == nullptr);
-    fill_owned_faces_3d(g, faces, interior, boundary);
+    fill_owned_faces_3d(g, faces, interior, boundary, blocked);
     return;
   }
   fill_owned_faces(

@@ -12,12 +12,13 @@
 #include "mesh/field.hpp"
 #include "mesh/grid.hpp"
 #include "models/interface/initial_shapes.hpp"
+#include "models/interface/initial_shapes_3d.hpp"
 
 namespace granflow {
 
-// Whether cell (i, j) is blocked, from a local mask array (null: no obstacles). Cells outside the
-// domain are not: their ghosts hold 0.
-inline bool is_blocked(const double* const* mask, int i, int j) { return mask && mask[j][i] > 0.5; }
+// Whether cell (i, j, k) is blocked (k = 0 on a planar mesh), from a local mask array (null: no
+// obstacles). Cells outside the domain are not: their ghosts hold 0.
+inline bool is_blocked(VolumeView mask, int i, int j, int k) { return mask && mask[k][j][i] > 0.5; }
 
 // Read access to the local mask of blocked cells, or none (data() null) without obstacles.
 class BlockedView {
@@ -25,15 +26,17 @@ class BlockedView {
   BlockedView(const Grid& g, const Field* mask) {
     if (mask) array_.emplace(g.field_dm(), mask->local());
   }
-  const double* const* data() const { return array_ ? array_->data() : nullptr; }
+  VolumeView data() const { return array_ ? array_->volume() : nullptr; }
 
  private:
   std::optional<ConstFieldArray> array_;
 };
 
 // Marks the cells whose centre lies in any of the shapes (1, else 0), ghosts included; returns the
-// number of blocked cells over all ranks. Collective.
+// number of blocked cells over all ranks. Collective. A planar mesh takes planar shapes, a mesh of
+// layers solids.
 long mark_blocked_cells(const Grid& g, const interface::ShapeUnion& shapes, Field& mask);
+long mark_blocked_cells(const Grid& g, const interface::ShapeUnion3& solids, Field& mask);
 
 // Marks each cell with one plus the index of the last shape that holds its centre, 0 where none does,
 // ghosts included: which obstacle a blocked cell belongs to (the last listed where they overlap).
@@ -46,11 +49,12 @@ void zero_blocked_cells(const Grid& g, const Field* mask, Field& f);
 // Fills the blocked cells of the local array `a` as ghosts of the walls they form: a blocked cell k
 // cells behind its nearest wall takes sign times the open cell k - 1 cells in front of it (sign -1:
 // a no-slip velocity, +1: a scalar of zero normal gradient), as the domain's ghosts do, for k up to
-// the ghost width. Its nearest wall along either axis; where the walls along x and y are as near (an
-// obstacle's corner), the one along y, as the domain's corner ghosts are filled. Open cells are those
-// inside the domain; cells without an open cell within reach are left
-// as they are. A blocked cell with walls on both sides along one axis (an obstacle one cell thick)
-// cannot mirror both; lay_out_obstacles refuses such cells.
-void mirror_into_blocked(const Grid& g, const double* const* mask, double** a, double sign);
+// the ghost width. Its nearest wall along any axis; where walls along two axes are as near (an
+// obstacle's edge or corner), the one along the later axis (z before y before x), as the domain's
+// edge and corner ghosts are filled (mesh/side_ghosts.hpp). Open cells are those inside the domain;
+// cells without an open cell within reach are left as they are. A blocked cell with walls on both
+// sides along one axis (an obstacle one cell thick) cannot mirror both; lay_out_obstacles refuses
+// such cells.
+void mirror_into_blocked(const Grid& g, VolumeView mask, double*** a, double sign);
 
 }  // namespace granflow

@@ -40,7 +40,7 @@ void check_materials_hold_soil(const CaseConfig& config, const std::vector<doubl
                                            "listed holds the point){}, or are thinner than a sixteenth of a cell, "
                                            "between the 16 x 16 points that give each cell its shares (thicken them "
                                            "or refine the mesh)", k - 1, name,
-                                           config.obstacles.empty() ? "" : ", in the obstacles' blocked cells"));
+                                           config.has_obstacles() ? ", in the obstacles' blocked cells" : ""));
     }
 }
 
@@ -49,63 +49,101 @@ namespace {
 // a wall cannot serve both its sides, mesh/obstacles.hpp), and no open cells that the obstacles close
 // off from every open side (their pressure would have no level); a closed domain's open cells are one
 // region, whose level the coupled solve holds (coupled_step.cpp). Returns the problem, or "", and a
-// hash of the blocked cells into `hash`.
+// hash of the blocked cells into `hash`. Planar meshes are one layer along z.
 std::string check_blocked_cells(const Grid& g, const CaseConfig& config, const std::vector<double>& m,
                                 std::uint64_t& hash) {
-  const int nx = g.nx(), ny = g.ny();
-  auto blocked = [&](int i, int j) { return m[size_t(j) * nx + i] > 0.5; };
+  const int nx = g.nx(), ny = g.ny(), nz = g.nz();
+  const bool layers = g.dimension() == 3;
+  auto index = [&](int i, int j, int k) { return (size_t(k) * ny + j) * nx + i; };
+  auto blocked = [&](int i, int j, int k) { return m[index(i, j, k)] > 0.5; };
   auto wrap = [&](int i) { return g.periodic_x() ? (i + nx) % nx : i; };  // beyond a periodic side: the other end
-  auto open = [&](int i, int j) {
+  auto open = [&](int i, int j, int k) {
     i = wrap(i);
-    return i >= 0 && i < nx && j >= 0 && j < ny && !blocked(i, j);
+    return i >= 0 && i < nx && j >= 0 && j < ny && k >= 0 && k < nz && !blocked(i, j, k);
   };
+  auto where = [&](int i, int j, int k) {
+    return layers ? fmt::format("x = {:.4g} m, y = {:.4g} m, z = {:.4g} m", g.xc(i), g.yc(j), g.zc(k))
+                  : fmt::format("x = {:.4g} m, y = {:.4g} m", g.xc(i), g.yc(j));
+  };
+  using Cell = std::array<int, 3>;
+  constexpr Cell steps[6] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
+  const int step_count = layers ? 6 : 4;
   hash = 1469598103934665603ULL;  // FNV-1a over the blocked cells' indices
-  for (int j = 0; j < ny; ++j)
-    for (int i = 0; i < nx; ++i)
-      if (blocked(i, j)) {
-        for (long v = long(j) * nx + i, k = 0; k < 8; ++k, v >>= 8) hash = (hash ^ std::uint64_t(v & 0xff)) * 1099511628211ULL;
-        if ((open(i - 1, j) && open(i + 1, j)) || (open(i, j - 1) && open(i, j + 1)))
-          return fmt::format("obstacle: the cell at x = {:.4g} m, y = {:.4g} m is a wall one cell thick, with the flow on "
-                             "both sides; make the obstacles at least two cells thick on this {} x {} mesh",
-                             g.xc(i), g.yc(j), nx, ny);
-      }
-  // Regions of open cells (4-connected), and whether each reaches an open side of the domain.
-  std::vector<int> region(size_t(nx) * ny, -1);
+  for (int k = 0; k < nz; ++k)
+    for (int j = 0; j < ny; ++j)
+      for (int i = 0; i < nx; ++i)
+        if (blocked(i, j, k)) {
+          for (long v = long(index(i, j, k)), b = 0; b < 8; ++b, v >>= 8) hash = (hash ^ std::uint64_t(v & 0xff)) * 1099511628211ULL;
+          for (int s = 0; s < step_count; s += 2) {
+            const Cell& d = steps[s];
+            if (open(i - d[0], j - d[1], k - d[2]) && open(i + d[0], j + d[1], k + d[2]))
+              return fmt::format("obstacle: the cell at {} is a wall one cell thick, with the flow on both sides; make "
+                                 "the obstacles at least two cells thick on this {} mesh", where(i, j, k),
+                                 cell_counts(g.spec()));
+          }
+        }
+  // Regions of open cells (face-connected), and whether each reaches an open side of the domain.
+  std::vector<int> region(size_t(nx) * ny * nz, -1);
   std::vector<bool> reaches_open_side;
-  std::vector<std::array<int, 2>> first_cell;
-  auto open_side = [&](int i, int j) {
+  std::vector<Cell> first_cell;
+  auto open_side = [&](int i, int j, int k) {
     auto is_open = [&](Side s) { return boundary(config.flow.boundaries, s).kind == BoundaryKind::atmosphere; };
     return (i == 0 && is_open(Side::west)) || (i == nx - 1 && is_open(Side::east)) ||
-           (j == 0 && is_open(Side::south)) || (j == ny - 1 && is_open(Side::north));
+           (j == 0 && is_open(Side::south)) || (j == ny - 1 && is_open(Side::north)) ||
+           (layers && ((k == 0 && is_open(Side::front)) || (k == nz - 1 && is_open(Side::back))));
   };
-  std::vector<std::array<int, 2>> stack;
-  for (int j = ny - 1; j >= 0; --j)
-    for (int i = 0; i < nx; ++i) {
-      if (!open(i, j) || region[size_t(j) * nx + i] >= 0) continue;
-      const int r = int(reaches_open_side.size());
-      reaches_open_side.push_back(false);
-      first_cell.push_back({i, j});
-      stack.push_back({i, j});
-      region[size_t(j) * nx + i] = r;
-      while (!stack.empty()) {
-        const auto [ci, cj] = stack.back();
-        stack.pop_back();
-        if (open_side(ci, cj)) reaches_open_side[r] = true;
-        for (const auto& [di, dj] : {std::array<int, 2>{1, 0}, {-1, 0}, {0, 1}, {0, -1}})
-          if (const int ni = wrap(ci + di); open(ni, cj + dj) && region[size_t(cj + dj) * nx + ni] < 0) {
-            region[size_t(cj + dj) * nx + ni] = r;
-            stack.push_back({ni, cj + dj});
+  std::vector<Cell> stack;
+  for (int k = 0; k < nz; ++k)
+    for (int j = ny - 1; j >= 0; --j)
+      for (int i = 0; i < nx; ++i) {
+        if (!open(i, j, k) || region[index(i, j, k)] >= 0) continue;
+        const int r = int(reaches_open_side.size());
+        reaches_open_side.push_back(false);
+        first_cell.push_back({i, j, k});
+        stack.push_back({i, j, k});
+        region[index(i, j, k)] = r;
+        while (!stack.empty()) {
+          const auto [ci, cj, ck] = stack.back();
+          stack.pop_back();
+          if (open_side(ci, cj, ck)) reaches_open_side[r] = true;
+          for (int s = 0; s < step_count; ++s) {
+            const int ni = wrap(ci + steps[s][0]), nj = cj + steps[s][1], nk = ck + steps[s][2];
+            if (open(ni, nj, nk) && region[index(ni, nj, nk)] < 0) {
+              region[index(ni, nj, nk)] = r;
+              stack.push_back({ni, nj, nk});
+            }
           }
+        }
       }
-    }
   for (size_t r = 0; r < reaches_open_side.size(); ++r)
     if (!reaches_open_side[r] && reaches_open_side.size() > 1)
-      return fmt::format("obstacle: the open cells around x = {:.4g} m, y = {:.4g} m are closed off by the obstacles "
-                         "from {} (their pressure would have no level); block them too, or open them to the rest",
-                         g.xc(first_cell[r][0]), g.yc(first_cell[r][1]),
+      return fmt::format("obstacle: the open cells around {} are closed off by the obstacles from {} (their pressure "
+                         "would have no level); block them too, or open them to the rest",
+                         where(first_cell[r][0], first_cell[r][1], first_cell[r][2]),
                          std::count(reaches_open_side.begin(), reaches_open_side.end(), true) > 0
                              ? "every open side" : "the rest of the domain");
   return {};
+}
+
+// How many owned cells' centres each obstacle holds.
+std::vector<long> centres_held(const Grid& g, const CaseConfig& config) {
+  const auto& b = g.owned();
+  if (g.dimension() == 3) {
+    std::vector<long> centres(config.obstacle_solids.size(), 0);
+    for (size_t n = 0; n < centres.size(); ++n) {
+      const interface::ShapeUnion3 solid({config.obstacle_solids[n]});
+      for (int k = b.zs; k < b.ze(); ++k)
+        for (int j = b.ys; j < b.ye(); ++j)
+          for (int i = b.xs; i < b.xe(); ++i) centres[n] += solid.contains(g.xc(i), g.yc(j), g.zc(k));
+    }
+    return centres;
+  }
+  std::vector<long> centres(config.obstacles.size(), 0);
+  const interface::ShapeUnion obstacles(config.obstacles);
+  for (int j = b.ys; j < b.ye(); ++j)
+    for (int i = b.xs; i < b.xe(); ++i)
+      for (size_t k = 0; k < centres.size(); ++k) centres[k] += obstacles.shape_contains(k, g.xc(i), g.yc(j));
+  return centres;
 }
 }  // namespace
 
@@ -114,19 +152,15 @@ std::string check_blocked_cells(const Grid& g, const CaseConfig& config, const s
 // by its centre: an obstacle that holds no cell's centre on this mesh would be silently missing,
 // and one that blocks every cell leaves no flow. Collective; every rank throws alike.
 ObstacleLayout lay_out_obstacles(const Grid& g, const CaseConfig& config, Field& mask) {
-  std::vector<long> centres(config.obstacles.size(), 0);
-  const interface::ShapeUnion obstacles(config.obstacles);
-  const auto& b = g.owned();
-  for (int j = b.ys; j < b.ye(); ++j)
-    for (int i = b.xs; i < b.xe(); ++i)
-      for (size_t k = 0; k < centres.size(); ++k) centres[k] += obstacles.shape_contains(k, g.xc(i), g.yc(j));
+  std::vector<long> centres = centres_held(g, config);
   MPI_Allreduce(MPI_IN_PLACE, centres.data(), int(centres.size()), MPI_LONG, MPI_SUM, g.comm());
   for (size_t k = 0; k < centres.size(); ++k)
     if (centres[k] == 0)
-      throw case_error(config, fmt::format("obstacle[{}]: the shape holds no cell centre on this {} x {} mesh (cells are "
-                                  "blocked whole, by their centres)", k, g.nx(), g.ny()));
+      throw case_error(config, fmt::format("obstacle[{}]: the shape holds no cell centre on this {} mesh (cells are "
+                                  "blocked whole, by their centres)", k, cell_counts(g.spec())));
   ObstacleLayout layout;
-  layout.blocked_cells = mark_blocked_cells(g, obstacles, mask);
+  layout.blocked_cells = g.dimension() == 3 ? mark_blocked_cells(g, interface::ShapeUnion3(config.obstacle_solids), mask)
+                                            : mark_blocked_cells(g, interface::ShapeUnion(config.obstacles), mask);
   if (layout.blocked_cells == g.cell_count()) throw case_error(config, "obstacle: the obstacles block every cell of the domain");
   if (config.soil && config.soil->yield_pressure == YieldPressure::lithostatic_floor)
     throw case_error(config, "obstacle: soil.yield_pressure = \"lithostatic_floor\" takes the soil above each cell up to the "
@@ -142,27 +176,27 @@ ObstacleLayout lay_out_obstacles(const Grid& g, const CaseConfig& config, Field&
 }
 
 PlacedSoil initial_soil_placed(const Grid& g, const CaseConfig& config, const Field* mask) {
-  if (g.dimension() == 3) {  // as SoilPhase lays it (soil_phase_3d.cpp); no obstacles there
+  const BlockedView blocked(g, mask);
+  double volumes[2] = {0.0, 0.0};
+  if (g.dimension() == 3) {  // as SoilPhase lays it (soil_phase_3d.cpp)
     const interface::ShapeUnion3 soil(config.soil->initial_solids(g.spec().lower[2], g.spec().upper[2]));
     const auto& b = g.owned();
-    double volume = 0.0;
     for (int k = b.zs; k < b.ze(); ++k)
       for (int j = b.ys; j < b.ye(); ++j)
         for (int i = b.xs; i < b.xe(); ++i) {
           const interface::Point3 lower{g.xc(i) - 0.5 * g.dx(i), g.yc(j) - 0.5 * g.dy(j), g.zc(k) - 0.5 * g.dz(k)};
-          volume += soil.fraction(lower, {lower[0] + g.dx(i), lower[1] + g.dy(j), lower[2] + g.dz(k)}) * g.volume(i, j, k);
+          volumes[is_blocked(blocked.data(), i, j, k) ? 1 : 0] +=
+              soil.fraction(lower, {lower[0] + g.dx(i), lower[1] + g.dy(j), lower[2] + g.dz(k)}) * g.volume(i, j, k);
         }
-    MPI_Allreduce(MPI_IN_PLACE, &volume, 1, MPI_DOUBLE, MPI_SUM, g.comm());
-    return {volume, 0.0};
+    MPI_Allreduce(MPI_IN_PLACE, volumes, 2, MPI_DOUBLE, MPI_SUM, g.comm());
+    return {volumes[0], volumes[1]};
   }
-  const BlockedView blocked(g, mask);
   const interface::ShapeUnion initial_soil(config.soil->initial_soil);
   const auto& b = g.owned();
-  double volumes[2] = {0.0, 0.0};
   for (int j = b.ys; j < b.ye(); ++j)
     for (int i = b.xs; i < b.xe(); ++i) {
       const double x0 = g.xc(i) - 0.5 * g.dx(i), y0 = g.yc(j) - 0.5 * g.dy(j);
-      volumes[is_blocked(blocked.data(), i, j) ? 1 : 0] +=
+      volumes[is_blocked(blocked.data(), i, j, 0) ? 1 : 0] +=
           initial_soil.fraction(x0, x0 + g.dx(i), y0, y0 + g.dy(j), g.axisymmetric()) * g.volume(i, j);
     }
   MPI_Allreduce(MPI_IN_PLACE, volumes, 2, MPI_DOUBLE, MPI_SUM, g.comm());

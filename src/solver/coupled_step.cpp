@@ -115,7 +115,7 @@ void FlowSolver::compute_mobilities() {
 
 // The rows of one outer iteration's coupled system, cell by cell, from the state they are linearised
 // at: each row is handed to `emit(i, j, k, unknown, n, cols, vals, rhs)`. A blocked cell's faces to
-// open cells are walls (mesh/obstacles.hpp, planar meshes): no flux, no face force, no coupling; the
+// open cells are walls (mesh/obstacles.hpp): no flux, no face force, no coupling; the
 // cell itself has no unknowns (outside the region, or held at rest).
 class FlowSolver::CoupledRows {
  public:
@@ -142,7 +142,7 @@ class FlowSolver::CoupledRows {
   // and its continuity row.
   template <class Emit>
   void cell(int i, int j, int k, Emit&& emit) {
-    if (is_blocked(mask_.data(), i, j)) {  // at rest, its pressure kept
+    if (is_blocked(mask_.data(), i, j, k)) {  // at rest, its pressure kept
       const double one = 1.0;
       for (int unknown = 0; unknown <= pressure_; ++unknown) {
         const MatStencil row{k, j, i, unknown};
@@ -156,7 +156,7 @@ class FlowSolver::CoupledRows {
 
  private:
   bool open_neighbour(int in, int jn, int kn) const {
-    return !grid_.outside(in, jn, kn) && !is_blocked(mask_.data(), in, jn);
+    return !grid_.outside(in, jn, kn) && !is_blocked(mask_.data(), in, jn, kn);
   }
 
   // The pressure pb of the atmosphere at the boundary face fg of (i, j, k), recorded as the system
@@ -196,7 +196,7 @@ class FlowSolver::CoupledRows {
     for (int s : {1, -1}) {  // high then low face along c
       const FaceGeometry& fg = face_along(c, s);
       const int in = i + fg.di, jn = j + fg.dj, kn = k + fg.dk;
-      if (is_blocked(mask_.data(), in, jn)) continue;  // an obstacle's wall carries no face force
+      if (is_blocked(mask_.data(), in, jn, kn)) continue;  // an obstacle's wall carries no face force
       if (grid_.outside(in, jn, kn)) {
         const double d = 0.5 * grid_.width(c, index_along(c, i, j, k));
         double pb;
@@ -235,7 +235,7 @@ class FlowSolver::CoupledRows {
       const int in = i + fg.di, jn = j + fg.dj, kn = k + fg.dk;
       const VolumeView rau = mobility_.view[axis], fcell = cell_force_.view[axis];
       const double area = grid_.face_area(axis, i, j, k, s);
-      if (is_blocked(mask_.data(), in, jn)) continue;  // no flux through an obstacle's wall
+      if (is_blocked(mask_.data(), in, jn, kn)) continue;  // no flux through an obstacle's wall
       if (grid_.outside(in, jn, kn)) {
         const double d = 0.5 * grid_.width(axis, index_along(axis, i, j, k));
         double pb;
@@ -430,7 +430,7 @@ void FlowSolver::update_coupled_face_velocities() {
       [&](int axis, int i, int j, int k, int sign) {
         const FaceGeometry& fg = face_along(axis, sign);
         // An obstacle's wall, a side of an obstacle's cell, or a wall side: no flux.
-        if (!grid_.outside(i + fg.di, j + fg.dj, k + fg.dk) || is_blocked(mask.data(), i, j)) return 0.0;
+        if (!grid_.outside(i + fg.di, j + fg.dj, k + fg.dk) || is_blocked(mask.data(), i, j, k)) return 0.0;
         if (boundary(settings_.boundaries, fg.side).kind != BoundaryKind::atmosphere) return 0.0;
         return vel.view[axis][k][j][i] +
                mobility.view[axis][k][j][i] * (on_face(ff.view, i, j, k, fg) - fcell.view[axis][k][j][i]);

@@ -158,7 +158,7 @@ void FlowSolver::compute_face_forces() {
       [&](int axis, int i, int j, int k, int sign) {
         const FaceGeometry& fg = box_faces[2 * axis + (sign < 0)];
         // An obstacle's wall, or a side's face of a blocked cell.
-        if (!grid_.outside(i + fg.di, j + fg.dj, k + fg.dk) || is_blocked(mask.data(), i, j)) return 0.0;
+        if (!grid_.outside(i + fg.di, j + fg.dj, k + fg.dk) || is_blocked(mask.data(), i, j, k)) return 0.0;
         if (boundary(settings_.boundaries, fg.side).kind != BoundaryKind::atmosphere) return 0.0;  // a wall
         const double d = 0.5 * grid_.width(axis, index_along(axis, i, j, k));
         const double pb = atmosphere_face_pressure(fg.side, i, j, k, rho, vel, face_vel);

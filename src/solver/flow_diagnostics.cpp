@@ -65,7 +65,7 @@ FlowSolver::FastestCell FlowSolver::fastest_cell() const {
   for (int k = b.zs; k < b.ze(); ++k)
     for (int j = b.ys; j < b.ye(); ++j)
       for (int i = b.xs; i < b.xe(); ++i) {
-        if (is_blocked(mask.data(), i, j)) continue;
+        if (is_blocked(mask.data(), i, j, k)) continue;
         const double u = vel.view[0][k][j][i], v = vel.view[1][k][j][i];
         const double s = dimension_ == 3 ? std::sqrt(u * u + v * v + vel.view[2][k][j][i] * vel.view[2][k][j][i])
                                          : std::hypot(u, v);

@@ -126,32 +126,35 @@ FlowSolver::~FlowSolver() = default;
 // boundary conditions (mirror images), so that stencils near walls need no special cases.
 
 void FlowSolver::set_blocked(const Field* mask) {
-  if (mask && dimension_ == 3) throw std::invalid_argument("FlowSolver: obstacles on a mesh of layers are not implemented");
   blocked_ = mask;
   if (!mask) {  // every cell open; the closed domain's level held in the top-left cell, as constructed
     open_cells_ = grid_.cell_count();
-    pin_i_ = 0;
+    pin_i_ = pin_k_ = 0;
     pin_j_ = grid_.ny() - 1;
     return;
   }
   if (solve_region_) solve_region_->set_blocked(mask);
-  // The closed domain's pinned row: the open cell nearest the top-left corner, row by row from the top.
+  // The closed domain's pinned row: the open cell nearest the top-left (front) corner, layer by layer
+  // of the top row first, then row by row down.
+  const long nx = grid_.nx(), ny = grid_.ny(), nz = grid_.nz();
   long key = grid_.cell_count();
   open_cells_ = 0;
   {
     BlockedView m(grid_, blocked_);
     const auto& b = grid_.owned();
-    for (int j = b.ys; j < b.ye(); ++j)
-      for (int i = b.xs; i < b.xe(); ++i)
-        if (!is_blocked(m.data(), i, j)) {
-          key = std::min(key, long(grid_.ny() - 1 - j) * grid_.nx() + i);
-          ++open_cells_;
-        }
+    for (int k = b.zs; k < b.ze(); ++k)
+      for (int j = b.ys; j < b.ye(); ++j)
+        for (int i = b.xs; i < b.xe(); ++i)
+          if (!is_blocked(m.data(), i, j, k)) {
+            key = std::min(key, ((ny - 1 - j) * nz + k) * nx + i);
+            ++open_cells_;
+          }
   }
   MPI_Allreduce(MPI_IN_PLACE, &key, 1, MPI_LONG, MPI_MIN, grid_.comm());
   MPI_Allreduce(MPI_IN_PLACE, &open_cells_, 1, MPI_LONG, MPI_SUM, grid_.comm());
-  pin_i_ = int(key % grid_.nx());
-  pin_j_ = grid_.ny() - 1 - int(key / grid_.nx());
+  pin_i_ = int(key % nx);
+  pin_k_ = int(key / nx % nz);
+  pin_j_ = int(ny - 1 - key / nx / nz);
 }
 
 void FlowSolver::fill_scalar_ghosts(Field& f) { fill_copied_ghosts(grid_, blocked_, f); }
@@ -161,9 +164,9 @@ void FlowSolver::fill_velocity_ghosts() {
   std::optional<FieldArray> arrays[3];
   double*** components[3] = {};
   for (int a = 0; a < dimension_; ++a) components[a] = arrays[a].emplace(grid_.field_dm(), vel_[a]->local()).volume();
-  if (blocked_) {  // planar meshes only (set_blocked)
+  if (blocked_) {
     const BlockedView mask(grid_, blocked_);  // an obstacle's walls are static and no-slip
-    for (int a = 0; a < 2; ++a) mirror_into_blocked(grid_, mask.data(), components[a][0], -1.0);
+    for (int a = 0; a < dimension_; ++a) mirror_into_blocked(grid_, mask.data(), components[a], -1.0);
   }
   fill_velocity_side_ghosts(grid_, settings_.boundaries, std::span<double*** const>(components, dimension_));
 }
@@ -296,7 +299,8 @@ void FlowSolver::restore_state() {
 // their global vectors; a blocked cell is at rest.
 void FlowSolver::clear_blocked_cells() {
   if (!blocked_) return;
-  for (auto* f : {vel_[0].get(), vel_[1].get(), vel_old_[0].get(), vel_old_[1].get()}) zero_blocked_cells(grid_, blocked_, *f);
+  for (int a = 0; a < dimension_; ++a)
+    for (auto* f : {vel_[a].get(), vel_old_[a].get()}) zero_blocked_cells(grid_, blocked_, *f);
 }
 
 StepReport FlowSolver::step(double dt) {

@@ -115,7 +115,7 @@ void FlowSolver::assemble_momentum(double dt) {
           const int f = int(&fg - box_faces);
           const int in = i + fg.di, jn = j + fg.dj, kn = k + fg.dk;
           const double area = grid_.face_area(fg.axis, i, j, k, fg.sign);
-          const bool is_obstacle = is_blocked(mask.data(), in, jn);  // planar meshes only
+          const bool is_obstacle = is_blocked(mask.data(), in, jn, kn);
           const bool is_boundary = grid_.outside(in, jn, kn) || is_obstacle;
           const double mu_face = on_face(face_mu.view, i, j, k, fg);
           // Full viscous stress div(mu (grad v + grad v^T)), split as in Jasak & Weller (2000): the

@@ -157,7 +157,7 @@ void FlowSolver::hold_pressure_at_top() {
     if (b.ye() == ny)
       for (int k = b.zs; k < b.ze(); ++k)
         for (int i = b.xs; i < b.xe(); ++i) {
-          if (is_blocked(mask.data(), i, j)) continue;  // an obstacle at the top: no fluid there
+          if (is_blocked(mask.data(), i, j, k)) continue;  // an obstacle at the top: no fluid there
           const double area = grid_.face_area(1, i, j, k, 1.0);
           sums[0] += (p[k][j][i] + rho[k][j][i] * settings_.gravity[1] * 0.5 * grid_.dy(j)) * area;
           sums[1] += area;

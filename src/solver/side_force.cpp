@@ -41,7 +41,7 @@ FlowSolver::WallForces FlowSolver::wall_forces() const {
   const BlockedView mask(grid_, blocked_);
   // The face of cell (i, j, k) on its side s, into f.
   auto add_face = [&](Side s, int i, int j, int k, const BoundaryCondition& bc, double* f) {
-    if (is_blocked(mask.data(), i, j)) return;  // no flow there (planar meshes only have obstacles)
+    if (is_blocked(mask.data(), i, j, k)) return;  // no flow there
     const FaceGeometry& fg = face_on(s);
     const int axis = fg.axis;
     const double sign = fg.sign;
@@ -93,10 +93,11 @@ FlowSolver::WallForces FlowSolver::wall_forces() const {
         for (int i = b.xs; i < b.xe(); ++i)
           add_face(s, i, j, s == Side::front ? 0 : n[2] - 1, boundary(settings_.boundaries, s), &force[3 * static_cast<int>(s)]);
   if (mask.data())
-    for (int j = b.ys; j < b.ye(); ++j)
-      for (int i = b.xs; i < b.xe(); ++i)
-        for (const auto& fg : faces_of_cell)
-          if (is_blocked(mask.data(), i + fg.di, j + fg.dj)) add_face(fg.side, i, j, 0, obstacle_wall, &force[18]);
+    for (int k = b.zs; k < b.ze(); ++k)
+      for (int j = b.ys; j < b.ye(); ++j)
+        for (int i = b.xs; i < b.xe(); ++i)
+          for (const auto& fg : cell_faces(dim))
+            if (is_blocked(mask.data(), i + fg.di, j + fg.dj, k + fg.dk)) add_face(fg.side, i, j, k, obstacle_wall, &force[18]);
   MPI_Allreduce(MPI_IN_PLACE, force.data(), int(force.size()), MPI_DOUBLE, MPI_SUM, grid_.comm());
   WallForces out;
   for (int s = 0; s < 6; ++s) out.sides[s] = {force[3 * s], force[3 * s + 1], force[3 * s + 2]};

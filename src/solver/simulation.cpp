@@ -26,7 +26,7 @@ Simulation::Simulation(MPI_Comm comm, const CaseConfig& config, std::filesystem:
     : config_(config), out_(std::move(output_dir)) {
   MPI_Comm_rank(comm, &rank_);
   grid_ = std::make_unique<Grid>(comm, config.mesh);
-  if (!config.obstacles.empty()) {
+  if (config.has_obstacles()) {
     blocked_ = std::make_unique<Field>(*grid_);
     ObstacleLayout layout = lay_out_obstacles(*grid_, config, *blocked_);
     // What a checkpoint records of them: the fields of one set of obstacles are not another's state.
@@ -102,7 +102,7 @@ InitialState check_initial_state(MPI_Comm comm, const CaseConfig& config) {
   const Grid grid(comm, config.mesh);
   InitialState state;
   std::unique_ptr<Field> blocked;
-  if (!config.obstacles.empty()) {
+  if (config.has_obstacles()) {
     blocked = std::make_unique<Field>(grid);
     state.blocked_cells = lay_out_obstacles(grid, config, *blocked).blocked_cells;
   }

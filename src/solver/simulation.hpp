@@ -107,7 +107,7 @@ class Simulation {
   int wall_column_ = 0;             // the first column with an open cell: the history's wall height (rank 0)
   std::string obstacles_;           // the blocked cells as domain() records them ("" without obstacles)
   std::vector<double> blocked_on_root_;  // the mask gathered to rank 0 (empty elsewhere, and without obstacles)
-  std::function<bool(int, int)> open_square() const;
+  std::function<bool(int, int)> open_square(int layer) const;
   bool in_blocked_cell(double x, double y) const;
   std::unique_ptr<FlowSolver> flow_;
   std::unique_ptr<SoilPhase> soil_;

@@ -206,14 +206,16 @@ bool Simulation::in_blocked_cell(double x, double y) const {
 
 // The squares of four open cells, for the contours of the soil's surface (on rank 0): a blocked
 // cell holds c = 0, and a contour through it would draw where soil rests on an obstacle. Near an
-// obstacle the surface ends at the last open cells' centres, as it does at the domain's sides.
-std::function<bool(int, int)> Simulation::open_square() const {
+// obstacle the surface ends at the last open cells' centres, as it does at the domain's sides. Of
+// one layer of a mesh of layers (0 on a planar mesh).
+std::function<bool(int, int)> Simulation::open_square(int layer) const {
   if (!blocked_) return {};
-  return [this](int i, int j) {
+  return [this, layer](int i, int j) {
     const int nx = grid_->nx();
+    const size_t plane = size_t(layer) * grid_->ny() * nx;
     for (int dj = 0; dj < 2; ++dj)
       for (int di = 0; di < 2; ++di)
-        if (blocked_on_root_[size_t(j + dj) * nx + i + di] > 0.5) return false;
+        if (blocked_on_root_[plane + size_t(j + dj) * nx + i + di] > 0.5) return false;
     return true;
   };
 }
@@ -228,7 +230,9 @@ void Simulation::record_history(double dt) {
   if (rank_ != 0) return;
   const PileShape shape = pile_shape(*grid_, c, wall_column_);
   double toe_contour = 0.0;  // on a mesh of layers, the furthest of the layers' surfaces
-  for (const auto& plane : planes_of(*grid_, c)) toe_contour = std::max(toe_contour, toe_of(iso_line(*grid_, plane, 0.5, open_square())));
+  const auto planes = planes_of(*grid_, c);
+  for (size_t k = 0; k < planes.size(); ++k)
+    toe_contour = std::max(toe_contour, toe_of(iso_line(*grid_, planes[k], 0.5, open_square(int(k)))));
   std::string row = fmt::format("{:.12g},{:.12g},{:.15g},{:.15g},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g},{:.12g},{:.15g},{:.6g}",
                                 time_, dt, b.soil_volume, b.air_volume, b.kinetic_energy, b.potential_energy,
                                 dissipated_energy_, toe_contour, shape.toe_thickness, shape.wall_height, b.mixture_mass,
@@ -239,6 +243,7 @@ void Simulation::record_history(double dt) {
   else
     for (const auto& f : force) row += fmt::format(",{:.12g},{:.12g},{:.12g}", f[0], f[1], f[2]);
   if (blocked_) row += fmt::format(",{:.12g},{:.12g}", obstacle[0], obstacle[1]);
+  if (blocked_ && grid_->dimension() == 3) row += fmt::format(",{:.12g}", obstacle[2]);
   history_.push_back(std::move(row));
 }
 
@@ -252,6 +257,7 @@ void Simulation::write_history() const {
     else
       for (Side side : box_sides) fmt::print(out, ",force_{0}_x,force_{0}_y,force_{0}_z", side_name(side));
     if (blocked_) fmt::print(out, ",force_obstacle_x,force_obstacle_y");
+    if (blocked_ && grid_->dimension() == 3) fmt::print(out, ",force_obstacle_z");
     fmt::print(out, "\n");
     for (const auto& row : history_) fmt::print(out, "{}\n", row);
   });
@@ -286,7 +292,7 @@ void Simulation::write_soil_lines() const {
       for (const auto& s : segs) fmt::print(out, "{:.9g},{:.9g},{:.9g},{:.9g}\n", s.x0, s.y0, s.x1, s.y1);
     });
   };
-  write_segments("surface", iso_line(g, c, 0.5, open_square()));
+  write_segments("surface", iso_line(g, c, 0.5, open_square(0)));
   const int nx = g.nx();
   auto inside = [&](int i, int j) {
     return c[size_t(j) * nx + i] > 0.5 && c[size_t(j) * nx + i + 1] > 0.5 && c[size_t(j + 1) * nx + i] > 0.5 &&

@@ -42,14 +42,18 @@ const Field& SoilPhase::soil_region(int reach, double floor) const {
     FieldArray a(grid_.field_dm(), region_[1]->local());
     const BlockedView mask(grid_, blocked_);
     const auto& b = grid_.owned();
-    const int gw = Grid::ghost_width, ny = grid_.ny();
+    const int gw = Grid::ghost_width, ny = grid_.ny(), nz = grid_.nz();
+    const bool layers = grid_.dimension() == 3;
     auto open_side = [&](Side side) { return boundary(flow_settings_.boundaries, side).kind == BoundaryKind::atmosphere; };
-    for (int j = b.ys - gw; j < b.ye() + gw; ++j)
-      for (int i = b.xs - gw; i < b.xe() + gw; ++i) {
-        const bool outside = grid_.outside(i, j);
-        const Side side = j < 0 ? Side::south : j >= ny ? Side::north : i < 0 ? Side::west : Side::east;
-        if (is_blocked(mask.data(), i, j) || (outside && !open_side(side))) a[j][i] = 0.0;
-      }
+    for (int k = layers ? b.zs - gw : 0; k < (layers ? b.ze() + gw : 1); ++k)
+      for (int j = b.ys - gw; j < b.ye() + gw; ++j)
+        for (int i = b.xs - gw; i < b.xe() + gw; ++i) {
+          const bool outside = grid_.outside(i, j, k);
+          // A ghost beyond two sides (an edge's) takes the later axis's side, as the ghosts were filled.
+          const Side side = k < 0 ? Side::front : k >= nz ? Side::back : j < 0 ? Side::south : j >= ny ? Side::north
+                                                                        : i < 0 ? Side::west : Side::east;
+          if (is_blocked(mask.data(), i, j, k) || (outside && !open_side(side))) a.volume()[k][j][i] = 0.0;
+        }
     in = region_[1].get();
   }
   // Beyond the mesh's longer side a wider reach covers no more cells (each pass widens by one).
@@ -67,9 +71,11 @@ const Field& SoilPhase::soil_region(int reach, double floor) const {
       FieldArray a(grid_.field_dm(), region_[1]->local());
       const auto& b = grid_.owned();
       const int gw = Grid::ghost_width;
-      for (int j = b.ys - gw; j < b.ye() + gw; ++j)
-        for (int i = b.xs - gw; i < b.xe() + gw; ++i)
-          if (grid_.outside(i, j)) a[j][i] = 0.0;
+      const bool layers = grid_.dimension() == 3;
+      for (int kk = layers ? b.zs - gw : 0; kk < (layers ? b.ze() + gw : 1); ++kk)
+        for (int j = b.ys - gw; j < b.ye() + gw; ++j)
+          for (int i = b.xs - gw; i < b.xe() + gw; ++i)
+            if (grid_.outside(i, j, kk)) a.volume()[kk][j][i] = 0.0;
     }
     in = &out;
   }
@@ -285,7 +291,7 @@ void SoilPhase::transport_displacement(const FlowSolver& flow, double dt) {
   constexpr double most_sweeps = 1000.0;
   const int sweeps = int(std::clamp(std::ceil(mpi_max(grid_.comm(), most_out) - 1e-12), 1.0, most_sweeps));
   const double h = dt / sweeps;
-  const BlockedView mask(grid_, blocked_);  // planar meshes only
+  const BlockedView mask(grid_, blocked_);
   for (int sweep = 0; sweep < sweeps; ++sweep) {
     for (int a = 0; a < dim; ++a) {
       const ConstFieldArray d_array(grid_.field_dm(), disp_[a]->local());
@@ -294,7 +300,7 @@ void SoilPhase::transport_displacement(const FlowSolver& flow, double dt) {
       for (int k = b.zs; k < b.ze(); ++k)
         for (int j = b.ys; j < b.ye(); ++j)
           for (int i = b.xs; i < b.xe(); ++i) {
-            if (is_blocked(mask.data(), i, j)) {  // its local values mirror the soil's
+            if (is_blocked(mask.data(), i, j, k)) {  // its local values mirror the soil's
               dn.volume()[k][j][i] = 0.0;
               continue;
             }

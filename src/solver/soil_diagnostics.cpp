@@ -67,7 +67,7 @@ void SoilPhase::compute_diagnostics(const FlowSolver& flow) {
   Shares shares{};
   for (int j = b.ys; j < b.ye(); ++j)
     for (int i = b.xs; i < b.xe(); ++i) {
-      if (is_blocked(mask.data(), i, j)) {  // no soil, no flow
+      if (is_blocked(mask.data(), i, j, 0)) {  // no soil, no flow
         en[j][i] = rn[j][i] = lo[j][i] = relative[j][i] = 0.0;
         ratio[j][i] = 1.0;
         continue;
@@ -157,7 +157,7 @@ double SoilPhase::compute_dissipation(const FlowSolver& flow) {
   // A face between an open and a blocked cell is a static wall of an obstacle: all its work goes to
   // the open cell, if owned. Domain sides of a blocked cell carry no flow.
   const BlockedView mask(grid_, blocked_);
-  auto blocked = [&](int i, int j) { return is_blocked(mask.data(), i, j); };
+  auto blocked = [&](int i, int j) { return is_blocked(mask.data(), i, j, 0); };
   auto side = [&](Side s) -> const BoundaryCondition& { return boundary(flow_settings_.boundaries, s); };
   for (int j = b.ys; j < b.ye(); ++j)
     for (int i = b.xs; i < b.xe(); ++i) {
@@ -234,10 +234,10 @@ std::vector<double> SoilPhase::material_volumes() const {
   const auto m = share_arrays(false);
   const BlockedView mask(grid_, blocked_);
   std::vector<double> volume(share_.size() + 1, 0.0);
-  for (int layer = b.zs; layer < b.ze(); ++layer)  // one soil on a mesh of layers, no obstacles
+  for (int layer = b.zs; layer < b.ze(); ++layer)  // one soil on a mesh of layers
     for (int j = b.ys; j < b.ye(); ++j)
       for (int i = b.xs; i < b.xe(); ++i) {
-        if (is_blocked(mask.data(), i, j)) continue;
+        if (is_blocked(mask.data(), i, j, layer)) continue;
         const double soil = c.volume()[layer][j][i] * grid_.volume(i, j, layer);
         double rest = soil;
         for (size_t k = 0; k < m.size(); ++k) {
@@ -273,7 +273,7 @@ SoilBudget SoilPhase::budget(const FlowSolver& flow) {
   if (periodic) s[3] -= g[0] * join_moment_;
   for (int j = b.ys; j < b.ye(); ++j)
     for (int i = b.xs; i < b.xe(); ++i) {
-      if (is_blocked(mask.data(), i, j)) continue;  // solid, not the flow's
+      if (is_blocked(mask.data(), i, j, 0)) continue;  // solid, not the flow's
       const double V = grid_.volume(i, j);
       const double phase_density = cell_soil_density(m, i, j) * c[j][i] + rho_a * (1.0 - c[j][i]);
       s[0] += c[j][i] * V;

@@ -256,7 +256,7 @@ void SoilPhase::fill_fraction_ghosts(Field& f) const {
   const BlockedView mask(grid_, blocked_);
   f.scatter_to_local();
   FieldArray a(grid_.field_dm(), f.local());
-  if (blocked_) mirror_into_blocked(grid_, mask.data(), a.data(), 1.0);  // an obstacle's walls mirror, as the domain's
+  if (blocked_) mirror_into_blocked(grid_, mask.data(), a.volume(), 1.0);  // an obstacle's walls mirror, as the domain's
   fill_side_ghosts(grid_, a.volume(), [&](Side side, double inner, double) {
     const auto& bc = boundary(flow_settings_.boundaries, side);
     return bc.kind == BoundaryKind::atmosphere ? bc.inflow_soil_fraction : inner;

@@ -1,6 +1,6 @@
 // The soil phase on a mesh of layers (3D): what soil_phase.cpp, soil_properties.cpp, soil_advection.cpp
 // and soil_diagnostics.cpp do on a planar mesh, for the models a mesh of layers has so far: one soil
-// (no [[soil.materials]]), no obstacles, and sides without a friction of their own; the constructor
+// (no [[soil.materials]]), and sides and obstacles without a friction of their own; the constructor
 // refuses the rest (refuse_what_3d_lacks). The same equations and the same choices as in 2D, each
 // noted where it differs: the soil fraction is carried by the three sweeps of vof_advection_3d.hpp,
 // the strain rate and the Euler-Almansi strain are the full 3D tensors (docs/method.md, "In three
@@ -135,7 +135,8 @@ void SoilPhase::update_face_viscosity_3d(FlowSolver& flow) const {
                                                                           grid_.dz_data(), i, j, k, axis, sign)
                                         : c[k][j][i];
         return mixture_viscosity(cf, pressure, face_strain_rate(grid_, v, axis, il, jl, kl));
-      });
+      },
+      BlockedView(grid_, blocked_).data());  // an obstacle's wall as a wall side: its velocity mirrored behind it
 }
 
 double SoilPhase::interface_courant_3d(const FlowSolver& flow, double dt) const {
@@ -233,9 +234,15 @@ void SoilPhase::compute_diagnostics_3d(const FlowSolver& flow) {
   FieldArray en(grid_.field_dm(), strain_norm_->global()), rn(grid_.field_dm(), rate_norm_->global()),
       lo(grid_.field_dm(), lode_->global()), ratio(grid_.field_dm(), stress_ratio_->global()),
       relative(grid_.field_dm(), relative_stress_->global());
+  const BlockedView mask(grid_, blocked_);
   for (int k = b.zs; k < b.ze(); ++k)
     for (int j = b.ys; j < b.ye(); ++j)
       for (int i = b.xs; i < b.xe(); ++i) {
+        if (is_blocked(mask.data(), i, j, k)) {  // no soil, no flow
+          en.volume()[k][j][i] = rn.volume()[k][j][i] = lo.volume()[k][j][i] = relative.volume()[k][j][i] = 0.0;
+          ratio.volume()[k][j][i] = 1.0;
+          continue;
+        }
         // grad u by central differences: g[a][d] = d u_a / d x_d.
         strain::DisplacementGradient3 g{};
         for (int d = 0; d < 3; ++d) {
@@ -261,8 +268,9 @@ void SoilPhase::compute_diagnostics_3d(const FlowSolver& flow) {
 
 // The viscous dissipation, face by face as in 2D (soil_diagnostics.cpp): an interior face's work
 // mu_f A d [f_n (dv_n/dn)^2 + sum over tangential c of (dv_c/dn)(dv_c/dn + x dv_n/dx_c)], half to
-// either cell; a wall face's from the two-point wall gradient, all to its cell. Fills dissipation_ and
-// the Lode-binned rates; returns the rank's sum.
+// either cell; a wall face's from the two-point wall gradient, all to its cell (an obstacle's wall,
+// static and no-slip, all to the open cell). Fills dissipation_ and the Lode-binned rates; returns the
+// rank's sum.
 double SoilPhase::compute_dissipation_3d(const FlowSolver& flow) {
   const auto& b = grid_.owned();
   const AxisViews vel(grid_, [&](int a) -> const Field& { return flow.velocity(a); });
@@ -277,13 +285,15 @@ double SoilPhase::compute_dissipation_3d(const FlowSolver& flow) {
   auto owned = [&](int i, int j, int k) {
     return i >= b.xs && i < b.xe() && j >= b.ys && j < b.ye() && k >= b.zs && k < b.ze();
   };
+  const BlockedView mask(grid_, blocked_);
+  auto blocked = [&](int i, int j, int k) { return is_blocked(mask.data(), i, j, k); };
   // The face fg of cell (i, j, k): its work rate.
   auto face_work = [&](int i, int j, int k, const FaceGeometry& fg) {
     const int in = i + fg.di, jn = j + fg.dj, kn = k + fg.dk;
     const double mu_f = on_face(face_mu.view, i, j, k, fg);
     const double A = grid_.face_area(fg.axis, i, j, k, fg.sign);
-    if (grid_.outside(in, jn, kn)) {
-      const auto& bc = boundary(flow_settings_.boundaries, fg.side);
+    if (grid_.outside(in, jn, kn) || blocked(in, jn, kn)) {
+      const auto& bc = blocked(in, jn, kn) ? obstacle_wall : boundary(flow_settings_.boundaries, fg.side);
       if (bc.kind == BoundaryKind::atmosphere) return 0.0;
       double work = 0.0;
       for (int c = 0; c < 3; ++c) {
@@ -320,7 +330,8 @@ double SoilPhase::compute_dissipation_3d(const FlowSolver& flow) {
       for (int i = b.xs; i < b.xe(); ++i)
         for (const auto& fg : cell_faces(3)) {
           const int in = i + fg.di, jn = j + fg.dj, kn = k + fg.dk;
-          if (grid_.outside(in, jn, kn)) {
+          if (blocked(i, j, k)) break;  // no flow in it; its walls' work is the open cells'
+          if (grid_.outside(in, jn, kn) || blocked(in, jn, kn)) {
             out[k][j][i] += face_work(i, j, k, fg);
           } else if (fg.sign > 0) {
             const double w = 0.5 * face_work(i, j, k, fg);
@@ -350,9 +361,11 @@ SoilBudget SoilPhase::budget_3d(const FlowSolver& flow) {
   const VolumeView c = c_array.volume(), rho = rho_array.volume();
   const AxisViews vel(grid_, [&](int a) -> const Field& { return flow.velocity(a); });
   double s[7] = {0, 0, 0, 0, compute_dissipation_3d(flow), 0, outflow_};
+  const BlockedView mask(grid_, blocked_);
   for (int k = b.zs; k < b.ze(); ++k)
     for (int j = b.ys; j < b.ye(); ++j)
       for (int i = b.xs; i < b.xe(); ++i) {
+        if (is_blocked(mask.data(), i, j, k)) continue;  // solid, not the flow's
         const double V = grid_.volume(i, j, k), cc = c[k][j][i];
         const double phase_density = rho_s * cc + rho_a * (1.0 - cc);
         double speed2 = 0.0;

@@ -37,12 +37,12 @@ bool SolveRegion::covers(const Field& needed) const {
   const auto& b = grid_.owned();
   const ConstFieldArray in_array(grid_.field_dm(), needed.global()), mine_array(grid_.field_dm(), cells_.global());
   const VolumeView in = in_array.volume(), mine = mine_array.volume();
-  const BlockedView mask(grid_, blocked_);  // planar meshes only
+  const BlockedView mask(grid_, blocked_);
   int missing = 0;
   for (int k = b.zs; k < b.ze() && !missing; ++k)
     for (int j = b.ys; j < b.ye() && !missing; ++j)
       for (int i = b.xs; i < b.xe(); ++i)
-        if (in[k][j][i] != 0.0 && mine[k][j][i] == 0.0 && !is_blocked(mask.data(), i, j)) {
+        if (in[k][j][i] != 0.0 && mine[k][j][i] == 0.0 && !is_blocked(mask.data(), i, j, k)) {
           missing = 1;
           break;
         }
@@ -66,7 +66,7 @@ void SolveRegion::assign(const Field& wanted) {
     for (int k = b.zs; k < b.ze(); ++k)
       for (int j = b.ys; j < b.ye(); ++j)
         for (int i = b.xs; i < b.xe(); ++i)
-          mine.volume()[k][j][i] = in.volume()[k][j][i] != 0.0 && !is_blocked(mask.data(), i, j) ? 1.0 : 0.0;
+          mine.volume()[k][j][i] = in.volume()[k][j][i] != 0.0 && !is_blocked(mask.data(), i, j, k) ? 1.0 : 0.0;
   }
   cells_.scatter_to_local();
 }

@@ -1099,6 +1099,28 @@ TEST(CaseFile, AMeshOfLayersReadsItsThirdAxis) {
   EXPECT_EQ(std::string(volume_unit(c.mesh)), "m^3");
 }
 
+// Obstacles on a mesh of layers: solids of their own, and planar shapes extruded across the whole
+// depth (a terrain profile's ridge), in the order given.
+TEST(CaseFile, AMeshOfLayersReadsObstacleSolids) {
+  const CaseConfig c = parse_case(
+      layered, {"numerics.pressure_coupling=\"coupled\"",
+                "obstacle=[{shape=\"sphere\", centre=[0.4, 0.0, 0.0], radius=0.1}, "
+                "{shape=\"polygon\", points=[[0.6, 0.0], [0.8, 0.0], [0.8, 0.2]]}, "
+                "{shape=\"box\", lower=[0.0, 0.0, -0.2], upper=[0.1, 0.05, 0.2]}]"});
+  EXPECT_TRUE(c.obstacles.empty());
+  ASSERT_EQ(c.obstacle_solids.size(), 3u);
+  EXPECT_TRUE(c.has_obstacles());
+  EXPECT_TRUE(std::holds_alternative<interface::Sphere>(c.obstacle_solids[0]));
+  ASSERT_TRUE(std::holds_alternative<interface::Extrusion>(c.obstacle_solids[1]));
+  const auto& ridge = std::get<interface::Extrusion>(c.obstacle_solids[1]);
+  EXPECT_EQ(ridge.z_lower, -0.2);
+  EXPECT_EQ(ridge.z_upper, 0.2);
+  EXPECT_TRUE(interface::contains(c.obstacle_solids[1], 0.79, 0.1, 0.15));
+  EXPECT_FALSE(interface::contains(c.obstacle_solids[1], 0.61, 0.1, 0.15));
+  EXPECT_TRUE(std::holds_alternative<interface::Box3>(c.obstacle_solids[2]));
+  EXPECT_FALSE(parse_case(layered).has_obstacles());
+}
+
 TEST(CaseFile, AMeshOfLayersRefusesWhatItLacks) {
   const std::pair<std::vector<std::string>, const char*> refused[] = {
       {{"mesh.cells=[8, 6, 1]"}, "one cell along z is a planar mesh"},
@@ -1112,7 +1134,13 @@ TEST(CaseFile, AMeshOfLayersRefusesWhatItLacks) {
       {{"boundary.back={type=\"wall\", friction_angle=20.0}"}, "boundary.back: a wall's friction is planar yet"},
       {{"numerics.wall_gradient=\"quadratic\""}, "numerics.wall_gradient"},
       {{"output.line=[{name=\"a\", start=[0.0, 0.1], end=[0.5, 0.1]}]"}, "output.line: line samples are planar yet"},
-      {{"obstacle=[{shape=\"box\", lower=[0.0, 0.0], upper=[0.1, 0.1]}]"}, "obstacle: obstacles are planar yet"},
+      {{"numerics.pressure_coupling=\"coupled\"", "soil.yield_pressure=\"face\"",
+        "obstacle=[{shape=\"box\", lower=[0.0, 0.0], upper=[0.1, 0.1], friction_angle=10.0}]"},
+       "obstacle[0]: an obstacle's own friction is planar yet"},
+      {{"numerics.pressure_coupling=\"coupled\"", "obstacle=[{shape=\"sphere\", centre=[5.0, 5.0, 5.0], radius=0.1}]"},
+       "obstacle[0]: the shape within [4.9, 5.1] x [4.9, 5.1] x [4.9, 5.1] lies outside the domain"},
+      {{"obstacle=[{shape=\"box\", lower=[0.0, 0.0, 0.0], upper=[0.1, 0.1, 0.1]}]"},
+       "obstacle: needs numerics.pressure_coupling = \"coupled\""},
       {{"initial.soil=[{shape=\"sphere\", centre=[5.0, 5.0, 5.0], radius=0.1}]"}, "lies outside the domain"},
       {{"initial.soil=[{shape=\"cylinder\", centre=[0.1, 0.0], radius=0.1, bottom=0.2, top=0.1}]"}, "the cylinder is empty"},
       {{"initial.soil=[{shape=\"box\", lower=[0.0, 0.0, 0.0], upper=[0.1, 0.1]}]"}, "initial.soil[0].upper: expected 3 numbers"},

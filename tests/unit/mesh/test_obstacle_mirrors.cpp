@@ -29,7 +29,7 @@ TEST(ObstacleMirrors, EachBlockedCellMirrorsAcrossItsNearestWall) {
   value.scatter_to_local();
   {
     FieldArray a(g.field_dm(), value.local());
-    mirror_into_blocked(g, BlockedView(g, &mask).data(), a.data(), -1.0);
+    mirror_into_blocked(g, BlockedView(g, &mask).data(), a.volume(), -1.0);
   }
   ConstFieldArray a(g.field_dm(), value.local());
   auto cell = [](int i, int j) { return 100.0 * i + j; };
@@ -48,6 +48,59 @@ TEST(ObstacleMirrors, EachBlockedCellMirrorsAcrossItsNearestWall) {
   // cell beyond it.
   EXPECT_EQ(a[0][5], -cell(8, 0));
 }
+
+// A floor and walls built of two layers of blocked cells (i < 2, j < 2, and on a mesh of layers k < 2)
+// around the open cells of a box: every blocked cell holds what the domain's ghosts would hold were the
+// open box the whole domain with walls on those sides (mesh/side_ghosts.hpp), edges and corners
+// included: the cell m layers behind a wall mirrors the cell m - 1 in front of it, across each wall it
+// lies behind, the sign once per wall.
+void expect_the_domains_ghosts(int layers) {
+  GridSpec spec;
+  spec.cells = {7, 6, layers};
+  const Grid g(PETSC_COMM_SELF, spec);
+  const bool three = layers > 1;
+  auto blocked = [&](int i, int j, int k) { return i < 2 || j < 2 || (three && k < 2); };
+  auto value = [](int i, int j, int k) { return 100.0 * i + 10.0 * j + k + 0.5; };
+  Field mask(g), f(g);
+  {
+    FieldArray m(g.field_dm(), mask.global()), a(g.field_dm(), f.global());
+    for (int k = 0; k < layers; ++k)
+      for (int j = 0; j < 6; ++j)
+        for (int i = 0; i < 7; ++i) {
+          m.volume()[k][j][i] = blocked(i, j, k) ? 1.0 : 0.0;
+          a.volume()[k][j][i] = blocked(i, j, k) ? 0.0 : value(i, j, k);
+        }
+  }
+  mask.scatter_to_local();
+  f.scatter_to_local();
+  {
+    FieldArray a(g.field_dm(), f.local());
+    mirror_into_blocked(g, BlockedView(g, &mask).data(), a.volume(), -1.0);
+  }
+  const ConstFieldArray a(g.field_dm(), f.local());
+  int edges = 0;
+  for (int k = 0; k < layers; ++k)
+    for (int j = 0; j < 6; ++j)
+      for (int i = 0; i < 7; ++i) {
+        if (!blocked(i, j, k)) continue;
+        // Behind a wall the mirror of index n < 2 is 3 - n; the sign once per wall crossed.
+        int walls = 0;
+        auto mirror = [&](int n, bool axis_built) {
+          if (!axis_built || n >= 2) return n;
+          ++walls;
+          return 3 - n;
+        };
+        const int im = mirror(i, true), jm = mirror(j, true), km = mirror(k, three);
+        edges += walls > 1;
+        const double expected = (walls % 2 ? -1.0 : 1.0) * value(im, jm, km);
+        EXPECT_EQ(a.volume()[k][j][i], expected) << "(" << i << ", " << j << ", " << k << ")";
+      }
+  EXPECT_GT(edges, 0);
+}
+
+TEST(ObstacleMirrors, BlockedCellsBehindAFloorAndAWallHoldTheDomainsGhosts) { expect_the_domains_ghosts(1); }
+
+TEST(ObstacleMirrors, BlockedCellsBehindAFloorAndTwoWallsOfLayersHoldTheDomainsGhosts) { expect_the_domains_ghosts(5); }
 
 // Which obstacle a cell belongs to (mark_obstacle_index): one plus the index of the last shape that
 // holds its centre, 0 in open cells and in the ghosts outside the domain.
