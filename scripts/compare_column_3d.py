@@ -17,30 +17,12 @@ With --png, h against r at each output time: every 3D column as a dot, the axisy
 line.
 """
 import argparse
-import glob
 import math
 import os
 
 import numpy as np
 
-from granflow_files import InputError, main_with_errors, picture_file, read_csv, require_columns
-
-
-def column_heights(run_dir):
-    """{output index: (time, table)} of RUN_DIR/column_height_*.csv."""
-    out = {}
-    for path in sorted(glob.glob(os.path.join(run_dir, "column_height_*.csv"))):
-        index = int(os.path.basename(path)[len("column_height_"):-len(".csv")])
-        with open(path) as f:
-            first = f.readline()
-        try:
-            time = float(first.split("t =")[1].split()[0])
-        except (IndexError, ValueError):
-            raise InputError(f"{path}: no time in its first line")
-        out[index] = (time, read_csv(path))
-    if not out:
-        raise InputError(f"{run_dir}: no column_height_*.csv (not a run of a soil case?)")
-    return out
+from granflow_files import InputError, column_heights, main_with_errors, picture_file, require_columns
 
 
 def compare(time, layered, axi, path3, patha):

@@ -4,6 +4,7 @@ A missing or malformed file is an InputError naming the file; `main_with_errors`
 unreadable file) into one line `error: ...` and exit status 1 instead of a traceback.
 """
 import argparse
+import glob
 import math
 import os
 import re
@@ -200,6 +201,23 @@ def _parse_vtr(raw, path):
     cells = {n: v.reshape(ny, nx, c) if c > 1 else v.reshape(ny, nx)
              for n, (v, c) in arrays.items() if v.size == nx * ny * c}
     return x, y, cells
+
+
+def column_heights(run_dir):
+    """{output index: (time, table)} of RUN_DIR/column_height_*.csv."""
+    out = {}
+    for path in sorted(glob.glob(os.path.join(run_dir, "column_height_*.csv"))):
+        index = int(os.path.basename(path)[len("column_height_"):-len(".csv")])
+        with open(path) as f:
+            first = f.readline()
+        try:
+            time = float(first.split("t =")[1].split()[0])
+        except (IndexError, ValueError):
+            raise InputError(f"{path}: no time in its first line")
+        out[index] = (time, read_csv(path))
+    if not out:
+        raise InputError(f"{run_dir}: no column_height_*.csv (not a run of a soil case?)")
+    return out
 
 
 def main_with_errors(main):

@@ -315,11 +315,16 @@ void Simulation::write_soil_lines() const {
 // strain_norm at soil.failure_strain, in ParaView).
 void Simulation::write_column_heights_3d(const std::vector<double>& c, const std::string& stamp) const {
   const Grid& g = *grid_;
+  // With obstacles, each column's blocked height too (sum of dy over its blocked cells): the terrain.
   write_file_atomically(out_ / fmt::format("column_height_{}.csv", stamp), [&](std::ostream& out) {
-    fmt::print(out, "# soil height per column (sum of c dy) at t = {:.9g} s\nx,z,height\n", time_);
+    fmt::print(out, "# soil height per column (sum of c dy) at t = {:.9g} s\nx,z,height{}\n", time_,
+               blocked_ ? ",obstacle_height" : "");
     for (int k = 0; k < g.nz(); ++k)
-      for (int i = 0; i < g.nx(); ++i)
-        fmt::print(out, "{:.9g},{:.9g},{:.9g}\n", g.xc(i), g.zc(k), column_height(g, c, i, k));
+      for (int i = 0; i < g.nx(); ++i) {
+        fmt::print(out, "{:.9g},{:.9g},{:.9g}", g.xc(i), g.zc(k), column_height(g, c, i, k));
+        if (blocked_) fmt::print(out, ",{:.9g}", column_height(g, blocked_on_root_, i, k));
+        fmt::print(out, "\n");
+      }
   });
 }
 

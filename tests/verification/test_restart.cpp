@@ -53,6 +53,14 @@ TEST(Restart, AColumnOnAMeshOfLayersContinuesExactlyFromItsLastCheckpoint) {
   std::printf("3D column restarted from its checkpoint at t = %.3g s\n", t);
 }
 
+// Obstacles on a mesh of layers: the slit barrier of cases/slit_barrier_3d.toml; the checkpoint's
+// blocked cells hold their mirrors, which a restart clears and mirrors anew.
+TEST(Restart, ASlitBarrierOfLayersContinuesExactlyFromItsLastCheckpoint) {
+  const double t = expect_restart_reproduces(
+      "cases/slit_barrier_3d.toml", {"time.end=0.02", "output.times=[0.01]", "output.progress_seconds=0"}, 19, true);
+  std::printf("3D slit barrier restarted from its checkpoint at t = %.3g s\n", t);
+}
+
 // Two soil materials of two densities: their shares are part of the checkpoint.
 TEST(Restart, LayeredCollapseContinuesExactlyFromItsLastCheckpoint) {
   const double t = expect_restart_reproduces(
