@@ -8,7 +8,7 @@ namespace granflow {
 void fill_copied_ghosts(const Grid& grid, const Field* blocked, Field& f) {
   f.scatter_to_local();
   FieldArray a = local_array(grid, f);
-  mirror_into_blocked(grid, BlockedView(grid, blocked).data(), a.volume(), 1.0);
+  mirror_into_blocked(grid, blocked, a.volume(), 1.0);
   fill_side_ghosts(grid, a.volume(), [](Side, double, double first) { return first; });
 }
 

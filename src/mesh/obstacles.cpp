@@ -2,9 +2,26 @@
 
 #include <mpi.h>
 
+#include <array>
+#include <vector>
+
 namespace granflow {
 
 namespace {
+// Where each blocked cell of the local array takes its value from: the open cell it mirrors, and
+// whether the mirror crosses an odd number of walls (then the value takes the sign).
+struct MirrorEntry {
+  int to[3], from[3];
+  bool odd;
+};
+
+// The map of the mask mirrored last, by its local vector's PETSc object id (unique in the process):
+// a mask is laid out once (mark_cells forgets the map) and then only read.
+struct {
+  PetscObjectId mask_id = -1;
+  std::vector<MirrorEntry> map;
+} last_mirrors;
+
 // The local array's extent: the owned block and its ghosts, one layer (k = 0) on a planar mesh.
 struct LocalExtent {
   int lo[3], hi[3];
@@ -35,6 +52,7 @@ void scatter_with_no_obstacle_outside(const Grid& g, Field& f) {
 // Marks the owned cells whose centre `inside(i, j, k)` holds, then the ghosts; the count over all ranks.
 template <class Inside>
 long mark_cells(const Grid& g, Inside inside, Field& mask) {
+  last_mirrors.mask_id = -1;
   long count = 0;
   {
     FieldArray m(g.field_dm(), mask.global());
@@ -86,50 +104,52 @@ void zero_blocked_cells(const Grid& g, const Field* mask, Field& f) {
         if (is_blocked(m.data(), i, j, k)) a.volume()[k][j][i] = 0.0;
 }
 
-void mirror_into_blocked(const Grid& g, VolumeView mask, double*** a, double sign) {
-  if (!mask) return;
+namespace {
+std::vector<MirrorEntry> mirror_map(const Grid& g, VolumeView mask) {
+  std::vector<MirrorEntry> map;
   const LocalExtent e(g);
   const int gw = Grid::ghost_width, axes = g.dimension() == 3 ? 3 : 2;
   auto open = [&](int i, int j, int k) { return e.holds(i, j, k) && !g.outside(i, j, k) && mask[k][j][i] <= 0.5; };
-  // The mirror of blocked cell (i, j, k) across the wall `depth` cells away along d, if that is where
-  // the nearest open cell lies: the open cell depth - 1 beyond the wall (or the first one, if the
-  // open region there is thinner).
-  auto mirror = [&](int i, int j, int k, const int* d, int depth, double& value) {
+  using Cell = std::array<int, 3>;
+  // The mirror of blocked cell c across the wall `depth` cells away along d, if that is where the
+  // nearest open cell lies: the open cell depth - 1 beyond the wall (or the first one, if the open
+  // region there is thinner).
+  auto mirror = [&](const Cell& c, const int* d, int depth, Cell& from) {
     for (int s = 1; s < depth; ++s) {  // the cells between must be blocked (and in the local array)
-      const int ib = i + s * d[0], jb = j + s * d[1], kb = k + s * d[2];
+      const int ib = c[0] + s * d[0], jb = c[1] + s * d[1], kb = c[2] + s * d[2];
       if (!e.holds(ib, jb, kb) || !is_blocked(mask, ib, jb, kb)) return false;
     }
-    const int iw = i + depth * d[0], jw = j + depth * d[1], kw = k + depth * d[2];  // the first cell beyond the wall
-    if (!open(iw, jw, kw)) return false;
-    const int im = iw + (depth - 1) * d[0], jm = jw + (depth - 1) * d[1], km = kw + (depth - 1) * d[2];
-    value = sign * (open(im, jm, km) ? a[km][jm][im] : a[kw][jw][iw]);
+    const Cell w{c[0] + depth * d[0], c[1] + depth * d[1], c[2] + depth * d[2]};  // the first cell beyond the wall
+    if (!open(w[0], w[1], w[2])) return false;
+    const Cell m{w[0] + (depth - 1) * d[0], w[1] + (depth - 1) * d[1], w[2] + (depth - 1) * d[2]};
+    from = open(m[0], m[1], m[2]) ? m : w;
     return true;
   };
   // The nearest wall along an axis, as its depth (0: none within reach); on a tie (a wall on either
   // side) the high side's.
-  auto nearest = [&](int i, int j, int k, int axis, double& value) {
+  auto nearest = [&](const Cell& c, int axis, Cell& from) {
     int up[3] = {0, 0, 0}, down[3] = {0, 0, 0};
     up[axis] = 1, down[axis] = -1;
     for (int depth = 1; depth <= gw; ++depth)
-      if (mirror(i, j, k, up, depth, value) || mirror(i, j, k, down, depth, value)) return depth;
+      if (mirror(c, up, depth, from) || mirror(c, down, depth, from)) return depth;
     return 0;
   };
-  // A blocked cell with no open cell within reach along any one axis, diagonally behind the walls
-  // where two (or three) obstacles meet in a concave edge or corner of the open region: the mirror
-  // across each of those walls in turn, sign once per wall, as the domain's edge and corner ghosts are
+  // A blocked cell with no open cell within reach along any one axis, diagonally behind two (or three)
+  // walls where obstacles meet in a concave edge or corner of the open region: the mirror across each
+  // of those walls in turn, the sign once per wall, as the domain's edge and corner ghosts are
   // (mesh/side_ghosts.hpp). The first open cell beyond the walls must be the only open cell of the box
   // between it and the blocked cell; the fewest cells away wins.
-  auto across_walls = [&](int i, int j, int k, double& value) {
+  auto across_walls = [&](const Cell& c, Cell& from, bool& odd) {
     int best_distance = 0;
     for (int set = 1; set < (1 << axes); ++set) {  // the axes crossed, two or three
-      if ((set & (set - 1)) == 0) continue;  // one axis: done above
+      if ((set & (set - 1)) == 0) continue;  // one axis: done before
       int n_axes = 0, axis_of[3];
       for (int a = 0; a < axes; ++a)
         if (set & (1 << a)) axis_of[n_axes++] = a;
-      // Each crossed axis's direction (bit) and depth 1 .. gw.
-      const int combos = 1 << n_axes;
-      for (int dirs = 0; dirs < combos; ++dirs)
-        for (int depths = 0; depths < (n_axes == 2 ? gw * gw : gw * gw * gw); ++depths) {
+      // Each crossed axis's direction (a bit of dirs) and depth, 1 .. gw.
+      const int depth_sets = n_axes == 2 ? gw * gw : gw * gw * gw;
+      for (int dirs = 0; dirs < (1 << n_axes); ++dirs)
+        for (int depths = 0; depths < depth_sets; ++depths) {
           int step[3] = {0, 0, 0}, depth[3] = {0, 0, 0}, distance = 0;
           for (int n = 0, rest = depths; n < n_axes; ++n, rest /= gw) {
             const int a = axis_of[n];
@@ -138,20 +158,20 @@ void mirror_into_blocked(const Grid& g, VolumeView mask, double*** a, double sig
             distance += depth[a];
           }
           if (best_distance > 0 && distance >= best_distance) continue;
-          const int iw = i + depth[0] * step[0], jw = j + depth[1] * step[1], kw = k + depth[2] * step[2];
-          if (!open(iw, jw, kw)) continue;
-          bool walls = true;  // every other cell of the box from (i, j, k) to the open one is blocked
+          const Cell w{c[0] + depth[0] * step[0], c[1] + depth[1] * step[1], c[2] + depth[2] * step[2]};
+          if (!open(w[0], w[1], w[2])) continue;
+          bool walls = true;  // every other cell of the box from c to the open one is blocked
           for (int dk = 0; dk <= depth[2] && walls; ++dk)
             for (int dj = 0; dj <= depth[1] && walls; ++dj)
               for (int di = 0; di <= depth[0] && walls; ++di) {
                 if (di == depth[0] && dj == depth[1] && dk == depth[2]) continue;
-                const int ib = i + di * step[0], jb = j + dj * step[1], kb = k + dk * step[2];
+                const int ib = c[0] + di * step[0], jb = c[1] + dj * step[1], kb = c[2] + dk * step[2];
                 walls = e.holds(ib, jb, kb) && is_blocked(mask, ib, jb, kb);
               }
           if (!walls) continue;
-          const int im = iw + (depth[0] - 1) * step[0], jm = jw + (depth[1] - 1) * step[1], km = kw + (depth[2] - 1) * step[2];
-          const double mirrored = open(im, jm, km) ? a[km][jm][im] : a[kw][jw][iw];
-          value = (n_axes == 3 ? sign : 1.0) * mirrored;  // sign^2 across two walls
+          const Cell m{w[0] + (depth[0] - 1) * step[0], w[1] + (depth[1] - 1) * step[1], w[2] + (depth[2] - 1) * step[2]};
+          from = open(m[0], m[1], m[2]) ? m : w;
+          odd = n_axes == 3;
           best_distance = distance;
         }
     }
@@ -165,15 +185,31 @@ void mirror_into_blocked(const Grid& g, VolumeView mask, double*** a, double sig
     for (int j = e.lo[1]; j < e.hi[1]; ++j)
       for (int i = e.lo[0]; i < e.hi[0]; ++i) {
         if (!is_blocked(mask, i, j, k)) continue;
+        const Cell c{i, j, k};
         int best = 0;
-        double value = 0.0;
+        Cell from{};
         for (int axis = 0; axis < axes; ++axis) {
-          double along = 0.0;
-          const int depth = nearest(i, j, k, axis, along);
-          if (depth > 0 && (best == 0 || depth <= best)) best = depth, value = along;
+          Cell along{};
+          const int depth = nearest(c, axis, along);
+          if (depth > 0 && (best == 0 || depth <= best)) best = depth, from = along;
         }
-        if (best > 0 || across_walls(i, j, k, value)) a[k][j][i] = value;
+        bool odd = true;
+        if (best > 0 || across_walls(c, from, odd)) map.push_back({{i, j, k}, {from[0], from[1], from[2]}, odd});
       }
+  return map;
+}
+}  // namespace
+
+void mirror_into_blocked(const Grid& g, const Field* mask, double*** a, double sign) {
+  if (!mask) return;
+  PetscObjectId id;
+  PetscCallAbort(g.comm(), PetscObjectGetId(reinterpret_cast<PetscObject>(mask->local()), &id));
+  if (id != last_mirrors.mask_id) {
+    last_mirrors.map = mirror_map(g, BlockedView(g, mask).data());
+    last_mirrors.mask_id = id;
+  }
+  for (const MirrorEntry& m : last_mirrors.map)
+    a[m.to[2]][m.to[1]][m.to[0]] = (m.odd ? sign : 1.0) * a[m.from[2]][m.from[1]][m.from[0]];
 }
 
 }  // namespace granflow

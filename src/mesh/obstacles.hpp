@@ -24,12 +24,13 @@ inline bool is_blocked(VolumeView mask, int i, int j, int k) { return mask && ma
 class BlockedView {
  public:
   BlockedView(const Grid& g, const Field* mask) {
-    if (mask) array_.emplace(g.field_dm(), mask->local());
+    if (mask) data_ = array_.emplace(g.field_dm(), mask->local()).volume();
   }
-  VolumeView data() const { return array_ ? array_->volume() : nullptr; }
+  VolumeView data() const { return data_; }
 
  private:
   std::optional<ConstFieldArray> array_;
+  VolumeView data_ = nullptr;
 };
 
 // Marks the cells whose centre lies in any of the shapes (1, else 0), ghosts included; returns the
@@ -54,7 +55,7 @@ void zero_blocked_cells(const Grid& g, const Field* mask, Field& f);
 // edge and corner ghosts are filled (mesh/side_ghosts.hpp). Open cells are those inside the domain;
 // cells without an open cell within reach are left as they are. A blocked cell with walls on both
 // sides along one axis (an obstacle one cell thick) cannot mirror both; lay_out_obstacles refuses
-// such cells.
-void mirror_into_blocked(const Grid& g, VolumeView mask, double*** a, double sign);
+// such cells. mask: the blocked cells (null: none). Which cell mirrors which is found once per mask.
+void mirror_into_blocked(const Grid& g, const Field* mask, double*** a, double sign);
 
 }  // namespace granflow

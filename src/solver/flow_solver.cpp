@@ -164,10 +164,8 @@ void FlowSolver::fill_velocity_ghosts() {
   std::optional<FieldArray> arrays[3];
   double*** components[3] = {};
   for (int a = 0; a < dimension_; ++a) components[a] = arrays[a].emplace(grid_.field_dm(), vel_[a]->local()).volume();
-  if (blocked_) {
-    const BlockedView mask(grid_, blocked_);  // an obstacle's walls are static and no-slip
-    for (int a = 0; a < dimension_; ++a) mirror_into_blocked(grid_, mask.data(), components[a], -1.0);
-  }
+  // An obstacle's walls are static and no-slip.
+  for (int a = 0; a < dimension_; ++a) mirror_into_blocked(grid_, blocked_, components[a], -1.0);
   fill_velocity_side_ghosts(grid_, settings_.boundaries, std::span<double*** const>(components, dimension_));
 }
 

@@ -253,10 +253,9 @@ void SoilPhase::cell_shares(const std::deque<ConstFieldArray>& m, int i, int j, 
 // walls mirror, which gives interface normals meeting a wall at right angles.
 void SoilPhase::fill_fraction_ghosts(Field& f) const {
   zero_blocked_cells(grid_, blocked_, f);  // no soil in a blocked cell (a sweep leaves there the mirror it read)
-  const BlockedView mask(grid_, blocked_);
   f.scatter_to_local();
   FieldArray a(grid_.field_dm(), f.local());
-  if (blocked_) mirror_into_blocked(grid_, mask.data(), a.volume(), 1.0);  // an obstacle's walls mirror, as the domain's
+  mirror_into_blocked(grid_, blocked_, a.volume(), 1.0);  // an obstacle's walls mirror, as the domain's
   fill_side_ghosts(grid_, a.volume(), [&](Side side, double inner, double) {
     const auto& bc = boundary(flow_settings_.boundaries, side);
     return bc.kind == BoundaryKind::atmosphere ? bc.inflow_soil_fraction : inner;

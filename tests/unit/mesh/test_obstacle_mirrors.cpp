@@ -29,7 +29,7 @@ TEST(ObstacleMirrors, EachBlockedCellMirrorsAcrossItsNearestWall) {
   value.scatter_to_local();
   {
     FieldArray a(g.field_dm(), value.local());
-    mirror_into_blocked(g, BlockedView(g, &mask).data(), a.volume(), -1.0);
+    mirror_into_blocked(g, &mask, a.volume(), -1.0);
   }
   ConstFieldArray a(g.field_dm(), value.local());
   auto cell = [](int i, int j) { return 100.0 * i + j; };
@@ -75,7 +75,7 @@ void expect_the_domains_ghosts(int layers) {
   f.scatter_to_local();
   {
     FieldArray a(g.field_dm(), f.local());
-    mirror_into_blocked(g, BlockedView(g, &mask).data(), a.volume(), -1.0);
+    mirror_into_blocked(g, &mask, a.volume(), -1.0);
   }
   const ConstFieldArray a(g.field_dm(), f.local());
   int edges = 0;
