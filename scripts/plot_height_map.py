@@ -8,8 +8,9 @@ time: x, z and the soil height h = sum c dy of each (x, z) column (and, with obs
 column's blocked height, obstacle_height). Printed per output time: the soil volume sum h dx dz, the
 highest column and, with --beyond X, the share of the soil in the columns beyond x = X (what passed
 a barrier there); the run-out is the history's (toe_one_cell, toe_contour). With --png, one panel per
-output time: h over (x, z) in colour (blank below a thousandth of the highest column), the obstacles'
-footprint in grey.
+output time: h over (x, z) in colour (blank below a thousandth of the highest column), the obstacles
+with no soil on them in grey (darker where higher). Volumes take each column's width from the
+midpoints between the centres: exact on uniform cells, approximate on graded ones.
 """
 import argparse
 
@@ -67,8 +68,9 @@ def main():
         for ax, (time, xf, zf, h, blocked) in zip(axes[:, 0], maps):
             # Columns of less than a thousandth of the highest: blank (traces of soil the air carried).
             image = ax.pcolormesh(xf, zf, np.ma.masked_where(h < 1e-3 * top, h), vmin=0.0, vmax=top, cmap="viridis")
-            if blocked.any():
-                ax.pcolormesh(xf, zf, np.ma.masked_where(blocked <= 0.0, blocked), cmap="Greys", vmin=0.0,
+            exposed = (blocked > 0.0) & (h < 1e-3 * top)  # obstacles with no soil on them
+            if exposed.any():
+                ax.pcolormesh(xf, zf, np.ma.masked_where(~exposed, blocked), cmap="Greys", vmin=0.0,
                               vmax=2.0 * blocked.max())
             ax.set_aspect("equal")
             ax.set_ylabel("z (m)")

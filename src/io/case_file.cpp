@@ -942,7 +942,7 @@ void require_consistent(const CaseConfig& c) {
     if (c.flow.numerics.pressure_coupling != PressureCoupling::coupled)
       throw CaseError("obstacle: needs numerics.pressure_coupling = \"coupled\" (the projection and PISO do not "
                       "know blocked cells)");
-    if (c.mesh.axisymmetric) throw CaseError("obstacle: planar meshes only (this case has mesh.geometry = \"axisymmetric\")");
+    if (c.mesh.axisymmetric) throw CaseError("obstacle: not on an axisymmetric mesh (this case has mesh.geometry = \"axisymmetric\")");
   }
   if (c.mesh.periodic_x) {
     if (c.mesh.axisymmetric)

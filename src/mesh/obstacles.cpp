@@ -2,6 +2,7 @@
 
 #include <mpi.h>
 
+#include <algorithm>
 #include <array>
 #include <vector>
 
@@ -15,12 +16,19 @@ struct MirrorEntry {
   bool odd;
 };
 
-// The map of the mask mirrored last, by its local vector's PETSc object id (unique in the process):
-// a mask is laid out once (mark_cells forgets the map) and then only read.
-struct {
-  PetscObjectId mask_id = -1;
+// The maps of the masks laid out last (mark_cells), by their local vectors' PETSc object ids (unique in
+// the process): a mask so laid out is then only read. A mask filled otherwise is mapped at each use.
+struct LaidOutMap {
+  PetscObjectId mask_id;
   std::vector<MirrorEntry> map;
-} last_mirrors;
+};
+std::vector<LaidOutMap> laid_out_maps;
+std::vector<MirrorEntry> mirror_map(const Grid& g, VolumeView mask);
+PetscObjectId object_id(Vec v) {
+  PetscObjectId id;
+  PetscCallAbort(PETSC_COMM_SELF, PetscObjectGetId(reinterpret_cast<PetscObject>(v), &id));
+  return id;
+}
 
 // The local array's extent: the owned block and its ghosts, one layer (k = 0) on a planar mesh.
 struct LocalExtent {
@@ -52,7 +60,6 @@ void scatter_with_no_obstacle_outside(const Grid& g, Field& f) {
 // Marks the owned cells whose centre `inside(i, j, k)` holds, then the ghosts; the count over all ranks.
 template <class Inside>
 long mark_cells(const Grid& g, Inside inside, Field& mask) {
-  last_mirrors.mask_id = -1;
   long count = 0;
   {
     FieldArray m(g.field_dm(), mask.global());
@@ -65,6 +72,11 @@ long mark_cells(const Grid& g, Inside inside, Field& mask) {
         }
   }
   scatter_with_no_obstacle_outside(g, mask);  // ghosts outside the domain are not blocked
+  // Which blocked cell mirrors which, found once for the mask (the last few masks kept).
+  const PetscObjectId id = object_id(mask.local());
+  std::erase_if(laid_out_maps, [id](const LaidOutMap& m) { return m.mask_id == id; });
+  if (laid_out_maps.size() >= 4) laid_out_maps.erase(laid_out_maps.begin());
+  laid_out_maps.push_back({id, mirror_map(g, BlockedView(g, &mask).data())});
   long total = 0;
   MPI_Allreduce(&count, &total, 1, MPI_LONG, MPI_SUM, g.comm());
   return total;
@@ -135,8 +147,8 @@ std::vector<MirrorEntry> mirror_map(const Grid& g, VolumeView mask) {
     return 0;
   };
   // A blocked cell with no open cell within reach along any one axis, diagonally behind two (or three)
-  // walls where obstacles meet in a concave edge or corner of the open region: the mirror across each
-  // of those walls in turn, the sign once per wall, as the domain's edge and corner ghosts are
+  // walls at an inner edge or corner of the obstacles (a built floor meeting a built wall): the mirror
+  // across each of those walls in turn, the sign once per wall, as the domain's edge and corner ghosts are
   // (mesh/side_ghosts.hpp). The first open cell beyond the walls must be the only open cell of the box
   // between it and the blocked cell; the fewest cells away wins.
   auto across_walls = [&](const Cell& c, Cell& from, bool& odd) {
@@ -202,13 +214,12 @@ std::vector<MirrorEntry> mirror_map(const Grid& g, VolumeView mask) {
 
 void mirror_into_blocked(const Grid& g, const Field* mask, double*** a, double sign) {
   if (!mask) return;
-  PetscObjectId id;
-  PetscCallAbort(g.comm(), PetscObjectGetId(reinterpret_cast<PetscObject>(mask->local()), &id));
-  if (id != last_mirrors.mask_id) {
-    last_mirrors.map = mirror_map(g, BlockedView(g, mask).data());
-    last_mirrors.mask_id = id;
-  }
-  for (const MirrorEntry& m : last_mirrors.map)
+  const PetscObjectId id = object_id(mask->local());
+  const auto laid_out = std::find_if(laid_out_maps.begin(), laid_out_maps.end(),
+                                     [id](const LaidOutMap& m) { return m.mask_id == id; });
+  std::vector<MirrorEntry> mapped_now;
+  if (laid_out == laid_out_maps.end()) mapped_now = mirror_map(g, BlockedView(g, mask).data());
+  for (const MirrorEntry& m : laid_out != laid_out_maps.end() ? laid_out->map : mapped_now)
     a[m.to[2]][m.to[1]][m.to[0]] = (m.odd ? sign : 1.0) * a[m.from[2]][m.from[1]][m.from[0]];
 }
 

@@ -55,7 +55,8 @@ void zero_blocked_cells(const Grid& g, const Field* mask, Field& f);
 // edge and corner ghosts are filled (mesh/side_ghosts.hpp). Open cells are those inside the domain;
 // cells without an open cell within reach are left as they are. A blocked cell with walls on both
 // sides along one axis (an obstacle one cell thick) cannot mirror both; lay_out_obstacles refuses
-// such cells. mask: the blocked cells (null: none). Which cell mirrors which is found once per mask.
+// such cells. mask: the blocked cells (null: none). Which cell mirrors which is found once for a mask
+// laid out by mark_blocked_cells, which must then only be read; a mask filled otherwise, at each call.
 void mirror_into_blocked(const Grid& g, const Field* mask, double*** a, double sign);
 
 }  // namespace granflow

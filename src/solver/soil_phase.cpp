@@ -144,7 +144,8 @@ void SoilPhase::check_restored_fraction() const {
 
 void SoilPhase::clear_blocked_cells() {
   if (!blocked_) return;
-  for (auto* f : {disp_[0].get(), disp_[1].get()}) zero_blocked_cells(grid_, blocked_, *f);
+  for (auto& f : disp_)
+    if (f) zero_blocked_cells(grid_, blocked_, *f);
   fill_fraction_ghosts(*c_);  // zeroes c there, and mirrors anew
   for (auto& f : share_) fill_share_ghosts(*f);
 }

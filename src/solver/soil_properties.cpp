@@ -37,6 +37,9 @@ double SoilPhase::mixture_viscosity(double c, double pressure, const rheology::S
 
 void SoilPhase::set_obstacle_friction(const Field* obstacle_index,
                                       const std::vector<std::optional<rheology::WallFriction>>& friction) {
+  // A mesh of layers' faces take no wall friction yet (update_face_viscosity_3d); the case file refuses it.
+  if (grid_.dimension() == 3)
+    throw std::invalid_argument("SoilPhase: an obstacle's own friction on a mesh of layers is not implemented");
   obstacle_index_ = obstacle_index;
   obstacle_walls_.assign(friction.size(), obstacle_wall);
   for (size_t k = 0; k < friction.size(); ++k) obstacle_walls_[k].friction = friction[k];

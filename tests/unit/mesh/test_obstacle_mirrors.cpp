@@ -102,6 +102,37 @@ TEST(ObstacleMirrors, BlockedCellsBehindAFloorAndAWallHoldTheDomainsGhosts) { ex
 
 TEST(ObstacleMirrors, BlockedCellsBehindAFloorAndTwoWallsOfLayersHoldTheDomainsGhosts) { expect_the_domains_ghosts(5); }
 
+// Which cell mirrors which is found once for a mask laid out by mark_blocked_cells: laid out again with
+// other shapes, the mask mirrors its new cells, and two masks used in turn each mirror their own.
+TEST(ObstacleMirrors, AMaskLaidOutAgainMirrorsItsNewCells) {
+  GridSpec spec;
+  spec.cells = {10, 10, 1};  // unit square, cells of 0.1
+  const Grid g(PETSC_COMM_SELF, spec);
+  Field mask(g), other(g), f(g);
+  auto cell = [](int i, int j) { return 100.0 * i + j; };
+  // The value blocked cell (i, j) takes, mirrored as a velocity (sign -1) by `m`.
+  auto mirrored = [&](const Field& m, int i, int j) {
+    {
+      FieldArray a(g.field_dm(), f.global());
+      for (int jj = 0; jj < 10; ++jj)
+        for (int ii = 0; ii < 10; ++ii) a[jj][ii] = cell(ii, jj);
+    }
+    f.scatter_to_local();
+    FieldArray a(g.field_dm(), f.local());
+    mirror_into_blocked(g, &m, a.volume(), -1.0);
+    return a[j][i];
+  };
+  using interface::Box;
+  mark_blocked_cells(g, interface::ShapeUnion({Box{{0.4, 0.0}, {0.7, 0.5}}}), mask);  // columns 4-6, rows 0-4
+  mark_blocked_cells(g, interface::ShapeUnion({Box{{0.0, 0.8}, {1.0, 1.0}}}), other);  // rows 8-9
+  EXPECT_EQ(mirrored(mask, 4, 3), -cell(3, 3));  // behind the west face
+  EXPECT_EQ(mirrored(other, 4, 8), -cell(4, 7));  // behind the bottom face of the other
+  EXPECT_EQ(mirrored(mask, 6, 3), -cell(7, 3));  // the first mask's own again
+  mark_blocked_cells(g, interface::ShapeUnion({Box{{0.2, 0.0}, {0.5, 0.5}}}), mask);  // now columns 2-4
+  EXPECT_EQ(mirrored(mask, 4, 3), -cell(5, 3));  // behind the new east face
+  EXPECT_EQ(mirrored(mask, 2, 3), -cell(1, 3));
+}
+
 // Which obstacle a cell belongs to (mark_obstacle_index): one plus the index of the last shape that
 // holds its centre, 0 in open cells and in the ghosts outside the domain.
 TEST(ObstacleIndex, EachCellTakesTheLastObstacleHoldingItsCentre) {
