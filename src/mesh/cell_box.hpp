@@ -8,5 +8,6 @@ struct CellBox {
   int xe() const { return xs + xm; }
   int ye() const { return ys + ym; }
   int ze() const { return zs + zm; }
+  bool holds(int i, int j, int k) const { return i >= xs && i < xe() && j >= ys && j < ye() && k >= zs && k < ze(); }
 };
 }  // namespace granflow

@@ -94,6 +94,13 @@ class Grid {
   long cell_count() const { return long(nx()) * ny() * nz(); }
   const GridSpec& spec() const { return spec_; }
   const CellBox& owned() const { return owned_; }
+  // The cells of the local (ghosted) arrays: the owned block and ghost_width cells around it, along z
+  // too on a mesh of layers (a planar mesh's one layer has no z ghosts).
+  CellBox with_ghosts() const {
+    const bool layers = dimension() == 3;
+    return {owned_.xs - ghost_width, owned_.ys - ghost_width, owned_.xm + 2 * ghost_width, owned_.ym + 2 * ghost_width,
+            layers ? owned_.zs - ghost_width : 0, layers ? owned_.zm + 2 * ghost_width : 1};
+  }
 
   // Per-axis geometry, valid for ghost indices -2 .. n+1.
   double dx(int i) const { return width_[0][i + ghost_width]; }

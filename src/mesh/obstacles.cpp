@@ -30,30 +30,14 @@ PetscObjectId object_id(Vec v) {
   return id;
 }
 
-// The local array's extent: the owned block and its ghosts, one layer (k = 0) on a planar mesh.
-struct LocalExtent {
-  int lo[3], hi[3];
-  explicit LocalExtent(const Grid& g) {
-    const auto& b = g.owned();
-    const int gw = Grid::ghost_width;
-    const bool layers = g.dimension() == 3;
-    lo[0] = b.xs - gw, hi[0] = b.xe() + gw;
-    lo[1] = b.ys - gw, hi[1] = b.ye() + gw;
-    lo[2] = layers ? b.zs - gw : 0, hi[2] = layers ? b.ze() + gw : 1;
-  }
-  bool holds(int i, int j, int k) const {
-    return i >= lo[0] && i < hi[0] && j >= lo[1] && j < hi[1] && k >= lo[2] && k < hi[2];
-  }
-};
-
 // The owned values to the local vector, and 0 in the ghosts beyond the domain's boundaries.
 void scatter_with_no_obstacle_outside(const Grid& g, Field& f) {
   f.scatter_to_local();
   FieldArray m = local_array(g, f);
-  const LocalExtent e(g);
-  for (int k = e.lo[2]; k < e.hi[2]; ++k)
-    for (int j = e.lo[1]; j < e.hi[1]; ++j)
-      for (int i = e.lo[0]; i < e.hi[0]; ++i)
+  const CellBox e = g.with_ghosts();
+  for (int k = e.zs; k < e.ze(); ++k)
+    for (int j = e.ys; j < e.ye(); ++j)
+      for (int i = e.xs; i < e.xe(); ++i)
         if (g.outside(i, j, k)) m.volume()[k][j][i] = 0.0;  // beyond a periodic side: the other end's cells
 }
 
@@ -119,7 +103,7 @@ void zero_blocked_cells(const Grid& g, const Field* mask, Field& f) {
 namespace {
 std::vector<MirrorEntry> mirror_map(const Grid& g, VolumeView mask) {
   std::vector<MirrorEntry> map;
-  const LocalExtent e(g);
+  const CellBox e = g.with_ghosts();
   const int gw = Grid::ghost_width, axes = g.dimension() == 3 ? 3 : 2;
   auto open = [&](int i, int j, int k) { return e.holds(i, j, k) && !g.outside(i, j, k) && mask[k][j][i] <= 0.5; };
   using Cell = std::array<int, 3>;
@@ -193,9 +177,9 @@ std::vector<MirrorEntry> mirror_map(const Grid& g, VolumeView mask) {
   // faces. A cell as near to walls along two axes (an obstacle's edge or corner) takes the later
   // axis's, as the domain's edge and corner ghosts do (z's, then y's); a cell nearer to a wall along x
   // keeps x's, as the domain's ghosts behind its west and east sides do.
-  for (int k = e.lo[2]; k < e.hi[2]; ++k)
-    for (int j = e.lo[1]; j < e.hi[1]; ++j)
-      for (int i = e.lo[0]; i < e.hi[0]; ++i) {
+  for (int k = e.zs; k < e.ze(); ++k)
+    for (int j = e.ys; j < e.ye(); ++j)
+      for (int i = e.xs; i < e.xe(); ++i) {
         if (!is_blocked(mask, i, j, k)) continue;
         const Cell c{i, j, k};
         int best = 0;

@@ -12,11 +12,10 @@ namespace granflow {
 // inside (m - 1 layers in) holds `inner` and whose first cell holds `first`. a: the local array.
 template <class Rule>
 void fill_side_ghosts(const Grid& grid, double*** a, Rule rule) {
-  const auto& b = grid.owned();
   const int n[3] = {grid.nx(), grid.ny(), grid.nz()}, gw = Grid::ghost_width;
   const bool layers = grid.dimension() == 3;
-  const int lo[3] = {b.xs - gw, b.ys - gw, layers ? b.zs - gw : 0};
-  const int hi[3] = {b.xe() + gw, b.ye() + gw, layers ? b.ze() + gw : 1};
+  const CellBox e = grid.with_ghosts();
+  const int lo[3] = {e.xs, e.ys, e.zs}, hi[3] = {e.xe(), e.ye(), e.ze()};
   constexpr Side low_sides[3] = {Side::west, Side::south, Side::front};
   constexpr Side high_sides[3] = {Side::east, Side::north, Side::back};
   for (int axis = 0; axis < (layers ? 3 : 2); ++axis) {

@@ -41,13 +41,12 @@ const Field& SoilPhase::soil_region(int reach, double floor) const {
     PetscCallAbort(grid_.comm(), VecCopy(c_->local(), region_[1]->local()));
     FieldArray a(grid_.field_dm(), region_[1]->local());
     const BlockedView mask(grid_, blocked_);
-    const auto& b = grid_.owned();
-    const int gw = Grid::ghost_width, ny = grid_.ny(), nz = grid_.nz();
-    const bool layers = grid_.dimension() == 3;
+    const CellBox e = grid_.with_ghosts();
+    const int ny = grid_.ny(), nz = grid_.nz();
     auto open_side = [&](Side side) { return boundary(flow_settings_.boundaries, side).kind == BoundaryKind::atmosphere; };
-    for (int k = layers ? b.zs - gw : 0; k < (layers ? b.ze() + gw : 1); ++k)
-      for (int j = b.ys - gw; j < b.ye() + gw; ++j)
-        for (int i = b.xs - gw; i < b.xe() + gw; ++i) {
+    for (int k = e.zs; k < e.ze(); ++k)
+      for (int j = e.ys; j < e.ye(); ++j)
+        for (int i = e.xs; i < e.xe(); ++i) {
           const bool outside = grid_.outside(i, j, k);
           // A ghost beyond two sides (an edge's) takes the later axis's side, as the ghosts were filled.
           const Side side = k < 0 ? Side::front : k >= nz ? Side::back : j < 0 ? Side::south : j >= ny ? Side::north
@@ -69,12 +68,10 @@ const Field& SoilPhase::soil_region(int reach, double floor) const {
     out.scatter_to_local();
     if (k == 0 && in == region_[1].get()) {  // the copy's ghosts outside the domain: back to the region's 0
       FieldArray a(grid_.field_dm(), region_[1]->local());
-      const auto& b = grid_.owned();
-      const int gw = Grid::ghost_width;
-      const bool layers = grid_.dimension() == 3;
-      for (int kk = layers ? b.zs - gw : 0; kk < (layers ? b.ze() + gw : 1); ++kk)
-        for (int j = b.ys - gw; j < b.ye() + gw; ++j)
-          for (int i = b.xs - gw; i < b.xe() + gw; ++i)
+      const CellBox e = grid_.with_ghosts();
+      for (int kk = e.zs; kk < e.ze(); ++kk)
+        for (int j = e.ys; j < e.ye(); ++j)
+          for (int i = e.xs; i < e.xe(); ++i)
             if (grid_.outside(i, j, kk)) a.volume()[kk][j][i] = 0.0;
     }
     in = &out;
