@@ -895,12 +895,6 @@ void require_what_layers_have(const CaseConfig& c) {
   if (c.mesh.dimension() == 2) return;
   const auto& num = c.flow.numerics;
   if (c.mesh.periodic_x) throw CaseError("boundary.west.type: periodic sides are planar yet (not on a mesh of layers)");
-  for (Side s : box_sides)
-    if (boundary(c.flow.boundaries, s).friction)
-      throw CaseError(fmt::format("boundary.{}: a wall's friction is planar yet (not on a mesh of layers)", side_name(s)));
-  for (size_t k = 0; k < c.obstacle_friction.size(); ++k)
-    if (c.obstacle_friction[k])
-      throw CaseError(fmt::format("obstacle[{}]: an obstacle's own friction is planar yet (not on a mesh of layers)", k));
   if (num.quadratic_wall_gradient)
     throw CaseError("numerics.wall_gradient: \"quadratic\" is planar yet; a mesh of layers takes \"two_point\"");
   if (c.soil && !c.soil->materials.empty())

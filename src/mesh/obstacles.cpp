@@ -75,18 +75,34 @@ long mark_blocked_cells(const Grid& g, const interface::ShapeUnion3& solids, Fie
   return mark_cells(g, [&](int i, int j, int k) { return solids.contains(g.xc(i), g.yc(j), g.zc(k)); }, mask);
 }
 
-void mark_obstacle_index(const Grid& g, const interface::ShapeUnion& shapes, Field& index) {
+namespace {
+// Each owned cell's 1 + the last of `count` shapes that `contains(n, i, j, k)` its centre (0: none), then the ghosts.
+template <class Contains>
+void mark_index(const Grid& g, size_t count, Contains contains, Field& index) {
   {
     FieldArray m(g.field_dm(), index.global());
     const auto& b = g.owned();
-    for (int j = b.ys; j < b.ye(); ++j)
-      for (int i = b.xs; i < b.xe(); ++i) {
-        m[j][i] = 0.0;
-        for (size_t k = 0; k < shapes.size(); ++k)
-          if (shapes.shape_contains(k, g.xc(i), g.yc(j))) m[j][i] = double(k + 1);
-      }
+    for (int k = b.zs; k < b.ze(); ++k)
+      for (int j = b.ys; j < b.ye(); ++j)
+        for (int i = b.xs; i < b.xe(); ++i) {
+          double& cell = m.volume()[k][j][i];
+          cell = 0.0;
+          for (size_t n = 0; n < count; ++n)
+            if (contains(n, i, j, k)) cell = double(n + 1);
+        }
   }
   scatter_with_no_obstacle_outside(g, index);  // ghosts outside the domain belong to no obstacle
+}
+}  // namespace
+
+void mark_obstacle_index(const Grid& g, const interface::ShapeUnion& shapes, Field& index) {
+  mark_index(g, shapes.size(), [&](size_t n, int i, int j, int) { return shapes.shape_contains(n, g.xc(i), g.yc(j)); },
+             index);
+}
+
+void mark_obstacle_index(const Grid& g, const interface::ShapeUnion3& solids, Field& index) {
+  mark_index(g, solids.size(),
+             [&](size_t n, int i, int j, int k) { return solids.shape_contains(n, g.xc(i), g.yc(j), g.zc(k)); }, index);
 }
 
 void zero_blocked_cells(const Grid& g, const Field* mask, Field& f) {

@@ -42,6 +42,7 @@ long mark_blocked_cells(const Grid& g, const interface::ShapeUnion3& solids, Fie
 // Marks each cell with one plus the index of the last shape that holds its centre, 0 where none does,
 // ghosts included: which obstacle a blocked cell belongs to (the last listed where they overlap).
 void mark_obstacle_index(const Grid& g, const interface::ShapeUnion& shapes, Field& index);
+void mark_obstacle_index(const Grid& g, const interface::ShapeUnion3& solids, Field& index);
 
 // Sets the blocked cells of f's global vector to zero (its local vector is left as it is): after a
 // copy from the local values, e.g. a restored snapshot or a checkpoint, which hold the mirrors.

@@ -1,7 +1,7 @@
 // The soil phase on a mesh of layers (3D): what soil_phase.cpp, soil_properties.cpp, soil_advection.cpp
 // and soil_diagnostics.cpp do on a planar mesh, for the models a mesh of layers has so far: one soil
-// (no [[soil.materials]]), and sides and obstacles without a friction of their own; the constructor
-// refuses the rest (refuse_what_3d_lacks). The same equations and the same choices as in 2D, each
+// (no [[soil.materials]]) and the two-point wall gradient; the constructor refuses the rest
+// (refuse_what_3d_lacks). The same equations and the same choices as in 2D, each
 // noted where it differs: the soil fraction is carried by the three sweeps of vof_advection_3d.hpp,
 // the strain rate and the Euler-Almansi strain are the full 3D tensors (docs/method.md, "In three
 // dimensions"). The displacement's transport serves both (soil_advection.cpp).
@@ -49,8 +49,6 @@ void SoilPhase::refuse_what_3d_lacks() const {
   };
   if (!settings_.materials.empty()) refuse("[[soil.materials]]");
   if (flow_settings_.numerics.quadratic_wall_gradient) refuse("numerics.wall_gradient = \"quadratic\"");
-  for (Side s : box_sides)
-    if (boundary(flow_settings_.boundaries, s).friction) refuse(std::string("a wall friction (") + side_name(s) + " side)");
 }
 
 void SoilPhase::initialise_3d() {
@@ -100,6 +98,8 @@ void SoilPhase::update_face_viscosity_3d(FlowSolver& flow) const {
   const VolumeView c = c_array.volume(), p = p_array.volume(), rho = rho_array.volume();
   const AxisViews vel(grid_, [&](int a) -> const Field& { return flow.velocity(a); });
   const VelocityArrays3 v = velocity_arrays(vel);
+  std::optional<ConstFieldArray> obstacle_of;  // which obstacle a blocked cell belongs to
+  if (obstacle_index_) obstacle_of.emplace(grid_.field_dm(), obstacle_index_->local());
   // Face (axis, i, j, k) lies between cell (i, j, k) and its neighbour at +1 along axis.
   auto face = [&](int axis, int i, int j, int k, double pressure) {
     const int in = i + (axis == 0), jn = j + (axis == 1), kn = k + (axis == 2);
@@ -126,15 +126,28 @@ void SoilPhase::update_face_viscosity_3d(FlowSolver& flow) const {
       [&](int axis, int i, int j, int k, int sign) {  // the cell's pressure carried hydrostatically to the wall
         const double half = 0.5 * sign * grid_.width(axis, index_along(axis, i, j, k));
         const double pressure = p[k][j][i] + rho[k][j][i] * g[axis] * half;
+        // The wall: a side of the domain, or an obstacle's face (of its own friction, or none).
+        const int in = i + (axis == 0 ? sign : 0), jn = j + (axis == 1 ? sign : 0), kn = k + (axis == 2 ? sign : 0);
+        const bool obstacle = !grid_.outside(in, jn, kn);
+        const int obstacle_index = obstacle && obstacle_of ? int(obstacle_of->volume()[kn][jn][in]) : 0;
+        const auto& bc = !obstacle            ? boundary(flow_settings_.boundaries, side_of(axis, sign))
+                         : obstacle_index > 0 ? obstacle_walls_[size_t(obstacle_index - 1)]
+                                              : obstacle_wall;
         // The face between the ghost and the cell, the ghost's velocity encoding the wall.
         const int il = i - (sign < 0 && axis == 0), jl = j - (sign < 0 && axis == 1), kl = k - (sign < 0 && axis == 2);
-        if (!at_face) return mixture_viscosity(c[k][j][i], pressure, cell_strain_rate(grid_, v, i, j, k));
+        if (!at_face) {
+          const auto cell_rate = cell_strain_rate(grid_, v, i, j, k);
+          if (!bc.friction) return mixture_viscosity(c[k][j][i], pressure, cell_rate);
+          return wall_mixture_viscosity(c[k][j][i], pressure, cell_rate, nullptr, bc,
+                                        face_strain_rate(grid_, v, axis, il, jl, kl), axis);
+        }
         // The face's own soil fraction: how much of it the cell's soil covers (a film on the floor
         // covers all of the floor under it).
         const double cf = face_fraction ? interface::wetted_side_fraction(c, grid_.dx_data(), grid_.dy_data(),
                                                                           grid_.dz_data(), i, j, k, axis, sign)
                                         : c[k][j][i];
-        return mixture_viscosity(cf, pressure, face_strain_rate(grid_, v, axis, il, jl, kl));
+        const auto rate = face_strain_rate(grid_, v, axis, il, jl, kl);
+        return wall_mixture_viscosity(cf, pressure, rate, nullptr, bc, rate, axis);
       },
       BlockedView(grid_, blocked_).data());  // an obstacle's wall as a wall side: its velocity mirrored behind it
 }

@@ -37,9 +37,6 @@ double SoilPhase::mixture_viscosity(double c, double pressure, const rheology::S
 
 void SoilPhase::set_obstacle_friction(const Field* obstacle_index,
                                       const std::vector<std::optional<rheology::WallFriction>>& friction) {
-  // A mesh of layers' faces take no wall friction yet (update_face_viscosity_3d); the case file refuses it.
-  if (grid_.dimension() == 3)
-    throw std::invalid_argument("SoilPhase: an obstacle's own friction on a mesh of layers is not implemented");
   obstacle_index_ = obstacle_index;
   obstacle_walls_.assign(friction.size(), obstacle_wall);
   for (size_t k = 0; k < friction.size(); ++k) obstacle_walls_[k].friction = friction[k];
@@ -47,14 +44,15 @@ void SoilPhase::set_obstacle_friction(const Field* obstacle_index,
 
 // ... on the face of a wall: where the wall has a friction of its own, the soil there is no stronger
 // than the wall lets it be, the wall's strength at the wall's pressure regularised at the soil's
-// shear against the wall, wall_rate.xy (models/rheology/wall_friction.hpp).
+// shear against the wall, |D_tn| of wall_rate (models/rheology/wall_friction.hpp).
 double SoilPhase::wall_mixture_viscosity(double c, double pressure, const rheology::StrainRate& rate,
                                          const double* shares, const BoundaryCondition& wall,
-                                         const rheology::StrainRate& wall_rate) const {
+                                         const rheology::StrainRate& wall_rate, int wall_axis) const {
   if (!wall.friction || !rheology_ || !(c > 0.0)) return mixture_viscosity(c, pressure, rate, shares);
   const double p = pressure - ambient_pressure_;
   const double own = shares ? materials_->dynamic_viscosity(rate, p, shares) : rheology_->dynamic_viscosity(rate, p);
-  const double slide = rheology_->regularise(wall.friction->shear_strength(p), std::abs(wall_rate.xy));
+  const double slide =
+      rheology_->regularise(wall.friction->shear_strength(p), rheology::shear_against_wall(wall_rate, wall_axis));
   return settings_.viscosity_mixing(c, settings_.air_viscosity, std::min(own, slide));
 }
 
@@ -174,11 +172,11 @@ void SoilPhase::update_face_viscosity(FlowSolver& flow) const {
                                                                             i, j, axis, sign, grid_.radius_centre_data())
                                           : c[j][i];
           const auto rate = wall_rate();
-          return wall_mixture_viscosity(cf, pressure, rate, own_shares, bc, rate);
+          return wall_mixture_viscosity(cf, pressure, rate, own_shares, bc, rate, axis);
         }
         const auto cell_rate = cell_strain_rate(grid_, u.data(), v.data(), i, j);
         if (!bc.friction) return mixture_viscosity(c[j][i], pressure, cell_rate, own_shares);
-        return wall_mixture_viscosity(c[j][i], pressure, cell_rate, own_shares, bc, wall_rate());
+        return wall_mixture_viscosity(c[j][i], pressure, cell_rate, own_shares, bc, wall_rate(), axis);
       },
       BlockedView(grid_, blocked_).data());
 }

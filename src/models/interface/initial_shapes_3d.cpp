@@ -51,15 +51,16 @@ ShapeUnion3::ShapeUnion3(std::vector<Shape3> shapes) : shapes_(std::move(shapes)
   }
 }
 
+bool ShapeUnion3::shape_contains(std::size_t k, double x, double y, double z) const {
+  const auto& [lo, hi] = boxes_[k];
+  if (x < lo[0] || x > hi[0] || y < lo[1] || y > hi[1] || z < lo[2] || z > hi[2]) return false;
+  return std::holds_alternative<Extrusion>(shapes_[k]) ? sections_[k].contains(x, y)  // within the box, so the z range
+                                                       : interface::contains(shapes_[k], x, y, z);
+}
+
 bool ShapeUnion3::contains(double x, double y, double z) const {
-  for (std::size_t k = 0; k < shapes_.size(); ++k) {
-    const auto& [lo, hi] = boxes_[k];
-    if (x < lo[0] || x > hi[0] || y < lo[1] || y > hi[1] || z < lo[2] || z > hi[2]) continue;
-    const bool in = std::holds_alternative<Extrusion>(shapes_[k])
-                        ? sections_[k].contains(x, y)  // within the box, so within the z range
-                        : interface::contains(shapes_[k], x, y, z);
-    if (in) return true;
-  }
+  for (std::size_t k = 0; k < shapes_.size(); ++k)
+    if (shape_contains(k, x, y, z)) return true;
   return false;
 }
 

@@ -42,6 +42,7 @@ class ShapeUnion3 {
  public:
   explicit ShapeUnion3(std::vector<Shape3> shapes);
   bool contains(double x, double y, double z) const;
+  bool shape_contains(std::size_t k, double x, double y, double z) const;  // shape k alone
   std::size_t size() const { return shapes_.size(); }
   // Fraction of the cell [lower, upper] inside the union, by samples^3 midpoint sampling where the
   // cell's eight corners and centre disagree or a shape's outline may pass between them (error

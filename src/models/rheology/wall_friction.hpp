@@ -13,6 +13,8 @@
 #include <cmath>
 #include <numbers>
 
+#include "models/rheology/tensor.hpp"
+
 namespace granflow::rheology {
 
 struct WallFriction {
@@ -29,5 +31,16 @@ struct WallFriction {
     return adhesion + friction_coefficient * (pressure > 0.0 ? pressure : 0.0);
   }
 };
+
+// |D_tn|, the soil's shear against a wall normal to `normal_axis` (0, 1, 2: x, y, z): the tangential
+// part of D n, both of its components on a mesh of layers (the soil may slide along the wall in any
+// direction). A planar or axisymmetric rate has no out-of-plane shear, and this is |D_xy| exactly.
+[[nodiscard]] inline double shear_against_wall(const StrainRate& d, int normal_axis) noexcept {
+  switch (normal_axis) {
+    case 0: return std::hypot(d.xy, d.xz);
+    case 1: return std::hypot(d.xy, d.yz);
+    default: return std::hypot(d.xz, d.yz);
+  }
+}
 
 }  // namespace granflow::rheology

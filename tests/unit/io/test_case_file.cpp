@@ -1106,9 +1106,18 @@ TEST(CaseFile, AMeshOfLayersReadsObstacleSolids) {
       layered, {"numerics.pressure_coupling=\"coupled\"",
                 "obstacle=[{shape=\"sphere\", centre=[0.4, 0.0, 0.0], radius=0.1}, "
                 "{shape=\"polygon\", points=[[0.6, 0.0], [0.8, 0.0], [0.8, 0.2]]}, "
-                "{shape=\"box\", lower=[0.0, 0.0, -0.2], upper=[0.1, 0.05, 0.2]}]"});
+                "{shape=\"box\", lower=[0.0, 0.0, -0.2], upper=[0.1, 0.05, 0.2], friction_angle=12.0, adhesion=3.0}]",
+                "boundary.back={type=\"wall\", friction_angle=20.0}"});
   EXPECT_TRUE(c.obstacles.empty());
   ASSERT_EQ(c.obstacle_solids.size(), 3u);
+  // Walls and obstacles of their own friction, as on a planar mesh.
+  ASSERT_EQ(c.obstacle_friction.size(), 3u);
+  EXPECT_FALSE(c.obstacle_friction[0] || c.obstacle_friction[1]);
+  ASSERT_TRUE(c.obstacle_friction[2]);
+  EXPECT_DOUBLE_EQ(c.obstacle_friction[2]->friction_coefficient, std::tan(12.0 * std::numbers::pi / 180.0));
+  EXPECT_EQ(c.obstacle_friction[2]->adhesion, 3.0);
+  ASSERT_TRUE(boundary(c.flow.boundaries, Side::back).friction);
+  EXPECT_EQ(boundary(c.flow.boundaries, Side::back).friction->friction_angle_degrees, 20.0);
   EXPECT_TRUE(c.has_obstacles());
   EXPECT_TRUE(std::holds_alternative<interface::Sphere>(c.obstacle_solids[0]));
   ASSERT_TRUE(std::holds_alternative<interface::Extrusion>(c.obstacle_solids[1]));
@@ -1131,12 +1140,10 @@ TEST(CaseFile, AMeshOfLayersRefusesWhatItLacks) {
       {{"boundary.south={type=\"wall\", velocity=[0.0, 0.1]}"}, "boundary.south.velocity: expected 3 numbers"},
       {{"numerics.pressure_coupling=\"coupled\"", "numerics.air_band=12", "physics.gravity=[0.0, -9.81, 1.0]"},
        "numerics.air_band: needs gravity along y"},
-      {{"boundary.back={type=\"wall\", friction_angle=20.0}"}, "boundary.back: a wall's friction is planar yet"},
+      {{"boundary.back={type=\"wall\", friction_angle=20.0}", "soil.yield_pressure=\"cell\""},
+       "boundary.back: a wall's friction (friction_angle, adhesion) needs soil.yield_pressure = \"face\""},
       {{"numerics.wall_gradient=\"quadratic\""}, "numerics.wall_gradient"},
       {{"output.line=[{name=\"a\", start=[0.0, 0.1], end=[0.5, 0.1]}]"}, "output.line: line samples are planar yet"},
-      {{"numerics.pressure_coupling=\"coupled\"", "soil.yield_pressure=\"face\"",
-        "obstacle=[{shape=\"box\", lower=[0.0, 0.0], upper=[0.1, 0.1], friction_angle=10.0}]"},
-       "obstacle[0]: an obstacle's own friction is planar yet"},
       {{"numerics.pressure_coupling=\"coupled\"", "obstacle=[{shape=\"sphere\", centre=[5.0, 5.0, 5.0], radius=0.1}]"},
        "obstacle[0]: the shape within [4.9, 5.1] x [4.9, 5.1] x [4.9, 5.1] lies outside the domain"},
       {{"obstacle=[{shape=\"box\", lower=[0.0, 0.0, 0.0], upper=[0.1, 0.1, 0.1]}]"},
