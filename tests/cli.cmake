@@ -755,9 +755,17 @@ add_test(NAME cli_run_a_mesh_of_layers
 set_tests_properties(cli_run_a_mesh_of_layers PROPERTIES LABELS cli TIMEOUT 300)
 # Obstacles on a mesh of layers from the case file: the slit barrier's run writes the barrier's force
 # along x, y and z and each column's blocked height beside its soil height; plot_height_map.py sums the
-# soil, the share beyond the barrier, and draws the height map with the barrier's footprint.
+# soil, the share beyond the barrier, and draws the height map with the barrier's footprint. A line
+# sample through the barrier has three coordinates and w, no values inside it and the wall's velocity
+# on its face.
 add_test(NAME cli_run_obstacles_of_layers_and_plot_their_height_map
-         COMMAND sh -c "g=$0; c=$1; p=$2; d=$3; rm -rf \"$d\"; \"$g\" run \"$c\" -o \"$d\" --set time.end=0.01 --set 'output.times=[0.01]' --set output.fields=false --set output.progress_seconds=0 > \"$d.log\" 2>&1 || { cat \"$d.log\"; exit 1; }; head -1 \"$d/history.csv\" | grep -q ',force_back_z,force_obstacle_x,force_obstacle_y,force_obstacle_z$' && sed -n 2p \"$d/column_height_00001.csv\" | grep -q '^x,z,height,obstacle_height$' && grep -q '^0.415,0.095,0,0.03$' \"$d/column_height_00001.csv\" && grep -q '^0.415,0.025,0,0$' \"$d/column_height_00001.csv\" && out=$(/usr/bin/python3 \"$p\" \"$d\" --beyond 0.42 --png \"$d/map.png\") && echo \"$out\" | grep -q '^t = 0.01 s: soil volume 0.002 m^3, highest column 0.1000 m, 0.00 % of it beyond x = 0.42 m$' && test -s \"$d/map.png\" || { echo \"$out\"; exit 1; }"
+         COMMAND sh -c "g=$0; c=$1; p=$2; d=$3; rm -rf \"$d\"; \"$g\" run \"$c\" -o \"$d\" --set time.end=0.01 --set 'output.times=[0.01]' --set output.fields=false --set output.progress_seconds=0 --set \"output.line=[{name='across', start=[0.3,0.015,0.05], end=[0.5,0.015,0.05], points=21}]\" > \"$d.log\" 2>&1 || { cat \"$d.log\"; exit 1; }; head -1 \"$d/history.csv\" | grep -q ',force_back_z,force_obstacle_x,force_obstacle_y,force_obstacle_z$' && sed -n 2p \"$d/across.csv\" | grep -q '^x,y,z,u,v,w,p,viscosity,soil_fraction,' && grep -q '^0.41,0.015,0.05,nan,nan,nan,nan,' \"$d/across.csv\" && grep -q '^0.4,0.015,0.05,0,0,0,[0-9]' \"$d/across.csv\" && sed -n 2p \"$d/column_height_00001.csv\" | grep -q '^x,z,height,obstacle_height$' && grep -q '^0.415,0.095,0,0.03$' \"$d/column_height_00001.csv\" && grep -q '^0.415,0.025,0,0$' \"$d/column_height_00001.csv\" && out=$(/usr/bin/python3 \"$p\" \"$d\" --beyond 0.42 --png \"$d/map.png\") && echo \"$out\" | grep -q '^t = 0.01 s: soil volume 0.002 m^3, highest column 0.1000 m, 0.00 % of it beyond x = 0.42 m$' && test -s \"$d/map.png\" || { echo \"$out\"; exit 1; }"
                  $<TARGET_FILE:granflow> ${CMAKE_SOURCE_DIR}/cases/slit_barrier_3d.toml ${CMAKE_SOURCE_DIR}/scripts/plot_height_map.py
                  ${CMAKE_CURRENT_BINARY_DIR}/slit_barrier_run)
 set_tests_properties(cli_run_obstacles_of_layers_and_plot_their_height_map PROPERTIES LABELS cli TIMEOUT 300)
+# Line samples on a mesh of layers: a layer-independent water column's samples at any depth are the
+# planar run's (tests/line_samples_of_layers.sh).
+add_test(NAME cli_line_samples_of_layers_are_the_planar_ones
+         COMMAND sh ${CMAKE_CURRENT_SOURCE_DIR}/line_samples_of_layers.sh $<TARGET_FILE:granflow>
+                 ${CMAKE_SOURCE_DIR}/cases/water_dam_break.toml ${CMAKE_CURRENT_BINARY_DIR}/line_samples_of_layers)
+set_tests_properties(cli_line_samples_of_layers_are_the_planar_ones PROPERTIES LABELS cli TIMEOUT 300)

@@ -803,14 +803,29 @@ LineSample read_line_sample(TableReader& l, const GridSpec& mesh, const std::vec
                                 "files (NAME_NNNNN.csv) it could overwrite", l.path(), s.name));
   for (const auto& other : earlier)
     if (other.name == s.name) throw CaseError(fmt::format("{}.name: a second line named '{}'", l.path(), s.name));
-  s.start = l.required_pair("start");
-  s.end = l.required_pair("end");
-  for (const auto& [key, point] : {std::pair{"start", s.start}, std::pair{"end", s.end}})
-    for (int a = 0; a < 2; ++a)
-      if (!(point[a] >= mesh.lower[a] && point[a] <= mesh.upper[a]))
-        throw CaseError(fmt::format("{}.{}: [{}, {}] lies outside the domain [{}, {}] x [{}, {}]", l.path(), key,
-                                    point[0], point[1], mesh.lower[0], mesh.upper[0], mesh.lower[1],
-                                    mesh.upper[1]));
+  // [x, y] on a planar mesh, [x, y, z] on a mesh of layers.
+  const int axes = mesh.dimension();
+  auto point = [&](const char* key) -> std::array<double, 3> {
+    if (axes == 2) {
+      const auto p = l.required_pair(key);
+      return {p[0], p[1], 0.0};
+    }
+    if (!l.has(key)) throw CaseError(l.key_path(key) + ": missing" + l.misspelling_of(key));
+    const auto v = numbers_of_size(l, key, {}, 3, "[x, y, z]");
+    return {v[0], v[1], v[2]};
+  };
+  s.start = point("start");
+  s.end = point("end");
+  for (const auto& [key, p] : {std::pair{"start", s.start}, std::pair{"end", s.end}})
+    for (int a = 0; a < axes; ++a)
+      if (!(p[a] >= mesh.lower[a] && p[a] <= mesh.upper[a])) {
+        if (axes == 2)
+          throw CaseError(fmt::format("{}.{}: [{}, {}] lies outside the domain [{}, {}] x [{}, {}]", l.path(), key, p[0],
+                                      p[1], mesh.lower[0], mesh.upper[0], mesh.lower[1], mesh.upper[1]));
+        throw CaseError(fmt::format("{}.{}: [{}, {}, {}] lies outside the domain [{}, {}] x [{}, {}] x [{}, {}]", l.path(),
+                                    key, p[0], p[1], p[2], mesh.lower[0], mesh.upper[0], mesh.lower[1], mesh.upper[1],
+                                    mesh.lower[2], mesh.upper[2]));
+      }
   if (s.start == s.end) throw CaseError(fmt::format("{}.end: the line ends where it starts", l.path()));
   s.points = l.integer_in("points", 101, 2, 10000000);
   l.finish();
@@ -833,14 +848,10 @@ OutputSettings read_output(TableReader& top, const GridSpec& mesh, double end_ti
   if (double(output.times.size()) > max_outputs)
     throw CaseError(fmt::format("output.times: {} times, more than {:.0e} outputs", output.times.size(), max_outputs));
   output.fields = o.boolean("fields", true);
-  const bool layers = mesh.dimension() == 3;
   output.checkpoints = o.boolean("checkpoints", true);
   output.progress_seconds = o.number("progress_seconds", 2.0);
   o.require_range("progress_seconds", output.progress_seconds, 0.0, inf, "zero (no progress line) or positive");
-  for (TableReader l : o.tables("line")) {
-    if (layers) throw CaseError("output.line: line samples are planar yet; a mesh of layers writes its fields (output.fields)");
-    output.lines.push_back(read_line_sample(l, mesh, output.lines));
-  }
+  for (TableReader l : o.tables("line")) output.lines.push_back(read_line_sample(l, mesh, output.lines));
   o.finish();
   return output;
 }

@@ -37,7 +37,7 @@ struct TimeSettings {
 
 struct LineSample {
   std::string name;
-  std::array<double, 2> start{0, 0}, end{0, 0};
+  std::array<double, 3> start{0, 0, 0}, end{0, 0, 0};  // z = 0 on a planar mesh
   int points = 101;
 };
 

@@ -6,9 +6,9 @@
 
 namespace granflow {
 
-SideRules velocity_side_rules(const BoundarySet& boundaries, int axis) {
+SideRules velocity_side_rules(const BoundarySet& boundaries, int axis, int dimension) {
   SideRules rules;
-  for (Side s : planar_sides) {
+  for (Side s : sides_of_dimension(dimension)) {
     const BoundaryCondition& bc = boundary(boundaries, s);
     SideRule& r = rules[static_cast<int>(s)];
     const bool normal = normal_axis(s) == axis;
@@ -56,75 +56,131 @@ void bracket(int n, double lower, double upper, double x, auto centre, int& k0, 
 }
 }  // namespace
 
-double sample_field(const Grid& g, const std::vector<double>& values, const SideRules& sides, double x, double y) {
-  const int nx = g.nx(), ny = g.ny();
-  int a, b;
-  double wx, wy;
+double sample_field(const Grid& g, const std::vector<double>& values, const SideRules& sides, double x, double y,
+                    double z) {
+  const int nx = g.nx(), ny = g.ny(), nz = g.dimension() == 3 ? g.nz() : 1;
+  int a, b, c = 0;
+  double wx, wy, wz = 0.0;
   bracket(nx, g.spec().lower[0], g.spec().upper[0], x, [&](int i) { return g.xc(i); }, a, wx);
   bracket(ny, g.spec().lower[1], g.spec().upper[1], y, [&](int j) { return g.yc(j); }, b, wy);
+  if (nz > 1) bracket(nz, g.spec().lower[2], g.spec().upper[2], z, [&](int k) { return g.zc(k); }, c, wz);
   const auto rule = [&](Side s) -> const SideRule& { return sides[static_cast<int>(s)]; };
-  const auto cell = [&](int i, int j) { return values[size_t(j) * nx + i]; };
-  // Value at node column i (-1 = west side, nx = east side) and cell row j.
-  const auto in_row = [&](int i, int j) {
-    if (i == -1) return side_value(rule(Side::west), cell(0, j), nx > 1 ? cell(1, j) : 0.0, 0.5 * g.dx(0),
+  const auto cell = [&](int i, int j, int k) { return values[(size_t(k) * ny + j) * nx + i]; };
+  // Value at node column i (-1 = west side, nx = east side), cell row j and layer k.
+  const auto in_row = [&](int i, int j, int k) {
+    if (i == -1) return side_value(rule(Side::west), cell(0, j, k), nx > 1 ? cell(1, j, k) : 0.0, 0.5 * g.dx(0),
                                    nx > 1 ? g.xc(1) - g.xc(0) : 0.0);
-    if (i == nx) return side_value(rule(Side::east), cell(nx - 1, j), nx > 1 ? cell(nx - 2, j) : 0.0,
+    if (i == nx) return side_value(rule(Side::east), cell(nx - 1, j, k), nx > 1 ? cell(nx - 2, j, k) : 0.0,
                                    0.5 * g.dx(nx - 1), nx > 1 ? g.xc(nx - 1) - g.xc(nx - 2) : 0.0);
-    return cell(i, j);
+    return cell(i, j, k);
   };
-  // Value at node (i, j), j = -1 the south side, ny the north side. A corner takes the rule of the
-  // south or north side applied to the values of its column (the west or east side's).
-  const auto node = [&](int i, int j) {
-    if (j == -1) return side_value(rule(Side::south), in_row(i, 0), ny > 1 ? in_row(i, 1) : 0.0, 0.5 * g.dy(0),
+  // ... at node (i, j) of layer k, j = -1 the south side, ny the north side. A corner takes the rule
+  // of the south or north side applied to the values of its column (the west or east side's).
+  const auto in_layer = [&](int i, int j, int k) {
+    if (j == -1) return side_value(rule(Side::south), in_row(i, 0, k), ny > 1 ? in_row(i, 1, k) : 0.0, 0.5 * g.dy(0),
                                    ny > 1 ? g.yc(1) - g.yc(0) : 0.0);
-    if (j == ny) return side_value(rule(Side::north), in_row(i, ny - 1), ny > 1 ? in_row(i, ny - 2) : 0.0,
+    if (j == ny) return side_value(rule(Side::north), in_row(i, ny - 1, k), ny > 1 ? in_row(i, ny - 2, k) : 0.0,
                                    0.5 * g.dy(ny - 1), ny > 1 ? g.yc(ny - 1) - g.yc(ny - 2) : 0.0);
-    return in_row(i, j);
+    return in_row(i, j, k);
   };
-  const int i0 = a - 1, j0 = b - 1;  // node index k is cell k - 1
-  return (1 - wy) * ((1 - wx) * node(i0, j0) + wx * node(i0 + 1, j0)) +
-         wy * ((1 - wx) * node(i0, j0 + 1) + wx * node(i0 + 1, j0 + 1));
+  // ... at node (i, j, k), k = -1 the front side, nz the back side (a mesh of layers only), by the
+  // front's or back's rule on the values of the layers next to it.
+  const auto node = [&](int i, int j, int k) {
+    if (k == -1) return side_value(rule(Side::front), in_layer(i, j, 0), nz > 1 ? in_layer(i, j, 1) : 0.0,
+                                   0.5 * g.dz(0), nz > 1 ? g.zc(1) - g.zc(0) : 0.0);
+    if (k == nz) return side_value(rule(Side::back), in_layer(i, j, nz - 1), nz > 1 ? in_layer(i, j, nz - 2) : 0.0,
+                                   0.5 * g.dz(nz - 1), nz > 1 ? g.zc(nz - 1) - g.zc(nz - 2) : 0.0);
+    return in_layer(i, j, k);
+  };
+  const int i0 = a - 1, j0 = b - 1;  // node index n is cell n - 1
+  const auto bilinear = [&](int k) {
+    return (1 - wy) * ((1 - wx) * node(i0, j0, k) + wx * node(i0 + 1, j0, k)) +
+           wy * ((1 - wx) * node(i0, j0 + 1, k) + wx * node(i0 + 1, j0 + 1, k));
+  };
+  if (nz == 1) return bilinear(0);
+  const int k0 = c - 1;
+  return (1 - wz) * bilinear(k0) + wz * bilinear(k0 + 1);
 }
 
 void fill_obstacle_walls(const Grid& g, const std::vector<double>& blocked, const SideRule& wall,
                          std::vector<double>& values) {
-  const int nx = g.nx(), ny = g.ny();
-  const auto at = [&](int i, int j) { return size_t(j) * nx + i; };
-  const auto open = [&](int i, int j) { return i >= 0 && i < nx && j >= 0 && j < ny && blocked[at(i, j)] <= 0.5; };
+  const int nx = g.nx(), ny = g.ny(), nz = g.dimension() == 3 ? g.nz() : 1;
+  using Step = std::array<int, 3>;
+  const auto at = [&](int i, int j, int k) { return (size_t(k) * ny + j) * nx + i; };
+  const auto open = [&](int i, int j, int k) {
+    return i >= 0 && i < nx && j >= 0 && j < ny && k >= 0 && k < nz && blocked[at(i, j, k)] <= 0.5;
+  };
+  const auto width = [&](int axis, int n) { return axis == 0 ? g.dx(n) : axis == 1 ? g.dy(n) : g.dz(n); };
+  const auto centre = [&](int axis, int n) { return axis == 0 ? g.xc(n) : axis == 1 ? g.yc(n) : g.zc(n); };
   const std::vector<double> before = values;  // read open cells only, as they were
   std::vector<char> filled(values.size(), 0);
   // A blocked cell beside an open one: the line through the open cell's value and the wall's,
   // continued to the blocked cell's centre.
-  for (int j = 0; j < ny; ++j)
-    for (int i = 0; i < nx; ++i) {
-      if (open(i, j)) continue;
-      for (const auto [di, dj] : {std::array{0, 1}, std::array{0, -1}, std::array{1, 0}, std::array{-1, 0}}) {
-        const int io = i + di, jo = j + dj;  // the open cell in front of the wall
-        if (!open(io, jo)) continue;
-        const bool second = open(io + di, jo + dj);
-        const double d1 = di != 0 ? 0.5 * g.dx(io) : 0.5 * g.dy(jo);
-        const double d_blocked = di != 0 ? 0.5 * g.dx(i) : 0.5 * g.dy(j);
-        const double d2 = !second ? 0.0 : di != 0 ? std::abs(g.xc(io + di) - g.xc(io)) : std::abs(g.yc(jo + dj) - g.yc(jo));
-        const double next = before[at(io, jo)];
-        const double on_wall = side_value(wall, next, second ? before[at(io + di, jo + dj)] : 0.0, d1, d2);
-        values[at(i, j)] = next + (on_wall - next) * (d1 + d_blocked) / d1;
-        filled[at(i, j)] = 1;
-        break;
+  std::vector<Step> faces{{0, 1, 0}, {0, -1, 0}, {1, 0, 0}, {-1, 0, 0}};
+  if (nz > 1) faces.insert(faces.end(), {Step{0, 0, 1}, Step{0, 0, -1}});
+  for (int k = 0; k < nz; ++k)
+    for (int j = 0; j < ny; ++j)
+      for (int i = 0; i < nx; ++i) {
+        if (open(i, j, k)) continue;
+        for (const auto [di, dj, dk] : faces) {
+          const int io = i + di, jo = j + dj, ko = k + dk;  // the open cell in front of the wall
+          if (!open(io, jo, ko)) continue;
+          const int axis = di != 0 ? 0 : dj != 0 ? 1 : 2;
+          const int n_open = axis == 0 ? io : axis == 1 ? jo : ko, n_blocked = axis == 0 ? i : axis == 1 ? j : k;
+          const int step = di + dj + dk;
+          const bool second = open(io + di, jo + dj, ko + dk);
+          const double d1 = 0.5 * width(axis, n_open), d_blocked = 0.5 * width(axis, n_blocked);
+          const double d2 = second ? std::abs(centre(axis, n_open + step) - centre(axis, n_open)) : 0.0;
+          const double next = before[at(io, jo, ko)];
+          const double on_wall = side_value(wall, next, second ? before[at(io + di, jo + dj, ko + dk)] : 0.0, d1, d2);
+          values[at(i, j, k)] = next + (on_wall - next) * (d1 + d_blocked) / d1;
+          filled[at(i, j, k)] = 1;
+          break;
+        }
       }
-    }
-  // A blocked cell diagonal to an open one in a corner the obstacles make (both cells beside them
+  // A blocked cell diagonal to an open one across an edge the obstacles make (both cells beside them
   // blocked, filled above): the open cell's value mirrored across both walls, X + Y - O, which keeps a
   // linear field linear and, for a wall's value, is O itself mirrored twice.
-  for (int j = 0; j < ny; ++j)
-    for (int i = 0; i < nx; ++i) {
-      if (open(i, j) || filled[at(i, j)]) continue;
-      for (const auto [di, dj] : {std::array{1, 1}, std::array{-1, 1}, std::array{1, -1}, std::array{-1, -1}}) {
-        if (!open(i + di, j + dj) || !filled[at(i + di, j)] || !filled[at(i, j + dj)]) continue;
-        const double o = before[at(i + di, j + dj)], x = values[at(i, j + dj)], y = values[at(i + di, j)];
-        values[at(i, j)] = wall.kind == SideRule::Kind::value ? o : x + y - o;
-        break;
-      }
+  std::vector<Step> edges{{1, 1, 0}, {-1, 1, 0}, {1, -1, 0}, {-1, -1, 0}};
+  if (nz > 1)
+    for (int s = 0; s < 4; ++s) {
+      const int d1 = s % 2 ? -1 : 1, d2 = s / 2 ? -1 : 1;
+      edges.insert(edges.end(), {Step{d1, 0, d2}, Step{0, d1, d2}});
     }
+  std::vector<char> by_edge(values.size(), 0);
+  for (int k = 0; k < nz; ++k)
+    for (int j = 0; j < ny; ++j)
+      for (int i = 0; i < nx; ++i) {
+        if (open(i, j, k) || filled[at(i, j, k)]) continue;
+        for (const auto [di, dj, dk] : edges) {
+          // The two cells between: one step along each of the edge's two axes.
+          const Step first = di != 0 ? Step{di, 0, 0} : Step{0, dj, 0};
+          const Step other{di - first[0], dj - first[1], dk - first[2]};
+          const size_t a = at(i + first[0], j + first[1], k + first[2]), b = at(i + other[0], j + other[1], k + other[2]);
+          if (!open(i + di, j + dj, k + dk) || !filled[a] || !filled[b]) continue;
+          const double o = before[at(i + di, j + dj, k + dk)];
+          values[at(i, j, k)] = wall.kind == SideRule::Kind::value ? o : values[b] + values[a] - o;
+          by_edge[at(i, j, k)] = 1;
+          break;
+        }
+      }
+  if (nz == 1) return;
+  // On a mesh of layers, a blocked cell diagonal to an open one across a corner three walls make: the
+  // open cell's value mirrored across all three, X + Y + Z - 2 O from its mirrors across one wall each
+  // (the blocked cells beside it, filled above), and 2 v - O for a wall's value v.
+  for (int k = 0; k < nz; ++k)
+    for (int j = 0; j < ny; ++j)
+      for (int i = 0; i < nx; ++i) {
+        if (open(i, j, k) || filled[at(i, j, k)] || by_edge[at(i, j, k)]) continue;
+        for (int s = 0; s < 8; ++s) {
+          const int di = s & 1 ? -1 : 1, dj = s & 2 ? -1 : 1, dk = s & 4 ? -1 : 1;
+          const size_t x = at(i, j + dj, k + dk), y = at(i + di, j, k + dk), z = at(i + di, j + dj, k);
+          if (!open(i + di, j + dj, k + dk) || !filled[x] || !filled[y] || !filled[z]) continue;
+          const double o = before[at(i + di, j + dj, k + dk)];
+          values[at(i, j, k)] = wall.kind == SideRule::Kind::value ? 2.0 * wall.value - o : values[x] + values[y] + values[z] - 2.0 * o;
+          break;
+        }
+      }
 }
 
 }  // namespace granflow

@@ -1,7 +1,7 @@
 #pragma once
 // Point samples of a gathered cell field, for line output and comparisons with tabulated data.
 //
-// Between cell centres the sample is bilinear. Between the last centre and a side of the domain it
+// Between cell centres the sample is bilinear (trilinear on a mesh of layers). Between the last centre and a side of the domain it
 // interpolates towards the value on the side, which each side's rule gives: the boundary condition
 // (a wall's velocity), the next cell's value (a zero gradient), or the last two cells' line
 // continued (a pressure against a wall, which carries the hydrostatic gradient). So a profile
@@ -19,27 +19,31 @@ struct SideRule {
   Kind kind = Kind::zero_gradient;
   double value = 0.0;  // the value on the side, for Kind::value
 };
-using SideRules = std::array<SideRule, 4>;  // indexed by Side
+using SideRules = std::array<SideRule, 6>;  // indexed by Side (a planar mesh reads the first four)
 
-// The rules for velocity component `axis` (0 = x, 1 = y): a wall's velocity on a wall (normal part
-// zero), zero normal velocity and a free tangential one on a slip side, a zero gradient at an
-// atmosphere.
-SideRules velocity_side_rules(const BoundarySet& boundaries, int axis);
+// The rules for velocity component `axis` (0 = x, 1 = y, 2 = z) on the sides of a mesh of `dimension`:
+// a wall's velocity on a wall (normal part zero), zero normal velocity and a free tangential one on a
+// slip side, a zero gradient at an atmosphere.
+SideRules velocity_side_rules(const BoundarySet& boundaries, int axis, int dimension = 2);
 // The rules for the pressure: the last two cells' line continued on every side.
 SideRules pressure_side_rules();
 
-// Sample of a field gathered on rank 0 (index j * nx + i) at (x, y) inside the domain (bounds
-// included); points outside are taken at the nearest point of the domain.
-double sample_field(const Grid& grid, const std::vector<double>& values, const SideRules& sides, double x, double y);
+// Sample of a field gathered on rank 0 (index (k * ny + j) * nx + i) at (x, y, z) inside the domain
+// (bounds included); points outside are taken at the nearest point of the domain. A planar mesh
+// ignores z. Near an edge or a corner of the domain the rules apply along x, then y, then z: a
+// corner's value is the later side's rule applied to the values the earlier sides give.
+double sample_field(const Grid& grid, const std::vector<double>& values, const SideRules& sides, double x, double y,
+                    double z = 0.0);
 
 // An obstacle's walls for sampling: each blocked cell (blocked[k] > 0.5, gathered like values) beside
 // an open cell takes the value that puts the wall's rule on the face between them, so that a sample
 // within half a cell of an obstacle runs to the wall's value as one near a side of the domain does:
 // 2 v - open for a value v (a static wall's velocity, 0), the open cell's for a zero gradient, and for
 // the pressure the line of the open cell and the one beyond it continued. The open neighbour is the
-// nearest wall's, along y where the cell has open neighbours along both axes (an obstacle's corner).
-// A blocked cell with no open neighbour but one diagonal to it (in a corner two walls make) takes that
-// cell's value mirrored across both walls.
+// nearest wall's, along y, then x, then z where the cell has open neighbours along several axes (an
+// obstacle's edge or corner). A blocked cell with no open neighbour but one diagonal to it across an
+// edge (in a corner two walls make) takes that cell's value mirrored across both walls; on a mesh of
+// layers, one with only an open cell diagonal across a corner (three walls), mirrored across all three.
 void fill_obstacle_walls(const Grid& grid, const std::vector<double>& blocked, const SideRule& wall,
                          std::vector<double>& values);
 

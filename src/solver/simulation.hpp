@@ -108,7 +108,7 @@ class Simulation {
   std::string obstacles_;           // the blocked cells as domain() records them ("" without obstacles)
   std::vector<double> blocked_on_root_;  // the mask gathered to rank 0 (empty elsewhere, and without obstacles)
   std::function<bool(int, int)> open_square(int layer) const;
-  bool in_blocked_cell(double x, double y) const;
+  bool in_blocked_cell(double x, double y, double z) const;
   std::unique_ptr<FlowSolver> flow_;
   std::unique_ptr<SoilPhase> soil_;
   std::unique_ptr<VtkSeries> series_;

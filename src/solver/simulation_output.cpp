@@ -90,9 +90,10 @@ void Simulation::write_output() {
   ++output_index_;
 }
 
-// Each [[output.line]]: u, v, p and the viscosity, and with soil its fraction, strain norm and strain
-// rate norm, at evenly spaced points (io/field_sample.hpp: bilinear, running to the boundary's value
-// within half a cell of a side or an obstacle). u, v and p are already gathered on rank 0.
+// Each [[output.line]]: u, v (w on a mesh of layers), p and the viscosity, and with soil its fraction,
+// strain norm and strain rate norm, at evenly spaced points (io/field_sample.hpp: bilinear, trilinear
+// on a mesh of layers, running to the boundary's value within half a cell of a side or an obstacle).
+// u, v and p are already gathered on rank 0.
 void Simulation::write_line_samples(const std::vector<double>& u, const std::vector<double>& v,
                                     const std::vector<double>& p) const {
   if (config_.output.lines.empty()) return;
@@ -106,9 +107,12 @@ void Simulation::write_line_samples(const std::vector<double>& u, const std::vec
     SideRule obstacle_wall;
   };
   const SideRule no_slip{SideRule::Kind::value, 0.0}, linear{SideRule::Kind::linear, 0.0};
+  const int dimension = g.dimension();
   std::vector<Sampled> q;
-  q.push_back({"u", u, velocity_side_rules(config_.flow.boundaries, 0), no_slip});
-  q.push_back({"v", v, velocity_side_rules(config_.flow.boundaries, 1), no_slip});
+  q.push_back({"u", u, velocity_side_rules(config_.flow.boundaries, 0, dimension), no_slip});
+  q.push_back({"v", v, velocity_side_rules(config_.flow.boundaries, 1, dimension), no_slip});
+  if (dimension == 3)
+    q.push_back({"w", gather_to_root(g, flow_->velocity(2)), velocity_side_rules(config_.flow.boundaries, 2, 3), no_slip});
   q.push_back({"p", p, pressure_side_rules(), linear});
   q.push_back({"viscosity", gather_to_root(g, flow_->viscosity()), SideRules{}, SideRule{}});
   if (soil_) {
@@ -121,16 +125,20 @@ void Simulation::write_line_samples(const std::vector<double>& u, const std::vec
     for (auto& s : q) fill_obstacle_walls(g, blocked_on_root_, s.obstacle_wall, s.values);
   for (const auto& line : config_.output.lines) {
     auto body = [&](std::ostream& out) {
-      fmt::print(out, "# {} at t = {:.9g} s{}\nx,y", line.name, time_, steady_state_reached_ ? ", steady state reached" : "");
+      fmt::print(out, "# {} at t = {:.9g} s{}\nx,y{}", line.name, time_, steady_state_reached_ ? ", steady state reached" : "",
+                 dimension == 3 ? ",z" : "");
       for (const auto& s : q) fmt::print(out, ",{}", s.name);
       fmt::print(out, "\n");
       for (int k = 0; k < line.points; ++k) {
         const double f = double(k) / (line.points - 1);
         const double x = line.start[0] + f * (line.end[0] - line.start[0]);
         const double y = line.start[1] + f * (line.end[1] - line.start[1]);
+        const double z = line.start[2] + f * (line.end[2] - line.start[2]);
         fmt::print(out, "{:.9g},{:.9g}", x, y);
-        const bool solid = in_blocked_cell(x, y);  // inside an obstacle: no flow to sample
-        for (const auto& s : q) fmt::print(out, ",{:.12g}", solid ? std::nan("") : sample_field(g, s.values, s.sides, x, y));
+        if (dimension == 3) fmt::print(out, ",{:.9g}", z);
+        const bool solid = in_blocked_cell(x, y, z);  // inside an obstacle: no flow to sample
+        for (const auto& s : q)
+          fmt::print(out, ",{:.12g}", solid ? std::nan("") : sample_field(g, s.values, s.sides, x, y, z));
         fmt::print(out, "\n");
       }
     };
@@ -180,7 +188,7 @@ double toe_of(const std::vector<Segment>& surface) {
 
 // Whether the point lies inside the obstacles (on rank 0): in a blocked cell, and not on a face of
 // it to an open cell, to round-off, where it is on the wall and is sampled.
-bool Simulation::in_blocked_cell(double x, double y) const {
+bool Simulation::in_blocked_cell(double x, double y, double z) const {
   if (!blocked_) return false;
   const Grid& g = *grid_;
   auto index = [](int n, double v, auto&& high_face) {
@@ -192,16 +200,22 @@ bool Simulation::in_blocked_cell(double x, double y) const {
     }
     return lo;
   };
-  auto blocked_at = [&](double px, double py) {
+  const bool layers = g.dimension() == 3;
+  auto blocked_at = [&](double px, double py, double pz) {
     const int i = index(g.nx(), px, [&](int k) { return g.xf(k); }), j = index(g.ny(), py, [&](int k) { return g.yf(k); });
-    return blocked_on_root_[size_t(j) * g.nx() + i] > 0.5;
+    const int k = layers ? index(g.nz(), pz, [&](int n) { return g.zf(n); }) : 0;
+    return blocked_on_root_[(size_t(k) * g.ny() + j) * g.nx() + i] > 0.5;
   };
   // A point on an obstacle's face, to round-off (a line's points are computed, as are the faces),
   // is on its wall and is sampled: only a point blocked a little way off in every direction is inside.
   const double ex = 1e-10 * (config_.mesh.upper[0] - config_.mesh.lower[0]);
   const double ey = 1e-10 * (config_.mesh.upper[1] - config_.mesh.lower[1]);
-  return blocked_at(x - ex, y - ey) && blocked_at(x + ex, y - ey) && blocked_at(x - ex, y + ey) &&
-         blocked_at(x + ex, y + ey);
+  const double ez = layers ? 1e-10 * (config_.mesh.upper[2] - config_.mesh.lower[2]) : 0.0;
+  for (const double sz : {-1.0, 1.0})
+    if (!(blocked_at(x - ex, y - ey, z + sz * ez) && blocked_at(x + ex, y - ey, z + sz * ez) &&
+          blocked_at(x - ex, y + ey, z + sz * ez) && blocked_at(x + ex, y + ey, z + sz * ez)))
+      return false;
+  return true;
 }
 
 // The squares of four open cells, for the contours of the soil's surface (on rank 0): a blocked

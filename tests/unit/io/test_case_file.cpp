@@ -1117,6 +1117,7 @@ TEST(CaseFile, AMeshOfLayersReadsObstacleSolids) {
   EXPECT_DOUBLE_EQ(c.obstacle_friction[2]->friction_coefficient, std::tan(12.0 * std::numbers::pi / 180.0));
   EXPECT_EQ(c.obstacle_friction[2]->adhesion, 3.0);
   ASSERT_TRUE(boundary(c.flow.boundaries, Side::back).friction);
+
   EXPECT_EQ(boundary(c.flow.boundaries, Side::back).friction->friction_angle_degrees, 20.0);
   EXPECT_TRUE(c.has_obstacles());
   EXPECT_TRUE(std::holds_alternative<interface::Sphere>(c.obstacle_solids[0]));
@@ -1128,6 +1129,15 @@ TEST(CaseFile, AMeshOfLayersReadsObstacleSolids) {
   EXPECT_FALSE(interface::contains(c.obstacle_solids[1], 0.61, 0.1, 0.15));
   EXPECT_TRUE(std::holds_alternative<interface::Box3>(c.obstacle_solids[2]));
   EXPECT_FALSE(parse_case(layered).has_obstacles());
+}
+
+// A line sample's points have three coordinates on a mesh of layers (a planar one's z is 0).
+TEST(CaseFile, AMeshOfLayersReadsLineSamplesOfThreeCoordinates) {
+  const CaseConfig c = parse_case(layered, {"output.line=[{name=\"a\", start=[0.0, 0.1, -0.2], end=[0.8, 0.1, 0.2]}]"});
+  ASSERT_EQ(c.output.lines.size(), 1u);
+  EXPECT_EQ(c.output.lines[0].start, (std::array<double, 3>{0.0, 0.1, -0.2}));
+  EXPECT_EQ(c.output.lines[0].end, (std::array<double, 3>{0.8, 0.1, 0.2}));
+  EXPECT_EQ(c.output.lines[0].points, 101);
 }
 
 TEST(CaseFile, AMeshOfLayersRefusesWhatItLacks) {
@@ -1143,7 +1153,9 @@ TEST(CaseFile, AMeshOfLayersRefusesWhatItLacks) {
       {{"boundary.back={type=\"wall\", friction_angle=20.0}", "soil.yield_pressure=\"cell\""},
        "boundary.back: a wall's friction (friction_angle, adhesion) needs soil.yield_pressure = \"face\""},
       {{"numerics.wall_gradient=\"quadratic\""}, "numerics.wall_gradient"},
-      {{"output.line=[{name=\"a\", start=[0.0, 0.1], end=[0.5, 0.1]}]"}, "output.line: line samples are planar yet"},
+      {{"output.line=[{name=\"a\", start=[0.0, 0.1], end=[0.5, 0.1, 0.0]}]"}, "output.line[0].start: expected 3 numbers"},
+      {{"output.line=[{name=\"a\", start=[0.0, 0.1, 0.0], end=[0.5, 0.1, 0.3]}]"},
+       "output.line[0].end: [0.5, 0.1, 0.3] lies outside the domain [0, 0.8] x [0, 0.6] x [-0.2, 0.2]"},
       {{"numerics.pressure_coupling=\"coupled\"", "obstacle=[{shape=\"sphere\", centre=[5.0, 5.0, 5.0], radius=0.1}]"},
        "obstacle[0]: the shape within [4.9, 5.1] x [4.9, 5.1] x [4.9, 5.1] lies outside the domain"},
       {{"obstacle=[{shape=\"box\", lower=[0.0, 0.0, 0.0], upper=[0.1, 0.1, 0.1]}]"},

@@ -149,5 +149,96 @@ TEST(FieldSample, ObstacleCornersGiveTheWallsValue) {
   }
 }
 
+// On a mesh of layers: graded along all three axes, cells 5 x 4 x 3.
+GridSpec layered_spec() {
+  GridSpec spec;
+  spec.cells = {5, 4, 3};
+  spec.lower = {-0.3, 0.1, -0.2};
+  spec.upper = {0.9, 0.6, 0.4};
+  spec.grading = {2.0, 0.5, 1.5};
+  return spec;
+}
+
+template <class F>
+std::vector<double> layered_values(const Grid& g, F f) {
+  std::vector<double> v(size_t(g.nx()) * g.ny() * g.nz());
+  for (int k = 0; k < g.nz(); ++k)
+    for (int j = 0; j < g.ny(); ++j)
+      for (int i = 0; i < g.nx(); ++i) v[(size_t(k) * g.ny() + j) * g.nx() + i] = f(g.xc(i), g.yc(j), g.zc(k));
+  return v;
+}
+
+// A linear field is trilinear: sampled exactly between the centres, and by the pressure's rule (the
+// last two cells' line continued) up to every side, edge and corner of the box.
+TEST(FieldSample, ALayeredMeshSamplesALinearFieldExactlyUpToItsSidesEdgesAndCorners) {
+  const Grid g(PETSC_COMM_SELF, layered_spec());
+  ASSERT_EQ(g.dimension(), 3);
+  const auto f = [](double x, double y, double z) { return 2.0 + 3.0 * x - 5.0 * y + 7.0 * z; };
+  const auto values = layered_values(g, f);
+  const auto& s = g.spec();
+  const int n = 9;
+  for (int a = 0; a <= n; ++a)
+    for (int b = 0; b <= n; ++b)
+      for (int c = 0; c <= n; ++c) {
+        const double x = s.lower[0] + (s.upper[0] - s.lower[0]) * a / n, y = s.lower[1] + (s.upper[1] - s.lower[1]) * b / n,
+                     z = s.lower[2] + (s.upper[2] - s.lower[2]) * c / n;
+        EXPECT_NEAR(sample_field(g, values, pressure_side_rules(), x, y, z), f(x, y, z), 1e-12) << x << ", " << y << ", " << z;
+      }
+  // Outside the box: its nearest point.
+  EXPECT_NEAR(sample_field(g, values, pressure_side_rules(), 0.2, 0.3, 9.0), f(0.2, 0.3, 0.4), 1e-12);
+}
+
+// The front and back sides' rules: a wall's velocity on the front, no normal velocity and the next
+// cell's tangential one on a slip back side.
+TEST(FieldSample, TheFrontAndBackGiveTheirVelocityAsTheOtherSidesDo) {
+  const Grid g(PETSC_COMM_SELF, layered_spec());
+  BoundarySet b;
+  b[int(Side::front)].kind = BoundaryKind::wall;
+  b[int(Side::front)].wall_velocity = {0.5, 0.0, 0.0};
+  b[int(Side::back)].kind = BoundaryKind::slip;
+  const auto f = [](double x, double y, double z) { return 0.7 + x * x + y - z; };
+  const auto values = layered_values(g, f);
+  const SideRules u = velocity_side_rules(b, 0, 3), w = velocity_side_rules(b, 2, 3);
+  const double x = g.xc(2), y = g.yc(1), front = g.spec().lower[2], back = g.spec().upper[2];
+  EXPECT_DOUBLE_EQ(sample_field(g, values, u, x, y, front), 0.5);
+  EXPECT_DOUBLE_EQ(sample_field(g, values, w, x, y, front), 0.0);
+  EXPECT_NEAR(sample_field(g, values, u, x, y, 0.5 * (front + g.zc(0))), 0.5 * (0.5 + f(x, y, g.zc(0))), 1e-12);
+  EXPECT_DOUBLE_EQ(sample_field(g, values, w, x, y, back), 0.0);
+  EXPECT_NEAR(sample_field(g, values, u, x, y, back), f(x, y, g.zc(g.nz() - 1)), 1e-12);
+  // A planar mesh's rules leave the front and back at their defaults.
+  EXPECT_EQ(velocity_side_rules(b, 0)[int(Side::front)].kind, SideRule::Kind::zero_gradient);
+}
+
+// Obstacles of layers: a floor slab (rows 0-1), a wall (columns 4-5) and a front slab (layer 0) meet
+// in a corner of three walls at (0.4, 0.2, 0.1) on cells of 0.1 m; the blocked cells beside the open
+// ones, across the edges and across the corner take the walls' values, so that a linear pressure is
+// sampled exactly up to the corner and a static wall's velocity is 0 on it.
+TEST(FieldSample, ObstacleCornersOfThreeWallsGiveTheWallsValue) {
+  GridSpec spec;
+  spec.cells = {6, 5, 4};
+  spec.upper = {0.6, 0.5, 0.4};
+  const Grid g(PETSC_COMM_SELF, spec);
+  std::vector<double> blocked(120, 0.0);
+  for (int k = 0; k < 4; ++k)
+    for (int j = 0; j < 5; ++j)
+      for (int i = 0; i < 6; ++i) blocked[(size_t(k) * 5 + j) * 6 + i] = i >= 4 || j <= 1 || k == 0 ? 1.0 : 0.0;
+  const auto pressure = [](double x, double y, double z) { return 2.0 + 3.0 * x - 5.0 * y + 4.0 * z; };
+  auto p = layered_values(g, pressure), u = layered_values(g, [](double, double, double) { return 0.8; });
+  for (size_t n = 0; n < blocked.size(); ++n)
+    if (blocked[n] > 0.5) p[n] = u[n] = 1e3;  // stale values the samples must not read
+  fill_obstacle_walls(g, blocked, SideRule{SideRule::Kind::linear, 0.0}, p);
+  fill_obstacle_walls(g, blocked, SideRule{SideRule::Kind::value, 0.0}, u);
+  // The cell across the corner from the open cell (3, 2, 1): the open cell mirrored across all three.
+  EXPECT_NEAR(p[(size_t(0) * 5 + 1) * 6 + 4], pressure(0.45, 0.15, 0.05), 1e-12);
+  EXPECT_NEAR(u[(size_t(0) * 5 + 1) * 6 + 4], -0.8, 1e-12);
+  const double cx = 0.4, cy = 0.2, cz = 0.1;
+  for (const auto& [x, y, z] : {std::array{cx, cy, cz}, std::array{cx - 0.02, cy + 0.01, cz + 0.03},
+                                std::array{cx - 0.04, cy + 0.03, cz + 0.01}, std::array{cx, cy + 0.02, cz + 0.02}}) {
+    EXPECT_NEAR(sample_field(g, p, pressure_side_rules(), x, y, z), pressure(x, y, z), 1e-12) << x << ", " << y << ", " << z;
+    EXPECT_LT(std::abs(sample_field(g, u, SideRules{}, x, y, z)), 0.8) << x << ", " << y << ", " << z;
+  }
+  EXPECT_NEAR(sample_field(g, u, SideRules{}, cx, cy, cz), 0.0, 1e-12);
+}
+
 }  // namespace
 }  // namespace granflow
