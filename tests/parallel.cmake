@@ -100,10 +100,12 @@ set_tests_properties(vof_sweeps_3d_2_ranks PROPERTIES
 # vertical stay at rest, and a granular column spreads as its axisymmetric twin; a column under the
 # coupled solve with an air band, split across x or z (25 x 10 x 25 cells), moves as over the whole
 # domain, momentum moved with its mass across the ranks' join; a collapse against a floor and two walls
-# built of blocked cells moves as against the domain's own (the blocked cells mirrored across the join).
+# built of blocked cells moves as against the domain's own (the blocked cells mirrored across the join);
+# periodic strips of layers are the planar runs (the water strip split along x, across its join), and
+# a layer slides between frictional side walls as on one rank.
 add_test(NAME flow_3d_2_ranks
          COMMAND ${MPIRUN} -np 2 --oversubscribe $<TARGET_FILE:verification_tests>
-                 --gtest_filter=FlowSolver3d.ALayerIndependentCavityIsThePlanarOne:FlowSolver3d.FlatLayersUnderGravityStayAtRest:SoilPhase3d.ALayerIndependentWaterColumnIsThePlanarOne:SoilPhase3d.WaterLeavesThroughAnOpenSideAsInThePlanarRun:SoilPhase3d.AGranularColumnSpreadsAsTheAxisymmetricOne:AirBand.AColumnOnAMeshOfLayersMovesAsInTheWholeDomain:Obstacles3d.BlockedFloorAndWallsAreTheDomainsOwn)
+                 --gtest_filter=FlowSolver3d.ALayerIndependentCavityIsThePlanarOne:FlowSolver3d.FlatLayersUnderGravityStayAtRest:SoilPhase3d.ALayerIndependentWaterColumnIsThePlanarOne:SoilPhase3d.WaterLeavesThroughAnOpenSideAsInThePlanarRun:SoilPhase3d.AGranularColumnSpreadsAsTheAxisymmetricOne:AirBand.AColumnOnAMeshOfLayersMovesAsInTheWholeDomain:Obstacles3d.BlockedFloorAndWallsAreTheDomainsOwn:Periodic3d.*:SlidingChannel.*)
 set_tests_properties(flow_3d_2_ranks PROPERTIES
   LABELS parallel TIMEOUT 300
   ENVIRONMENT "OMPI_ALLOW_RUN_AS_ROOT=1;OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1;OMPI_MCA_rmaps_base_oversubscribe=1")

@@ -905,7 +905,6 @@ void require_solid_in_domain(const interface::Shape3& solid, const GridSpec& mes
 void require_what_layers_have(const CaseConfig& c) {
   if (c.mesh.dimension() == 2) return;
   const auto& num = c.flow.numerics;
-  if (c.mesh.periodic_x) throw CaseError("boundary.west.type: periodic sides are planar yet (not on a mesh of layers)");
   if (num.quadratic_wall_gradient)
     throw CaseError("numerics.wall_gradient: \"quadratic\" is planar yet; a mesh of layers takes \"two_point\"");
   if (c.soil && !c.soil->materials.empty())

@@ -49,11 +49,12 @@ void fill_owned_faces(const Grid& g, Field& x_faces, Field& y_faces, Interior in
 // On a mesh of several layers: faces[a] holds the faces normal to axis a, [k][j][i] the face between
 // cell (i, j, k) and its neighbour at +1 along a, index -1 along a the low boundary face; each owned
 // cell's six faces, those on the low side of the block included. interior(axis, i, j, k) and
-// boundary(axis, i, j, k, sign) as above, obstacles' walls too; no periodic sides.
+// boundary(axis, i, j, k, sign) as above, obstacles' walls too. With periodic x the end faces along x
+// are interior faces between a cell and a ghost of the other end, as in 2D.
 template <class Interior, class Boundary>
 void fill_owned_faces_3d(const Grid& g, const std::array<Field*, 3>& faces, Interior interior, Boundary boundary,
                          VolumeView blocked = nullptr) {
-  assert(g.dimension() == 3 && !g.periodic_x());
+  assert(g.dimension() == 3);
   const auto& b = g.owned();
   const int n[3] = {g.nx(), g.ny(), g.nz()};
   const int start[3] = {b.xs, b.ys, b.zs}, end[3] = {b.xe(), b.ye(), b.ze()};
@@ -67,11 +68,12 @@ void fill_owned_faces_3d(const Grid& g, const std::array<Field*, 3>& faces, Inte
         for (int i = lo[0]; i < end[0]; ++i) {
           const int along = axis == 0 ? i : (axis == 1 ? j : k);
           const int in = i + (axis == 0), jn = j + (axis == 1), kn = k + (axis == 2);
-          if (along < 0) {
+          const bool joined = axis == 0 && g.periodic_x();
+          if (along < 0 && !joined) {
             a[k][j][i] = boundary(axis, in, jn, kn, -1);
             continue;
           }
-          if (along + 1 == n[axis]) {
+          if (along + 1 == n[axis] && !joined) {
             a[k][j][i] = boundary(axis, i, j, k, 1);
             continue;
           }

@@ -21,20 +21,10 @@ namespace {
 
 std::unique_ptr<Field> make_field(const Grid& g) { return std::make_unique<Field>(g); }
 
-
-// What a mesh of layers does not have yet (docs/method.md, "Known limitations"): a periodic side. The
-// case file refuses the same, naming the keys (require_what_layers_have in io/case_file.cpp), and so
-// does SoilPhase.
-void refuse_what_3d_lacks(const Grid& grid, const FlowSettings&) {
-  if (grid.dimension() != 3) return;
-  if (grid.periodic_x()) throw std::invalid_argument("FlowSolver: a mesh of layers with a periodic side is not implemented");
-}
-
 }  // namespace
 
 FlowSolver::FlowSolver(const Grid& grid, const FlowSettings& settings)
     : grid_(grid), settings_(settings), dimension_(grid.dimension()) {
-  refuse_what_3d_lacks(grid, settings);
   for (int a = 0; a < dimension_; ++a) {
     vel_[a] = make_field(grid);
     vel_old_[a] = make_field(grid);

@@ -173,7 +173,7 @@ void SoilPhase::advect_3d(FlowSolver& flow, double dt) {
   const double h = dt / substeps;
   const auto& b = grid_.owned();
   const AxisViews face(grid_, [&](int a) -> const Field& { return flow.face_velocity(a); });
-  const interface::DomainCells3 domain{grid_.nx(), grid_.ny(), grid_.nz()};
+  const interface::DomainCells3 domain{grid_.nx(), grid_.ny(), grid_.nz(), grid_.periodic_x()};
   // Under the conservative momentum transport the soil volume per unit area through each face adds up
   // in the flow's mass fluxes, which become mass fluxes below, as in 2D (soil_advection.cpp); one soil.
   const bool carry_mass = flow.carries_mass_transport();
@@ -211,6 +211,19 @@ void SoilPhase::advect_3d(FlowSolver& flow, double dt) {
         interface::vof_sweep(axis, h, c.volume(), face.view[axis], cc.volume(), widths_of(grid_), b, c_new.volume(), domain,
                              carry_mass ? soil_through[axis]->volume() : nullptr);
         outflow_ += interface::boundary_outflow(axis, h, c.volume(), face.view[axis], widths_of(grid_), b, domain);
+        if (axis == 0 && grid_.periodic_x() && b.xe() == grid_.nx()) {
+          // The soil through the join east of the last column runs on in the budget's first moment
+          // (join_moment_, soil_diagnostics.cpp): the donor's excess over the air's density times the
+          // strip's length.
+          const int i = grid_.nx() - 1;
+          const double length = grid_.spec().upper[0] - grid_.spec().lower[0];
+          for (int k = b.zs; k < b.ze(); ++k)
+            for (int j = b.ys; j < b.ye(); ++j) {
+              const double moved =
+                  interface::face_soil_volume_x(i, j, k, h, c.volume(), face.view[0], widths_of(grid_), domain);
+              join_moment_ += (settings_.soil_density - settings_.air_density) * length * moved;
+            }
+        }
       }
       fill_fraction_ghosts(*to);
       std::swap(from, to);
@@ -375,6 +388,10 @@ SoilBudget SoilPhase::budget_3d(const FlowSolver& flow) {
   const AxisViews vel(grid_, [&](int a) -> const Field& { return flow.velocity(a); });
   double s[7] = {0, 0, 0, 0, compute_dissipation_3d(flow), 0, outflow_};
   const BlockedView mask(grid_, blocked_);
+  // A periodic strip's potential energy as in 2D (soil_diagnostics.cpp): the soil's weight along x in
+  // excess of the air's, its first moment run on through the join.
+  const bool periodic = grid_.periodic_x();
+  if (periodic) s[3] -= g[0] * join_moment_;
   for (int k = b.zs; k < b.ze(); ++k)
     for (int j = b.ys; j < b.ye(); ++j)
       for (int i = b.xs; i < b.xe(); ++i) {
@@ -386,7 +403,10 @@ SoilBudget SoilPhase::budget_3d(const FlowSolver& flow) {
         s[0] += cc * V;
         s[1] += (1.0 - cc) * V;
         s[2] += 0.5 * phase_density * speed2 * V;
-        s[3] -= phase_density * (g[0] * grid_.xc(i) + g[1] * grid_.yc(j) + g[2] * grid_.zc(k)) * V;
+        if (periodic)
+          s[3] -= ((phase_density - rho_a) * g[0] * grid_.xc(i) + phase_density * (g[1] * grid_.yc(j) + g[2] * grid_.zc(k))) * V;
+        else
+          s[3] -= phase_density * (g[0] * grid_.xc(i) + g[1] * grid_.yc(j) + g[2] * grid_.zc(k)) * V;
         s[5] += rho[k][j][i] * V;
       }
   double t[7];

@@ -350,20 +350,5 @@ TEST(FlowSolver3d, FlatLayersUnderGravityStayAtRest) {
   expect_flat_layers_at_rest(PressureCoupling::coupled);
 }
 
-// What a mesh of layers does not have yet is refused at once, with the reason.
-TEST(FlowSolver3d, RefusesWhatAMeshOfLayersLacks) {
-  GridSpec strip;
-  strip.cells = {4, 4, 4};
-  strip.periodic_x = true;
-  const Grid periodic(PETSC_COMM_SELF, strip);
-  try {
-    FlowSolver flow(periodic, walls_everywhere());
-    ADD_FAILURE() << "a periodic side on a mesh of layers was not refused";
-  } catch (const std::invalid_argument& e) {
-    EXPECT_NE(std::string(e.what()).find("a mesh of layers with a periodic side is not implemented"), std::string::npos)
-        << e.what();
-  }
-}
-
 }  // namespace
 }  // namespace granflow

@@ -322,9 +322,6 @@ TEST(SoilPhase3d, RefusesWhatAMeshOfLayersLacks) {
   FlowSettings quadratic = flow;
   quadratic.numerics.quadratic_wall_gradient = true;
   refused(quadratic, sand_column(), "wall_gradient");
-  FlowSettings friction = flow;
-  friction.boundaries[int(Side::south)].friction = rheology::WallFriction{};
-  refused(friction, sand_column(), "south side");
   EXPECT_NO_THROW(SoilPhase(g, flow, sand_column()));
 }
 

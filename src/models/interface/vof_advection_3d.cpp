@@ -24,8 +24,9 @@ double swept_fraction(const double* const* const* c, CellWidths3 w, const Index&
   if (cu <= 0.0) return 0.0;
   if (cu >= 1.0) return 1.0;
   const int n[3] = {domain.nx, domain.ny, domain.nz};
+  const int first_bounded = domain.periodic_x ? 1 : 0;  // beyond a periodic side: the other end's cells
   auto outside = [&](const Index& q) {
-    for (int a = 0; a < 3; ++a)
+    for (int a = first_bounded; a < 3; ++a)
       if (q[a] < 0 || q[a] >= n[a]) return true;
     return false;
   };
@@ -38,7 +39,7 @@ double swept_fraction(const double* const* const* c, CellWidths3 w, const Index&
       for (int di = 0; di < 3; ++di) {
         Index q{p[0] - 1 + di, p[1] - 1 + dj, p[2] - 1 + dk};
         if (bounded)  // the soil going on unchanged beyond a side
-          for (int a = 0; a < 3; ++a) q[a] = std::clamp(q[a], 0, n[a] - 1);
+          for (int a = first_bounded; a < 3; ++a) q[a] = std::clamp(q[a], 0, n[a] - 1);
         const double v = at(c, q);
         b.c[dk][dj][di] = v;
         lo = std::min(lo, v);
@@ -125,6 +126,7 @@ double boundary_outflow(int axis, double dt, const double* const* const* c, cons
   const int n[3] = {domain.nx, domain.ny, domain.nz};
   const int start[3] = {o.xs, o.ys, o.zs}, end[3] = {o.xe(), o.ye(), o.ze()};
   double out = 0.0;
+  if (axis == 0 && domain.periodic_x) return out;
   // The low boundary's faces (index -1 along the axis) and the high one's (n - 1), where owned.
   for (const int s : {-1, n[axis] - 1}) {
     if (s == -1 ? start[axis] != 0 : end[axis] != n[axis]) continue;
@@ -143,6 +145,11 @@ double boundary_outflow(int axis, double dt, const double* const* const* c, cons
         }
   }
   return out;
+}
+
+double face_soil_volume_x(int i, int j, int k, double dt, const double* const* const* c,
+                          const double* const* const* u, CellWidths3 w, DomainCells3 domain) {
+  return face_flux(c, u[k][j][i], dt, w, Index{i, j, k}, 0, domain).f * w.dy[j] * w.dz[k];
 }
 
 void soil_region(const double* const* const* in, CellBox o, double*** region, double floor) {

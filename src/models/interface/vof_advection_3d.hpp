@@ -28,9 +28,11 @@ struct CellWidths3 {
 
 // The domain's cells, for a sweep to treat the cells beyond it as boundary ghosts (soil coming in
 // is a plain donor at the ghost's value; a cell next to a side fits its plane as if the soil went on
-// unchanged beyond it). nx = 0: the ghosts are read as cells (a periodic or reference driver's).
+// unchanged beyond it). nx = 0: the ghosts are read as cells (a reference driver's). periodic_x: the
+// ghosts beyond the west and east sides are the other end's cells (read as cells), as in 2D.
 struct DomainCells3 {
   int nx = 0, ny = 0, nz = 0;
+  bool periodic_x = false;
 };
 
 // One directional sweep (axis 0, 1 or 2):
@@ -47,9 +49,15 @@ void vof_sweep(int axis, double dt, const double* const* const* c, const double*
 
 // Soil volume that the sweep of `axis` carries out of the domain through the boundary faces of the
 // owned cells (negative for inflow): the same face fluxes as vof_sweep given the same domain, so that
-// the soil in the domain plus the outflow of such sweeps is conserved. Needs domain.nx > 0.
+// the soil in the domain plus the outflow of such sweeps is conserved. Needs domain.nx > 0. Along a
+// periodic x there are no boundary faces.
 double boundary_outflow(int axis, double dt, const double* const* const* c, const double* const* const* face_velocity,
                         CellWidths3 widths, CellBox owned, DomainCells3 domain);
+
+// Soil volume that the x sweep carries through face (i, j, k), between cells i and i + 1, positive
+// along x: the F vof_sweep takes there, times the face's area (a periodic strip's join, for its budget).
+double face_soil_volume_x(int i, int j, int k, double dt, const double* const* const* c,
+                          const double* const* const* face_velocity, CellWidths3 widths, DomainCells3 domain);
 
 // cc = 1 where c > 0.5, else 0, on the owned cells; once per step, before the first sweep.
 void dilatation_indicator(const double* const* const* c, CellBox owned, double*** cc);

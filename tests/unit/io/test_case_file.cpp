@@ -1140,6 +1140,23 @@ TEST(CaseFile, AMeshOfLayersReadsLineSamplesOfThreeCoordinates) {
   EXPECT_EQ(c.output.lines[0].points, 101);
 }
 
+// Periodic west and east sides on a mesh of layers, with the planar mesh's rules (cells of one width
+// along x, no air band across them).
+TEST(CaseFile, AMeshOfLayersMayBePeriodicAlongX) {
+  const std::vector<std::string> joined = {"boundary.west={type = \"periodic\"}", "boundary.east={type = \"periodic\"}"};
+  const CaseConfig c = parse_case(layered, joined);
+  EXPECT_TRUE(c.mesh.periodic_x);
+  EXPECT_EQ(c.flow.periodic_ambient_density, 1.0);  // the air's
+  std::vector<std::string> graded = joined;
+  graded.push_back("mesh.grading=[2.0, 1.0, 1.0]");
+  EXPECT_NE(error_of(layered, graded).find("mesh.grading: periodic west and east sides need cells of one width along x"),
+            std::string::npos);
+  std::vector<std::string> banded = joined;
+  banded.insert(banded.end(), {"numerics.pressure_coupling=\"coupled\"", "numerics.air_band=12"});
+  EXPECT_NE(error_of(layered, banded).find("numerics.air_band: the air band's region does not reach across periodic sides"),
+            std::string::npos);
+}
+
 TEST(CaseFile, AMeshOfLayersRefusesWhatItLacks) {
   const std::pair<std::vector<std::string>, const char*> refused[] = {
       {{"mesh.cells=[8, 6, 1]"}, "one cell along z is a planar mesh"},
