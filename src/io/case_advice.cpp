@@ -64,7 +64,7 @@ std::vector<std::string> case_advice(const CaseConfig& config) {
   const bool exponential = config.soil->rheology->regularisation == rheology::Regularisation::exponential;
   const bool holds_rest = config.flow.numerics.pressure_coupling == PressureCoupling::coupled &&
                           config.soil->face_fraction == FaceFraction::face;
-  if (exponential && !holds_rest && !layers)  // a mesh of layers has no coupled solve yet
+  if (exponential && !holds_rest)
     advice.push_back(fmt::format(
         "soil.rheology.regularisation = \"exponential\" with numerics.pressure_coupling = \"{}\" and "
         "soil.face_fraction = \"{}\": a pile may not come to rest next to air. Soil at the exponential "

@@ -905,8 +905,6 @@ void require_solid_in_domain(const interface::Shape3& solid, const GridSpec& mes
 void require_what_layers_have(const CaseConfig& c) {
   if (c.mesh.dimension() == 2) return;
   const auto& num = c.flow.numerics;
-  if (num.quadratic_wall_gradient)
-    throw CaseError("numerics.wall_gradient: \"quadratic\" is planar yet; a mesh of layers takes \"two_point\"");
   if (c.soil && !c.soil->materials.empty())
     throw CaseError("soil.materials: several soils are planar yet (not on a mesh of layers)");
   if (c.soil)
@@ -950,7 +948,8 @@ void require_consistent(const CaseConfig& c) {
   }
   if (c.mesh.periodic_x) {
     if (c.mesh.axisymmetric)
-      throw CaseError("boundary.west.type: periodic sides need a planar mesh (this case has mesh.geometry = \"axisymmetric\")");
+      throw CaseError("boundary.west.type: periodic sides are not on an axisymmetric mesh (this case has mesh.geometry = "
+                      "\"axisymmetric\")");
     if (c.mesh.grading[0] != 1.0)
       throw CaseError(fmt::format("mesh.grading: periodic west and east sides need cells of one width along x, so "
                                   "that the two ends meet (grading {} along x; give 1.0)", c.mesh.grading[0]));

@@ -129,15 +129,38 @@ rheology::StrainRate cell_strain_rate(const Grid& g, const VelocityArrays3& v, i
   return symmetric_part(G);
 }
 
-rheology::StrainRate face_strain_rate(const Grid& g, const VelocityArrays3& v, int axis, int i, int j, int k) {
-  const Index3 p{i, j, k};
+namespace {
+// The velocity gradient G[c][d] on the face between cell p and its neighbour at +1 along axis.
+void face_gradient_3d(const Grid& g, const VelocityArrays3& v, int axis, const Index3& p, double G[3][3]) {
   Index3 q = p;
   ++q[axis];
   const double h = centre_along(g, axis, q[axis]) - centre_along(g, axis, p[axis]);
-  double G[3][3];
   for (int c = 0; c < 3; ++c)
     for (int d = 0; d < 3; ++d)
       G[c][d] = d == axis ? (value(v[c], q) - value(v[c], p)) / h : 0.5 * (central(g, v[c], p, d) + central(g, v[c], q, d));
+}
+}  // namespace
+
+rheology::StrainRate face_strain_rate(const Grid& g, const VelocityArrays3& v, int axis, int i, int j, int k) {
+  double G[3][3];
+  face_gradient_3d(g, v, axis, {i, j, k}, G);
+  return symmetric_part(G);
+}
+
+rheology::StrainRate quadratic_wall_strain_rate(const Grid& g, const VelocityArrays3& v, int axis, int i, int j, int k,
+                                                int sign, std::array<double, 3> wall_velocity, bool no_shear) {
+  const Index3 p{i, j, k};
+  Index3 low = p, inner = p;  // the wall face lies after `low`; `inner` is the second cell from the wall
+  if (sign < 0) --low[axis];
+  inner[axis] -= sign;
+  double G[3][3];
+  face_gradient_3d(g, v, axis, low, G);
+  const double h1 = g.width(axis, p[axis]), h2 = g.width(axis, inner[axis]);
+  const double s1 = 0.5 * h1, s2 = h1 + 0.5 * h2;
+  for (int c = 0; c < 3; ++c) {
+    const double wall = c == axis ? 0.0 : wall_velocity[c];
+    G[c][axis] = c != axis && no_shear ? 0.0 : -sign * quadratic_wall_derivative(value(v[c], p), value(v[c], inner), wall, s1, s2);
+  }
   return symmetric_part(G);
 }
 

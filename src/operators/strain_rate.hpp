@@ -44,4 +44,9 @@ rheology::StrainRate quadratic_wall_strain_rate(const Grid& g, const double* con
                                                 int i, int j, int sign, std::array<double, 2> wall_velocity,
                                                 bool no_shear);
 
+// The same on the wall face of cell (i, j, k) of a mesh of layers: the three components' derivatives
+// across the wall quadratic (both tangential ones zero on a slip wall), those along it the wall face's.
+rheology::StrainRate quadratic_wall_strain_rate(const Grid& g, const VelocityArrays3& v, int axis, int i, int j, int k,
+                                                int sign, std::array<double, 3> wall_velocity, bool no_shear);
+
 }  // namespace granflow

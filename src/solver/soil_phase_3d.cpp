@@ -1,7 +1,6 @@
 // The soil phase on a mesh of layers (3D): what soil_phase.cpp, soil_properties.cpp, soil_advection.cpp
 // and soil_diagnostics.cpp do on a planar mesh, for the models a mesh of layers has so far: one soil
-// (no [[soil.materials]]) and the two-point wall gradient; the constructor refuses the rest
-// (refuse_what_3d_lacks). The same equations and the same choices as in 2D, each
+// (no [[soil.materials]]); the constructor refuses the rest (refuse_what_3d_lacks). The same equations and the same choices as in 2D, each
 // noted where it differs: the soil fraction is carried by the three sweeps of vof_advection_3d.hpp,
 // the strain rate and the Euler-Almansi strain are the full 3D tensors (docs/method.md, "In three
 // dimensions"). The displacement's transport serves both (soil_advection.cpp).
@@ -41,14 +40,13 @@ VelocityArrays3 velocity_arrays(const AxisViews& v) { return {v.view[0], v.view[
 }  // namespace
 
 // What a mesh of layers does not have yet (docs/method.md, "Known limitations"); the case file refuses
-// the same, naming the keys (require_what_layers_have in io/case_file.cpp), and so does FlowSolver.
+// the same, naming the key (require_what_layers_have in io/case_file.cpp).
 void SoilPhase::refuse_what_3d_lacks() const {
   if (grid_.dimension() != 3) return;
   auto refuse = [](const std::string& what) {
     throw std::invalid_argument("SoilPhase: " + what + " on a mesh of layers is not implemented");
   };
   if (!settings_.materials.empty()) refuse("[[soil.materials]]");
-  if (flow_settings_.numerics.quadratic_wall_gradient) refuse("numerics.wall_gradient = \"quadratic\"");
 }
 
 void SoilPhase::initialise_3d() {
@@ -93,6 +91,7 @@ void SoilPhase::update_face_viscosity_3d(FlowSolver& flow) const {
   const auto& g = flow_settings_.gravity;
   const bool at_face = settings_.strain_rate == StrainRateAt::face;
   const bool face_fraction = settings_.face_fraction == FaceFraction::face;
+  const bool quadratic_wall = flow_settings_.numerics.quadratic_wall_gradient;
   const ConstFieldArray c_array = local_read(grid_, *c_), p_array = local_read(grid_, flow.pressure()),
                         rho_array = local_read(grid_, flow.density());
   const VolumeView c = c_array.volume(), p = p_array.volume(), rho = rho_array.volume();
@@ -133,20 +132,25 @@ void SoilPhase::update_face_viscosity_3d(FlowSolver& flow) const {
         const auto& bc = !obstacle            ? boundary(flow_settings_.boundaries, side_of(axis, sign))
                          : obstacle_index > 0 ? obstacle_walls_[size_t(obstacle_index - 1)]
                                               : obstacle_wall;
-        // The face between the ghost and the cell, the ghost's velocity encoding the wall.
+        // The face between the ghost and the cell, the ghost's velocity encoding the wall; with the
+        // quadratic wall gradient, its rate across the wall as the momentum flux takes it.
         const int il = i - (sign < 0 && axis == 0), jl = j - (sign < 0 && axis == 1), kl = k - (sign < 0 && axis == 2);
+        auto wall_rate = [&] {
+          return quadratic_wall && bc.kind != BoundaryKind::atmosphere
+                     ? quadratic_wall_strain_rate(grid_, v, axis, i, j, k, sign, bc.wall_velocity, bc.kind == BoundaryKind::slip)
+                     : face_strain_rate(grid_, v, axis, il, jl, kl);
+        };
         if (!at_face) {
           const auto cell_rate = cell_strain_rate(grid_, v, i, j, k);
           if (!bc.friction) return mixture_viscosity(c[k][j][i], pressure, cell_rate);
-          return wall_mixture_viscosity(c[k][j][i], pressure, cell_rate, nullptr, bc,
-                                        face_strain_rate(grid_, v, axis, il, jl, kl), axis);
+          return wall_mixture_viscosity(c[k][j][i], pressure, cell_rate, nullptr, bc, wall_rate(), axis);
         }
         // The face's own soil fraction: how much of it the cell's soil covers (a film on the floor
         // covers all of the floor under it).
         const double cf = face_fraction ? interface::wetted_side_fraction(c, grid_.dx_data(), grid_.dy_data(),
                                                                           grid_.dz_data(), i, j, k, axis, sign)
                                         : c[k][j][i];
-        const auto rate = face_strain_rate(grid_, v, axis, il, jl, kl);
+        const auto rate = wall_rate();
         return wall_mixture_viscosity(cf, pressure, rate, nullptr, bc, rate, axis);
       },
       BlockedView(grid_, blocked_).data());  // an obstacle's wall as a wall side: its velocity mirrored behind it
@@ -325,7 +329,7 @@ double SoilPhase::compute_dissipation_3d(const FlowSolver& flow) {
       for (int c = 0; c < 3; ++c) {
         if (bc.kind == BoundaryKind::slip && c != fg.axis) continue;  // no shear on a slip side
         const double wall = c == fg.axis ? 0.0 : bc.wall_velocity[c];
-        const double gradient = wall_gradient(grid_, vel.view[c], i, j, k, fg, wall, false);
+        const double gradient = wall_gradient(grid_, vel.view[c], i, j, k, fg, wall, num.quadratic_wall_gradient);
         work += (c == fg.axis ? normal_factor : 1.0) * mu_f * A * gradient * (vel.view[c][k][j][i] - wall);
       }
       return work;

@@ -31,8 +31,8 @@ double largest_deviation(int re) {
   if (rank == 0) {
     // Ghia's wall points are the boundary conditions themselves (the lid's u = 1 at y = 1); the
     // sampler ends each profile on them.
-    const SideRules u_sides = velocity_side_rules(config.flow.boundaries, 0);
-    const SideRules v_sides = velocity_side_rules(config.flow.boundaries, 1);
+    const SideRules u_sides = velocity_side_rules(config.flow.boundaries, 0, 2);
+    const SideRules v_sides = velocity_side_rules(config.flow.boundaries, 1, 2);
     for (size_t k = 0; k < ref["y"].size(); ++k) {
       test::keep_largest(worst, std::abs(sample_field(g, u, u_sides, 0.5, ref["y"][k]) - ref["u"][k]));
       ++compared;

@@ -1169,7 +1169,6 @@ TEST(CaseFile, AMeshOfLayersRefusesWhatItLacks) {
        "numerics.air_band: needs gravity along y"},
       {{"boundary.back={type=\"wall\", friction_angle=20.0}", "soil.yield_pressure=\"cell\""},
        "boundary.back: a wall's friction (friction_angle, adhesion) needs soil.yield_pressure = \"face\""},
-      {{"numerics.wall_gradient=\"quadratic\""}, "numerics.wall_gradient"},
       {{"output.line=[{name=\"a\", start=[0.0, 0.1], end=[0.5, 0.1, 0.0]}]"}, "output.line[0].start: expected 3 numbers"},
       {{"output.line=[{name=\"a\", start=[0.0, 0.1, 0.0], end=[0.5, 0.1, 0.3]}]"},
        "output.line[0].end: [0.5, 0.1, 0.3] lies outside the domain [0, 0.8] x [0, 0.6] x [-0.2, 0.2]"},

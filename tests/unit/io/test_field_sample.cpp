@@ -57,7 +57,7 @@ TEST(FieldSample, WallsGiveTheirVelocitySlipSidesNoNormalFlowAtmospheresAZeroGra
   b[int(Side::north)].wall_velocity = {1.5, 0.0};
   const auto f = [](double x, double y) { return 0.7 + x * x + y; };
   const auto values = cell_values(g, f);
-  const SideRules u_sides = velocity_side_rules(b, 0), v_sides = velocity_side_rules(b, 1);
+  const SideRules u_sides = velocity_side_rules(b, 0, 2), v_sides = velocity_side_rules(b, 1, 2);
   const int nx = g.nx(), ny = g.ny();
   const double x_mid = g.xc(3), y_mid = g.yc(2);
   const double top = g.spec().upper[1], bottom = g.spec().lower[1];
@@ -206,7 +206,7 @@ TEST(FieldSample, TheFrontAndBackGiveTheirVelocityAsTheOtherSidesDo) {
   EXPECT_DOUBLE_EQ(sample_field(g, values, w, x, y, back), 0.0);
   EXPECT_NEAR(sample_field(g, values, u, x, y, back), f(x, y, g.zc(g.nz() - 1)), 1e-12);
   // A planar mesh's rules leave the front and back at their defaults.
-  EXPECT_EQ(velocity_side_rules(b, 0)[int(Side::front)].kind, SideRule::Kind::zero_gradient);
+  EXPECT_EQ(velocity_side_rules(b, 0, 2)[int(Side::front)].kind, SideRule::Kind::zero_gradient);
 }
 
 // Obstacles of layers: a floor slab (rows 0-1), a wall (columns 4-5) and a front slab (layer 0) meet

@@ -170,6 +170,73 @@ TEST(StrainRate, ExactForALinearVelocityIn3dAtCentresAndOnFacesAlongEachAxis) {
   expect_sym_a(face_strain_rate(g, vel, 2, 2, 1, -1), "the face below the first layer");
 }
 
+// In 3D, on each of the six walls of a graded box: both tangential components U_t + (a_t + q_t r) s +
+// b_t s^2 and the normal one e s + f s^2 (s the distance from the wall, r a coordinate along it), so
+// the wall's two shears and its normal rate come out exact; a slip wall carries no shear.
+TEST(StrainRate, QuadraticWallRateIn3dIsExactForAQuadraticProfileOnEveryWall) {
+  GridSpec spec;
+  spec.cells = {5, 4, 6};
+  spec.lower = {0.0, -0.1, 0.2};
+  spec.upper = {0.3, 0.2, 0.5};
+  spec.grading = {1.4, 0.7, 2.0};
+  const Grid g(PETSC_COMM_SELF, spec);
+  const double e = -0.9, f = 25.0;
+  const double U[3] = {0.7, -0.4, 0.25}, a[3] = {1.3, -0.6, 2.2}, b[3] = {-40.0, 15.0, 8.0}, q[3] = {6.0, -3.0, 4.0};
+  for (int axis = 0; axis < 3; ++axis)
+    for (int sign : {-1, 1}) {
+      const double lo = spec.lower[axis], hi = spec.upper[axis];
+      const int r_axis = (axis + 1) % 3;  // the coordinate the shear varies along
+      auto distance = [&](const std::array<double, 3>& x) { return sign < 0 ? x[axis] - lo : hi - x[axis]; };
+      auto component = [&](int c, const std::array<double, 3>& x) {
+        const double s = distance(x);
+        return c == axis ? e * s + f * s * s : U[c] + (a[c] + q[c] * x[r_axis]) * s + b[c] * s * s;
+      };
+      Field u(g), v(g), w(g);
+      {
+        FieldArray arr[3] = {local_array(g, u), local_array(g, v), local_array(g, w)};
+        const int gw = Grid::ghost_width;
+        for (int k = -gw; k < g.nz() + gw; ++k)
+          for (int j = -gw; j < g.ny() + gw; ++j)
+            for (int i = -gw; i < g.nx() + gw; ++i)
+              for (int c = 0; c < 3; ++c) arr[c].volume()[k][j][i] = component(c, {g.xc(i), g.yc(j), g.zc(k)});
+      }
+      ConstFieldArray ua = local_read(g, u), va = local_read(g, v), wa = local_read(g, w);
+      const VelocityArrays3 vel{ua.volume(), va.volume(), wa.volume()};
+      std::array<double, 3> wall_velocity{U[0], U[1], U[2]};
+      wall_velocity[axis] = 0.0;
+      const double towards = -sign;  // d/d(axis) = towards * d/ds
+      const int n[3] = {g.nx(), g.ny(), g.nz()};
+      // The cells along the wall: every cell of the first layer from it.
+      for (int m = 0; m < n[(axis + 1) % 3]; ++m)
+        for (int l = 0; l < n[(axis + 2) % 3]; ++l) {
+          int idx[3];
+          idx[axis] = sign < 0 ? 0 : n[axis] - 1;
+          idx[(axis + 1) % 3] = m;
+          idx[(axis + 2) % 3] = l;
+          const std::array<double, 3> centre{g.xc(idx[0]), g.yc(idx[1]), g.zc(idx[2])};
+          std::array<double, 3> on_wall = centre;
+          on_wall[axis] = sign < 0 ? lo : hi;
+          const std::string where = "axis " + std::to_string(axis) + " sign " + std::to_string(sign);
+          const auto D = quadratic_wall_strain_rate(g, vel, axis, idx[0], idx[1], idx[2], sign, wall_velocity, false);
+          const auto S = quadratic_wall_strain_rate(g, vel, axis, idx[0], idx[1], idx[2], sign, wall_velocity, true);
+          const double diag[3] = {D.xx, D.yy, D.zz}, slip_diag[3] = {S.xx, S.yy, S.zz};
+          EXPECT_NEAR(diag[axis], towards * e, 1e-9) << where;
+          EXPECT_NEAR(slip_diag[axis], towards * e, 1e-9) << where;
+          // The normal component does not vary along the wall, so the shear of tangential component c
+          // against the wall is half its derivative across it: a_c + q_c r at the wall, exactly.
+          auto shear = [&](const rheology::StrainRate& d, int c) {
+            const int first = std::min(axis, c), second = std::max(axis, c);
+            return first == 0 ? (second == 1 ? d.xy : d.xz) : d.yz;
+          };
+          for (int c = 0; c < 3; ++c) {
+            if (c == axis) continue;
+            EXPECT_NEAR(2.0 * shear(D, c), towards * (a[c] + q[c] * on_wall[r_axis]), 1e-9) << where << ", component " << c;
+            EXPECT_NEAR(shear(S, c), 0.0, 1e-12) << where << ", component " << c;
+          }
+        }
+    }
+}
+
 // A velocity along the layers and the same on each (w = 0, no z dependence) has the planar rate.
 TEST(StrainRate, AFlowTheSameOnEveryLayerHasThePlanarRate) {
   GridSpec spec;
