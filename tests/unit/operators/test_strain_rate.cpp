@@ -130,15 +130,20 @@ TEST(StrainRate, QuadraticWallRateIsExactForAQuadraticProfile) {
   }
 }
 
-// In 3D, on a grid graded along all three axes: every component's gradient, exactly, for a linear
-// velocity v = A x, at the centres and on the faces along each axis, ghosts included.
-TEST(StrainRate, ExactForALinearVelocityIn3dAtCentresAndOnFacesAlongEachAxis) {
+// 5 x 4 x 6 cells, graded along all three axes.
+GridSpec graded_layers_spec() {
   GridSpec spec;
   spec.cells = {5, 4, 6};
   spec.lower = {0.0, -0.1, 0.2};
   spec.upper = {0.3, 0.2, 0.5};
   spec.grading = {1.4, 0.7, 2.0};
-  const Grid g(PETSC_COMM_SELF, spec);
+  return spec;
+}
+
+// In 3D, on a grid graded along all three axes: every component's gradient, exactly, for a linear
+// velocity v = A x, at the centres and on the faces along each axis, ghosts included.
+TEST(StrainRate, ExactForALinearVelocityIn3dAtCentresAndOnFacesAlongEachAxis) {
+  const Grid g(PETSC_COMM_SELF, graded_layers_spec());
   const double A[3][3] = {{0.3, -1.2, 0.7}, {2.1, -0.5, 0.4}, {-0.9, 1.6, 0.2}};
   Field u(g), v(g), w(g);
   {
@@ -174,11 +179,7 @@ TEST(StrainRate, ExactForALinearVelocityIn3dAtCentresAndOnFacesAlongEachAxis) {
 // b_t s^2 and the normal one e s + f s^2 (s the distance from the wall, r a coordinate along it), so
 // the wall's two shears and its normal rate come out exact; a slip wall carries no shear.
 TEST(StrainRate, QuadraticWallRateIn3dIsExactForAQuadraticProfileOnEveryWall) {
-  GridSpec spec;
-  spec.cells = {5, 4, 6};
-  spec.lower = {0.0, -0.1, 0.2};
-  spec.upper = {0.3, 0.2, 0.5};
-  spec.grading = {1.4, 0.7, 2.0};
+  const GridSpec spec = graded_layers_spec();
   const Grid g(PETSC_COMM_SELF, spec);
   const double e = -0.9, f = 25.0;
   const double U[3] = {0.7, -0.4, 0.25}, a[3] = {1.3, -0.6, 2.2}, b[3] = {-40.0, 15.0, 8.0}, q[3] = {6.0, -3.0, 4.0};
