@@ -1,10 +1,10 @@
 #!/bin/sh
-# Line samples on a mesh of layers: the water column of CASE (cases/water_dam_break.toml), its corner on a
-# cell's corner (an initial soil fraction of whole cells, which the planar and the 3D shapes' sampling
-# give alike), collapsing across a channel with slip front and back sides on two layers is the planar collapse in every layer,
-# so a line sampled at any depth z, between the layers' centres, gives the planar run's samples along
-# the same x and y: u, v, p and the soil fraction to 1e-7 of their largest (the linear solvers'
-# tolerance), w zero, and the header names x, y, z and w.
+# Line samples on a mesh of layers. The water column of CASE (cases/water_dam_break.toml), its corner
+# on a cell's corner (an initial soil fraction of whole cells, which the planar and the 3D shapes'
+# sampling give alike), collapsing across a channel with slip front and back sides on two layers, is
+# the planar collapse in every layer; so a line sampled at any depth z, between the layers' centres,
+# gives the planar run's samples along the same x and y: u, v, p and the soil fraction to 1e-7 of
+# their largest (the linear solvers' tolerance), w zero, and the header names x, y, z and w.
 # Usage: line_samples_of_layers.sh GRANFLOW CASE DIR
 set -f
 g=$1 c=$2 d=$3

@@ -820,11 +820,11 @@ LineSample read_line_sample(TableReader& l, const GridSpec& mesh, const std::vec
     for (int a = 0; a < axes; ++a)
       if (!(p[a] >= mesh.lower[a] && p[a] <= mesh.upper[a])) {
         if (axes == 2)
-          throw CaseError(fmt::format("{}.{}: [{}, {}] lies outside the domain [{}, {}] x [{}, {}]", l.path(), key, p[0],
-                                      p[1], mesh.lower[0], mesh.upper[0], mesh.lower[1], mesh.upper[1]));
-        throw CaseError(fmt::format("{}.{}: [{}, {}, {}] lies outside the domain [{}, {}] x [{}, {}] x [{}, {}]", l.path(),
-                                    key, p[0], p[1], p[2], mesh.lower[0], mesh.upper[0], mesh.lower[1], mesh.upper[1],
-                                    mesh.lower[2], mesh.upper[2]));
+          throw CaseError(fmt::format("{}.{}: [{}, {}] lies outside the domain [{}, {}] x [{}, {}]", l.path(), key,
+                                      p[0], p[1], mesh.lower[0], mesh.upper[0], mesh.lower[1], mesh.upper[1]));
+        throw CaseError(fmt::format("{}.{}: [{}, {}, {}] lies outside the domain [{}, {}] x [{}, {}] x [{}, {}]",
+                                    l.path(), key, p[0], p[1], p[2], mesh.lower[0], mesh.upper[0], mesh.lower[1],
+                                    mesh.upper[1], mesh.lower[2], mesh.upper[2]));
       }
   if (s.start == s.end) throw CaseError(fmt::format("{}.end: the line ends where it starts", l.path()));
   s.points = l.integer_in("points", 101, 2, 10000000);
@@ -948,8 +948,8 @@ void require_consistent(const CaseConfig& c) {
   }
   if (c.mesh.periodic_x) {
     if (c.mesh.axisymmetric)
-      throw CaseError("boundary.west.type: periodic sides are not on an axisymmetric mesh (this case has mesh.geometry = "
-                      "\"axisymmetric\")");
+      throw CaseError("boundary.west.type: periodic sides are not on an axisymmetric mesh (this case has "
+                      "mesh.geometry = \"axisymmetric\")");
     if (c.mesh.grading[0] != 1.0)
       throw CaseError(fmt::format("mesh.grading: periodic west and east sides need cells of one width along x, so "
                                   "that the two ends meet (grading {} along x; give 1.0)", c.mesh.grading[0]));

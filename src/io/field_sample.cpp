@@ -156,7 +156,8 @@ void fill_obstacle_walls(const Grid& g, const std::vector<double>& blocked, cons
           // The two cells between: one step along each of the edge's two axes.
           const Step first = di != 0 ? Step{di, 0, 0} : Step{0, dj, 0};
           const Step other{di - first[0], dj - first[1], dk - first[2]};
-          const size_t a = at(i + first[0], j + first[1], k + first[2]), b = at(i + other[0], j + other[1], k + other[2]);
+          const size_t a = at(i + first[0], j + first[1], k + first[2]);
+          const size_t b = at(i + other[0], j + other[1], k + other[2]);
           if (!open(i + di, j + dj, k + dk) || !filled[a] || !filled[b]) continue;
           const double o = before[at(i + di, j + dj, k + dk)];
           values[at(i, j, k)] = wall.kind == SideRule::Kind::value ? o : values[b] + values[a] - o;
@@ -177,7 +178,8 @@ void fill_obstacle_walls(const Grid& g, const std::vector<double>& blocked, cons
           const size_t x = at(i, j + dj, k + dk), y = at(i + di, j, k + dk), z = at(i + di, j + dj, k);
           if (!open(i + di, j + dj, k + dk) || !filled[x] || !filled[y] || !filled[z]) continue;
           const double o = before[at(i + di, j + dj, k + dk)];
-          values[at(i, j, k)] = wall.kind == SideRule::Kind::value ? 2.0 * wall.value - o : values[x] + values[y] + values[z] - 2.0 * o;
+          values[at(i, j, k)] =
+              wall.kind == SideRule::Kind::value ? 2.0 * wall.value - o : values[x] + values[y] + values[z] - 2.0 * o;
           break;
         }
       }

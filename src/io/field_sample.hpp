@@ -1,10 +1,10 @@
 #pragma once
 // Point samples of a gathered cell field, for line output and comparisons with tabulated data.
 //
-// Between cell centres the sample is bilinear (trilinear on a mesh of layers). Between the last centre and a side of the domain it
-// interpolates towards the value on the side, which each side's rule gives: the boundary condition
-// (a wall's velocity), the next cell's value (a zero gradient), or the last two cells' line
-// continued (a pressure against a wall, which carries the hydrostatic gradient). So a profile
+// Between cell centres the sample is bilinear (trilinear on a mesh of layers). Between the last centre
+// and a side of the domain it interpolates towards the value on the side, which each side's rule
+// gives: the boundary condition (a wall's velocity), the next cell's value (a zero gradient), or the
+// last two cells' line continued (a pressure against a wall, which carries the hydrostatic gradient). So a profile
 // sampled up to a wall ends on the wall's value instead of stopping half a cell short of it.
 #include <array>
 #include <vector>

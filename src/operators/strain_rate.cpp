@@ -159,7 +159,9 @@ rheology::StrainRate quadratic_wall_strain_rate(const Grid& g, const VelocityArr
   const double s1 = 0.5 * h1, s2 = h1 + 0.5 * h2;
   for (int c = 0; c < 3; ++c) {
     const double wall = c == axis ? 0.0 : wall_velocity[c];
-    G[c][axis] = c != axis && no_shear ? 0.0 : -sign * quadratic_wall_derivative(value(v[c], p), value(v[c], inner), wall, s1, s2);
+    G[c][axis] = c != axis && no_shear
+                     ? 0.0
+                     : -sign * quadratic_wall_derivative(value(v[c], p), value(v[c], inner), wall, s1, s2);
   }
   return symmetric_part(G);
 }

@@ -47,8 +47,10 @@ Simulation::Simulation(MPI_Comm comm, const CaseConfig& config, std::filesystem:
     soil_->set_blocked(blocked_.get());
     if (std::any_of(config.obstacle_friction.begin(), config.obstacle_friction.end(), [](const auto& f) { return f.has_value(); })) {
       obstacle_index_ = std::make_unique<Field>(*grid_);
-      if (grid_->dimension() == 3) mark_obstacle_index(*grid_, interface::ShapeUnion3(config.obstacle_solids), *obstacle_index_);
-      else mark_obstacle_index(*grid_, interface::ShapeUnion(config.obstacles), *obstacle_index_);
+      if (grid_->dimension() == 3)
+        mark_obstacle_index(*grid_, interface::ShapeUnion3(config.obstacle_solids), *obstacle_index_);
+      else
+        mark_obstacle_index(*grid_, interface::ShapeUnion(config.obstacles), *obstacle_index_);
       soil_->set_obstacle_friction(obstacle_index_.get(), config.obstacle_friction);
     }
     soil_->initialise();

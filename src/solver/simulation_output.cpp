@@ -112,7 +112,8 @@ void Simulation::write_line_samples(const std::vector<double>& u, const std::vec
   q.push_back({"u", u, velocity_side_rules(config_.flow.boundaries, 0, dimension), no_slip});
   q.push_back({"v", v, velocity_side_rules(config_.flow.boundaries, 1, dimension), no_slip});
   if (dimension == 3)
-    q.push_back({"w", gather_to_root(g, flow_->velocity(2)), velocity_side_rules(config_.flow.boundaries, 2, 3), no_slip});
+    q.push_back({"w", gather_to_root(g, flow_->velocity(2)), velocity_side_rules(config_.flow.boundaries, 2, 3),
+                 no_slip});
   q.push_back({"p", p, pressure_side_rules(), linear});
   q.push_back({"viscosity", gather_to_root(g, flow_->viscosity()), SideRules{}, SideRule{}});
   if (soil_) {
@@ -125,8 +126,8 @@ void Simulation::write_line_samples(const std::vector<double>& u, const std::vec
     for (auto& s : q) fill_obstacle_walls(g, blocked_on_root_, s.obstacle_wall, s.values);
   for (const auto& line : config_.output.lines) {
     auto body = [&](std::ostream& out) {
-      fmt::print(out, "# {} at t = {:.9g} s{}\nx,y{}", line.name, time_, steady_state_reached_ ? ", steady state reached" : "",
-                 dimension == 3 ? ",z" : "");
+      fmt::print(out, "# {} at t = {:.9g} s{}\nx,y{}", line.name, time_,
+                 steady_state_reached_ ? ", steady state reached" : "", dimension == 3 ? ",z" : "");
       for (const auto& s : q) fmt::print(out, ",{}", s.name);
       fmt::print(out, "\n");
       for (int k = 0; k < line.points; ++k) {

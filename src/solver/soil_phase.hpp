@@ -141,7 +141,8 @@ class SoilPhase {
                            const double* shares = nullptr) const;
   // ... on the face of a wall normal to `wall_axis`, the soil's shear against it read from wall_rate.
   double wall_mixture_viscosity(double c, double pressure, const rheology::StrainRate& rate, const double* shares,
-                                const BoundaryCondition& wall, const rheology::StrainRate& wall_rate, int wall_axis) const;
+                                const BoundaryCondition& wall, const rheology::StrainRate& wall_rate,
+                                int wall_axis) const;
   // The shares of the materials in cell (i, j) (arrays of share_).
   using Shares = rheology::SoilMaterials::Shares;
   void cell_shares(const std::deque<ConstFieldArray>& m, int i, int j, Shares& out) const;

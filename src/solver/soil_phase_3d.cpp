@@ -1,9 +1,10 @@
 // The soil phase on a mesh of layers (3D): what soil_phase.cpp, soil_properties.cpp, soil_advection.cpp
 // and soil_diagnostics.cpp do on a planar mesh, for the models a mesh of layers has so far: one soil
-// (no [[soil.materials]]); the constructor refuses the rest (refuse_what_3d_lacks). The same equations and the same choices as in 2D, each
-// noted where it differs: the soil fraction is carried by the three sweeps of vof_advection_3d.hpp,
-// the strain rate and the Euler-Almansi strain are the full 3D tensors (docs/method.md, "In three
-// dimensions"). The displacement's transport serves both (soil_advection.cpp).
+// (no [[soil.materials]]); the constructor refuses the rest (refuse_what_3d_lacks). The same equations
+// and the same choices as in 2D, each noted where it differs: the soil fraction is carried by the
+// three sweeps of vof_advection_3d.hpp, the strain rate and the Euler-Almansi strain are the full 3D
+// tensors (docs/method.md, "In three dimensions"). The displacement's transport serves both
+// (soil_advection.cpp).
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -137,7 +138,8 @@ void SoilPhase::update_face_viscosity_3d(FlowSolver& flow) const {
         const int il = i - (sign < 0 && axis == 0), jl = j - (sign < 0 && axis == 1), kl = k - (sign < 0 && axis == 2);
         auto wall_rate = [&] {
           return quadratic_wall && bc.kind != BoundaryKind::atmosphere
-                     ? quadratic_wall_strain_rate(grid_, v, axis, i, j, k, sign, bc.wall_velocity, bc.kind == BoundaryKind::slip)
+                     ? quadratic_wall_strain_rate(grid_, v, axis, i, j, k, sign, bc.wall_velocity,
+                                                  bc.kind == BoundaryKind::slip)
                      : face_strain_rate(grid_, v, axis, il, jl, kl);
         };
         if (!at_face) {
@@ -408,7 +410,8 @@ SoilBudget SoilPhase::budget_3d(const FlowSolver& flow) {
         s[1] += (1.0 - cc) * V;
         s[2] += 0.5 * phase_density * speed2 * V;
         if (periodic)
-          s[3] -= ((phase_density - rho_a) * g[0] * grid_.xc(i) + phase_density * (g[1] * grid_.yc(j) + g[2] * grid_.zc(k))) * V;
+          s[3] -= ((phase_density - rho_a) * g[0] * grid_.xc(i) +
+                   phase_density * (g[1] * grid_.yc(j) + g[2] * grid_.zc(k))) * V;
         else
           s[3] -= phase_density * (g[0] * grid_.xc(i) + g[1] * grid_.yc(j) + g[2] * grid_.zc(k)) * V;
         s[5] += rho[k][j][i] * V;
