@@ -904,7 +904,6 @@ void require_solid_in_domain(const interface::Shape3& solid, const GridSpec& mes
 // What a mesh of layers has so far (docs/method.md, "Known limitations"), refused with the key to change.
 void require_what_layers_have(const CaseConfig& c) {
   if (c.mesh.dimension() == 2) return;
-  const auto& num = c.flow.numerics;
   if (c.soil && !c.soil->materials.empty())
     throw CaseError("soil.materials: several soils are planar yet (not on a mesh of layers)");
   if (c.soil)

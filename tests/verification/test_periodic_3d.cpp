@@ -78,12 +78,12 @@ std::vector<std::string> layered(std::vector<std::string> o, const std::string& 
 
 // cases/bagnold_chute.toml (the mu(I) layer on a periodic strip at 24 deg, the coupled solve) from rest
 // to t = 1 s, when it flows at 0.2 m/s on top and has crossed the join 50 times over: on 4 x 30 x 2
-// cells, 1 mm deep, its soil is the planar run's in both layers. Measured: soil velocities 1.8e-8 m/s apart
-// of 0.199, w in the soil 2e-12, soil fractions 7e-10, kinetic and potential energy 1.3e-7 and 3e-8.
-// The air above it is not: in both runs a circulation along the strip grows in the air over the
-// flowing layer (at t = 5 s, |v| up to 0.021 m/s in the planar run, where the air should move along x
-// only), and in 3D it takes the x-z plane (|w| up to 2.6e-4 m/s at t = 1 s, 7e-3 at t = 5 s). The
-// layer's steady profile at t = 5 s is the planar one's to 1e-4 of its 0.305 m/s all the same.
+// cells, 1 mm deep, its soil and air are the planar run's in both layers. Measured: velocities 1.2e-10
+// m/s apart of 0.199, w 2e-13, soil fractions 2e-12, energies 7e-10 of themselves. While the open top's inflow lost the dynamic head of the whole speed, not of
+// the normal velocity alone (FlowSolver's atmosphere_pressure), a circulation grew in and out through
+// the top in both runs (at t = 5 s |v| up to 0.021 m/s in the planar run, where the air should move
+// along x only) and in 3D in the x-z plane (|w| up to 2.6e-4 m/s at t = 1 s, 7e-3 at t = 5 s), while
+// the soil still agreed; the air is asserted here as the soil is.
 TEST(Periodic3d, AChuteOfLayersIsThePlanarOne) {
   const std::vector<std::string> common = {"time.end=1.0", "output.progress_seconds=0"};
   const StripRun planar = run_strip("cases/bagnold_chute.toml", common);
@@ -93,11 +93,12 @@ TEST(Periodic3d, AChuteOfLayersIsThePlanarOne) {
                          "output.line=[{name=\"profile\", start=[0.001, 0.00025, 0.0005], end=[0.001, 0.00975, 0.0005]}]"},
                         "[4, 30, 2]", "[0.002, 0.015, 0.001]", "[3.9900865, -8.9618809, 0]"));
   if (!test::is_root()) return;
-  const Apart a = compare(planar, layers, 0.001, true);
-  std::printf("periodic chute on two layers against the planar run at t = %.3f s: soil velocities %.2e m/s apart of "
-              "%.3f, w in the soil at most %.1e (in the air %.1e), soil fractions %.1e; kinetic energy %.1e, potential "
-              "%.1e, dissipation rate %.1e of themselves\n",
-              layers.time, a.velocity, a.speed, a.w, a.air_w, a.fraction, a.kinetic, a.potential, a.dissipation);
+  const Apart soil = compare(planar, layers, 0.001, true), a = compare(planar, layers, 0.001);
+  std::printf("periodic chute on two layers against the planar run at t = %.3f s: velocities %.2e m/s apart of %.3f "
+              "(in the soil %.2e), w at most %.1e (in the air %.1e), soil fractions %.1e; kinetic energy %.1e, "
+              "potential %.1e, dissipation rate %.1e of themselves\n",
+              layers.time, a.velocity, a.speed, soil.velocity, a.w, soil.air_w, a.fraction, a.kinetic, a.potential,
+              a.dissipation);
   EXPECT_GT(a.speed, 0.15);  // it flows
   EXPECT_LT(a.velocity, 1e-6 * a.speed);
   EXPECT_LT(a.w, 1e-9 * a.speed);
