@@ -58,10 +58,12 @@ inline double ambient_pressure(const BoundarySet& b) {
 
 // Pressure at an atmosphere face: p0 plus the hydrostatic head below the top of the domain
 // (hydrostatic_head, Pa), minus rho v_n^2 / 2 where fluid flows in (total pressure) unless the
-// boundary is static; rho is the density of the adjacent cell, v_n = outward_velocity. The head of the
-// normal velocity only: with the whole speed's, air that a flowing layer drags along the top lost
+// boundary is static; rho is the density of the adjacent cell, outward_velocity the face's, and
+// normal2 the square of the adjacent cell's velocity normal to the side. The head of the normal
+// velocity only: with the whole speed's, air that a flowing layer drags along the top lost
 // rho u^2 / 2 of pressure where it happened to flow in and not where it flowed out, which drove a
-// circulation in and out through the top (docs/method.md, "Known limitations").
-double atmosphere_pressure(const BoundaryCondition& bc, double hydrostatic_head, double rho, double outward_velocity);
+// circulation in and out through the top (docs/method.md, the boundary conditions' table).
+double atmosphere_pressure(const BoundaryCondition& bc, double hydrostatic_head, double rho, double outward_velocity,
+                           double normal2);
 
 }  // namespace granflow

@@ -130,6 +130,7 @@ class FlowSolver::CoupledRows {
         p_array_(local_read(grid_, *flow.p_)),
         rho_(rho_array_.volume()),
         p_now_(p_array_.volume()),
+        vel_(grid_, flow.vel_),
         face_vel_(grid_, flow.face_),
         mobility_(grid_, flow.pressure_mobility_),
         cell_force_(grid_, flow.cell_force_),
@@ -162,7 +163,7 @@ class FlowSolver::CoupledRows {
   // took it; false where the side is a wall.
   bool boundary_pressure(const FaceGeometry& fg, int i, int j, int k, double& pb) {
     if (boundary(f_.settings_.boundaries, fg.side).kind != BoundaryKind::atmosphere) return false;
-    pb = f_.atmosphere_face_pressure(fg.side, i, j, k, rho_, face_vel_.view);
+    pb = f_.atmosphere_face_pressure(fg.side, i, j, k, rho_, vel_.view, face_vel_.view);
     f_.solved_boundary_pressure_[static_cast<int>(fg.side)][f_.boundary_face_index(fg.side, i, j, k)] = pb;
     return true;
   }
@@ -280,7 +281,7 @@ class FlowSolver::CoupledRows {
   const std::array<double, 3>& g_;
   const ConstFieldArray rho_array_, p_array_;
   const VolumeView rho_, p_now_;
-  const AxisViews face_vel_, mobility_, cell_force_;
+  const AxisViews vel_, face_vel_, mobility_, cell_force_;
   const BlockedView mask_;
 };
 

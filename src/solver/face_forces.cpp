@@ -61,10 +61,10 @@ void FlowSolver::set_hydrostatic_pressure() {
 // Face forces -grad(p) + rho_f g on faces. Wall faces carry none (their entries stay zero);
 // atmosphere faces use the boundary pressure.
 
-double atmosphere_pressure(const BoundaryCondition& bc, double hydrostatic_head, double rho, double outward_velocity) {
+double atmosphere_pressure(const BoundaryCondition& bc, double hydrostatic_head, double rho, double outward_velocity,
+                           double normal2) {
   double p = bc.pressure + hydrostatic_head;
-  if (bc.total_pressure && outward_velocity < 0.0)  // inflow: total pressure p0
-    p -= 0.5 * rho * outward_velocity * outward_velocity;
+  if (bc.total_pressure && outward_velocity < 0.0) p -= 0.5 * rho * normal2;  // inflow: total pressure p0
   return p;
 }
 
@@ -116,13 +116,22 @@ double FlowSolver::boundary_head(Side s, int i, int j, int k, double rho, double
   return (s == Side::south && outside > 0.0 ? outside : rho) * settings_.gravity[1] * (y_face - grid_.spec().upper[1]);
 }
 
-double FlowSolver::atmosphere_face_pressure(Side s, int i, int j, int k, VolumeView rho,
+double FlowSolver::atmosphere_face_pressure(Side s, int i, int j, int k, VolumeView rho, const VolumeView velocity[],
                                             const VolumeView face_velocity[]) const {
   const FaceGeometry& fg = face_on(s);
   const double d_half = 0.5 * grid_.width(fg.axis, index_along(fg.axis, i, j, k));
   const double y_face = grid_.yc(j) + (fg.axis == 1 ? fg.sign * d_half : 0.0);
+  const double normal = velocity[fg.axis][k][j][i];
   return atmosphere_pressure(boundary(settings_.boundaries, s), boundary_head(s, i, j, k, rho[k][j][i], y_face),
-                             rho[k][j][i], fg.sign * on_face(face_velocity, i, j, k, fg));
+                             rho[k][j][i], fg.sign * on_face(face_velocity, i, j, k, fg), normal * normal);
+}
+
+double FlowSolver::atmosphere_face_pressure(Side s, int i, int j, const double* const* rho, const double* const* u,
+                                            const double* const* v, const double* const* fx,
+                                            const double* const* fy) const {
+  const PlaneAsVolume u3(u), v3(v), fx3(fx), fy3(fy);
+  const VolumeView velocity[2] = {u3, v3}, face_velocity[2] = {fx3, fy3};
+  return atmosphere_face_pressure(s, i, j, 0, PlaneAsVolume(rho), velocity, face_velocity);
 }
 
 // The face forces of the owned cells' faces: -grad(p) + rho_f g between cells, the atmosphere's
@@ -131,9 +140,12 @@ void FlowSolver::compute_face_forces() {
   const auto& g = settings_.gravity;
   const ConstFieldArray p_array = local_read(grid_, *p_), rho_array = local_read(grid_, *rho_);
   const VolumeView p = p_array.volume(), rho = rho_array.volume();
-  std::optional<ConstFieldArray> face_arrays[3];
-  VolumeView face_vel[3] = {};
-  for (int a = 0; a < dimension_; ++a) face_vel[a] = face_arrays[a].emplace(grid_.field_dm(), face_[a]->local()).volume();
+  std::optional<ConstFieldArray> vel_arrays[3], face_arrays[3];
+  VolumeView vel[3] = {}, face_vel[3] = {};
+  for (int a = 0; a < dimension_; ++a) {
+    vel[a] = vel_arrays[a].emplace(grid_.field_dm(), vel_[a]->local()).volume();
+    face_vel[a] = face_arrays[a].emplace(grid_.field_dm(), face_[a]->local()).volume();
+  }
   const BlockedView mask(grid_, blocked_);
   fill_owned_faces_any(
       grid_, per_axis(face_force_),
@@ -148,7 +160,7 @@ void FlowSolver::compute_face_forces() {
         if (!grid_.outside(i + fg.di, j + fg.dj, k + fg.dk) || is_blocked(mask.data(), i, j, k)) return 0.0;
         if (boundary(settings_.boundaries, fg.side).kind != BoundaryKind::atmosphere) return 0.0;  // a wall
         const double d = 0.5 * grid_.width(axis, index_along(axis, i, j, k));
-        const double pb = atmosphere_face_pressure(fg.side, i, j, k, rho, face_vel);
+        const double pb = atmosphere_face_pressure(fg.side, i, j, k, rho, vel, face_vel);
         return -fg.sign * (pb - p[k][j][i]) / d + rho[k][j][i] * g[axis];
       },
       mask.data());

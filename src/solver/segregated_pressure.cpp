@@ -74,7 +74,7 @@ void FlowSolver::assemble_pressure_rhs() {
   const auto& b = grid_.owned();
   const auto& g = settings_.gravity;
   const AxisViews h(grid_, velocity_without_pressure_), ra(grid_, pressure_mobility_), w(grid_, old_time_share_);
-  const AxisViews q0(grid_, vel_old_), face_old(grid_, face_old_), face_vel(grid_, face_);
+  const AxisViews q0(grid_, vel_old_), face_old(grid_, face_old_), face_vel(grid_, face_), vel(grid_, vel_);
   const ConstFieldArray rho_array = local_read(grid_, *rho_);
   const VolumeView rho = rho_array.volume();
   const auto faces = cell_faces(dimension_);
@@ -91,7 +91,7 @@ void FlowSolver::assemble_pressure_rhs() {
             const auto& bc = boundary(settings_.boundaries, fg.side);
             if (bc.kind != BoundaryKind::atmosphere) continue;  // walls: no flux
             const double d_half = 0.5 * grid_.width(fg.axis, index_along(fg.axis, i, j, k));
-            const double pb = atmosphere_face_pressure(fg.side, i, j, k, rho, face_vel.view);
+            const double pb = atmosphere_face_pressure(fg.side, i, j, k, rho, vel.view, face_vel.view);
             const double K = rav[k][j][i] * area / d_half;
             rhs -= fg.sign * (hv[k][j][i] + rav[k][j][i] * rho[k][j][i] * g[fg.axis]) * area;
             rhs += K * pb;

@@ -58,7 +58,7 @@ FlowSolver::WallForces FlowSolver::wall_forces() const {
       const auto& solved = solved_boundary_pressure_[static_cast<int>(s)];
       const size_t at = boundary_face_index(s, i, j, k);
       double pb = at < solved.size() ? solved[at] : std::nan("");
-      if (std::isnan(pb)) pb = atmosphere_face_pressure(s, i, j, k, rho, face_vel.view);
+      if (std::isnan(pb)) pb = atmosphere_face_pressure(s, i, j, k, rho, vel.view, face_vel.view);
       f[axis] += pb * area * sign;
       return;
     }

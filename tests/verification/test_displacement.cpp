@@ -66,7 +66,9 @@ std::pair<double, double> slide(double courant) {
   return {weight > 0 ? sum / weight : 0.0, largest};
 }
 
-// Measured at t = 0.4 s (slid 0.8 m): mean 0.67 / 0.74 m, largest 0.84 / 1.12 m at Courant 0.5 / 2.
+// Measured at t = 0.4 s (slid 0.8 m): mean 0.67 / 0.74 m, largest 0.84 / 1.16 m at Courant 0.5 / 2
+// (1.12 m while the open ends' inflow lost the head of the whole speed, not of the normal velocity;
+// 1.20 m when that velocity was taken from the face instead of the cell).
 // The upwind transport smears the slug's ends: low displacement at its rear, high at its front, where
 // the conservative form of [VoF] Eq. 16 takes c at the face as the mean of a full and an empty cell, so
 // the front cell gains displacement faster than it passes it on (the paper's Sec. 4.1.1 finds the same
