@@ -110,8 +110,6 @@ void fill_obstacle_walls(const Grid& g, const std::vector<double>& blocked, cons
   const auto open = [&](int i, int j, int k) {
     return i >= 0 && i < nx && j >= 0 && j < ny && k >= 0 && k < nz && blocked[at(i, j, k)] <= 0.5;
   };
-  const auto width = [&](int axis, int n) { return axis == 0 ? g.dx(n) : axis == 1 ? g.dy(n) : g.dz(n); };
-  const auto centre = [&](int axis, int n) { return axis == 0 ? g.xc(n) : axis == 1 ? g.yc(n) : g.zc(n); };
   const std::vector<double> before = values;  // read open cells only, as they were
   std::vector<char> filled(values.size(), 0);
   // A blocked cell beside an open one: the line through the open cell's value and the wall's,
@@ -129,8 +127,8 @@ void fill_obstacle_walls(const Grid& g, const std::vector<double>& blocked, cons
           const int n_open = axis == 0 ? io : axis == 1 ? jo : ko, n_blocked = axis == 0 ? i : axis == 1 ? j : k;
           const int step = di + dj + dk;
           const bool second = open(io + di, jo + dj, ko + dk);
-          const double d1 = 0.5 * width(axis, n_open), d_blocked = 0.5 * width(axis, n_blocked);
-          const double d2 = second ? std::abs(centre(axis, n_open + step) - centre(axis, n_open)) : 0.0;
+          const double d1 = 0.5 * g.width(axis, n_open), d_blocked = 0.5 * g.width(axis, n_blocked);
+          const double d2 = second ? std::abs(g.centre(axis, n_open + step) - g.centre(axis, n_open)) : 0.0;
           const double next = before[at(io, jo, ko)];
           const double on_wall = side_value(wall, next, second ? before[at(io + di, jo + dj, ko + dk)] : 0.0, d1, d2);
           values[at(i, j, k)] = next + (on_wall - next) * (d1 + d_blocked) / d1;
