@@ -1,10 +1,11 @@
 // Soil materials carried with the soil: each material's share m of a cell's soil moves with the soil
 // volume that the geometric VoF sweep moved through each face (vof_sweep's face_soil), so that a
 // material goes where its soil goes, its volume is conserved as c's is, and its share stays in [0, 1].
-// Same data layout as vof_advection.hpp.
+// Same data layouts as vof_advection.hpp and vof_advection_3d.hpp.
 #pragma once
 
 #include "models/interface/vof_advection.hpp"
+#include "models/interface/vof_advection_3d.hpp"
 
 namespace granflow::interface {
 
@@ -36,5 +37,14 @@ void material_sweep(int axis, double dt, const double* const* c, const double* c
                     const double* const* face_soil, const double* const* cc, const double* dx, const double* dy,
                     CellBox owned, double** const* m_new, RadialWeights radial = {}, const double* density = nullptr,
                     double** face_density = nullptr);
+
+// The same on a mesh of layers (arrays [k][j][i], axis 0, 1 or 2), after the 3D vof_sweep of the same
+// axis recorded face_soil: the same face shares and the same update, cell by cell, as the planar sweep
+// (a layer-independent field is swept as the planar one is, layer by layer).
+void material_sweep_3d(int axis, double dt, const double* const* const* c, const double* const* const* c_new,
+                       int count, const double* const* const* const* m, const double* const* const* const* m0,
+                       const double* const* const* face_velocity, const double* const* const* face_soil,
+                       const double* const* const* cc, CellWidths3 widths, CellBox owned, double*** const* m_new,
+                       const double* density = nullptr, double*** face_density = nullptr);
 
 }  // namespace granflow::interface
