@@ -305,13 +305,15 @@ interface::Polygon polygon_of(std::vector<std::array<double, 2>> points, const s
 
 // material: where given, the shape's `material` key is read into it ("" when absent); elsewhere the key
 // is unknown.
+void read_material_name(TableReader& r, std::string& material) {
+  material = r.string("material", "");
+  if (r.has("material") && material.empty())
+    throw CaseError(r.key_path("material") + ": empty; name a [[soil.materials]] entry, or leave the key out for the "
+                    "rheology's own soil");
+}
+
 interface::Shape read_shape(TableReader r, std::string* material = nullptr) {
-  if (material) {
-    *material = r.string("material", "");
-    if (r.has("material") && material->empty())
-      throw CaseError(r.key_path("material") + ": empty; name a [[soil.materials]] entry, or leave the key out for the "
-                      "rheology's own soil");
-  }
+  if (material) read_material_name(r, *material);
   const std::string shape = r.choice("shape", "", {"box", "circle", "ring", "polygon"});
   interface::Shape out;
   if (shape == "box") {
@@ -342,7 +344,8 @@ interface::Shape read_shape(TableReader r, std::string* material = nullptr) {
 // On a mesh of layers, a shape of its own (interface::Shape3): a box of three-number corners, a sphere,
 // or a vertical cylinder (a granular column); none for a planar shape, which is extruded across the
 // whole depth.
-std::optional<interface::Shape3> read_solid(TableReader r) {
+std::optional<interface::Shape3> read_solid(TableReader r, std::string* material = nullptr) {
+  if (material) read_material_name(r, *material);
   const std::string shape = r.choice("shape", "", {"box", "circle", "ring", "polygon", "sphere", "cylinder"});
   auto point3 = [&](const char* key) {
     if (!r.has(key)) throw CaseError(r.key_path(key) + ": missing" + r.misspelling_of(key));
@@ -489,13 +492,12 @@ SoilSettings read_soil(TableReader& top, std::vector<std::string>& without_effec
     if (!init.present()) throw CaseError("initial: missing table [[initial.soil]] (where the soil starts)" + top.misspelling_of("initial"));
     std::vector<bool> used(s.materials.size(), false);
     for (TableReader shape : init.tables("soil")) {
-      if (dimension == 3)
-        if (auto solid = read_solid(shape)) {
-          s.initial_soil_3d.push_back(*solid);
-          continue;
-        }
       std::string material;
-      s.initial_soil.push_back(read_shape(shape, &material));
+      // On a mesh of layers a shape of its own, or a planar one extruded across the depth.
+      const auto solid = dimension == 3 ? read_solid(shape, &material) : std::nullopt;
+      if (solid) s.initial_soil_3d.push_back(*solid);
+      else s.initial_soil.push_back(read_shape(shape, &material));
+      s.initial_shape_is_solid.push_back(solid.has_value());
       int index = 0;
       if (!material.empty()) {
         const auto it = std::find_if(s.materials.begin(), s.materials.end(), [&](const SoilMaterial& m) { return m.name == material; });
@@ -904,8 +906,6 @@ void require_solid_in_domain(const interface::Shape3& solid, const GridSpec& mes
 // What a mesh of layers has so far (docs/method.md, "Known limitations"), refused with the key to change.
 void require_what_layers_have(const CaseConfig& c) {
   if (c.mesh.dimension() == 2) return;
-  if (c.soil && !c.soil->materials.empty())
-    throw CaseError("soil.materials: several soils are planar yet (not on a mesh of layers)");
   if (c.soil)
     for (const auto& solid : c.soil->initial_soil_3d) require_solid_in_domain(solid, c.mesh, "initial.soil: a shape");
   for (size_t k = 0; k < c.obstacle_solids.size(); ++k)

@@ -234,15 +234,16 @@ std::vector<double> SoilPhase::material_volumes() const {
   const auto m = share_arrays(false);
   const BlockedView mask(grid_, blocked_);
   std::vector<double> volume(share_.size() + 1, 0.0);
-  for (int layer = b.zs; layer < b.ze(); ++layer)  // one soil on a mesh of layers
+  for (int layer = b.zs; layer < b.ze(); ++layer)
     for (int j = b.ys; j < b.ye(); ++j)
       for (int i = b.xs; i < b.xe(); ++i) {
         if (is_blocked(mask.data(), i, j, layer)) continue;
         const double soil = c.volume()[layer][j][i] * grid_.volume(i, j, layer);
         double rest = soil;
         for (size_t k = 0; k < m.size(); ++k) {
-          volume[k + 1] += soil * m[k][j][i];
-          rest -= soil * m[k][j][i];
+          const double share = m[k].volume()[layer][j][i];
+          volume[k + 1] += soil * share;
+          rest -= soil * share;
         }
         volume[0] += rest;
       }

@@ -33,7 +33,6 @@ static_assert(rheology::SoilMaterials::max_count == interface::max_materials);
 
 SoilPhase::SoilPhase(const Grid& grid, const FlowSettings& flow, const SoilSettings& settings)
     : grid_(grid), flow_settings_(flow), settings_(settings), ambient_pressure_(ambient_pressure(flow.boundaries)) {
-  refuse_what_3d_lacks();
   if (settings.rheology) rheology_.emplace(*settings.rheology);
   auto make = [&] { return std::make_unique<Field>(grid); };
   if (!settings.materials.empty()) {
@@ -46,14 +45,14 @@ SoilPhase::SoilPhase(const Grid& grid, const FlowSettings& flow, const SoilSetti
         list->back()->set(0.0);
       }
     }
-    for (auto& f : face_soil_) {
-      f = make();
-      f->set(0.0);
+    for (int a = 0; a < grid.dimension(); ++a) {
+      face_soil_[a] = make();
+      face_soil_[a]->set(0.0);
     }
     if (settings.materials_differ_in_density()) {
       soil_densities_.push_back(settings.soil_density);
       for (const auto& m : settings.materials) soil_densities_.push_back(m.rheology.density);
-      for (int a = 0; a < 2; ++a) {
+      for (int a = 0; a < grid.dimension(); ++a) {
         face_soil_density_[a] = make();
         face_soil_density_[a]->set(0.0);
         soil_mass_through_[a] = make();
@@ -218,25 +217,16 @@ void SoilPhase::initialise_materials() {
   for (auto& f : share_) fill_share_ghosts(*f);
 }
 
-// Ghosts of a material share: walls mirror (zero gradient), blocked cells hold none; soil coming in
-// through an atmosphere side is the rheology's own (share 0).
+// Ghosts of a material share: walls copy the nearest cell (zero gradient), blocked cells hold none;
+// soil coming in through an atmosphere side is the rheology's own (share 0).
 void SoilPhase::fill_share_ghosts(Field& f) const {
   zero_blocked_cells(grid_, blocked_, f);
-  fill_copied_ghosts(grid_, blocked_, f);
+  f.scatter_to_local();
   FieldArray a(grid_.field_dm(), f.local());
-  const auto& b = grid_.owned();
-  const int nx = grid_.nx(), ny = grid_.ny(), gw = Grid::ghost_width;
-  auto open = [&](Side side) { return boundary(flow_settings_.boundaries, side).kind == BoundaryKind::atmosphere; };
-  for (int k = 1; k <= gw; ++k)
-    for (int j = b.ys - gw; j < b.ye() + gw; ++j) {
-      if (grid_.owns_boundary(Side::west) && open(Side::west)) a[j][-k] = 0.0;
-      if (grid_.owns_boundary(Side::east) && open(Side::east)) a[j][nx - 1 + k] = 0.0;
-    }
-  for (int k = 1; k <= gw; ++k)
-    for (int i = b.xs - gw; i < b.xe() + gw; ++i) {
-      if (b.ys == 0 && open(Side::south)) a[-k][i] = 0.0;
-      if (b.ye() == ny && open(Side::north)) a[ny - 1 + k][i] = 0.0;
-    }
+  mirror_into_blocked(grid_, blocked_, a.volume(), 1.0);
+  fill_side_ghosts(grid_, a.volume(), [&](Side side, double, double first) {
+    return boundary(flow_settings_.boundaries, side).kind == BoundaryKind::atmosphere ? 0.0 : first;
+  });
 }
 
 
@@ -246,8 +236,8 @@ std::deque<ConstFieldArray> SoilPhase::share_arrays(bool ghosted) const {
   return arrays;
 }
 
-void SoilPhase::cell_shares(const std::deque<ConstFieldArray>& m, int i, int j, Shares& out) const {
-  for (size_t k = 0; k < m.size(); ++k) out[k] = m[k][j][i];
+void SoilPhase::cell_shares(const std::deque<ConstFieldArray>& m, int i, int j, int k, Shares& out) const {
+  for (size_t n = 0; n < m.size(); ++n) out[n] = m[n].volume()[k][j][i];
 }
 
 // Ghosts of c: soil carried in through an atmosphere boundary has the boundary's inflow fraction;

@@ -143,10 +143,17 @@ class SoilPhase {
   double wall_mixture_viscosity(double c, double pressure, const rheology::StrainRate& rate, const double* shares,
                                 const BoundaryCondition& wall, const rheology::StrainRate& wall_rate,
                                 int wall_axis) const;
-  // The shares of the materials in cell (i, j) (arrays of share_).
+  // The shares of the materials in cell (i, j), or (i, j, k) on a mesh of layers (arrays of share_).
   using Shares = rheology::SoilMaterials::Shares;
-  void cell_shares(const std::deque<ConstFieldArray>& m, int i, int j, Shares& out) const;
+  void cell_shares(const std::deque<ConstFieldArray>& m, int i, int j, Shares& out) const {
+    cell_shares(m, i, j, 0, out);
+  }
+  void cell_shares(const std::deque<ConstFieldArray>& m, int i, int j, int k, Shares& out) const;
   std::deque<ConstFieldArray> share_arrays(bool ghosted) const;
+  // The viscosity of a face of soil fraction cf between cells of c_low and c_high and shares own and
+  // other (used only with materials), the weaker side's between two soils.
+  double face_mixture_viscosity(double c_low, double c_high, double cf, double pressure,
+                                const rheology::StrainRate& rate, const Shares& own, const Shares& other) const;
   double cell_yield_pressure(double cell_pressure, const ConstFieldArray* overburden, int i, int j) const;
   std::unique_ptr<ConstFieldArray> overburden_if_floor() const;
   // Density of a mixture at soil fraction c ([VoF] Eq. 1 or App. A), of the soil's own density or of
@@ -170,11 +177,11 @@ class SoilPhase {
     }
     return rest > 0.0 ? rho + rest * settings_.soil_density : rho;
   }
-  // rho_s of cell (i, j)'s soil (arrays of share_; soil.density where all soils share it).
-  double cell_soil_density(const std::deque<ConstFieldArray>& m, int i, int j) const {
+  // rho_s of cell (i, j, k)'s soil (arrays of share_; soil.density where all soils share it).
+  double cell_soil_density(const std::deque<ConstFieldArray>& m, int i, int j, int k = 0) const {
     if (!densities_differ()) return settings_.soil_density;
     Shares shares{};
-    cell_shares(m, i, j, shares);
+    cell_shares(m, i, j, k, shares);
     return soil_density(shares);
   }
 
@@ -192,11 +199,11 @@ class SoilPhase {
   std::optional<rheology::GranularRheology> rheology_;
   std::optional<rheology::SoilMaterials> materials_;  // with [[soil.materials]]
   std::vector<std::unique_ptr<Field>> share_, share_tmp_, share_start_;
-  std::unique_ptr<Field> face_soil_[2];  // one sweep's soil volume per unit face area, with materials
+  std::unique_ptr<Field> face_soil_[3];  // one sweep's soil volume per unit face area, with materials
   // Soils of several densities: rho_s of each, the base's first (empty with one density); the density
   // of the soil each face carried in one sweep, and the soil's mass through each face over a step.
   std::vector<double> soil_densities_;
-  std::unique_ptr<Field> face_soil_density_[2], soil_mass_through_[2];
+  std::unique_ptr<Field> face_soil_density_[3], soil_mass_through_[3];
   std::unique_ptr<Field> c_, c_tmp_, dilatation_;
   std::unique_ptr<Field> region_[2];  // scratch of soil_region
   std::unique_ptr<Field> disp_[3], disp_new_[3];  // [2] on a mesh of layers
@@ -205,9 +212,9 @@ class SoilPhase {
   std::unique_ptr<Field> overburden_;  // rho_s g times the soil depth above each centre (Pa)
   std::unique_ptr<ColumnDepth> column_depth_;  // made at the first overburden (collective)
   void compute_overburden(const std::array<double, 3>& gravity);
-  // On a mesh of layers (soil_phase_3d.cpp): the public operations' 3D forms, and what they refuse.
-  void refuse_what_3d_lacks() const;
+  // On a mesh of layers (soil_phase_3d.cpp): the public operations' 3D forms.
   void initialise_3d();
+  void initialise_materials_3d();
   void update_properties_3d(FlowSolver& flow) const;
   void update_face_viscosity_3d(FlowSolver& flow) const;
   double interface_courant_3d(const FlowSolver& flow, double dt) const;

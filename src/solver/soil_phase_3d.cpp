@@ -1,25 +1,27 @@
 // The soil phase on a mesh of layers (3D): what soil_phase.cpp, soil_properties.cpp, soil_advection.cpp
-// and soil_diagnostics.cpp do on a planar mesh, for the models a mesh of layers has so far: one soil
-// (no [[soil.materials]]); the constructor refuses the rest (refuse_what_3d_lacks). The same equations
-// and the same choices as in 2D, each noted where it differs: the soil fraction is carried by the
-// three sweeps of vof_advection_3d.hpp, the strain rate and the Euler-Almansi strain are the full 3D
-// tensors (docs/method.md, "In three dimensions"). The displacement's transport serves both
+// and soil_diagnostics.cpp do on a planar mesh. The same equations and the same choices as in 2D, each
+// noted where it differs: the soil fraction and the materials' shares are carried by three sweeps
+// (vof_advection_3d.hpp, material_sweep_3d), the strain rate and the Euler-Almansi strain are the full
+// 3D tensors (docs/method.md, "In three dimensions"). The displacement's transport serves both
 // (soil_advection.cpp).
 #include <fmt/format.h>
 
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <deque>
 #include <numbers>
 #include <optional>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include "mesh/axis_views.hpp"
 #include "mesh/face_loop.hpp"
 #include "mesh/gather.hpp"
 #include "mesh/largest.hpp"
 #include "models/interface/initial_shapes_3d.hpp"
+#include "models/interface/material_transport.hpp"
 #include "models/interface/vof_advection_3d.hpp"
 #include "models/interface/wetted_fraction.hpp"
 #include "models/rheology/invariants.hpp"
@@ -40,16 +42,6 @@ VelocityArrays3 velocity_arrays(const AxisViews& v) { return {v.view[0], v.view[
 
 }  // namespace
 
-// What a mesh of layers does not have yet (docs/method.md, "Known limitations"); the case file refuses
-// the same, naming the key (require_what_layers_have in io/case_file.cpp).
-void SoilPhase::refuse_what_3d_lacks() const {
-  if (grid_.dimension() != 3) return;
-  auto refuse = [](const std::string& what) {
-    throw std::invalid_argument("SoilPhase: " + what + " on a mesh of layers is not implemented");
-  };
-  if (!settings_.materials.empty()) refuse("[[soil.materials]]");
-}
-
 void SoilPhase::initialise_3d() {
   // The 3D shapes, and the 2D ones extruded across the whole depth (a planar case's block across a
   // channel).
@@ -67,6 +59,66 @@ void SoilPhase::initialise_3d() {
         }
   }
   fill_fraction_ghosts(*c_);
+  if (materials_) initialise_materials_3d();
+}
+
+// Each material's share of a cell's soil, as in 2D (SoilPhase::initialise_materials): by 16 x 16 x 16
+// midpoint samples, a sample in the shapes' union belonging to the last shape listed that holds it;
+// a cell that one shape alone reaches is all of that shape's material.
+void SoilPhase::initialise_materials_3d() {
+  constexpr int samples = 16;
+  const auto& spec = grid_.spec();
+  const interface::ShapeUnion3 shapes(settings_.initial_solids(spec.lower[2], spec.upper[2]));
+  std::vector<std::array<interface::Point3, 2>> boxes;
+  for (const auto& solid : settings_.initial_solids(spec.lower[2], spec.upper[2]))
+    boxes.push_back(interface::bounding_box(solid));
+  const auto& material_of = settings_.initial_material;  // per shape as listed, as the solids are
+  const auto& b = grid_.owned();
+  const ConstFieldArray c(grid_.field_dm(), c_->global());
+  std::deque<FieldArray> m;
+  for (auto& f : share_) m.emplace_back(grid_.field_dm(), f->global());
+  const int count = int(share_.size()), shape_count = int(shapes.size());
+  std::vector<double> weight(size_t(count) + 1);
+  std::vector<int> reaching;
+  for (int k = b.zs; k < b.ze(); ++k)
+    for (int j = b.ys; j < b.ye(); ++j)
+      for (int i = b.xs; i < b.xe(); ++i) {
+        for (int n = 0; n < count; ++n) m[size_t(n)].volume()[k][j][i] = 0.0;
+        if (!(c.volume()[k][j][i] > 0.0)) continue;
+        const interface::Point3 lower{grid_.xc(i) - 0.5 * grid_.dx(i), grid_.yc(j) - 0.5 * grid_.dy(j),
+                                      grid_.zc(k) - 0.5 * grid_.dz(k)};
+        const interface::Point3 upper{lower[0] + grid_.dx(i), lower[1] + grid_.dy(j), lower[2] + grid_.dz(k)};
+        reaching.clear();
+        for (int shape = 0; shape < shape_count; ++shape) {
+          bool overlaps = true;
+          for (int a = 0; a < 3; ++a)
+            overlaps = overlaps && boxes[size_t(shape)][0][a] < upper[a] && boxes[size_t(shape)][1][a] > lower[a];
+          if (overlaps) reaching.push_back(shape);
+        }
+        if (reaching.empty()) continue;  // soil no shape holds: none (round-off)
+        std::fill(weight.begin(), weight.end(), 0.0);
+        if (reaching.size() > 1)
+          for (int sz = 0; sz < samples; ++sz)
+            for (int sy = 0; sy < samples; ++sy)
+              for (int sx = 0; sx < samples; ++sx) {
+                const double x = lower[0] + (sx + 0.5) * grid_.dx(i) / samples,
+                             y = lower[1] + (sy + 0.5) * grid_.dy(j) / samples,
+                             z = lower[2] + (sz + 0.5) * grid_.dz(k) / samples;
+                for (auto shape = reaching.rbegin(); shape != reaching.rend(); ++shape)
+                  if (shapes.shape_contains(size_t(*shape), x, y, z)) {
+                    weight[size_t(material_of[size_t(*shape)])] += 1.0;
+                    break;
+                  }
+              }
+        double total = 0.0;
+        for (double w : weight) total += w;
+        if (total > 0.0)
+          for (int n = 0; n < count; ++n) m[size_t(n)].volume()[k][j][i] = weight[size_t(n) + 1] / total;
+        else if (const int n = material_of[size_t(reaching.back())]; n > 0)  // one shape, or a sliver the samples missed
+          m[size_t(n - 1)].volume()[k][j][i] = 1.0;
+      }
+  m.clear();
+  for (auto& f : share_) fill_share_ghosts(*f);
 }
 
 void SoilPhase::update_properties_3d(FlowSolver& flow) const {
@@ -75,14 +127,18 @@ void SoilPhase::update_properties_3d(FlowSolver& flow) const {
   const AxisViews vel(grid_, [&](int a) -> const Field& { return flow.velocity(a); });
   FieldArray rho(grid_.field_dm(), flow.density().global()), mu(grid_.field_dm(), flow.viscosity().global());
   const auto overburden = overburden_if_floor();
+  const auto m = share_arrays(false);
+  Shares shares{};
   for (int k = b.zs; k < b.ze(); ++k)
     for (int j = b.ys; j < b.ye(); ++j)
       for (int i = b.xs; i < b.xe(); ++i) {
         const double cc = c.volume()[k][j][i];
-        rho.volume()[k][j][i] = mixture_density(cc);
+        if (materials_) cell_shares(m, i, j, k, shares);
+        rho.volume()[k][j][i] = densities_differ() ? mixture_density(cc, soil_density(shares)) : mixture_density(cc);
         const double pressure =
             overburden ? std::max(p.volume()[k][j][i], ambient_pressure_ + overburden->volume()[k][j][i]) : p.volume()[k][j][i];
-        mu.volume()[k][j][i] = mixture_viscosity(cc, pressure, cell_strain_rate(grid_, velocity_arrays(vel), i, j, k));
+        mu.volume()[k][j][i] = mixture_viscosity(cc, pressure, cell_strain_rate(grid_, velocity_arrays(vel), i, j, k),
+                                                 materials_ ? shares.data() : nullptr);
       }
 }
 
@@ -100,6 +156,11 @@ void SoilPhase::update_face_viscosity_3d(FlowSolver& flow) const {
   const VelocityArrays3 v = velocity_arrays(vel);
   std::optional<ConstFieldArray> obstacle_of;  // which obstacle a blocked cell belongs to
   if (obstacle_index_) obstacle_of.emplace(grid_.field_dm(), obstacle_index_->local());
+  // With soil materials: the shares of a cell (own, other), null without.
+  const auto m = share_arrays(true);
+  Shares own{}, other{};
+  const double* own_shares = materials_ ? own.data() : nullptr;
+  const double* other_shares = materials_ ? other.data() : nullptr;
   // Face (axis, i, j, k) lies between cell (i, j, k) and its neighbour at +1 along axis.
   auto face = [&](int axis, int i, int j, int k, double pressure) {
     const int in = i + (axis == 0), jn = j + (axis == 1), kn = k + (axis == 2);
@@ -108,14 +169,20 @@ void SoilPhase::update_face_viscosity_3d(FlowSolver& flow) const {
       const double air = mixture_viscosity(0.0, pressure, rheology::StrainRate{});
       return at_face ? air : face_mean(kind, air, air);
     }
+    if (materials_) {
+      cell_shares(m, i, j, k, own);
+      cell_shares(m, in, jn, kn, other);
+    }
     if (at_face) {
       const auto rate = face_strain_rate(grid_, v, axis, i, j, k);
       // One evaluation at the face's soil fraction; also where both sides hold the same mixture (the bulk).
-      if (face_fraction || c_high == c_low) return mixture_viscosity(0.5 * (c_low + c_high), pressure, rate);
-      return face_mean(kind, mixture_viscosity(c_low, pressure, rate), mixture_viscosity(c_high, pressure, rate));
+      if (face_fraction || c_high == c_low)
+        return face_mixture_viscosity(c_low, c_high, 0.5 * (c_low + c_high), pressure, rate, own, other);
+      return face_mean(kind, mixture_viscosity(c_low, pressure, rate, own_shares),
+                       mixture_viscosity(c_high, pressure, rate, other_shares));
     }
-    return face_mean(kind, mixture_viscosity(c_low, pressure, cell_strain_rate(grid_, v, i, j, k)),
-                     mixture_viscosity(c_high, pressure, cell_strain_rate(grid_, v, in, jn, kn)));
+    return face_mean(kind, mixture_viscosity(c_low, pressure, cell_strain_rate(grid_, v, i, j, k), own_shares),
+                     mixture_viscosity(c_high, pressure, cell_strain_rate(grid_, v, in, jn, kn), other_shares));
   };
   fill_owned_faces_3d(
       grid_, {&flow.face_viscosity(0), &flow.face_viscosity(1), &flow.face_viscosity(2)},
@@ -129,6 +196,7 @@ void SoilPhase::update_face_viscosity_3d(FlowSolver& flow) const {
         // The wall: a side of the domain, or an obstacle's face (of its own friction, or none).
         const int in = i + (axis == 0 ? sign : 0), jn = j + (axis == 1 ? sign : 0), kn = k + (axis == 2 ? sign : 0);
         const bool obstacle = !grid_.outside(in, jn, kn);
+        if (materials_) cell_shares(m, i, j, k, own);
         const int obstacle_index = obstacle && obstacle_of ? int(obstacle_of->volume()[kn][jn][in]) : 0;
         const auto& bc = !obstacle            ? boundary(flow_settings_.boundaries, side_of(axis, sign))
                          : obstacle_index > 0 ? obstacle_walls_[size_t(obstacle_index - 1)]
@@ -144,8 +212,8 @@ void SoilPhase::update_face_viscosity_3d(FlowSolver& flow) const {
         };
         if (!at_face) {
           const auto cell_rate = cell_strain_rate(grid_, v, i, j, k);
-          if (!bc.friction) return mixture_viscosity(c[k][j][i], pressure, cell_rate);
-          return wall_mixture_viscosity(c[k][j][i], pressure, cell_rate, nullptr, bc, wall_rate(), axis);
+          if (!bc.friction) return mixture_viscosity(c[k][j][i], pressure, cell_rate, own_shares);
+          return wall_mixture_viscosity(c[k][j][i], pressure, cell_rate, own_shares, bc, wall_rate(), axis);
         }
         // The face's own soil fraction: how much of it the cell's soil covers (a film on the floor
         // covers all of the floor under it).
@@ -153,7 +221,7 @@ void SoilPhase::update_face_viscosity_3d(FlowSolver& flow) const {
                                                                           grid_.dz_data(), i, j, k, axis, sign)
                                         : c[k][j][i];
         const auto rate = wall_rate();
-        return wall_mixture_viscosity(cf, pressure, rate, nullptr, bc, rate, axis);
+        return wall_mixture_viscosity(cf, pressure, rate, own_shares, bc, rate, axis);
       },
       BlockedView(grid_, blocked_).data());  // an obstacle's wall as a wall side: its velocity mirrored behind it
 }
@@ -167,7 +235,8 @@ double SoilPhase::interface_courant_3d(const FlowSolver& flow, double dt) const 
 }
 
 // The three sweeps of vof_advection_3d.hpp, in as many sub-steps as the sweep's Courant limit needs,
-// taken over the whole mesh (in 2D only near the soil, SoilPhase::interface_courant).
+// taken over the whole mesh (in 2D only near the soil, SoilPhase::interface_courant); with materials,
+// each sweep of c followed by the same sweep of their shares (material_sweep_3d).
 void SoilPhase::advect_3d(FlowSolver& flow, double dt) {
   const double co = interface_courant_3d(flow, dt);
   constexpr double max_substeps = 1000, allowance = 1e-9;
@@ -181,78 +250,145 @@ void SoilPhase::advect_3d(FlowSolver& flow, double dt) {
   const AxisViews face(grid_, [&](int a) -> const Field& { return flow.face_velocity(a); });
   const interface::DomainCells3 domain{grid_.nx(), grid_.ny(), grid_.nz(), grid_.periodic_x()};
   // Under the conservative momentum transport the soil volume per unit area through each face adds up
-  // in the flow's mass fluxes, which become mass fluxes below, as in 2D (soil_advection.cpp); one soil.
+  // in the flow's mass fluxes, which become mass fluxes below, as in 2D (soil_advection.cpp); with soils
+  // of several densities their mass too.
   const bool carry_mass = flow.carries_mass_transport();
-  std::optional<FieldArray> soil_through[3];
+  std::optional<FieldArray> soil_through[3], soil_mass_through[3];
   if (carry_mass) {
     {
       const ConstFieldArray c(grid_.field_dm(), c_->global());
       FieldArray rho0 = local_array(grid_, flow.start_density());
+      const auto m = share_arrays(false);
       for (int k = b.zs; k < b.ze(); ++k)
         for (int j = b.ys; j < b.ye(); ++j)
-          for (int i = b.xs; i < b.xe(); ++i) rho0.volume()[k][j][i] = mixture_density(c.volume()[k][j][i]);
+          for (int i = b.xs; i < b.xe(); ++i) {
+            const double cc = c.volume()[k][j][i];
+            rho0.volume()[k][j][i] =
+                densities_differ() ? mixture_density(cc, cell_soil_density(m, i, j, k)) : mixture_density(cc);
+          }
     }
     for (int a = 0; a < 3; ++a) {
       flow.mass_flux(a).set(0.0);
       soil_through[a].emplace(grid_.field_dm(), flow.mass_flux(a).local());
+      if (densities_differ()) {
+        soil_mass_through_[a]->set(0.0);
+        soil_mass_through[a].emplace(grid_.field_dm(), soil_mass_through_[a]->local());
+      }
     }
   }
+  const int start[3] = {b.xs, b.ys, b.zs}, end[3] = {b.xe(), b.ye(), b.ze()};
+  // Calls at(i, j, k) on the faces bounding the owned cells along the axis, the block's low side's too.
+  auto for_faces = [&](int axis, auto&& at) {
+    int lo[3] = {start[0], start[1], start[2]};
+    --lo[axis];
+    for (int k = lo[2]; k < end[2]; ++k)
+      for (int j = lo[1]; j < end[1]; ++j)
+        for (int i = lo[0]; i < end[0]; ++i) at(i, j, k);
+  };
   for (int s = 0; s < substeps; ++s) {
     {
       const ConstFieldArray c(grid_.field_dm(), c_->local());
       FieldArray cc(grid_.field_dm(), dilatation_->local());
       interface::dilatation_indicator(c.volume(), b, cc.volume());
     }
+    // The materials' shares at the start, held with the indicator over the three sweeps.
+    for (size_t n = 0; n < share_.size(); ++n)
+      PetscCallAbort(grid_.comm(), VecCopy(share_[n]->global(), share_start_[n]->global()));
     // x y z, then z y x in the next sub-step (Strang's alternation, as x y then y x in 2D): a flow that
     // does not vary along z is swept as the planar one is.
     const bool forward = sweep_parity_ == 0;
     sweep_parity_ = 1 - sweep_parity_;
     Field* from = c_.get();
     Field* to = c_tmp_.get();
+    auto* shares_from = &share_;
+    auto* shares_to = &share_tmp_;
     for (int n = 0; n < 3; ++n) {
       const int axis = forward ? n : 2 - n;
       {
         const ConstFieldArray c(grid_.field_dm(), from->local()), cc(grid_.field_dm(), dilatation_->local());
         FieldArray c_new(grid_.field_dm(), to->global());
-        interface::vof_sweep(axis, h, c.volume(), face.view[axis], cc.volume(), widths_of(grid_), b, c_new.volume(), domain,
-                             carry_mass ? soil_through[axis]->volume() : nullptr);
+        if (!materials_) {
+          interface::vof_sweep(axis, h, c.volume(), face.view[axis], cc.volume(), widths_of(grid_), b, c_new.volume(),
+                               domain, carry_mass ? soil_through[axis]->volume() : nullptr);
+        } else {
+          // The sweep's own face fluxes, which carry the materials' shares, then add up in soil_through.
+          FieldArray through(grid_.field_dm(), face_soil_[axis]->local());
+          for_faces(axis, [&](int i, int j, int k) { through.volume()[k][j][i] = 0.0; });
+          interface::vof_sweep(axis, h, c.volume(), face.view[axis], cc.volume(), widths_of(grid_), b, c_new.volume(),
+                               domain, through.volume());
+          std::deque<ConstFieldArray> m, m0;
+          std::deque<FieldArray> m_new;
+          std::vector<const double* const* const*> m_of, m0_of;
+          std::vector<double***> m_new_of;
+          for (size_t q = 0; q < share_.size(); ++q) {
+            m_of.push_back(m.emplace_back(grid_.field_dm(), (*shares_from)[q]->local()).volume());
+            m0_of.push_back(m0.emplace_back(grid_.field_dm(), share_start_[q]->global()).volume());
+            m_new_of.push_back(m_new.emplace_back(grid_.field_dm(), (*shares_to)[q]->global()).volume());
+          }
+          std::optional<FieldArray> face_density;
+          if (soil_mass_through[axis]) face_density.emplace(grid_.field_dm(), face_soil_density_[axis]->local());
+          interface::material_sweep_3d(axis, h, c.volume(), c_new.volume(), int(share_.size()), m_of.data(),
+                                       m0_of.data(), face.view[axis], through.volume(), cc.volume(), widths_of(grid_), b,
+                                       m_new_of.data(), soil_densities_.data(),
+                                       face_density ? face_density->volume() : nullptr);
+          if (carry_mass)
+            for_faces(axis, [&](int i, int j, int k) {
+              const double f = through.volume()[k][j][i];
+              soil_through[axis]->volume()[k][j][i] += f;
+              if (face_density && f != 0.0) soil_mass_through[axis]->volume()[k][j][i] += f * face_density->volume()[k][j][i];
+            });
+        }
         outflow_ += interface::boundary_outflow(axis, h, c.volume(), face.view[axis], widths_of(grid_), b, domain);
         if (axis == 0 && grid_.periodic_x() && b.xe() == grid_.nx()) {
           // The soil through the join east of the last column runs on in the budget's first moment
           // (join_moment_, soil_diagnostics.cpp): the donor's excess over the air's density times the
-          // strip's length.
+          // strip's length. The donor's shares are those the sweep started from (cell i + 1: the first
+          // column's ghost).
+          std::deque<ConstFieldArray> m;
+          if (densities_differ())
+            for (const auto& f : *shares_from) m.emplace_back(grid_.field_dm(), f->local());
           const int i = grid_.nx() - 1;
           const double length = grid_.spec().upper[0] - grid_.spec().lower[0];
           for (int k = b.zs; k < b.ze(); ++k)
             for (int j = b.ys; j < b.ye(); ++j) {
               const double moved =
                   interface::face_soil_volume_x(i, j, k, h, c.volume(), face.view[0], widths_of(grid_), domain);
-              join_moment_ += (settings_.soil_density - settings_.air_density) * length * moved;
+              if (moved != 0.0)
+                join_moment_ +=
+                    (cell_soil_density(m, moved > 0.0 ? i : i + 1, j, k) - settings_.air_density) * length * moved;
             }
         }
       }
       fill_fraction_ghosts(*to);
+      for (auto& f : *shares_to) fill_share_ghosts(*f);
       std::swap(from, to);
+      std::swap(shares_from, shares_to);
     }
-    // Three sweeps end in c_tmp_: back to c_.
+    // Three sweeps end in c_tmp_ (and share_tmp_): back to c_.
     c_->copy_from(*from);
+    for (size_t q = 0; q < share_.size(); ++q) share_[q]->copy_from(*(*shares_from)[q]);
   }
   if (!carry_mass) return;
   // Mass flux = u rho(c_swept), the mixture density of what crossed the face, c_swept = s / (u dt)
-  // with s the soil volume per unit area through it over the step (soil_advection.cpp says why).
-  const int start[3] = {b.xs, b.ys, b.zs}, end[3] = {b.xe(), b.ye(), b.ze()};
+  // with s the soil volume per unit area through it over the step (soil_advection.cpp says why); with
+  // soils of several densities rho_s is that of the soil that crossed, within the lightest's and the
+  // heaviest's.
+  const auto [lightest, heaviest] = std::minmax_element(soil_densities_.begin(), soil_densities_.end());
   for (int axis = 0; axis < 3; ++axis) {
     double*** m = soil_through[axis]->volume();
     const VolumeView u = face.view[axis];
-    int lo[3] = {start[0], start[1], start[2]};
-    --lo[axis];  // the faces on the block's low side too, as the sweeps visit them
-    for (int k = lo[2]; k < end[2]; ++k)
-      for (int j = lo[1]; j < end[1]; ++j)
-        for (int i = lo[0]; i < end[0]; ++i) {
-          const double q = u[k][j][i];
-          const double swept = q != 0.0 ? std::clamp(m[k][j][i] / (dt * q), 0.0, 1.0) : 0.0;
-          m[k][j][i] = q * mixture_density(swept);
-        }
+    for_faces(axis, [&](int i, int j, int k) {
+      const double q = u[k][j][i];
+      const double swept = q != 0.0 ? std::clamp(m[k][j][i] / (dt * q), 0.0, 1.0) : 0.0;
+      if (!densities_differ()) {
+        m[k][j][i] = q * mixture_density(swept);
+        return;
+      }
+      const double soil_mass = soil_mass_through[axis]->volume()[k][j][i];
+      const double rho_s =
+          m[k][j][i] != 0.0 ? std::clamp(soil_mass / m[k][j][i], *lightest, *heaviest) : settings_.soil_density;
+      m[k][j][i] = q * mixture_density(swept, rho_s);
+    });
   }
 }
 
@@ -267,6 +403,8 @@ void SoilPhase::compute_diagnostics_3d(const FlowSolver& flow) {
       lo(grid_.field_dm(), lode_->global()), ratio(grid_.field_dm(), stress_ratio_->global()),
       relative(grid_.field_dm(), relative_stress_->global());
   const BlockedView mask(grid_, blocked_);
+  const auto m = share_arrays(false);
+  Shares shares{};
   for (int k = b.zs; k < b.ze(); ++k)
     for (int j = b.ys; j < b.ye(); ++j)
       for (int i = b.xs; i < b.xe(); ++i) {
@@ -293,8 +431,14 @@ void SoilPhase::compute_diagnostics_3d(const FlowSolver& flow) {
         const double cell_p = p.volume()[k][j][i];
         const double pressure =
             (overburden ? std::max(cell_p, ambient_pressure_ + overburden->volume()[k][j][i]) : cell_p) - ambient_pressure_;
-        ratio.volume()[k][j][i] = rheology_ ? rheology_->stress_ratio_to_drucker_prager(D, pressure) : 1.0;
-        relative.volume()[k][j][i] = rheology_ ? rheology_->relative_shear_stress(D, pressure) : 1.0;
+        if (materials_) {
+          cell_shares(m, i, j, k, shares);
+          ratio.volume()[k][j][i] = materials_->stress_ratio_to_drucker_prager(D, pressure, shares.data());
+          relative.volume()[k][j][i] = materials_->relative_shear_stress(D, pressure, shares.data());
+        } else {
+          ratio.volume()[k][j][i] = rheology_ ? rheology_->stress_ratio_to_drucker_prager(D, pressure) : 1.0;
+          relative.volume()[k][j][i] = rheology_ ? rheology_->relative_shear_stress(D, pressure) : 1.0;
+        }
       }
 }
 
@@ -388,8 +532,9 @@ double SoilPhase::compute_dissipation_3d(const FlowSolver& flow) {
 SoilBudget SoilPhase::budget_3d(const FlowSolver& flow) {
   const auto& b = grid_.owned();
   const auto& g = flow_settings_.gravity;
-  const double rho_a = settings_.air_density, rho_s = settings_.soil_density;
+  const double rho_a = settings_.air_density;
   const ConstFieldArray c_array(grid_.field_dm(), c_->global()), rho_array(grid_.field_dm(), flow.density().global());
+  const auto m = share_arrays(false);
   const VolumeView c = c_array.volume(), rho = rho_array.volume();
   const AxisViews vel(grid_, [&](int a) -> const Field& { return flow.velocity(a); });
   double s[7] = {0, 0, 0, 0, compute_dissipation_3d(flow), 0, outflow_};
@@ -403,7 +548,7 @@ SoilBudget SoilPhase::budget_3d(const FlowSolver& flow) {
       for (int i = b.xs; i < b.xe(); ++i) {
         if (is_blocked(mask.data(), i, j, k)) continue;  // solid, not the flow's
         const double V = grid_.volume(i, j, k), cc = c[k][j][i];
-        const double phase_density = rho_s * cc + rho_a * (1.0 - cc);
+        const double phase_density = cell_soil_density(m, i, j, k) * cc + rho_a * (1.0 - cc);
         double speed2 = 0.0;
         for (int a = 0; a < 3; ++a) speed2 += vel.view[a][k][j][i] * vel.view[a][k][j][i];
         s[0] += cc * V;

@@ -35,6 +35,20 @@ double SoilPhase::mixture_viscosity(double c, double pressure, const rheology::S
   return s.viscosity_mixing(c, s.air_viscosity, mu_soil);
 }
 
+// One evaluation on a face at soil fraction cf between cells of soil fractions c_low and c_high and
+// shares own and other. Between two soils the face is as strong as the weaker side: a slip surface
+// along the contact of two materials runs on the weaker one's side (with the mean of their strengths
+// a slip along a stiff foundation had to run a cell higher). A side without soil, or with a sliver
+// whose shares are round-off, has no shares to give.
+double SoilPhase::face_mixture_viscosity(double c_low, double c_high, double cf, double pressure,
+                                         const rheology::StrainRate& rate, const Shares& own,
+                                         const Shares& other) const {
+  if (!materials_) return mixture_viscosity(cf, pressure, rate);
+  if (!(c_high > interface::no_soil)) return mixture_viscosity(cf, pressure, rate, own.data());
+  if (!(c_low > interface::no_soil) || own == other) return mixture_viscosity(cf, pressure, rate, other.data());
+  return std::min(mixture_viscosity(cf, pressure, rate, own.data()), mixture_viscosity(cf, pressure, rate, other.data()));
+}
+
 void SoilPhase::set_obstacle_friction(const Field* obstacle_index,
                                       const std::vector<std::optional<rheology::WallFriction>>& friction) {
   obstacle_index_ = obstacle_index;
@@ -109,16 +123,6 @@ void SoilPhase::update_face_viscosity(FlowSolver& flow) const {
   Shares own{}, other{};
   const double* own_shares = materials_ ? own.data() : nullptr;
   const double* other_shares = materials_ ? other.data() : nullptr;
-  // One evaluation on the face at soil fraction cf. Between two soils the face is as strong as the
-  // weaker side: a slip surface along the contact of two materials runs on the weaker one's side (with
-  // the mean of their strengths a slip along a stiff foundation had to run a cell higher). A side
-  // without soil, or with a sliver whose shares are round-off, has no shares to give.
-  auto on_face = [&](int i, int j, int in, int jn, double cf, double pressure, const rheology::StrainRate& rate) {
-    if (!materials_) return mixture_viscosity(cf, pressure, rate);
-    if (!(c[jn][in] > interface::no_soil)) return mixture_viscosity(cf, pressure, rate, own_shares);
-    if (!(c[j][i] > interface::no_soil) || own == other) return mixture_viscosity(cf, pressure, rate, other_shares);
-    return std::min(mixture_viscosity(cf, pressure, rate, own_shares), mixture_viscosity(cf, pressure, rate, other_shares));
-  };
   // Face (axis, i, j) lies between cell (i, j) and its neighbour at +1 along axis.
   auto face = [&](int axis, int i, int j, double pressure) {
     const int in = i + (axis == 0), jn = j + (axis == 1);
@@ -134,7 +138,7 @@ void SoilPhase::update_face_viscosity(FlowSolver& flow) const {
       const auto rate = face_strain_rate(grid_, u.data(), v.data(), axis, i, j);
       // One evaluation at the face's soil fraction; also where both sides hold the same mixture (the bulk).
       if (face_fraction || c[jn][in] == c[j][i])
-        return on_face(i, j, in, jn, 0.5 * (c[j][i] + c[jn][in]), pressure, rate);
+        return face_mixture_viscosity(c[j][i], c[jn][in], 0.5 * (c[j][i] + c[jn][in]), pressure, rate, own, other);
       return face_mean(kind, mixture_viscosity(c[j][i], pressure, rate, own_shares),
                        mixture_viscosity(c[jn][in], pressure, rate, other_shares));
     }
@@ -198,9 +202,9 @@ void SoilPhase::compute_overburden(const std::array<double, 3>& gravity) {
     const auto& b = grid_.owned();
     for (int k = b.zs; k < b.ze(); ++k)
       for (int j = b.ys; j < b.ye(); ++j)
-        for (int i = b.xs; i < b.xe(); ++i)  // one soil on a mesh of layers (refuse_what_3d_lacks)
+        for (int i = b.xs; i < b.xe(); ++i)
           o.volume()[k][j][i] = cf.volume()[k][j][i] * grid_.dy(j) *
-                                (densities ? cell_soil_density(m, i, j) / settings_.soil_density : 1.0);
+                                (densities ? cell_soil_density(m, i, j, k) / settings_.soil_density : 1.0);
   }
   column_depth_->to_centre_depths(*overburden_);
   PetscCallAbort(grid_.comm(), VecScale(overburden_->global(), settings_.soil_density * std::abs(gravity[1])));

@@ -36,16 +36,28 @@ struct SoilSettings {
   // On a mesh of layers: these, and initial_soil's shapes extruded across the whole depth.
   std::vector<interface::Shape3> initial_soil_3d;
   std::vector<SoilMaterial> materials;  // soils other than the rheology's own, carried with the soil
-  // Per initial shape, its soil: 0 the rheology's own, k materials[k - 1]. Where shapes overlap, the
-  // last listed holds the point.
+  // Per initial shape as listed, its soil: 0 the rheology's own, k materials[k - 1]. Where shapes
+  // overlap, the last listed holds the point.
   std::vector<int> initial_material;
+  // Per initial shape as listed, whether it is a solid (initial_soil_3d) or a planar shape (initial_soil).
+  std::vector<bool> initial_shape_is_solid;
   // Whether some material's density is not soil_density: the mixture's density then follows the
   // cells' shares (otherwise the one-density forms run, to the bit).
   // On a mesh of layers from z_lower to z_upper: every initial shape as a solid, the planar ones
-  // extruded across the whole depth.
+  // extruded across the whole depth, in the order listed (settings that do not record it, built in
+  // code: the solids first).
   std::vector<interface::Shape3> initial_solids(double z_lower, double z_upper) const {
-    std::vector<interface::Shape3> solids = initial_soil_3d;
-    for (const auto& s : initial_soil) solids.push_back(interface::Extrusion{s, z_lower, z_upper});
+    std::vector<interface::Shape3> solids;
+    auto extruded = [&](const interface::Shape& s) { return interface::Extrusion{s, z_lower, z_upper}; };
+    if (initial_shape_is_solid.size() != initial_soil_3d.size() + initial_soil.size()) {
+      solids = initial_soil_3d;
+      for (const auto& s : initial_soil) solids.push_back(extruded(s));
+      return solids;
+    }
+    size_t solid = 0, planar = 0;
+    for (const bool is_solid : initial_shape_is_solid)
+      if (is_solid) solids.push_back(initial_soil_3d[solid++]);
+      else solids.push_back(extruded(initial_soil[planar++]));
     return solids;
   }
   bool materials_differ_in_density() const {

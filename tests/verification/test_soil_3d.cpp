@@ -2,8 +2,7 @@
 // interface moved, then the flow's outer iterations, then the displacement):
 //  - a water column collapsing across a channel with slip front and back is the planar collapse, in
 //    every layer;
-//  - a granular column collapses with its soil volume kept to round-off;
-//  - what the soil phase does not have on a mesh of layers yet is refused.
+//  - a granular column collapses with its soil volume kept to round-off.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -335,26 +334,6 @@ TEST(SoilPhase3d, TheQuadraticWallGradientOfALayerIndependentCollapseIsThePlanar
   EXPECT_NEAR(layered[0] / planar[0], 1.0, 1e-4);
   EXPECT_NEAR(layered[1] / planar[1], 1.0, 1e-4);
   EXPECT_GT(std::abs(two_point[1] / planar[1] - 1.0), 1e-3);  // the gradient matters here
-}
-
-// What the soil phase does not have on a mesh of layers yet is refused at once, with the reason.
-TEST(SoilPhase3d, RefusesWhatAMeshOfLayersLacks) {
-  GridSpec spec;
-  spec.cells = {4, 4, 4};
-  const Grid g(PETSC_COMM_SELF, spec);
-  const FlowSettings flow = channel_flow();
-  auto refused = [&](const FlowSettings& f, const SoilSettings& s, const char* reason) {
-    try {
-      SoilPhase soil(g, f, s);
-      ADD_FAILURE() << "not refused: " << reason;
-    } catch (const std::invalid_argument& e) {
-      EXPECT_NE(std::string(e.what()).find(reason), std::string::npos) << e.what();
-    }
-  };
-  SoilSettings materials = sand_column();
-  materials.materials = {SoilMaterial{"clay", *materials.rheology}};
-  refused(flow, materials, "[[soil.materials]]");
-  EXPECT_NO_THROW(SoilPhase(g, flow, sand_column()));
 }
 
 }  // namespace

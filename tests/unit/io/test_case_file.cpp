@@ -1157,6 +1157,32 @@ TEST(CaseFile, AMeshOfLayersMayBePeriodicAlongX) {
             std::string::npos);
 }
 
+// Soil materials on a mesh of layers: a solid's `material` as a planar shape's, and the shapes laid out
+// in the order listed, solids and planar shapes alike, so that the last listed holds a point.
+TEST(CaseFile, AMeshOfLayersReadsSoilMaterialsOfSolidsAndShapes) {
+  const std::string clay = "soil.materials=[{name = \"clay\", friction_angle = 20.0, density = 1800.0}]";
+  const CaseConfig c = parse_case(
+      layered, {clay, "initial.soil=[{shape=\"circle\", centre=[0.0, 0.0], radius=0.1}, "
+                      "{shape=\"box\", lower=[0.5, 0.0, -0.2], upper=[0.8, 0.1, 0.0], material=\"clay\"}, "
+                      "{shape=\"box\", lower=[0.0, 0.0], upper=[0.3, 0.05], material=\"clay\"}, "
+                      "{shape=\"sphere\", centre=[0.6, 0.4, 0.1], radius=0.05}]"});
+  ASSERT_EQ(c.soil->materials.size(), 1u);
+  EXPECT_EQ(c.soil->initial_material, (std::vector<int>{0, 1, 1, 0}));
+  EXPECT_EQ(c.soil->initial_shape_is_solid, (std::vector<bool>{false, true, false, true}));
+  const auto solids = c.soil->initial_solids(c.mesh.lower[2], c.mesh.upper[2]);
+  ASSERT_EQ(solids.size(), 4u);
+  EXPECT_TRUE(std::holds_alternative<interface::Extrusion>(solids[0]));
+  EXPECT_TRUE(std::holds_alternative<interface::Box3>(solids[1]));
+  EXPECT_TRUE(std::holds_alternative<interface::Extrusion>(solids[2]));
+  EXPECT_TRUE(std::holds_alternative<interface::Sphere>(solids[3]));
+  EXPECT_TRUE(interface::contains(solids[2], 0.25, 0.04, 0.19));  // extruded across the whole depth
+  // A solid's material must name one of the case's.
+  const std::string e = error_of(layered, {clay, "initial.soil=[{shape=\"sphere\", centre=[0.6, 0.4, 0.1], "
+                                                 "radius=0.05, material=\"clya\"}]"});
+  EXPECT_NE(e.find("initial.soil[0].material: no soil material named 'clya' (the case's are: clay)"), std::string::npos)
+      << e;
+}
+
 TEST(CaseFile, AMeshOfLayersRefusesWhatItLacks) {
   const std::pair<std::vector<std::string>, const char*> refused[] = {
       {{"mesh.cells=[8, 6, 1]"}, "one cell along z is a planar mesh"},
