@@ -770,6 +770,12 @@ add_test(NAME cli_run_a_narrow_channel_between_walls_of_their_own_friction
          COMMAND sh -c "d=$1; rm -rf \"$d\"; \"$0\" run \"$2\" -o \"$d\" --set time.end=0.05 --set output.fields=false --set output.progress_seconds=0 > \"$d.log\" 2>&1 || { cat \"$d.log\"; exit 1; }; head -1 \"$d/history.csv\" | cut -d, -f26-31 | grep -qx 'force_front_x,force_front_y,force_front_z,force_back_x,force_back_y,force_back_z' && tail -1 \"$d/history.csv\" | awk -F, '{ r = $26 / -$28; print \"front wall shear / normal force\", r; exit !($26 > 0.5 && r > 0.03 && r <= 0.1764 && ($26 - $29) < 1e-4 * $26 && ($29 - $26) < 1e-4 * $26 && ($28 + $31) < 1e-4 * $31 && -($28 + $31) < 1e-4 * $31) }'"
                  $<TARGET_FILE:granflow> ${CMAKE_CURRENT_BINARY_DIR}/narrow_channel_run ${CMAKE_SOURCE_DIR}/cases/narrow_channel_3d.toml)
 set_tests_properties(cli_run_a_narrow_channel_between_walls_of_their_own_friction PROPERTIES LABELS cli TIMEOUT 300)
+# Soil materials on a mesh of layers: check says each one's soil, the fields hold each one's volume
+# fraction, and a restart ends where a run straight through does (tests/materials_of_layers.sh).
+add_test(NAME cli_soil_materials_of_layers
+         COMMAND sh ${CMAKE_CURRENT_SOURCE_DIR}/materials_of_layers.sh $<TARGET_FILE:granflow>
+                 ${CMAKE_SOURCE_DIR}/cases/narrow_channel_3d.toml ${CMAKE_CURRENT_BINARY_DIR}/materials_of_layers)
+set_tests_properties(cli_soil_materials_of_layers PROPERTIES LABELS cli TIMEOUT 300)
 # Line samples on a mesh of layers: a layer-independent water column's samples at any depth are the
 # planar run's (tests/line_samples_of_layers.sh).
 add_test(NAME cli_line_samples_of_layers_are_the_planar_ones
