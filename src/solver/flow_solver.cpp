@@ -84,10 +84,10 @@ FlowSolver::FlowSolver(const Grid& grid, const FlowSettings& settings)
       if (a > 0 && shared_momentum_matrix_) continue;
       PetscCallAbort(comm, DMCreateMatrix(grid.matrix_dm(), momentum_matrix_[a].put()));
       static const char* const prefixes[3] = {"momentum_x", "momentum_y", "momentum_z"};
-      momentum_solver_[a] = std::make_unique<LinearSolver>(comm, prefixes[a], settings.momentum_solver);
+      momentum_solver_[a] = std::make_unique<LinearSolver>(comm, prefixes[a], settings.momentum_solver, dimension_);
     }
     PetscCallAbort(comm, DMCreateMatrix(grid.matrix_dm(), pressure_matrix_.put()));
-    pressure_solver_ = std::make_unique<LinearSolver>(comm, "pressure", settings.pressure_solver);
+    pressure_solver_ = std::make_unique<LinearSolver>(comm, "pressure", settings.pressure_solver, dimension_);
     PetscCallAbort(comm, DMCreateGlobalVector(grid.field_dm(), rhs_.put()));
   }
 

@@ -7,6 +7,8 @@
 #include <cstdio>
 #include <cstdlib>
 #include <set>
+#include <utility>
+#include <vector>
 #include <stdexcept>
 
 #include "io/case_error.hpp"
@@ -51,7 +53,8 @@ void set_default_option(const std::string& key, const char* value) {
 
 bool is_default_petsc_option(const std::string& name) { return defaults_set().count(name) > 0; }
 
-LinearSolver::LinearSolver(MPI_Comm comm, const std::string& prefix, const LinearSolverSettings& s)
+LinearSolver::LinearSolver(MPI_Comm comm, const std::string& prefix, const LinearSolverSettings& s,
+                           int mesh_dimension)
     : prefix_(prefix), max_reuse_(std::max(1, s.max_reuse)) {
   PetscCallAbort(comm, KSPCreate(comm, ksp_.put()));
   PetscCallAbort(comm, KSPSetOptionsPrefix(ksp_, (prefix + "_").c_str()));
@@ -73,7 +76,22 @@ LinearSolver::LinearSolver(MPI_Comm comm, const std::string& prefix, const Linea
     set_default("interp_type", "ext+i");
     set_default("P_max", "4");
   }
+  // On a mesh of layers, hypre's advice for 3D problems: a strong threshold of 0.5 and one level of
+  // aggressive coarsening (the quarter column under the projection: 0.7 of the wall time; docs/
+  // benchmarks.md). Set for this solver's reading only, and cleared after it, so that a planar solver
+  // made later in the same process reads none of them (the 2D defaults above are the same for both).
+  std::vector<std::string> read_once;
+  if (s.pc_type == "hypre" && mesh_dimension == 3)
+    for (const auto& [key, value] : {std::pair{"strong_threshold", "0.5"}, std::pair{"agg_nl", "1"}}) {
+      const std::string name = "-" + prefix + "_pc_hypre_boomeramg_" + key;
+      PetscBool given;
+      PetscCallAbort(comm, PetscOptionsHasName(nullptr, nullptr, name.c_str(), &given));
+      if (given) continue;
+      PetscCallAbort(comm, PetscOptionsSetValue(nullptr, name.c_str(), value));
+      read_once.push_back(name);
+    }
   PetscCallAbort(comm, KSPSetFromOptions(ksp_));
+  for (const auto& name : read_once) PetscCallAbort(comm, PetscOptionsClearValue(nullptr, name.c_str()));
   if (auto problem = tolerance_problem(ksp_, prefix); !problem.empty()) throw CaseError(problem);
   // A direct solve (preonly) takes no initial guess; iterative ones start from the last solution.
   KSPType type;

@@ -33,7 +33,10 @@ bool is_default_petsc_option(const std::string& name);
 
 class LinearSolver {
  public:
-  LinearSolver(MPI_Comm comm, const std::string& prefix, const LinearSolverSettings& settings);
+  // mesh_dimension: 3 on a mesh of layers, whose BoomerAMG takes hypre's settings for 3D problems
+  // (a stronger threshold, one level of aggressive coarsening) unless the user's options say otherwise.
+  LinearSolver(MPI_Comm comm, const std::string& prefix, const LinearSolverSettings& settings,
+               int mesh_dimension = 2);
   ~LinearSolver();
   LinearSolver(const LinearSolver&) = delete;
   LinearSolver& operator=(const LinearSolver&) = delete;

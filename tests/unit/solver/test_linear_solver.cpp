@@ -6,7 +6,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
+#include <fstream>
 #include <random>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -185,6 +188,39 @@ TEST(LinearSolver, SolveByLastFactorisationNeedsOne) {
   EXPECT_THROW(solver.solve_by_last_factorisation(b, x, 2), DivergenceError);  // nothing factorised yet
   VecDestroy(&b);
   VecDestroy(&x);
+}
+
+// BoomerAMG on a mesh of layers takes hypre's settings for 3D problems (strong threshold 0.5, one
+// level of aggressive coarsening), read by that solver alone: a planar solver of the same prefix made
+// after it keeps hypre's 0.25 and none, and the user's own option overrides the 3D default.
+TEST(LinearSolver, BoomerAmgOnAMeshOfLayersTakesTheSettingsFor3dProblems) {
+  auto view_of = [](const LinearSolver& solver) {  // what PCView writes (hypre's settings in ASCII only)
+    PC pc;
+    KSPGetPC(solver.ksp(), &pc);
+    const std::string path = (std::filesystem::temp_directory_path() / "granflow_unit_amg_view.txt").string();
+    PetscViewer viewer;
+    PetscViewerASCIIOpen(PETSC_COMM_SELF, path.c_str(), &viewer);
+    PCView(pc, viewer);
+    PetscViewerDestroy(&viewer);
+    std::ifstream in(path);
+    std::stringstream text;
+    text << in.rdbuf();
+    std::filesystem::remove(path);
+    return text.str();
+  };
+  LinearSolverSettings amg;
+  amg.ksp_type = "cg";
+  amg.pc_type = "hypre";
+  const std::string layers = view_of(LinearSolver(PETSC_COMM_SELF, "unit_amg", amg, 3));
+  EXPECT_NE(layers.find("Threshold for strong coupling 0.5"), std::string::npos) << layers;
+  EXPECT_NE(layers.find("Number of levels of aggressive coarsening 1"), std::string::npos) << layers;
+  const std::string planar = view_of(LinearSolver(PETSC_COMM_SELF, "unit_amg", amg, 2));
+  EXPECT_NE(planar.find("Threshold for strong coupling 0.25"), std::string::npos) << planar;
+  EXPECT_NE(planar.find("Number of levels of aggressive coarsening 0"), std::string::npos) << planar;
+  PetscOptionsSetValue(nullptr, "-unit_amg_pc_hypre_boomeramg_strong_threshold", "0.7");
+  const std::string given = view_of(LinearSolver(PETSC_COMM_SELF, "unit_amg", amg, 3));
+  PetscOptionsClearValue(nullptr, "-unit_amg_pc_hypre_boomeramg_strong_threshold");
+  EXPECT_NE(given.find("Threshold for strong coupling 0.7"), std::string::npos) << given;
 }
 
 }  // namespace
