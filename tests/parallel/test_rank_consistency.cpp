@@ -185,6 +185,23 @@ TEST(RankConsistency, LayeredCollapseSplitAcrossItsLayersOneAndTwoRanksAgree) {
                           1e-9);
 }
 
+// The same three soils on a mesh of layers split across z (12 x 10 x 16 cells, the ranks' boundary at
+// z = 0.16 m, where they share the fewest faces): the block stands in the middle of the channel's depth
+// (z from 0.08 to 0.24 m) with its back part (z > 0.16 m) of the third material, so that the sweeps
+// along z carry shares across the ranks' boundary as the block spreads along x and z.
+TEST(RankConsistency, LayeredCollapseOnAMeshOfLayersSplitAlongZOneAndTwoRanksAgree) {
+  expect_rank_independent(
+      "cases/bui2008_experiment.toml",
+      {"mesh.cells=[12, 10, 16]", "mesh.lower=[0, 0, 0]", "mesh.upper=[0.3, 0.2, 0.32]", "physics.gravity=[0, -9.81, 0]",
+       "boundary.front={type=\"slip\"}", "boundary.back={type=\"wall\"}", "time.end=0.1", "output.progress_seconds=0",
+       "soil.materials=[{name = \"lower\", friction_angle = 10.0, density = 3500.0}, "
+       "{name = \"back\", friction_angle = 30.0, density = 1800.0}]",
+       "initial.soil=[{shape = \"box\", lower = [0, 0, 0.08], upper = [0.2, 0.1, 0.24]}, "
+       "{shape = \"box\", lower = [0, 0, 0.08], upper = [0.2, 0.05, 0.24], material = \"lower\"}, "
+       "{shape = \"box\", lower = [0, 0.05, 0.16], upper = [0.2, 0.1, 0.24], material = \"back\"}]"},
+      1e-9);
+}
+
 // A periodic strip (cases/bagnold_chute.toml, 32 x 8 cells split 16 | 16 along x): a mound on the
 // layer at the east end flows down the slope through the joined sides, from the second rank's cells
 // to the first's (by t = 0.25 s the layer at the west end has grown from 3.0 to 3.6 mm); on one rank
