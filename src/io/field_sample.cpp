@@ -16,7 +16,7 @@ SideRules velocity_side_rules(const BoundarySet& boundaries, int axis, int dimen
       case BoundaryKind::wall: r = {SideRule::Kind::value, normal ? 0.0 : bc.wall_velocity[axis]}; break;
       case BoundaryKind::slip: r = normal ? SideRule{SideRule::Kind::value, 0.0} : SideRule{}; break;
       case BoundaryKind::atmosphere: r = SideRule{}; break;
-      case BoundaryKind::periodic: r = SideRule{}; break;  // the nearest cell's (the ends are neighbours)
+      case BoundaryKind::periodic: r = SideRule{}; break;  // unread: sample_field takes the join's mean
     }
   }
   return rules;
@@ -66,8 +66,13 @@ double sample_field(const Grid& g, const std::vector<double>& values, const Side
   if (nz > 1) bracket(nz, g.spec().lower[2], g.spec().upper[2], z, [&](int k) { return g.zc(k); }, c, wz);
   const auto rule = [&](Side s) -> const SideRule& { return sides[static_cast<int>(s)]; };
   const auto cell = [&](int i, int j, int k) { return values[(size_t(k) * ny + j) * nx + i]; };
-  // Value at node column i (-1 = west side, nx = east side), cell row j and layer k.
+  // Value at node column i (-1 = west side, nx = east side), cell row j and layer k; on a periodic
+  // strip both are the join, between the end columns.
   const auto in_row = [&](int i, int j, int k) {
+    if ((i == -1 || i == nx) && g.periodic_x()) {
+      const double west = 0.5 * g.dx(0), east = 0.5 * g.dx(nx - 1);  // the join's distances to their centres
+      return (cell(0, j, k) * east + cell(nx - 1, j, k) * west) / (west + east);
+    }
     if (i == -1) return side_value(rule(Side::west), cell(0, j, k), nx > 1 ? cell(1, j, k) : 0.0, 0.5 * g.dx(0),
                                    nx > 1 ? g.xc(1) - g.xc(0) : 0.0);
     if (i == nx) return side_value(rule(Side::east), cell(nx - 1, j, k), nx > 1 ? cell(nx - 2, j, k) : 0.0,
@@ -106,9 +111,12 @@ void fill_obstacle_walls(const Grid& g, const std::vector<double>& blocked, cons
                          std::vector<double>& values) {
   const int nx = g.nx(), ny = g.ny(), nz = g.dimension() == 3 ? g.nz() : 1;
   using Step = std::array<int, 3>;
-  const auto at = [&](int i, int j, int k) { return (size_t(k) * ny + j) * nx + i; };
+  // Along a periodic x a neighbour's column runs on through the join.
+  const bool periodic = g.periodic_x();
+  const auto column = [&](int i) { return periodic ? (i + nx) % nx : i; };
+  const auto at = [&](int i, int j, int k) { return (size_t(k) * ny + j) * nx + size_t(column(i)); };
   const auto open = [&](int i, int j, int k) {
-    return i >= 0 && i < nx && j >= 0 && j < ny && k >= 0 && k < nz && blocked[at(i, j, k)] <= 0.5;
+    return column(i) >= 0 && column(i) < nx && j >= 0 && j < ny && k >= 0 && k < nz && blocked[at(i, j, k)] <= 0.5;
   };
   const std::vector<double> before = values;  // read open cells only, as they were
   std::vector<char> filled(values.size(), 0);
@@ -124,11 +132,14 @@ void fill_obstacle_walls(const Grid& g, const std::vector<double>& blocked, cons
           const int io = i + di, jo = j + dj, ko = k + dk;  // the open cell in front of the wall
           if (!open(io, jo, ko)) continue;
           const int axis = di != 0 ? 0 : dj != 0 ? 1 : 2;
-          const int n_open = axis == 0 ? io : axis == 1 ? jo : ko, n_blocked = axis == 0 ? i : axis == 1 ? j : k;
-          const int step = di + dj + dk;
+          const int n_open = axis == 0 ? column(io) : axis == 1 ? jo : ko, n_blocked = axis == 0 ? i : axis == 1 ? j : k;
+          const int step = di + dj + dk, n_second = axis == 0 ? column(io + di) : n_open + step;
           const bool second = open(io + di, jo + dj, ko + dk);
           const double d1 = 0.5 * g.width(axis, n_open), d_blocked = 0.5 * g.width(axis, n_blocked);
-          const double d2 = second ? std::abs(g.centre(axis, n_open + step) - g.centre(axis, n_open)) : 0.0;
+          // The centres' distance; across a periodic join, half of each width.
+          const double d2 = !second                      ? 0.0
+                            : n_second == n_open + step ? std::abs(g.centre(axis, n_second) - g.centre(axis, n_open))
+                                                        : 0.5 * (g.width(axis, n_open) + g.width(axis, n_second));
           const double next = before[at(io, jo, ko)];
           const double on_wall = side_value(wall, next, second ? before[at(io + di, jo + dj, ko + dk)] : 0.0, d1, d2);
           values[at(i, j, k)] = next + (on_wall - next) * (d1 + d_blocked) / d1;

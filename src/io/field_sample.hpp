@@ -31,7 +31,9 @@ SideRules pressure_side_rules();
 // Sample of a field gathered on rank 0 (index (k * ny + j) * nx + i) at (x, y, z) inside the domain
 // (bounds included); points outside are taken at the nearest point of the domain. A planar mesh
 // ignores z. Near an edge or a corner of the domain the rules apply along x, then y, then z: a
-// corner's value is the later side's rule applied to the values the earlier sides give.
+// corner's value is the later side's rule applied to the values the earlier sides give. Where the
+// west and east sides are periodic, there is no side: the join between the two end columns holds
+// their mean, whatever the rules say (every field is periodic across it).
 double sample_field(const Grid& grid, const std::vector<double>& values, const SideRules& sides, double x, double y,
                     double z = 0.0);
 
@@ -44,6 +46,7 @@ double sample_field(const Grid& grid, const std::vector<double>& values, const S
 // obstacle's edge or corner). A blocked cell with no open neighbour but one diagonal to it across an
 // edge (in a corner two walls make) takes that cell's value mirrored across both walls; on a mesh of
 // layers, one with only an open cell diagonal across a corner (three walls), mirrored across all three.
+// Where the west and east sides are periodic, a cell's neighbours along x run on through the join.
 void fill_obstacle_walls(const Grid& grid, const std::vector<double>& blocked, const SideRule& wall,
                          std::vector<double>& values);
 

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <array>
+#include <cmath>
 #include <vector>
 
 #include "io/field_sample.hpp"
@@ -147,6 +148,40 @@ TEST(FieldSample, ObstacleCornersGiveTheWallsValue) {
     if (x == corner_x) EXPECT_NEAR(sample_field(g, u, SideRules{}, x, y), 0.0, 1e-12);
     EXPECT_LT(std::abs(sample_field(g, u, SideRules{}, x, y)), 0.8) << x << ", " << y;
   }
+}
+
+// A periodic strip has no west or east side: a sample there is the join's, the mean of the two end
+// columns, the same at both ends, and between the join and the first centre it is linear. A wall of
+// blocked cells in the last column faces the first column across the join: its face, the join, has
+// the wall's velocity.
+TEST(FieldSample, APeriodicStripSamplesAcrossItsJoin) {
+  GridSpec spec;
+  spec.cells = {8, 4, 1};
+  spec.upper = {0.8, 0.4};
+  spec.periodic_x = true;
+  const Grid g(PETSC_COMM_SELF, spec);
+  const auto f = [](double x, double y) { return std::cos(2.0 * std::acos(-1.0) * x / 0.8) + 3.0 * y; };
+  const auto v = cell_values(g, f);
+  const SideRules walls{SideRule{SideRule::Kind::value, 7.0}, SideRule{SideRule::Kind::value, 7.0}};  // unread
+  for (const double y : {0.15, 0.25}) {
+    const double join = 0.5 * (f(0.05, y) + f(0.75, y));
+    EXPECT_NEAR(sample_field(g, v, walls, 0.0, y), join, 1e-14) << y;
+    EXPECT_NEAR(sample_field(g, v, walls, 0.8, y), join, 1e-14) << y;
+    EXPECT_NEAR(sample_field(g, v, walls, 0.02, y), 0.6 * join + 0.4 * f(0.05, y), 1e-14) << y;
+    EXPECT_NEAR(sample_field(g, v, walls, 0.79, y), 0.8 * join + 0.2 * f(0.75, y), 1e-14) << y;
+  }
+  // A wall two columns thick at the east end (columns 6 and 7): column 7 faces column 0 across the join.
+  std::vector<double> blocked(32, 0.0), u(32, 0.8);
+  for (int j = 0; j < 4; ++j)
+    for (int i = 6; i < 8; ++i) {
+      blocked[size_t(j) * 8 + i] = 1.0;
+      u[size_t(j) * 8 + i] = 1e3;  // stale values the samples must not read
+    }
+  fill_obstacle_walls(g, blocked, SideRule{SideRule::Kind::value, 0.0}, u);
+  EXPECT_NEAR(u[7], -0.8, 1e-14);  // column 0's velocity mirrored across the wall's face at the join
+  EXPECT_NEAR(u[6], -0.8, 1e-14);  // column 5's across the wall's west face
+  for (const double x : {0.0, 0.8}) EXPECT_NEAR(sample_field(g, u, SideRules{}, x, 0.15), 0.0, 1e-14) << x;
+  EXPECT_NEAR(sample_field(g, u, SideRules{}, 0.025, 0.15), 0.4, 1e-14);  // halfway to the first centre
 }
 
 // On a mesh of layers: graded along all three axes, cells 5 x 4 x 3.
