@@ -38,9 +38,10 @@ void check_materials_hold_soil(const CaseConfig& config, const std::vector<doubl
       throw case_error(config, fmt::format("soil.materials[{}]: '{}' holds no soil once the shapes are laid out: its "
                                            "shapes lie under shapes listed after them (where shapes overlap, the last "
                                            "listed holds the point){}, or are thinner than a sixteenth of a cell, "
-                                           "between the 16 x 16 points that give each cell its shares (thicken them "
+                                           "between the {} points that give each cell its shares (thicken them "
                                            "or refine the mesh)", k - 1, name,
-                                           config.has_obstacles() ? ", in the obstacles' blocked cells" : ""));
+                                           config.has_obstacles() ? ", in the obstacles' blocked cells" : "",
+                                           config.mesh.dimension() == 3 ? "16 x 16 x 16" : "16 x 16"));
     }
 }
 
