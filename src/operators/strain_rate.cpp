@@ -102,8 +102,6 @@ namespace {
 
 using Index3 = std::array<int, 3>;
 
-double centre_along(const Grid& g, int axis, int n) { return axis == 0 ? g.xc(n) : (axis == 1 ? g.yc(n) : g.zc(n)); }
-
 double value(const double* const* const* f, const Index3& p) { return f[p[2]][p[1]][p[0]]; }
 
 // d f / d x_axis at the centre of cell p, central over its two neighbours along the axis.
@@ -112,7 +110,7 @@ double central(const Grid& g, const double* const* const* f, Index3 p, int axis)
   Index3 lo = p, hi = p;
   --lo[axis];
   ++hi[axis];
-  return (value(f, hi) - value(f, lo)) / (centre_along(g, axis, n + 1) - centre_along(g, axis, n - 1));
+  return (value(f, hi) - value(f, lo)) / (g.centre(axis, n + 1) - g.centre(axis, n - 1));
 }
 
 // D = (G + G^T) / 2 of the velocity gradient G[c][d] = d v_c / d x_d ([YS] Eq. 4).
@@ -134,7 +132,7 @@ namespace {
 void face_gradient_3d(const Grid& g, const VelocityArrays3& v, int axis, const Index3& p, double G[3][3]) {
   Index3 q = p;
   ++q[axis];
-  const double h = centre_along(g, axis, q[axis]) - centre_along(g, axis, p[axis]);
+  const double h = g.centre(axis, q[axis]) - g.centre(axis, p[axis]);
   for (int c = 0; c < 3; ++c)
     for (int d = 0; d < 3; ++d)
       G[c][d] = d == axis ? (value(v[c], q) - value(v[c], p)) / h : 0.5 * (central(g, v[c], p, d) + central(g, v[c], q, d));

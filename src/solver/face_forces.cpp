@@ -126,14 +126,6 @@ double FlowSolver::atmosphere_face_pressure(Side s, int i, int j, int k, VolumeV
                              rho[k][j][i], fg.sign * on_face(face_velocity, i, j, k, fg), normal * normal);
 }
 
-double FlowSolver::atmosphere_face_pressure(Side s, int i, int j, const double* const* rho, const double* const* u,
-                                            const double* const* v, const double* const* fx,
-                                            const double* const* fy) const {
-  const PlaneAsVolume u3(u), v3(v), fx3(fx), fy3(fy);
-  const VolumeView velocity[2] = {u3, v3}, face_velocity[2] = {fx3, fy3};
-  return atmosphere_face_pressure(s, i, j, 0, PlaneAsVolume(rho), velocity, face_velocity);
-}
-
 // The face forces of the owned cells' faces: -grad(p) + rho_f g between cells, the atmosphere's
 // pressure on an open side, none on a wall or an obstacle's face.
 void FlowSolver::compute_face_forces() {

@@ -156,14 +156,12 @@ class FlowSolver {
   // Hydrostatic head below the top at the atmosphere face of side s of cell (i, j, k) (y_face: the
   // face's height).
   double boundary_head(Side s, int i, int j, int k, double rho, double y_face) const;
-  // The pressure the atmosphere of side s imposes on the boundary face of cell (i, j), from the state
+  // The pressure the atmosphere of side s imposes on the boundary face of cell (i, j, k), from the state
   // in the given local arrays (density, cell velocities, face velocities): p0 plus the head below
   // the top, less rho v_n^2 / 2 (the cell's velocity normal to the side) where it flows in at total
   // pressure.
   double atmosphere_face_pressure(Side s, int i, int j, int k, VolumeView rho, const VolumeView velocity[],
                                   const VolumeView face_velocity[]) const;
-  double atmosphere_face_pressure(Side s, int i, int j, const double* const* rho, const double* const* u,
-                                  const double* const* v, const double* const* fx, const double* const* fy) const;
   void fill_scalar_ghosts(Field& f);
   // The fields of one quantity per axis as fill_owned_faces_any takes them (null beyond the dimension).
   static std::array<Field*, 3> per_axis(std::unique_ptr<Field> (&fields)[3]) {
