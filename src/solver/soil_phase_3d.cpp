@@ -73,6 +73,9 @@ void SoilPhase::initialise_materials_3d() {
   for (const auto& solid : settings_.initial_solids(spec.lower[2], spec.upper[2]))
     boxes.push_back(interface::bounding_box(solid));
   const auto& material_of = settings_.initial_material;  // per shape as listed, as the solids are
+  if (material_of.size() != shapes.size() || settings_.initial_shape_is_solid.size() != shapes.size())
+    throw std::invalid_argument("SoilPhase: soil materials need each initial shape's material and kind, in the order "
+                                "listed (as the case file gives them)");
   const auto& b = grid_.owned();
   const ConstFieldArray c(grid_.field_dm(), c_->global());
   std::deque<FieldArray> m;
@@ -114,7 +117,8 @@ void SoilPhase::initialise_materials_3d() {
         for (double w : weight) total += w;
         if (total > 0.0)
           for (int n = 0; n < count; ++n) m[size_t(n)].volume()[k][j][i] = weight[size_t(n) + 1] / total;
-        else if (const int n = material_of[size_t(reaching.back())]; n > 0)  // one shape, or a sliver the samples missed
+        // One shape, or a sliver the samples missed: the last shape whose bounding box reaches the cell.
+        else if (const int n = material_of[size_t(reaching.back())]; n > 0)
           m[size_t(n - 1)].volume()[k][j][i] = 1.0;
       }
   m.clear();

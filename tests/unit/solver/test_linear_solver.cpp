@@ -219,8 +219,12 @@ TEST(LinearSolver, BoomerAmgOnAMeshOfLayersTakesTheSettingsFor3dProblems) {
   EXPECT_NE(planar.find("Number of levels of aggressive coarsening 0"), std::string::npos) << planar;
   PetscOptionsSetValue(nullptr, "-unit_amg_pc_hypre_boomeramg_strong_threshold", "0.7");
   const std::string given = view_of(LinearSolver(PETSC_COMM_SELF, "unit_amg", amg, 3));
+  PetscBool kept = PETSC_FALSE;  // the user's option stays for the solvers made after
+  PetscOptionsHasName(nullptr, nullptr, "-unit_amg_pc_hypre_boomeramg_strong_threshold", &kept);
   PetscOptionsClearValue(nullptr, "-unit_amg_pc_hypre_boomeramg_strong_threshold");
   EXPECT_NE(given.find("Threshold for strong coupling 0.7"), std::string::npos) << given;
+  EXPECT_NE(given.find("Number of levels of aggressive coarsening 1"), std::string::npos) << given;
+  EXPECT_TRUE(kept);
 }
 
 }  // namespace
