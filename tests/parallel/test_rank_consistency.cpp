@@ -153,7 +153,7 @@ TEST(RankConsistency, CollapseOnASmoothFloorAgainstASmoothBarrierOneAndTwoRanksA
 // below it on the lower. The blocked cells behind its sides and under its top, mirrored on each rank
 // from its own cells and ghosts, must be the same ghosts of the same walls on both. Once, in a full
 // `ctest -j 2`, the two runs parted (1e-4 m/s, c by 6e-3 at t = 0.3 s), as if a round-off difference of
-// the two ranks' factorisation had flipped a discrete choice; it did not recur in 61 runs since, alone,
+// the two ranks' factorisation had flipped a discrete choice; it did not recur in 60 runs since, alone,
 // beside a busy core, or two at once (2.4e-15 to 5.6e-15 m/s).
 TEST(RankConsistency, CollapseAgainstABarrierSplitAcrossItsTopOneAndTwoRanksAgree) {
   expect_rank_independent("cases/barrier_collapse.toml",
