@@ -162,30 +162,23 @@ void SoilPhase::advect(FlowSolver& flow, double dt) {
     // the soil's volume flux per unit area over the step. With the linear mixture that is the phases'
     // own masses, rho_a (u - s) + rho_s s; with the arctan one the mass the time derivative takes
     // (start_density) is the same function of c, so a face fed by a pure cell carries exactly that.
-    // Soils of several densities: rho_s is that of the soil that crossed, its mass over its volume,
-    // within the lightest and heaviest soil's (sweeps that carried soil back and forth through a face
-    // can leave a net volume of round-off beside a net mass that is not).
-    double lightest = settings_.soil_density, heaviest = settings_.soil_density;
-    for (double rho : soil_densities_) {
-      lightest = std::min(lightest, rho);
-      heaviest = std::max(heaviest, rho);
-    }
+    // Soils of several densities: rho_s is that of the soil that crossed (face_mass_flux).
     auto to_mass = [&](int axis, const double* const* u, int i, int j) {
       double** m = soil_through[axis]->data();
-      const double swept = u[j][i] != 0.0 ? std::clamp(m[j][i] / (dt * u[j][i]), 0.0, 1.0) : 0.0;
-      if (!densities_differ()) {
-        m[j][i] = u[j][i] * mixture_density(swept);
-        return;
-      }
-      const double soil_mass = (*soil_mass_through[axis])[j][i];
-      const double rho_s = m[j][i] != 0.0 ? std::clamp(soil_mass / m[j][i], lightest, heaviest) : settings_.soil_density;
-      m[j][i] = u[j][i] * mixture_density(swept, rho_s);
+      m[j][i] = face_mass_flux(u[j][i], m[j][i], densities_differ() ? (*soil_mass_through[axis])[j][i] : 0.0, dt);
     };
     for (int j = b.ys; j < b.ye(); ++j)
       for (int i = b.xs - 1; i < b.xe(); ++i) to_mass(0, fx.data(), i, j);
     for (int j = b.ys - 1; j < b.ye(); ++j)
       for (int i = b.xs; i < b.xe(); ++i) to_mass(1, fy.data(), i, j);
   }
+}
+
+double SoilPhase::face_mass_flux(double u, double soil, double soil_mass, double dt) const {
+  const double swept = u != 0.0 ? std::clamp(soil / (dt * u), 0.0, 1.0) : 0.0;
+  if (!densities_differ()) return u * mixture_density(swept);
+  const double rho_s = soil != 0.0 ? std::clamp(soil_mass / soil, lightest_soil_, heaviest_soil_) : settings_.soil_density;
+  return u * mixture_density(swept, rho_s);
 }
 
 void SoilPhase::sweep(int axis, double dt, const Field& from, Field& to, bool from_shares, double** soil_through,

@@ -52,6 +52,8 @@ SoilPhase::SoilPhase(const Grid& grid, const FlowSettings& flow, const SoilSetti
     if (settings.materials_differ_in_density()) {
       soil_densities_.push_back(settings.soil_density);
       for (const auto& m : settings.materials) soil_densities_.push_back(m.rheology.density);
+      lightest_soil_ = *std::min_element(soil_densities_.begin(), soil_densities_.end());
+      heaviest_soil_ = *std::max_element(soil_densities_.begin(), soil_densities_.end());
       for (int a = 0; a < grid.dimension(); ++a) {
         face_soil_density_[a] = make();
         face_soil_density_[a]->set(0.0);

@@ -164,6 +164,13 @@ class SoilPhase {
   double mixture_density(double c, double soil_density) const {
     return settings_.density_mixing(c, settings_.air_density, soil_density);
   }
+  // The mass flux of a face of velocity u through which the soil volume `soil` per unit area crossed
+  // over the step dt (and, with soils of several densities, the soil mass `soil_mass`): u rho(c_swept),
+  // the mixture density of what crossed, c_swept = soil / (u dt) (soil_advection.cpp says why). With
+  // several densities rho_s is the crossing soil's, its mass over its volume within the lightest and
+  // heaviest soil's: sweeps that carried soil back and forth can leave a net volume of round-off beside
+  // a net mass that is not.
+  double face_mass_flux(double u, double soil, double soil_mass, double dt) const;
   // Whether the soils differ in density (SoilSettings::materials_differ_in_density).
   bool densities_differ() const { return !soil_densities_.empty(); }
   // rho_s of soil shared out as `shares` among the materials: the mean of their densities weighted by
@@ -203,6 +210,7 @@ class SoilPhase {
   // Soils of several densities: rho_s of each, the base's first (empty with one density); the density
   // of the soil each face carried in one sweep, and the soil's mass through each face over a step.
   std::vector<double> soil_densities_;
+  double lightest_soil_ = 0.0, heaviest_soil_ = 0.0;  // of soil_densities_ and soil.density
   std::unique_ptr<Field> face_soil_density_[3], soil_mass_through_[3];
   std::unique_ptr<Field> c_, c_tmp_, dilatation_;
   std::unique_ptr<Field> region_[2];  // scratch of soil_region

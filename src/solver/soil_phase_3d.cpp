@@ -373,25 +373,13 @@ void SoilPhase::advect_3d(FlowSolver& flow, double dt) {
     for (size_t q = 0; q < share_.size(); ++q) share_[q]->copy_from(*(*shares_from)[q]);
   }
   if (!carry_mass) return;
-  // Mass flux = u rho(c_swept), the mixture density of what crossed the face, c_swept = s / (u dt)
-  // with s the soil volume per unit area through it over the step (soil_advection.cpp says why); with
-  // soils of several densities rho_s is that of the soil that crossed, within the lightest's and the
-  // heaviest's.
-  const auto [lightest, heaviest] = std::minmax_element(soil_densities_.begin(), soil_densities_.end());
+  // The soil volume (and mass) through each face over the step to the mixture's mass flux, as in 2D.
   for (int axis = 0; axis < 3; ++axis) {
     double*** m = soil_through[axis]->volume();
     const VolumeView u = face.view[axis];
     for_faces(axis, [&](int i, int j, int k) {
-      const double q = u[k][j][i];
-      const double swept = q != 0.0 ? std::clamp(m[k][j][i] / (dt * q), 0.0, 1.0) : 0.0;
-      if (!densities_differ()) {
-        m[k][j][i] = q * mixture_density(swept);
-        return;
-      }
-      const double soil_mass = soil_mass_through[axis]->volume()[k][j][i];
-      const double rho_s =
-          m[k][j][i] != 0.0 ? std::clamp(soil_mass / m[k][j][i], *lightest, *heaviest) : settings_.soil_density;
-      m[k][j][i] = q * mixture_density(swept, rho_s);
+      const double soil_mass = densities_differ() ? soil_mass_through[axis]->volume()[k][j][i] : 0.0;
+      m[k][j][i] = face_mass_flux(u[k][j][i], m[k][j][i], soil_mass, dt);
     });
   }
 }
