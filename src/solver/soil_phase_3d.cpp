@@ -68,10 +68,10 @@ void SoilPhase::initialise_3d() {
 void SoilPhase::initialise_materials_3d() {
   constexpr int samples = 16;
   const auto& spec = grid_.spec();
-  const interface::ShapeUnion3 shapes(settings_.initial_solids(spec.lower[2], spec.upper[2]));
+  const auto solids = settings_.initial_solids(spec.lower[2], spec.upper[2]);
   std::vector<std::array<interface::Point3, 2>> boxes;
-  for (const auto& solid : settings_.initial_solids(spec.lower[2], spec.upper[2]))
-    boxes.push_back(interface::bounding_box(solid));
+  for (const auto& solid : solids) boxes.push_back(interface::bounding_box(solid));
+  const interface::ShapeUnion3 shapes(solids);
   const auto& material_of = settings_.initial_material;  // per shape as listed, as the solids are
   if (material_of.size() != shapes.size() || settings_.initial_shape_is_solid.size() != shapes.size())
     throw std::invalid_argument("SoilPhase: soil materials need each initial shape's material and kind, in the order "
