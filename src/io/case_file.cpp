@@ -162,10 +162,26 @@ std::vector<double> numbers_of_size(TableReader& r, std::string_view key, std::v
   return v;
 }
 
-// two_phase_keys: collects the keys given that only a case with soil uses; dimension: the mesh's.
-BoundaryCondition read_boundary(TableReader r, bool& is_axis, std::vector<std::string>& two_phase_keys, int dimension) {
+// The soil material named by `key` of r: 0 for the rheology's own (the key left out), k for
+// materials[k - 1].
+int material_index(TableReader& r, const char* key, const std::vector<SoilMaterial>& materials) {
+  const std::string name = r.string(key, "");
+  if (!r.has(key)) return 0;
+  const auto it = std::find_if(materials.begin(), materials.end(), [&](const SoilMaterial& m) { return m.name == name; });
+  if (it != materials.end()) return int(it - materials.begin()) + 1;
+  std::string names;
+  for (const auto& m : materials) names += (names.empty() ? "" : ", ") + m.name;
+  throw CaseError(fmt::format("{}: no soil material named '{}' ({})", r.key_path(key), name,
+                              names.empty() ? "the case has no [[soil.materials]]; leave the key out for the rheology's own soil"
+                                            : "the case's are: " + names));
+}
+
+// two_phase_keys: collects the keys given that only a case with soil uses; dimension: the mesh's;
+// materials: the case's soil materials (an inlet's soil may be one).
+BoundaryCondition read_boundary(TableReader r, bool& is_axis, std::vector<std::string>& two_phase_keys, int dimension,
+                                const std::vector<SoilMaterial>& materials) {
   BoundaryCondition bc;
-  const std::string type = r.choice("type", "", {"wall", "slip", "symmetry", "atmosphere", "axis", "periodic"});
+  const std::string type = r.choice("type", "", {"wall", "slip", "symmetry", "atmosphere", "axis", "periodic", "inlet"});
   is_axis = type == "axis";
   if (type == "periodic") {
     bc.kind = BoundaryKind::periodic;  // joined to the opposite side; read_boundaries checks the pair
@@ -175,14 +191,29 @@ BoundaryCondition read_boundary(TableReader r, bool& is_axis, std::vector<std::s
     bc.kind = BoundaryKind::wall;
     if (dimension == 3) {
       const auto velocity = numbers_of_size(r, "velocity", {0.0, 0.0, 0.0}, 3, "[u, v, w] on a mesh of layers");
-      bc.wall_velocity = {velocity[0], velocity[1], velocity[2]};
+      bc.velocity = {velocity[0], velocity[1], velocity[2]};
     } else {
       const auto velocity = r.pair("velocity", {0.0, 0.0});
-      bc.wall_velocity = {velocity[0], velocity[1], 0.0};
+      bc.velocity = {velocity[0], velocity[1], 0.0};
     }
     bc.friction = read_wall_friction(r, two_phase_keys);
   } else if (type == "slip" || type == "symmetry") {
     bc.kind = BoundaryKind::slip;  // a symmetry plane is a slip wall: no normal velocity, no shear
+  } else if (type == "inlet") {
+    bc.kind = BoundaryKind::inlet;
+    if (!r.has("velocity"))
+      throw CaseError(fmt::format("{}: missing (an inlet's velocity into the domain, m/s){}", r.key_path("velocity"),
+                                  r.misspelling_of("velocity")));
+    const auto velocity = dimension == 3 ? numbers_of_size(r, "velocity", {}, 3, "[u, v, w] on a mesh of layers")
+                                         : numbers_of_size(r, "velocity", {}, 2, "[u, v]");
+    for (size_t c = 0; c < velocity.size(); ++c) bc.velocity[c] = velocity[c];
+    for (const char* key : {"soil_fraction", "soil_depth", "material"})
+      if (r.has(key)) two_phase_keys.push_back(r.key_path(key));
+    bc.inflow_soil_fraction = r.number("soil_fraction", 0.0);
+    r.require_range("soil_fraction", bc.inflow_soil_fraction, 0.0, 1.0);
+    bc.inflow_soil_depth = r.number("soil_depth", bc.inflow_soil_depth);
+    r.require_range("soil_depth", bc.inflow_soil_depth, 1e-300, std::numeric_limits<double>::infinity(), "positive");
+    bc.inflow_material = material_index(r, "material", materials);
   } else {
     bc.kind = BoundaryKind::atmosphere;
     bc.pressure = r.number("pressure", 0.0);
@@ -488,9 +519,9 @@ SoilSettings read_soil(TableReader& top, std::vector<std::string>& without_effec
     m.finish();
   }
   {
+    // Without it the domain starts free of soil, which only an inlet of soil can fill (checked with
+    // the boundaries, load_case).
     TableReader init = top.table("initial");
-    if (!init.present()) throw CaseError("initial: missing table [[initial.soil]] (where the soil starts)" + top.misspelling_of("initial"));
-    std::vector<bool> used(s.materials.size(), false);
     for (TableReader shape : init.tables("soil")) {
       std::string material;
       // On a mesh of layers a shape of its own, or a planar one extruded across the depth.
@@ -508,16 +539,11 @@ SoilSettings read_soil(TableReader& top, std::vector<std::string>& without_effec
                                       names.empty() ? "the case has no [[soil.materials]]" : "the case's are: " + names));
         }
         index = int(it - s.materials.begin()) + 1;
-        used[index - 1] = true;
       }
       s.initial_material.push_back(index);
     }
-    if (s.initial_soil.empty() && s.initial_soil_3d.empty())
+    if (s.initial_soil.empty() && s.initial_soil_3d.empty() && !init.misspelling_of("soil").empty())
       throw CaseError("initial.soil: at least one shape is required" + init.misspelling_of("soil"));
-    for (size_t k = 0; k < used.size(); ++k)
-      if (!used[k])
-        throw CaseError(fmt::format("soil.materials[{}]: no initial.soil shape is of material '{}' (give one `material = \"{}\"`)",
-                                    k, s.materials[k].name, s.materials[k].name));
     init.finish();
   }
   return s;
@@ -628,7 +654,8 @@ TimeSettings read_time(TableReader& top, double& time_interface_courant, std::ve
   return time;
 }
 
-BoundarySet read_boundaries(TableReader& top, const GridSpec& mesh, std::vector<std::string>& two_phase_keys) {
+BoundarySet read_boundaries(TableReader& top, const GridSpec& mesh, std::vector<std::string>& two_phase_keys,
+                            const std::vector<SoilMaterial>& materials) {
   BoundarySet boundaries;
   TableReader b = top.table("boundary");
   if (!b.present()) throw CaseError("boundary: missing table [boundary] (west, east, south, north)" + top.misspelling_of("boundary"));
@@ -647,7 +674,7 @@ BoundarySet read_boundaries(TableReader& top, const GridSpec& mesh, std::vector<
     if (!side.present())
       throw CaseError(fmt::format("{}: missing (every side needs a boundary type){}", side.path(),
                                   b.misspelling_of(side_name(s))));
-    boundaries[int(s)] = read_boundary(side, is_axis, two_phase_keys, dimension);
+    boundaries[int(s)] = read_boundary(side, is_axis, two_phase_keys, dimension, materials);
     if (is_axis && !(s == Side::west && mesh.axisymmetric && mesh.lower[0] == 0.0))
       throw CaseError(fmt::format("boundary.{}.type: \"axis\" is the west side at r = 0 of an axisymmetric mesh "
                                   "(mesh.geometry = \"axisymmetric\", mesh.lower[0] = 0)", side_name(s)));
@@ -668,10 +695,26 @@ BoundarySet read_boundaries(TableReader& top, const GridSpec& mesh, std::vector<
   }
   for (Side s : mesh_sides) {
     const auto& bc = boundaries[int(s)];
-    if (bc.kind == BoundaryKind::wall && bc.wall_velocity[normal_axis(s)] != 0.0)
+    if (bc.kind == BoundaryKind::wall && bc.velocity[normal_axis(s)] != 0.0)
       throw CaseError(fmt::format("boundary.{}.velocity: a wall cannot move through itself (normal component must be 0)",
                                   side_name(s)));
+    if (bc.kind != BoundaryKind::inlet) continue;
+    const int axis = normal_axis(s);
+    const bool low = s == Side::west || s == Side::south || s == Side::front;
+    const double inward = low ? bc.velocity[axis] : -bc.velocity[axis];
+    if (!(inward > 0.0))
+      throw CaseError(fmt::format("boundary.{}.velocity: an inlet's velocity must point into the domain (its {} "
+                                  "component {} than 0); a wall sliding along itself is type = \"wall\"",
+                                  side_name(s), "xyz"[axis], low ? "greater" : "less"));
+    if (axis == 1 && std::isfinite(bc.inflow_soil_depth))
+      throw CaseError(fmt::format("boundary.{}.soil_depth: the depth is measured up from the bottom along y, so it "
+                                  "applies to inlets on the west, east, front or back sides; on the {} side the "
+                                  "whole inlet carries soil_fraction", side_name(s), side_name(s)));
   }
+  if (has_inlet(boundaries) &&
+      std::none_of(boundaries.begin(), boundaries.end(), [](const BoundaryCondition& bc) { return bc.kind == BoundaryKind::atmosphere; }))
+    throw CaseError("boundary: an inlet needs an open side (type = \"atmosphere\") for its flow to leave by; "
+                    "the incompressible flow of a closed domain cannot take in more");
   return boundaries;
 }
 
@@ -1020,7 +1063,28 @@ CaseConfig read_case(const toml::table& root, const std::filesystem::path& sourc
                                     top.has("fluid") ? ", and [fluid] for its one phase" : "", top.misspelling_of("soil")));
     c.fluid = read_fluid(top);
   }
-  c.flow.boundaries = read_boundaries(top, c.mesh, two_phase_keys);
+  c.flow.boundaries = read_boundaries(top, c.mesh, two_phase_keys, c.soil ? c.soil->materials : std::vector<SoilMaterial>{});
+  if (c.soil) {  // each material is laid out by a shape or comes in through an inlet
+    std::vector<bool> used(c.soil->materials.size() + 1, false);
+    for (int m : c.soil->initial_material) used[size_t(m)] = true;
+    for (const auto& bc : c.flow.boundaries)
+      if (bc.kind == BoundaryKind::inlet && bc.inflow_soil_fraction > 0.0) used[size_t(bc.inflow_material)] = true;
+    for (size_t k = 1; k < used.size(); ++k)
+      if (!used[k])
+        throw CaseError(fmt::format("soil.materials[{}]: no initial.soil shape is of material '{}' (give one `material "
+                                    "= \"{}\"`), nor does an inlet carry it", k - 1, c.soil->materials[k - 1].name,
+                                    c.soil->materials[k - 1].name));
+  }
+  if (c.soil && c.soil->initial_soil.empty() && c.soil->initial_soil_3d.empty() &&
+      std::none_of(c.flow.boundaries.begin(), c.flow.boundaries.end(), [](const BoundaryCondition& bc) {
+        return bc.kind == BoundaryKind::inlet && bc.inflow_soil_fraction > 0.0;
+      })) {
+    if (!top.has("initial"))
+      throw CaseError("initial: missing table [[initial.soil]] (where the soil starts; only an inlet of soil can fill "
+                      "a domain that starts without)" + top.misspelling_of("initial"));
+    throw CaseError("initial.soil: at least one shape is required (only an inlet of soil can fill a domain that "
+                    "starts without)" + top.table("initial").misspelling_of("soil"));
+  }
   c.mesh.periodic_x = boundary(c.flow.boundaries, Side::west).kind == BoundaryKind::periodic;
   // Air at rest on a periodic slope: its weight along x is carried as by its hydrostatic pressure.
   if (c.mesh.periodic_x && c.soil) c.flow.periodic_ambient_density = c.soil->air_density;

@@ -13,7 +13,8 @@ SideRules velocity_side_rules(const BoundarySet& boundaries, int axis, int dimen
     SideRule& r = rules[static_cast<int>(s)];
     const bool normal = normal_axis(s) == axis;
     switch (bc.kind) {
-      case BoundaryKind::wall: r = {SideRule::Kind::value, normal ? 0.0 : bc.wall_velocity[axis]}; break;
+      case BoundaryKind::wall:  // its normal component is zero
+      case BoundaryKind::inlet: r = {SideRule::Kind::value, bc.velocity[axis]}; break;
       case BoundaryKind::slip: r = normal ? SideRule{SideRule::Kind::value, 0.0} : SideRule{}; break;
       case BoundaryKind::atmosphere: r = SideRule{}; break;
       case BoundaryKind::periodic: r = SideRule{}; break;  // unread: sample_field takes the join's mean

@@ -4,12 +4,16 @@
 // over the ghost rows of those before, so that an edge's or a corner's ghost ends as the later side's
 // rule applied to the earlier side's ghosts. Only the sides this rank holds (Grid::owns_boundary) are
 // filled: a periodic side's ghosts are the exchange's.
+#include <type_traits>
+
 #include "mesh/grid.hpp"
 
 namespace granflow {
 
 // rule(side, inner, first): a ghost m layers beyond `side` (m = 1 .. ghost width), whose mirror image
-// inside (m - 1 layers in) holds `inner` and whose first cell holds `first`. a: the local array.
+// inside (m - 1 layers in) holds `inner` and whose first cell holds `first`; or rule(side, inner,
+// first, where), `where` the ghost's indices {i, j, k} (a rule that varies along the side). a: the
+// local array.
 template <class Rule>
 void fill_side_ghosts(const Grid& grid, double*** a, Rule rule) {
   const int n[3] = {grid.nx(), grid.ny(), grid.nz()}, gw = Grid::ghost_width;
@@ -33,8 +37,17 @@ void fill_side_ghosts(const Grid& grid, double*** a, Rule rule) {
             q[axis] = along;
             return a[q[2]][q[1]][q[0]];
           };
-          if (low) cell(-m) = rule(low_side, cell(m - 1), cell(0));
-          if (high) cell(n[axis] - 1 + m) = rule(high_side, cell(n[axis] - m), cell(n[axis] - 1));
+          auto apply = [&](Side side, int along, double inner, double first) {
+            if constexpr (std::is_invocable_v<Rule, Side, double, double, const int*>) {
+              int q[3] = {p[0], p[1], p[2]};
+              q[axis] = along;
+              return rule(side, inner, first, static_cast<const int*>(q));
+            } else {
+              return rule(side, inner, first);
+            }
+          };
+          if (low) cell(-m) = apply(low_side, -m, cell(m - 1), cell(0));
+          if (high) cell(n[axis] - 1 + m) = apply(high_side, n[axis] - 1 + m, cell(n[axis] - m), cell(n[axis] - 1));
         }
   }
 }

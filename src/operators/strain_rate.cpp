@@ -85,8 +85,8 @@ rheology::StrainRate quadratic_wall_strain_rate(const Grid& g, const double* con
   const double s1 = 0.5 * h1, s2 = h1 + 0.5 * h2;
   // Derivative along +axis of a component whose wall value is w, first two cells f1 and f2 inward.
   auto across = [&](double f1, double f2, double w) { return -sign * quadratic_wall_derivative(f1, f2, w, s1, s2); };
-  const double du = across(u[j][i], u[j - dj][i - di], axis == 0 ? 0.0 : wall_velocity[0]);
-  const double dv = across(v[j][i], v[j - dj][i - di], axis == 1 ? 0.0 : wall_velocity[1]);
+  const double du = across(u[j][i], u[j - dj][i - di], wall_velocity[0]);
+  const double dv = across(v[j][i], v[j - dj][i - di], wall_velocity[1]);
   if (axis == 0) {
     if (g.axisymmetric() && g.xf(il) <= 0.0) d.hoop = du;  // on the axis u_r / r -> du_r/dr
     d.dudx = du;
@@ -156,7 +156,7 @@ rheology::StrainRate quadratic_wall_strain_rate(const Grid& g, const VelocityArr
   const double h1 = g.width(axis, p[axis]), h2 = g.width(axis, inner[axis]);
   const double s1 = 0.5 * h1, s2 = h1 + 0.5 * h2;
   for (int c = 0; c < 3; ++c) {
-    const double wall = c == axis ? 0.0 : wall_velocity[c];
+    const double wall = wall_velocity[c];
     G[c][axis] = c != axis && no_shear
                      ? 0.0
                      : -sign * quadratic_wall_derivative(value(v[c], p), value(v[c], inner), wall, s1, s2);

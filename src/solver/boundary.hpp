@@ -2,6 +2,7 @@
 // Boundary conditions of the flow, one per side of the box.
 #include <algorithm>
 #include <array>
+#include <limits>
 #include <optional>
 
 #include "mesh/grid.hpp"
@@ -14,18 +15,25 @@ enum class BoundaryKind {
   slip,        // impermeable, free of shear
   atmosphere,  // fixed total pressure: outflow at the static pressure, inflow at p0 - rho|u|^2/2
   periodic,    // west and east joined (GridSpec::periodic_x): no boundary there
+  inlet,       // a given velocity into the domain, carrying soil below a given depth and air above
 };
 
 struct BoundaryCondition {
   BoundaryKind kind = BoundaryKind::wall;
-  std::array<double, 3> wall_velocity{0.0, 0.0, 0.0};  // tangential part is used; normal part must be zero
+  // The velocity a wall slides at (tangential: its normal component is zero), or an inlet's inflow.
+  std::array<double, 3> velocity{0.0, 0.0, 0.0};
   // A wall of its own Coulomb friction against the soil (models/rheology/wall_friction.hpp); without
   // it the soil's own strength is what holds it at the wall.
   std::optional<rheology::WallFriction> friction;
   double pressure = 0.0;                          // atmosphere: total pressure p0
   bool total_pressure = true;                     // false: p0 is the static pressure also for inflow
-  // Soil fraction carried in by inflow through an atmosphere boundary.
+  // Soil fraction carried in by inflow through an atmosphere side or an inlet.
   double inflow_soil_fraction = 0.0;
+  // Inlet on a side across x or z: its soil enters below this height above the domain's bottom (y
+  // lower), air above it. Infinite: over the whole side.
+  double inflow_soil_depth = std::numeric_limits<double>::infinity();
+  // Inlet: the soil material it carries (index into the case's materials; 0, the first, by default).
+  int inflow_material = 0;
   // Density of what lies beyond an open bottom (the mixture at inflow_soil_fraction; the fluid of a
   // single-phase case), whose hydrostatic head below the top the bottom's pressure is. 0: unset.
   double outside_density = 0.0;
@@ -37,6 +45,29 @@ using BoundarySet = std::array<BoundaryCondition, 6>;  // indexed by Side; front
 inline constexpr BoundaryCondition obstacle_wall{};
 
 inline const BoundaryCondition& boundary(const BoundarySet& b, Side s) { return b[static_cast<int>(s)]; }
+
+// A side that holds every velocity component at its own (no-slip, Dirichlet): a wall or an inlet.
+inline bool holds_velocity(const BoundaryCondition& bc) {
+  return bc.kind == BoundaryKind::wall || bc.kind == BoundaryKind::inlet;
+}
+
+// The velocity along `axis` (the side's normal) through a side that fixes it: an inlet's inflow, zero
+// through a wall or a slip side. Atmosphere sides have none of their own (their flux is solved for).
+inline double imposed_normal_velocity(const BoundaryCondition& bc, int axis) {
+  return bc.kind == BoundaryKind::inlet ? bc.velocity[axis] : 0.0;
+}
+
+inline bool has_inlet(const BoundarySet& b) {
+  return std::any_of(b.begin(), b.end(), [](const BoundaryCondition& bc) { return bc.kind == BoundaryKind::inlet; });
+}
+
+// Inflow soil fraction of an inlet's face whose extent along y is [y_low, y_high], the domain's bottom
+// at y_bottom: the share of the face below the inlet's soil depth, times its soil fraction.
+inline double inlet_face_soil_fraction(const BoundaryCondition& bc, double y_low, double y_high, double y_bottom) {
+  const double top = y_bottom + bc.inflow_soil_depth;
+  const double below = std::clamp((top - y_low) / (y_high - y_low), 0.0, 1.0);
+  return bc.inflow_soil_fraction * below;
+}
 
 // The pressure of the surroundings, Pa: the p0 of the north side if it is open, else the lowest p0
 // of the open sides; 0 in a closed domain, whose pressure is held at zero on its top

@@ -32,8 +32,13 @@ CaseError no_initial_soil(const CaseConfig& config, const Grid& g, bool obstacle
 // points that give each cell its shares (a seam thinner than a sixteenth of a cell), would be a
 // material of no effect.
 void check_materials_hold_soil(const CaseConfig& config, const std::vector<double>& volumes) {
+  auto inlet_carries = [&](size_t k) {  // a material an inlet brings in may start with none
+    return std::any_of(config.flow.boundaries.begin(), config.flow.boundaries.end(), [&](const BoundaryCondition& bc) {
+      return bc.kind == BoundaryKind::inlet && bc.inflow_soil_fraction > 0.0 && size_t(bc.inflow_material) == k;
+    });
+  };
   for (size_t k = 1; k < volumes.size(); ++k)
-    if (!(volumes[k] > 0.0)) {
+    if (!(volumes[k] > 0.0) && !inlet_carries(k)) {
       const std::string& name = config.soil->materials[k - 1].name;
       throw case_error(config, fmt::format("soil.materials[{}]: '{}' holds no soil once the shapes are laid out: its "
                                            "shapes lie under shapes listed after them (where shapes overlap, the last "
@@ -75,6 +80,14 @@ std::string check_blocked_cells(const Grid& g, const CaseConfig& config, const s
       for (int i = 0; i < nx; ++i)
         if (blocked(i, j, k)) {
           for (long v = long(index(i, j, k)), b = 0; b < 8; ++b, v >>= 8) hash = (hash ^ std::uint64_t(v & 0xff)) * 1099511628211ULL;
+          for (Side s : sides_of_dimension(g.dimension())) {  // an inlet's flow would enter the obstacle
+            const int at[3] = {i, j, k}, n[3] = {nx, ny, nz};
+            const int axis = normal_axis(s);
+            const bool low = s == Side::west || s == Side::south || s == Side::front;
+            if (boundary(config.flow.boundaries, s).kind == BoundaryKind::inlet && at[axis] == (low ? 0 : n[axis] - 1))
+              return fmt::format("obstacle: the cell at {} is blocked against the inlet on the {} side, whose flow "
+                                 "would enter it; keep the obstacles off the inlet's side", where(i, j, k), side_name(s));
+          }
           for (int s = 0; s < step_count; s += 2) {
             const Cell& d = steps[s];
             if (open(i - d[0], j - d[1], k - d[2]) && open(i + d[0], j + d[1], k + d[2]))

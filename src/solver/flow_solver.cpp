@@ -69,6 +69,14 @@ FlowSolver::FlowSolver(const Grid& grid, const FlowSettings& settings)
 
   for (Side s : sides_of_dimension(dimension_))
     if (boundary(settings.boundaries, s).kind == BoundaryKind::atmosphere) has_pressure_boundary_ = true;
+  if (has_inlet(settings.boundaries))  // an inlet's faces carry its inflow from the start, the rest none
+    fill_owned_faces_any(
+        grid, per_axis(face_), [](int, int, int, int) { return 0.0; },
+        [&](int axis, int i, int j, int k, int sign) {
+          const FaceGeometry& fg = face_along(axis, sign);
+          if (!grid.outside(i + fg.di, j + fg.dj, k + fg.dk)) return 0.0;
+          return imposed_normal_velocity(boundary(settings.boundaries, fg.side), axis);
+        });
   shared_momentum_matrix_ = momentum_matrix_shared(settings, grid.axisymmetric(), dimension_);
 
   MPI_Comm comm = grid.comm();

@@ -29,10 +29,10 @@ void add_boundary_face_stress(const Grid& grid, const NumericsSettings& num, con
   const int dimension = grid.dimension();
   const double d_half = 0.5 * grid.width(fg.axis, index_along(fg.axis, i, j, k));
   const double coeff = normal_conductance / d_half;  // the implicit share, applied to every component
-  if (bc.kind == BoundaryKind::wall) {
+  if (holds_velocity(bc)) {
     for (int c = 0; c < dimension; ++c) {
       extra[c] += coeff;
-      src[c] += coeff * (c == fg.axis ? 0.0 : bc.wall_velocity[c]);
+      src[c] += coeff * bc.velocity[c];  // a wall's normal component is zero
     }
   } else if (bc.kind == BoundaryKind::slip) {
     extra[fg.axis] += coeff;  // impermeable: normal component zero; no shear
@@ -42,7 +42,7 @@ void add_boundary_face_stress(const Grid& grid, const NumericsSettings& num, con
   // two-point stress is mu per tangential and stress_factor mu for the normal component.
   for (int c = 0; c < dimension; ++c) {
     if (bc.kind == BoundaryKind::slip && c != fg.axis) continue;  // no shear at a slip wall
-    const double uw = c == fg.axis ? 0.0 : bc.wall_velocity[c];
+    const double uw = bc.velocity[c];
     const double quadratic = wall_gradient(grid, vel[c], i, j, k, fg, uw, true);
     const double two_point = wall_gradient(grid, vel[c], i, j, k, fg, uw, false);
     src[c] -= (c == fg.axis ? normal_conductance : tangential_conductance) * (quadratic - two_point);
@@ -132,6 +132,15 @@ void FlowSolver::assemble_momentum(double dt) {
             const auto& bc = is_obstacle ? obstacle_wall : boundary(settings_.boundaries, fg.side);
             add_boundary_face_stress(grid_, num, bc, vel.view, i, j, k, fg, stress_factor * mu_face * area,
                                      mu_face * area, extra, src);
+            if (bc.kind == BoundaryKind::inlet) {  // the inflow brings the inlet's momentum, upwind
+              const double inflow =  // kg/s
+                  rho0 ? -fg.sign * area * on_face(mass_flux->view, i, j, k, fg)
+                       : rhoP * (-fg.sign * on_face(face_vel.view, i, j, k, fg) * area);
+              if (inflow > 0.0) {
+                diag += inflow;
+                for (int c = 0; c < dim; ++c) src[c] += inflow * bc.velocity[c];
+              }
+            }
             continue;
           }
           // Outward face velocity and flux.

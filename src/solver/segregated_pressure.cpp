@@ -89,7 +89,10 @@ void FlowSolver::assemble_pressure_rhs() {
           const VolumeView hv = h.view[fg.axis], rav = ra.view[fg.axis];
           if (grid_.outside(in, jn, kn)) {
             const auto& bc = boundary(settings_.boundaries, fg.side);
-            if (bc.kind != BoundaryKind::atmosphere) continue;  // walls: no flux
+            if (bc.kind != BoundaryKind::atmosphere) {  // walls: no flux; an inlet's is given
+              rhs -= fg.sign * imposed_normal_velocity(bc, fg.axis) * area;
+              continue;
+            }
             const double d_half = 0.5 * grid_.width(fg.axis, index_along(fg.axis, i, j, k));
             const double pb = atmosphere_face_pressure(fg.side, i, j, k, rho, vel.view, face_vel.view);
             const double K = rav[k][j][i] * area / d_half;
@@ -127,8 +130,10 @@ void FlowSolver::correct_velocities() {
         return star + face_coefficient(ra.view[axis], rho, i, j, k, fg) * ff.view[axis][k][j][i];
       },
       [&](int axis, int i, int j, int k, int sign) {
-        // Walls are impermeable and their face force stays zero (pressure hydrostatic at the wall).
-        if (boundary(settings_.boundaries, side_of(axis, sign)).kind != BoundaryKind::atmosphere) return 0.0;
+        // Walls are impermeable and their face force stays zero (pressure hydrostatic at the wall); an
+        // inlet's velocity is given.
+        const auto& bc = boundary(settings_.boundaries, side_of(axis, sign));
+        if (bc.kind != BoundaryKind::atmosphere) return imposed_normal_velocity(bc, axis);
         return h.view[axis][k][j][i] + ra.view[axis][k][j][i] * on_face(ff.view, i, j, k, face_along(axis, sign));
       });
   // Cell velocities from the reconstructed cell force.

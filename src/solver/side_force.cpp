@@ -67,7 +67,7 @@ FlowSolver::WallForces FlowSolver::wall_forces() const {
     // component at a wall and on the normal one at a slip side, with the case's wall gradient.
     for (int c = 0; c < dim; ++c) {
       if (bc.kind == BoundaryKind::slip && c != axis) continue;  // no shear on a slip side
-      const double wall = c == axis ? 0.0 : bc.wall_velocity[c];
+      const double wall = bc.velocity[c];  // a wall's normal component is zero
       const double two_point = wall_gradient(grid_, vel.view[c], i, j, k, fg, wall, false);
       const double gradient = wall_gradient(grid_, vel.view[c], i, j, k, fg, wall, num.quadratic_wall_gradient);
       // stress_factor on the implicit two-point part, as assembled; the quadratic correction on top

@@ -71,7 +71,9 @@ Simulation::Simulation(MPI_Comm comm, const CaseConfig& config, std::filesystem:
   flow_->set_hydrostatic_pressure();
   flow_->update_properties();  // the granular viscosity needs the pressure
   if (soil_) initial_soil_volume_ = soil_->budget(*flow_).soil_volume;
-  if (soil_ && !(initial_soil_volume_ > 0.0))  // the budget is summed over all ranks: all stop alike
+  // The budget is summed over all ranks: all stop alike. A case of no initial shapes starts empty
+  // (an inlet of soil fills it).
+  if (soil_ && config_.soil->has_initial_shapes() && !(initial_soil_volume_ > 0.0))
     throw no_initial_soil(config_, *grid_, blocked_ != nullptr);
   if (soil_) check_materials_hold_soil(config_, soil_->material_volumes());
   if (!out_.empty()) {
@@ -113,7 +115,7 @@ InitialState check_initial_state(MPI_Comm comm, const CaseConfig& config) {
   const PlacedSoil placed = initial_soil_placed(grid, config, blocked.get());
   state.soil_volume = placed.in_open_cells;
   state.soil_in_obstacles = placed.in_blocked_cells;
-  if (!(state.soil_volume > 0.0)) throw no_initial_soil(config, grid, blocked != nullptr);
+  if (config.soil->has_initial_shapes() && !(state.soil_volume > 0.0)) throw no_initial_soil(config, grid, blocked != nullptr);
   if (!config.soil->materials.empty()) {  // the shares as a run lays them out
     SoilPhase soil(grid, config.flow, *config.soil);
     soil.set_blocked(blocked.get());
@@ -347,10 +349,12 @@ RunSummary Simulation::run(const StepObserver& after_step) {
     if (!output_is_current) write_output();  // out of steps
     if (!checkpoint_is_current) write_checkpoint(dt);
   }
-  if (soil_ && initial_soil_volume_ > 0.0) {
+  if (soil_) {
     const SoilBudget b = soil_->budget(*flow_);
-    summary.soil_volume_error = b.soil_volume / initial_soil_volume_ - 1.0;
-    summary.soil_balance_error = (b.soil_volume + b.soil_outflow) / initial_soil_volume_ - 1.0;
+    if (initial_soil_volume_ > 0.0) summary.soil_volume_error = b.soil_volume / initial_soil_volume_ - 1.0;
+    // Relative to the larger of the initial soil and what entered (a domain that starts empty).
+    const double scale = std::max(initial_soil_volume_, std::max(-b.soil_outflow, 0.0));
+    if (scale > 0.0) summary.soil_balance_error = (b.soil_volume + b.soil_outflow - initial_soil_volume_) / scale;
   }
   summary.time = time_;
   summary.stopped_at_max_steps = !summary.reached_steady_state && !summary.soil_at_rest && steps_ >= tc.max_steps && time_ < tc.end * (1 - 1e-12);

@@ -95,9 +95,9 @@ std::string Simulation::boundaries() const {
     text += fmt::format("{}{} ", text.empty() ? "" : "; ", side_name(side));
     switch (bc.kind) {
       case BoundaryKind::wall:
-        text += layers ? fmt::format("wall [{:.9g}, {:.9g}, {:.9g}] m/s", bc.wall_velocity[0], bc.wall_velocity[1],
-                                     bc.wall_velocity[2])
-                       : fmt::format("wall [{:.9g}, {:.9g}] m/s", bc.wall_velocity[0], bc.wall_velocity[1]);
+        text += layers ? fmt::format("wall [{:.9g}, {:.9g}, {:.9g}] m/s", bc.velocity[0], bc.velocity[1],
+                                     bc.velocity[2])
+                       : fmt::format("wall [{:.9g}, {:.9g}] m/s", bc.velocity[0], bc.velocity[1]);
         if (bc.friction)  // a wall without friction reads as before its friction could be given
           text += fmt::format(", friction {:.9g}, adhesion {:.9g} Pa", bc.friction->friction_coefficient,
                               bc.friction->adhesion);
@@ -107,6 +107,12 @@ std::string Simulation::boundaries() const {
       case BoundaryKind::atmosphere:
         text += fmt::format("atmosphere {:.9g} Pa {}, inflow c {:.9g}", bc.pressure,
                             bc.total_pressure ? "total" : "static", bc.inflow_soil_fraction);
+        break;
+      case BoundaryKind::inlet:
+        text += layers ? fmt::format("inlet [{:.9g}, {:.9g}, {:.9g}] m/s", bc.velocity[0], bc.velocity[1], bc.velocity[2])
+                       : fmt::format("inlet [{:.9g}, {:.9g}] m/s", bc.velocity[0], bc.velocity[1]);
+        text += fmt::format(", c {:.9g} below {:.9g} m, material {}", bc.inflow_soil_fraction, bc.inflow_soil_depth,
+                            bc.inflow_material);
         break;
     }
   }

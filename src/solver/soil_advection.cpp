@@ -32,7 +32,10 @@ const Field& SoilPhase::soil_region(int reach, double floor) const {
   // c's ghosts are current: every change of c ends with fill_fraction_ghosts. The region's own
   // domain-boundary ghosts stay 0 (set at construction); soil coming in through a boundary is in c's.
   const Field* in = c_.get();
-  if (blocked_) {
+  // An inlet's ghosts count as soil, whatever they carry: its cells are in the region, whose solve
+  // takes in the inlet's flux (outside the region the air is held at rest).
+  const bool inlet = has_inlet(flow_settings_.boundaries);
+  if (blocked_ || inlet) {
     // c without the blocked cells' mirrors, nor the wall ghosts that mirror those: they are not
     // soil, and a rank cannot mirror a ghost cell whose open side lies beyond its ghosts, so counting
     // them made the region differ between rank layouts. A wall's ghosts mirror cells whose own 3 x 3
@@ -51,7 +54,8 @@ const Field& SoilPhase::soil_region(int reach, double floor) const {
           // A ghost beyond two sides (an edge's) takes the later axis's side, as the ghosts were filled.
           const Side side = k < 0 ? Side::front : k >= nz ? Side::back : j < 0 ? Side::south : j >= ny ? Side::north
                                                                         : i < 0 ? Side::west : Side::east;
-          if (is_blocked(mask.data(), i, j, k) || (outside && !open_side(side))) a.volume()[k][j][i] = 0.0;
+          if (outside && boundary(flow_settings_.boundaries, side).kind == BoundaryKind::inlet) a.volume()[k][j][i] = 1.0;
+          else if (is_blocked(mask.data(), i, j, k) || (outside && !open_side(side))) a.volume()[k][j][i] = 0.0;
         }
     in = region_[1].get();
   }
@@ -245,7 +249,7 @@ void SoilPhase::sweep(int axis, double dt, const Field& from, Field& to, bool fr
   }
   fill_fraction_ghosts(to);
   if (materials_)
-    for (auto& f : from_shares ? share_tmp_ : share_) fill_share_ghosts(*f);
+    fill_share_ghosts(from_shares ? share_tmp_ : share_);
 }
 
 // Eulerian displacement ([VoF] Eq. 20) with the soil velocity c v: donor-cell fluxes through each

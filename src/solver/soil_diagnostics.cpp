@@ -128,7 +128,7 @@ double SoilPhase::compute_dissipation(const FlowSolver& flow) {
     double work = 0.0;
     for (int c = 0; c < 2; ++c) {
       if (bc.kind == BoundaryKind::slip && c != n) continue;  // no shear on a slip side
-      const double wall = c == n ? 0.0 : bc.wall_velocity[c];
+      const double wall = bc.velocity[c];  // a wall's normal component is zero
       const double gradient = wall_gradient(grid_, q[c], i, j, fg, wall, num.quadratic_wall_gradient);
       work += (c == n ? normal_factor : 1.0) * mu_f * A * gradient * (q[c][j][i] - wall);
     }

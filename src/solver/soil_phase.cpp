@@ -148,7 +148,7 @@ void SoilPhase::clear_blocked_cells() {
   for (auto& f : disp_)
     if (f) zero_blocked_cells(grid_, blocked_, *f);
   fill_fraction_ghosts(*c_);  // zeroes c there, and mirrors anew
-  for (auto& f : share_) fill_share_ghosts(*f);
+  fill_share_ghosts(share_);
 }
 
 void SoilPhase::restore_state() {
@@ -216,18 +216,22 @@ void SoilPhase::initialise_materials() {
           }
     }
   m.clear();
-  for (auto& f : share_) fill_share_ghosts(*f);
+  fill_share_ghosts(share_);
 }
 
 // Ghosts of a material share: walls copy the nearest cell (zero gradient), blocked cells hold none;
-// soil coming in through an atmosphere side is the rheology's own (share 0).
-void SoilPhase::fill_share_ghosts(Field& f) const {
+// soil coming in through an atmosphere side is the rheology's own (share 0), through an inlet the
+// inlet's material (share 1 of its own material, 0 of the others).
+void SoilPhase::fill_share_ghosts(Field& f, int material) const {
   zero_blocked_cells(grid_, blocked_, f);
   f.scatter_to_local();
   FieldArray a(grid_.field_dm(), f.local());
   mirror_into_blocked(grid_, blocked_, a.volume(), 1.0);
   fill_side_ghosts(grid_, a.volume(), [&](Side side, double, double first) {
-    return boundary(flow_settings_.boundaries, side).kind == BoundaryKind::atmosphere ? 0.0 : first;
+    const auto& bc = boundary(flow_settings_.boundaries, side);
+    if (bc.kind == BoundaryKind::atmosphere) return 0.0;
+    if (bc.kind == BoundaryKind::inlet) return bc.inflow_material == material ? 1.0 : 0.0;
+    return first;
   });
 }
 
@@ -242,22 +246,36 @@ void SoilPhase::cell_shares(const std::deque<ConstFieldArray>& m, int i, int j, 
   for (size_t n = 0; n < m.size(); ++n) out[n] = m[n].volume()[k][j][i];
 }
 
-// Ghosts of c: soil carried in through an atmosphere boundary has the boundary's inflow fraction;
+// Ghosts of c: soil carried in through an atmosphere boundary has the boundary's inflow fraction,
+// through an inlet the inlet's below its soil depth (each ghost the share of its height below it);
 // walls mirror, which gives interface normals meeting a wall at right angles.
 void SoilPhase::fill_fraction_ghosts(Field& f) const {
   zero_blocked_cells(grid_, blocked_, f);  // no soil in a blocked cell (a sweep leaves there the mirror it read)
   f.scatter_to_local();
   FieldArray a(grid_.field_dm(), f.local());
   mirror_into_blocked(grid_, blocked_, a.volume(), 1.0);  // an obstacle's walls mirror, as the domain's
-  fill_side_ghosts(grid_, a.volume(), [&](Side side, double inner, double) {
+  const double bottom = grid_.spec().lower[1];
+  fill_side_ghosts(grid_, a.volume(), [&](Side side, double inner, double, const int* where) {
     const auto& bc = boundary(flow_settings_.boundaries, side);
+    if (bc.kind == BoundaryKind::inlet) {
+      const int j = where[1];
+      return inlet_face_soil_fraction(bc, grid_.yf(j) - grid_.dy(j), grid_.yf(j), bottom);
+    }
     return bc.kind == BoundaryKind::atmosphere ? bc.inflow_soil_fraction : inner;
   });
 }
 
+// Ghosts of the displacement: zero gradient, but soil entering through an inlet has not moved yet.
 void SoilPhase::fill_displacement_ghosts() {
   for (auto& d : disp_)
-    if (d) fill_copied_ghosts(grid_, blocked_, *d);
+    if (d) {
+      fill_copied_ghosts(grid_, blocked_, *d);
+      if (!has_inlet(flow_settings_.boundaries)) continue;
+      FieldArray a = local_array(grid_, *d);
+      fill_side_ghosts(grid_, a.volume(), [&](Side side, double, double first) {
+        return boundary(flow_settings_.boundaries, side).kind == BoundaryKind::inlet ? 0.0 : first;
+      });
+    }
 }
 
 }  // namespace granflow

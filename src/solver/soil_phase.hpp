@@ -126,7 +126,10 @@ class SoilPhase {
  private:
   void fill_displacement_ghosts();
   std::vector<Field*> state_fields();  // what a step changes: c, the displacement, the materials' shares
-  void fill_share_ghosts(Field& f) const;
+  void fill_share_ghosts(Field& f, int material) const;  // material: the share's, 1 for share_[0]
+  void fill_share_ghosts(std::vector<std::unique_ptr<Field>>& shares) const {  // one set of shares
+    for (size_t k = 0; k < shares.size(); ++k) fill_share_ghosts(*shares[k], int(k) + 1);
+  }
   void initialise_materials();
   // One directional sweep of c (from -> to) and, with materials, of their shares (share_ / share_tmp_
   // as from_shares says); adds the soil each face carried to soil_through when given.

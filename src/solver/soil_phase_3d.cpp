@@ -122,7 +122,7 @@ void SoilPhase::initialise_materials_3d() {
           m[size_t(n - 1)].volume()[k][j][i] = 1.0;
       }
   m.clear();
-  for (auto& f : share_) fill_share_ghosts(*f);
+  fill_share_ghosts(share_);
 }
 
 void SoilPhase::update_properties_3d(FlowSolver& flow) const {
@@ -210,7 +210,7 @@ void SoilPhase::update_face_viscosity_3d(FlowSolver& flow) const {
         const int il = i - (sign < 0 && axis == 0), jl = j - (sign < 0 && axis == 1), kl = k - (sign < 0 && axis == 2);
         auto wall_rate = [&] {
           return quadratic_wall && bc.kind != BoundaryKind::atmosphere
-                     ? quadratic_wall_strain_rate(grid_, v, axis, i, j, k, sign, bc.wall_velocity,
+                     ? quadratic_wall_strain_rate(grid_, v, axis, i, j, k, sign, bc.velocity,
                                                   bc.kind == BoundaryKind::slip)
                      : face_strain_rate(grid_, v, axis, il, jl, kl);
         };
@@ -364,7 +364,7 @@ void SoilPhase::advect_3d(FlowSolver& flow, double dt) {
         }
       }
       fill_fraction_ghosts(*to);
-      for (auto& f : *shares_to) fill_share_ghosts(*f);
+      fill_share_ghosts(*shares_to);
       std::swap(from, to);
       std::swap(shares_from, shares_to);
     }
@@ -466,7 +466,7 @@ double SoilPhase::compute_dissipation_3d(const FlowSolver& flow) {
       double work = 0.0;
       for (int c = 0; c < 3; ++c) {
         if (bc.kind == BoundaryKind::slip && c != fg.axis) continue;  // no shear on a slip side
-        const double wall = c == fg.axis ? 0.0 : bc.wall_velocity[c];
+        const double wall = bc.velocity[c];  // a wall's normal component is zero
         const double gradient = wall_gradient(grid_, vel.view[c], i, j, k, fg, wall, num.quadratic_wall_gradient);
         work += (c == fg.axis ? normal_factor : 1.0) * mu_f * A * gradient * (vel.view[c][k][j][i] - wall);
       }

@@ -46,6 +46,7 @@ struct SoilSettings {
   // On a mesh of layers from z_lower to z_upper: every initial shape as a solid, the planar ones
   // extruded across the whole depth, in the order listed (settings that do not record it, built in
   // code: the solids first).
+  bool has_initial_shapes() const { return !initial_soil.empty() || !initial_soil_3d.empty(); }
   std::vector<interface::Shape3> initial_solids(double z_lower, double z_upper) const {
     std::vector<interface::Shape3> solids;
     auto extruded = [&](const interface::Shape& s) { return interface::Extrusion{s, z_lower, z_upper}; };

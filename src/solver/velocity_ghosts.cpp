@@ -9,7 +9,8 @@ namespace {
 // holds `inner` and whose first cell holds `first`.
 double ghost(const BoundaryCondition& bc, int component, int normal, double inner, double first) {
   switch (bc.kind) {
-    case BoundaryKind::wall: return 2.0 * bc.wall_velocity[component] - inner;
+    case BoundaryKind::wall:
+    case BoundaryKind::inlet: return 2.0 * bc.velocity[component] - inner;
     case BoundaryKind::slip: return component == normal ? -inner : inner;
     case BoundaryKind::atmosphere: return first;
     case BoundaryKind::periodic: break;  // no ghost of its own: the exchange filled it

@@ -19,13 +19,6 @@
 
 namespace granflow::test {
 
-inline std::string file_text(const std::filesystem::path& p) {
-  std::ifstream in(p);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
 struct EndState {
   double time = 0.0;
   long steps = 0;

@@ -229,7 +229,7 @@ void expect_layer_independent_cavity(PressureCoupling coupling, double tolerance
     FlowSettings settings = walls_everywhere();
     settings.numerics.convection = ConvectionScheme::quick;
     settings.numerics.pressure_coupling = coupling;
-    settings.boundaries[int(Side::north)].wall_velocity = {1.0, 0.0, 0.0};
+    settings.boundaries[int(Side::north)].velocity = {1.0, 0.0, 0.0};
     for (Side s : {Side::front, Side::back}) settings.boundaries[int(s)].kind = BoundaryKind::slip;
     FlowSolver flow(*g, settings);
     flow.set_property_update([](FlowSolver& f) {

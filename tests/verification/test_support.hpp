@@ -20,6 +20,13 @@ namespace granflow::test {
 
 inline std::string repo_path(const std::string& rel) { return std::string(GRANFLOW_SOURCE_DIR) + "/" + rel; }
 
+inline std::string file_text(const std::filesystem::path& p) {
+  std::ifstream in(p);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
 // worst = max(worst, e), but a NaN e makes it infinite (std::max would pass over it).
 inline void keep_largest(double& worst, double e) {
   if (!(e <= worst)) worst = std::isnan(e) ? INFINITY : e;

@@ -50,7 +50,7 @@ TEST(CaseFile, MinimalCaseIsValid) {
   const CaseConfig c = parse_case(minimal);
   EXPECT_EQ(c.mesh.cells[0], 8);
   EXPECT_DOUBLE_EQ(c.fluid.viscosity, 0.01);
-  EXPECT_DOUBLE_EQ(c.flow.boundaries[int(Side::north)].wall_velocity[0], 1.0);
+  EXPECT_DOUBLE_EQ(c.flow.boundaries[int(Side::north)].velocity[0], 1.0);
 }
 
 TEST(CaseFile, MisspeltKeyIsNamed) {
@@ -162,6 +162,87 @@ east = { type = "wall" }
 south = { type = "wall" }
 north = { type = "atmosphere" }
 )";
+
+// An inlet: a velocity into the domain, the soil it carries below a depth, of a material.
+TEST(CaseFile, AnInletReadsItsVelocitySoilDepthAndMaterial) {
+  const std::vector<std::string> open_east{"soil.rheology.friction_angle=30", "boundary.east={type = \"atmosphere\"}"};
+  auto with = [&](const std::string& west) {
+    auto o = open_east;
+    o.push_back("boundary.west=" + west);
+    return o;
+  };
+  const CaseConfig c = parse_case(
+      std::string(two_phase) + "[[soil.materials]]\nname = \"weak\"\nfriction_angle = 10.0\n",
+      with("{type = \"inlet\", velocity = [0.5, 0.1], soil_fraction = 0.6, soil_depth = 0.2, material = \"weak\"}"));
+  const BoundaryCondition& west = boundary(c.flow.boundaries, Side::west);
+  EXPECT_EQ(west.kind, BoundaryKind::inlet);
+  EXPECT_EQ(west.velocity[0], 0.5);
+  EXPECT_EQ(west.velocity[1], 0.1);
+  EXPECT_EQ(west.inflow_soil_fraction, 0.6);
+  EXPECT_EQ(west.inflow_soil_depth, 0.2);
+  EXPECT_EQ(west.inflow_material, 1);
+  // The ghost of a face half below the depth carries half the soil fraction; above it none.
+  EXPECT_DOUBLE_EQ(inlet_face_soil_fraction(west, 0.15, 0.25, 0.0), 0.3);
+  EXPECT_EQ(inlet_face_soil_fraction(west, 0.25, 0.35, 0.0), 0.0);
+  EXPECT_EQ(inlet_face_soil_fraction(west, 0.0, 0.1, 0.0), 0.6);
+  // Without a depth the whole side carries soil; without soil_fraction, air.
+  const CaseConfig whole = parse_case(two_phase, with("{type = \"inlet\", velocity = [0.5, 0.0], soil_fraction = 1.0}"));
+  EXPECT_EQ(inlet_face_soil_fraction(boundary(whole.flow.boundaries, Side::west), 0.9, 1.0, 0.0), 1.0);
+  const CaseConfig air = parse_case(two_phase, with("{type = \"inlet\", velocity = [0.5, 0.0]}"));
+  EXPECT_EQ(boundary(air.flow.boundaries, Side::west).inflow_soil_fraction, 0.0);
+  // A domain may start empty when an inlet brings soil, and a material may come only by an inlet.
+  std::string empty = two_phase;
+  empty.replace(empty.find("[[initial.soil]]"), std::string("[[initial.soil]]\nshape = \"box\"\nlower = [0.0, 0.0]\nupper = [0.5, 0.5]\n").size(), "");
+  EXPECT_NO_THROW(parse_case(empty, with("{type = \"inlet\", velocity = [0.5, 0.0], soil_fraction = 1.0}")));
+  const std::string no_soil = error_of(empty, with("{type = \"inlet\", velocity = [0.5, 0.0]}"));
+  EXPECT_NE(no_soil.find("initial: missing table [[initial.soil]]"), std::string::npos) << no_soil;
+  EXPECT_NE(no_soil.find("inlet of soil"), std::string::npos) << no_soil;
+  // On the east side the inflow runs along -x.
+  auto east_inlet = open_east;
+  east_inlet.back() = "boundary.east={type = \"inlet\", velocity = [-0.5, 0.0]}";
+  east_inlet.push_back("boundary.west={type = \"atmosphere\"}");
+  EXPECT_NO_THROW(parse_case(two_phase, east_inlet));
+}
+
+TEST(CaseFile, AnInletRefusesWhatItCannotBe) {
+  const std::vector<std::string> open_east{"soil.rheology.friction_angle=30", "boundary.east={type = \"atmosphere\"}"};
+  auto error_with = [&](const std::string& west, std::vector<std::string> more = {}) {
+    auto o = open_east;
+    o.push_back("boundary.west=" + west);
+    o.insert(o.end(), more.begin(), more.end());
+    return error_of(two_phase, o);
+  };
+  const std::string outward = error_with("{type = \"inlet\", velocity = [-0.5, 0.0]}");
+  EXPECT_NE(outward.find("boundary.west.velocity: an inlet's velocity must point into the domain (its x component "
+                         "greater than 0)"), std::string::npos) << outward;
+  const std::string along = error_with("{type = \"inlet\", velocity = [0.0, 0.3]}");
+  EXPECT_NE(along.find("must point into the domain"), std::string::npos) << along;
+  const std::string missing = error_with("{type = \"inlet\", soil_fraction = 1.0}");
+  EXPECT_NE(missing.find("boundary.west.velocity: missing"), std::string::npos) << missing;
+  const std::string fraction = error_with("{type = \"inlet\", velocity = [1.0, 0.0], soil_fraction = 1.5}");
+  EXPECT_NE(fraction.find("boundary.west.soil_fraction: 1.5 is invalid"), std::string::npos) << fraction;
+  const std::string depth = error_with("{type = \"inlet\", velocity = [1.0, 0.0], soil_depth = -0.1}");
+  EXPECT_NE(depth.find("boundary.west.soil_depth: -0.1 is invalid, must be positive"), std::string::npos) << depth;
+  const std::string material = error_with("{type = \"inlet\", velocity = [1.0, 0.0], material = \"clay\"}");
+  EXPECT_NE(material.find("boundary.west.material: no soil material named 'clay'"), std::string::npos) << material;
+  const std::string closed = error_with("{type = \"inlet\", velocity = [1.0, 0.0]}",
+                                        {"boundary.east={type = \"wall\"}", "boundary.north={type = \"wall\"}"});
+  EXPECT_NE(closed.find("boundary: an inlet needs an open side"), std::string::npos) << closed;
+  const std::string bottom = error_with("{type = \"wall\"}", {"boundary.south={type = \"inlet\", velocity = [0.0, "
+                                                                 "1.0], soil_depth = 0.1}"});
+  EXPECT_NE(bottom.find("boundary.south.soil_depth: the depth is measured up from the bottom"), std::string::npos)
+      << bottom;
+  const std::string stray = error_with("{type = \"inlet\", velocity = [1.0, 0.0], pressure = 3.0}");
+  EXPECT_NE(stray.find("boundary.west.pressure"), std::string::npos) << stray;
+  // One phase: the soil keys belong to cases with soil.
+  const std::string one_phase =
+      error_of(minimal, {"boundary.west={type = \"inlet\", velocity = [1.0, 0.0], soil_fraction = 1.0}",
+                         "boundary.east={type = \"atmosphere\"}"});
+  EXPECT_NE(one_phase.find("boundary.west.soil_fraction: applies to cases with soil only"), std::string::npos)
+      << one_phase;
+  EXPECT_NO_THROW(parse_case(minimal, {"boundary.west={type = \"inlet\", velocity = [1.0, 0.0]}",
+                                       "boundary.east={type = \"atmosphere\"}"}));
+}
 
 TEST(CaseFile, RheologyParametersAreValidated) {
   const std::string e = error_of(two_phase);
@@ -1075,7 +1156,7 @@ TEST(CaseFile, AMeshOfLayersReadsItsThirdAxis) {
   EXPECT_EQ(c.mesh.grading[2], 0.5);
   EXPECT_EQ(c.flow.boundaries[int(Side::front)].kind, BoundaryKind::slip);
   EXPECT_EQ(c.flow.boundaries[int(Side::back)].kind, BoundaryKind::wall);
-  EXPECT_EQ(c.flow.boundaries[int(Side::south)].wall_velocity[2], 0.1);
+  EXPECT_EQ(c.flow.boundaries[int(Side::south)].velocity[2], 0.1);
   ASSERT_TRUE(c.soil);
   ASSERT_EQ(c.soil->initial_soil_3d.size(), 3u);  // the cylinder, the box of three-number corners, the sphere
   EXPECT_TRUE(std::holds_alternative<interface::VerticalCylinder>(c.soil->initial_soil_3d[0]));

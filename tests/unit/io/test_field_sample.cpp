@@ -55,7 +55,7 @@ TEST(FieldSample, WallsGiveTheirVelocitySlipSidesNoNormalFlowAtmospheresAZeroGra
   b[int(Side::east)].kind = BoundaryKind::atmosphere;
   b[int(Side::south)].kind = BoundaryKind::wall;
   b[int(Side::north)].kind = BoundaryKind::wall;
-  b[int(Side::north)].wall_velocity = {1.5, 0.0};
+  b[int(Side::north)].velocity = {1.5, 0.0};
   const auto f = [](double x, double y) { return 0.7 + x * x + y; };
   const auto values = cell_values(g, f);
   const SideRules u_sides = velocity_side_rules(b, 0, 2), v_sides = velocity_side_rules(b, 1, 2);
@@ -229,7 +229,7 @@ TEST(FieldSample, TheFrontAndBackGiveTheirVelocityAsTheOtherSidesDo) {
   const Grid g(PETSC_COMM_SELF, layered_spec());
   BoundarySet b;
   b[int(Side::front)].kind = BoundaryKind::wall;
-  b[int(Side::front)].wall_velocity = {0.5, 0.0, 0.0};
+  b[int(Side::front)].velocity = {0.5, 0.0, 0.0};
   b[int(Side::back)].kind = BoundaryKind::slip;
   const auto f = [](double x, double y, double z) { return 0.7 + x * x + y - z; };
   const auto values = layered_values(g, f);

@@ -1,5 +1,5 @@
-// The velocity's ghosts beyond the sides of a mesh of layers: each side's rule (moving wall, slip wall,
-// atmosphere) on each component, two layers deep, and at an edge the rule of the later side applied to
+// The velocity's ghosts beyond the sides of a mesh of layers: each side's rule (inlet, moving wall, slip
+// wall, atmosphere) on each component, two layers deep, and at an edge the rule of the later side applied to
 // the earlier side's ghosts.
 #include <gtest/gtest.h>
 
@@ -17,7 +17,7 @@ TEST(VelocityGhosts, EachSidesRuleOnEachComponentOfAMeshOfLayers) {
   spec.cells = {4, 5, 6};
   const Grid g(PETSC_COMM_SELF, spec);
   BoundarySet sides;
-  sides[int(Side::west)] = {BoundaryKind::wall, {0.0, 0.3, -0.2}};
+  sides[int(Side::west)] = {BoundaryKind::inlet, {0.4, 0.3, -0.2}};
   sides[int(Side::east)].kind = BoundaryKind::slip;
   sides[int(Side::south)].kind = BoundaryKind::wall;
   sides[int(Side::north)].kind = BoundaryKind::atmosphere;
@@ -38,16 +38,16 @@ TEST(VelocityGhosts, EachSidesRuleOnEachComponentOfAMeshOfLayers) {
   auto at = [&](int c, int i, int j, int k) { return a[c].volume()[k][j][i]; };
   for (int c = 0; c < 3; ++c)
     for (int m = 1; m <= 2; ++m) {
-      // West, a wall moving at (0, 0.3, -0.2): the face between ghost and mirror cell at its velocity.
-      EXPECT_DOUBLE_EQ(at(c, -m, 2, 3), 2.0 * sides[0].wall_velocity[c] - value(c, m - 1, 2, 3));
+      // West, an inlet at (0.4, 0.3, -0.2): the face between ghost and mirror cell at its velocity.
+      EXPECT_DOUBLE_EQ(at(c, -m, 2, 3), 2.0 * sides[0].velocity[c] - value(c, m - 1, 2, 3));
       // East, slip: the normal component turned, the others as they are.
       EXPECT_DOUBLE_EQ(at(c, 3 + m, 2, 3), (c == 0 ? -1.0 : 1.0) * value(c, 4 - m, 2, 3));
       EXPECT_DOUBLE_EQ(at(c, 1, -m, 3), -value(c, 1, m - 1, 3));  // south, a wall at rest
       EXPECT_DOUBLE_EQ(at(c, 1, 4 + m, 3), value(c, 1, 4, 3));  // north, atmosphere: zero gradient
       EXPECT_DOUBLE_EQ(at(c, 1, 2, -m), (c == 2 ? -1.0 : 1.0) * value(c, 1, 2, m - 1));  // front, slip
-      EXPECT_DOUBLE_EQ(at(c, 1, 2, 5 + m), 2.0 * sides[5].wall_velocity[c] - value(c, 1, 2, 6 - m));  // back
+      EXPECT_DOUBLE_EQ(at(c, 1, 2, 5 + m), 2.0 * sides[5].velocity[c] - value(c, 1, 2, 6 - m));  // back
     }
-  // The edge between the west wall and the back wall: the back's rule on the west's ghosts.
+  // The edge between the west inlet and the back wall: the back's rule on the west's ghosts.
   EXPECT_DOUBLE_EQ(at(1, -1, 2, 6), 2.0 * 0.0 - at(1, -1, 2, 5));
   EXPECT_DOUBLE_EQ(at(1, -1, 2, 5), 2.0 * 0.3 - value(1, 0, 2, 5));
 }
