@@ -73,6 +73,11 @@ CaseConfig reduced_strength(const CaseConfig& config, double factor) {
   if (!config.soil || !config.soil->rheology)
     throw CaseError(fmt::format("{}: strength reduction needs soil with a rheology ([soil.rheology]) to reduce",
                                 config.source.string()));
+  for (Side s : sides_of_dimension(config.mesh.dimension()))
+    if (boundary(config.flow.boundaries, s).kind == BoundaryKind::inlet)
+      throw CaseError(fmt::format("{}: boundary.{} is an inlet: strength reduction looks for the factor at which a "
+                                  "slope at rest fails, and a slope fed by an inlet is not at rest (make the side a "
+                                  "wall)", config.source.string(), side_name(s)));
   const auto& r = *config.soil->rheology;
   if (r.friction != rheology::FrictionSource::constant)
     throw CaseError(fmt::format("{}: strength reduction divides a constant friction angle; mu(I) friction has none "

@@ -87,7 +87,8 @@ TEST(Inlet, AChannelFedUniformlyDevelopsPoiseuillesFlowAtSecondOrder) {
   std::printf("largest |u - Poiseuille| at x = 3 m: %.3e, %.3e, %.3e m/s on 8, 16, 32 rows (orders %.2f, %.2f); "
               "outflow - inflow %.1e, %.1e, %.1e m^2/s\n",
               coarse.profile_error, medium.profile_error, fine.profile_error,
-              std::log2(coarse.profile_error / medium.profile_error), std::log2(medium.profile_error / fine.profile_error),
+              std::log2(coarse.profile_error / medium.profile_error),
+              std::log2(medium.profile_error / fine.profile_error),
               coarse.outflow - 1.0, medium.outflow - 1.0, fine.outflow - 1.0);
   EXPECT_LT(fine.profile_error, 2e-3);  // measured 1.46e-3 of the centreline's 1.5 m/s
   EXPECT_GT(std::log2(coarse.profile_error / medium.profile_error), 1.8);
@@ -106,7 +107,8 @@ std::string soil_inlet_case(double depth, bool layers, const std::string& extra 
   replace("[[initial.soil]]\nshape = \"box\"\nlower = [0.0, 0.0]\nupper = [0.2, 0.1]\n", "");
   const std::string velocity = layers ? "[0.2, 0.0, 0.0]" : "[0.2, 0.0]";
   replace("west = { type = \"wall\" }", "west = { type = \"inlet\", velocity = " + velocity +
-                                            ", soil_fraction = 1.0, soil_depth = " + std::to_string(depth) + extra + " }");
+                                            ", soil_fraction = 1.0, soil_depth = " + std::to_string(depth) + extra +
+                                            " }");
   if (layers) {
     replace("gravity = [0.0, -9.81]", "gravity = [0.0, -9.81, 0.0]");
     replace("north = { type = \"atmosphere\" }",
@@ -129,7 +131,8 @@ SoilFed run_soil_inlet(const std::string& text, bool layers) {
   sim.run();
   const SoilBudget b = sim.soil()->budget(sim.flow());
   const auto c = gather_to_root(sim.grid(), sim.soil()->soil_fraction());
-  SoilFed out{b.soil_volume, b.soil_outflow, 0.0, 0.0, sim.soil()->largest_displacement(), sim.soil()->material_volumes()};
+  SoilFed out{b.soil_volume, b.soil_outflow, 0.0, 0.0, sim.soil()->largest_displacement(),
+              sim.soil()->material_volumes()};
   if (test::is_root()) {
     out.lowest_c = *std::min_element(c.begin(), c.end());
     out.highest_c = *std::max_element(c.begin(), c.end());

@@ -186,13 +186,15 @@ TEST(CaseFile, AnInletReadsItsVelocitySoilDepthAndMaterial) {
   EXPECT_EQ(inlet_face_soil_fraction(west, 0.25, 0.35, 0.0), 0.0);
   EXPECT_EQ(inlet_face_soil_fraction(west, 0.0, 0.1, 0.0), 0.6);
   // Without a depth the whole side carries soil; without soil_fraction, air.
-  const CaseConfig whole = parse_case(two_phase, with("{type = \"inlet\", velocity = [0.5, 0.0], soil_fraction = 1.0}"));
+  const CaseConfig whole =
+      parse_case(two_phase, with("{type = \"inlet\", velocity = [0.5, 0.0], soil_fraction = 1.0}"));
   EXPECT_EQ(inlet_face_soil_fraction(boundary(whole.flow.boundaries, Side::west), 0.9, 1.0, 0.0), 1.0);
   const CaseConfig air = parse_case(two_phase, with("{type = \"inlet\", velocity = [0.5, 0.0]}"));
   EXPECT_EQ(boundary(air.flow.boundaries, Side::west).inflow_soil_fraction, 0.0);
   // A domain may start empty when an inlet brings soil, and a material may come only by an inlet.
   std::string empty = two_phase;
-  empty.replace(empty.find("[[initial.soil]]"), std::string("[[initial.soil]]\nshape = \"box\"\nlower = [0.0, 0.0]\nupper = [0.5, 0.5]\n").size(), "");
+  const std::string shape = "[[initial.soil]]\nshape = \"box\"\nlower = [0.0, 0.0]\nupper = [0.5, 0.5]\n";
+  empty.replace(empty.find(shape), shape.size(), "");
   EXPECT_NO_THROW(parse_case(empty, with("{type = \"inlet\", velocity = [0.5, 0.0], soil_fraction = 1.0}")));
   const std::string no_soil = error_of(empty, with("{type = \"inlet\", velocity = [0.5, 0.0]}"));
   EXPECT_NE(no_soil.find("initial: missing table [[initial.soil]]"), std::string::npos) << no_soil;
