@@ -1,11 +1,16 @@
 #!/usr/bin/python3
-"""Compare a granflow run of cases/bagnold_chute.toml with the steady profile of mu(I) flow down a chute.
+"""Compare a granflow run of cases/bagnold_chute.toml (or cases/chute_inlet.toml) with the steady profile
+of mu(I) flow down a chute.
 
 Usage: compare_bagnold.py RUN_DIR [--png FILE] [--label LABEL] [--also DIR=LABEL ...]
 
 Reads the latest line sample RUN_DIR/profile.csv and the case as the run took it
 (RUN_DIR/granflow_case.toml: the slope from the gravity vector, the densities, the mu(I) constants,
-the grain size and the viscosity floor mu_min, the layer's depth from its initial box). It prints, at
+the grain size and the viscosity floor mu_min, the layer's depth from its initial box). A chute fed
+through an inlet on its west side and started without soil has no initial box: its steady layer is
+the one that carries the inlet's flux q = u soil_fraction soil_depth, each profile at its own depth
+for q (Bagnold's h = (q / (0.6 A))^(2/5)), and the depth the run reached is printed beside them
+from the sample's soil fraction. It prints, at
 each sample point in the layer, the computed velocity against two profiles, each relative to the
 model's surface velocity:
   - Bagnold's: tau / p = tan(theta) at every depth, so I = I_0 (tan theta - mu_s) / (mu_2 - tan theta)
@@ -38,14 +43,21 @@ def read_case(run_dir):
         if rheology.get("friction") != "mu_of_I":
             raise InputError(f"{path}: the soil's friction is not mu_of_I (a run of another case?)")
         gx, gy = case["physics"]["gravity"]
-        box = case["initial"]["soil"][0]
-        return {
+        m = {
             "theta": math.atan2(gx, -gy), "g": math.hypot(gx, gy),
             "rho_s": case["soil"]["density"], "rho_a": case["air"]["density"],
-            "depth": box["upper"][1] - box["lower"][1], "height": case["mesh"]["upper"][1] - case["mesh"]["lower"][1],
+            "height": case["mesh"]["upper"][1] - case["mesh"]["lower"][1],
             "d": rheology["grain_diameter"], "mu_s": rheology["mu_s"], "mu_2": rheology["mu_2"],
-            "I_0": rheology["I_0"], "mu_min": rheology.get("mu_min", 1e-3),
+            "I_0": rheology["I_0"], "mu_min": rheology.get("mu_min", 1e-3), "flux": None,
         }
+        west = case["boundary"]["west"]
+        if not case.get("initial", {}).get("soil") and west.get("type") == "inlet":
+            m["flux"] = west["velocity"][0] * west.get("soil_fraction", 0.0) * west.get("soil_depth", m["height"])
+            m["depth"] = None  # each profile's own, for the flux
+        else:
+            box = case["initial"]["soil"][0]
+            m["depth"] = box["upper"][1] - box["lower"][1]
+        return m
     except (KeyError, IndexError, TypeError, ValueError) as e:
         raise InputError(f"{path}: not a chute case of a mu(I) soil layer on a tilted floor ({e!r} missing)")
 
@@ -72,6 +84,20 @@ def steady_profile(m, z, model):
     rate = np.where(flowing, 0.5 * (lo + hi), 0.0)
     u = np.concatenate([[0.0], np.cumsum(0.5 * (rate[1:] + rate[:-1]) * np.diff(level))])
     return np.interp(z, level, u)
+
+
+def depth_for_flux(m, model):
+    """The depth whose steady layer carries m["flux"] (bisection on the depth)."""
+    lo, hi = 0.0, m["height"]
+    for _ in range(40):
+        mid = 0.5 * (lo + hi)
+        level = np.linspace(0.0, mid, 401)
+        u = steady_profile(dict(m, depth=mid), level, model)
+        if np.sum(0.5 * (u[1:] + u[:-1]) * np.diff(level)) < m["flux"]:
+            lo = mid
+        else:
+            hi = mid
+    return 0.5 * (lo + hi)
 
 
 def read_profile(run_dir):
@@ -113,13 +139,27 @@ def main():
                          f"flow to compare with: that needs a slope between atan(mu_s) = {low:.4g} and atan(mu_2) = "
                          f"{high:.4g} deg")
     table, when = read_profile(args.run_dir)
+    inertial = m["I_0"] * (math.tan(m["theta"]) - m["mu_s"]) / (m["mu_2"] - math.tan(m["theta"]))
+    m_bagnold, m_own = dict(m), dict(m)
+    fed = m["flux"] is not None
+    if fed:  # each steady layer at its own depth for the inlet's flux
+        m_bagnold["depth"], m_own["depth"] = depth_for_flux(m, False), depth_for_flux(m, True)
+        m["depth"] = m_own["depth"]
     inside = table["y"] < m["depth"]
     z, u = table["y"][inside], table["u"][inside]
-    surface = float(steady_profile(m, np.array([m["depth"]]), True)[0])
-    bagnold, own = steady_profile(m, z, False), steady_profile(m, z, True)
-    inertial = m["I_0"] * (math.tan(m["theta"]) - m["mu_s"]) / (m["mu_2"] - math.tan(m["theta"]))
+    surface = float(steady_profile(m_own, np.array([m_own["depth"]]), True)[0])
+    bagnold, own = steady_profile(m_bagnold, z, False), steady_profile(m_own, z, True)
     print(f"{when[2:] if when.startswith('#') else when}; slope {math.degrees(m['theta']):.4g} deg, "
           f"I = {inertial:.4f}, layer {m['depth']:.4g} m")
+    if fed:
+        print(f"flux_m2_s = {m['flux']:.6g}")
+        print(f"depth_for_flux_bagnold_m = {m_bagnold['depth']:.6g}")
+        print(f"depth_for_flux_model_m = {m_own['depth']:.6g}")
+        if "soil_fraction" in table:
+            y = table["y"]
+            spacing = float(np.mean(np.diff(y))) if len(y) > 1 else 0.0
+            print(f"depth_computed_m = {float(np.sum(table['soil_fraction'])) * spacing:.6g} (the sample's soil "
+                  f"fraction times its spacing)")
     print("z_m,u_computed,u_model,u_bagnold,diff_model_rel,diff_bagnold_rel")
     for k in range(len(z)):
         print(f"{z[k]:.6g},{u[k]:.6f},{own[k]:.6f},{bagnold[k]:.6f},{(u[k] - own[k]) / surface:+.5f},"
@@ -142,10 +182,11 @@ def main():
         import matplotlib
         matplotlib.use("Agg")
         import matplotlib.pyplot as plt
-        fine = np.linspace(0.0, m["depth"], 200)
+        fine_b, fine_m = np.linspace(0.0, m_bagnold["depth"], 200), np.linspace(0.0, m_own["depth"], 200)
         fig, ax = plt.subplots(figsize=(5, 4.5))
-        ax.plot(steady_profile(m, fine, False), 1e3 * fine, "k-", lw=1, label="Bagnold: tau / p = tan(theta)")
-        ax.plot(steady_profile(m, fine, True), 1e3 * fine, "k--", lw=1, label="model: + mu_min, air")
+        ax.plot(steady_profile(m_bagnold, fine_b, False), 1e3 * fine_b, "k-", lw=1,
+                label="Bagnold: tau / p = tan(theta)")
+        ax.plot(steady_profile(m_own, fine_m, True), 1e3 * fine_m, "k--", lw=1, label="model: + mu_min, air")
         ax.plot(u, 1e3 * z, "o", ms=4, mfc="none", label=args.label or f"computed, {args.run_dir.rstrip('/').split('/')[-1]}")
         for item in args.also:
             run, _, label = item.partition("=")
@@ -154,7 +195,8 @@ def main():
             ax.plot(t["u"][keep], 1e3 * t["y"][keep], "x", ms=4, label=label or run)
         ax.set_xlabel("u (m/s)")
         ax.set_ylabel("z (mm)")
-        ax.set_title(f"mu(I) flow down a chute at {math.degrees(m['theta']):.0f} deg")
+        ax.set_title(f"mu(I) flow down a chute at {math.degrees(m['theta']):.0f} deg"
+                     + (f",\nfed at q = {m['flux']:.4g} m$^2$/s through an inlet" if fed else ""))
         ax.legend(fontsize=8, loc="upper left")
         ax.grid(alpha=0.3)
         fig.tight_layout()

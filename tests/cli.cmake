@@ -630,6 +630,15 @@ add_test(NAME scripts_compare_bagnold_steadiness
 set_tests_properties(scripts_compare_bagnold_steadiness PROPERTIES LABELS cli
                      PASS_REGULAR_EXPRESSION "\nsteadiness = 0[.][1-4][0-9]+ [(]largest change of u from t = 1 to 1[.]5 s[^\n]*\nwarning: u changed by [1-4][0-9][.]?[0-9]* % [^\n]*[(]t = 1 and 1[.]5 s[)]: the flow is not yet steady\n.*\nfull: steadiness = 0[.]000[0-9]+ [(]largest change of u from t = 4[.]5 to 5 s"
                      FAIL_REGULAR_EXPRESSION "Traceback;error:;steadiness = null;full: warning")
+# A chute fed through an inlet starts without soil: the comparison takes each profile at its own depth for
+# the inlet's flux and prints the depth the run reached (not yet steady at t = 1 s on 1 mm cells).
+add_test(NAME scripts_compare_bagnold_inlet
+         COMMAND ${GRANFLOW_EXPECT_STATUS} 0 sh -c "\"$0\" run \"$1\" -o \"$3\" --overwrite --set 'mesh.cells=[100,15]' --set time.end=1.0 --set output.fields=false >/dev/null 2>&1 && /usr/bin/python3 -u \"$2\" \"$3\" 2>&1"
+                 $<TARGET_FILE:granflow> ${CMAKE_SOURCE_DIR}/cases/chute_inlet.toml
+                 ${CMAKE_SOURCE_DIR}/scripts/compare_bagnold.py ${CMAKE_CURRENT_BINARY_DIR}/bagnold_inlet)
+set_tests_properties(scripts_compare_bagnold_inlet PROPERTIES LABELS cli
+                     PASS_REGULAR_EXPRESSION "\nflux_m2_s = 0[.]001854\ndepth_for_flux_bagnold_m = 0[.]00999[67][0-9]*\ndepth_for_flux_model_m = 0[.]0100[0-9]+\ndepth_computed_m = 0[.]00[89][0-9]+ [(]the sample's soil fraction times its spacing[)]\n.*\nwarning: u changed by [^\n]*the flow is not yet steady"
+                     FAIL_REGULAR_EXPRESSION "Traceback;error:;steadiness = null")
 # The axisymmetric comparison scores each run it finds and skips, with a note, a run that did not
 # start with its case's soil (here a cylinder of half the radius under lube2004_a05's name).
 add_test(NAME scripts_compare_axisymmetric_skips_another_block
