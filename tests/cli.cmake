@@ -3,6 +3,13 @@ file(WRITE ${CMAKE_CURRENT_BINARY_DIR}/misspelt.toml "[mesh]\ncells = [4, 4]\nup
 add_test(NAME cli_check_misspelt_key_message COMMAND ${GRANFLOW_EXPECT_STATUS} 2 $<TARGET_FILE:granflow> check ${CMAKE_CURRENT_BINARY_DIR}/misspelt.toml)
 set_tests_properties(cli_check_misspelt_key_message PROPERTIES LABELS cli
                      PASS_REGULAR_EXPRESSION "error: [^ ]*misspelt.toml: mesh.upeer: unknown key")
+# A case that starts without soil, fed by an inlet, is valid and says where its soil comes from; without
+# the inlet's soil it names the missing shapes; an obstacle against the inlet is refused.
+add_test(NAME cli_check_case_fed_by_an_inlet
+         COMMAND ${GRANFLOW_EXPECT_STATUS} 0 sh -c "\"$0\" check \"$1\" && \"$0\" check \"$1\" --set 'boundary.west={type=\"inlet\", velocity=[0.3, 0.0]}'; echo status $?; \"$0\" check \"$1\" --set \"obstacle=[{shape='box', lower=[0.0,0.01], upper=[0.002,0.012]}]\"; echo status $?"
+                 $<TARGET_FILE:granflow> ${CMAKE_SOURCE_DIR}/cases/chute_inlet.toml)
+set_tests_properties(cli_check_case_fed_by_an_inlet PROPERTIES LABELS cli
+                     PASS_REGULAR_EXPRESSION "^[^\n]*chute_inlet.toml: valid [(]200 x 30 cells, t_end = 3 s. initial soil 0 m.2 per metre of depth [(]an inlet brings the soil[)][)]\nerror: [^\n]*initial: missing table [[][[]initial.soil[]][]] [^\n]*\nstatus 2\nerror: [^\n]*chute_inlet.toml: obstacle: the cell at x = 0.00025 m, y = 0.01025 m is blocked against the inlet on the west side, whose flow would enter it. keep the obstacles off the inlet's side\nstatus 2\n$")
 # A key nested 100 000 levels deep (a dotted key of 100 000 parts) is read like any other, not a
 # stack overflow in the TOML parser.
 string(REPEAT "a." 100000 GRANFLOW_DEEP_KEY)

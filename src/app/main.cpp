@@ -154,7 +154,8 @@ int check_case(const std::string& case_file, const std::vector<std::string>& ove
     if (rank == 0) {  // every rank checks the same file alike; one says so
       std::string placed;
       if (c.soil)
-        placed += fmt::format("; initial soil {:.6g} {}", laid_out.soil_volume, granflow::volume_unit(c.mesh));
+        placed += fmt::format("; initial soil {:.6g} {}{}", laid_out.soil_volume, granflow::volume_unit(c.mesh),
+                              c.soil->has_initial_shapes() ? "" : " (an inlet brings the soil)");
       const auto& volumes = laid_out.material_volumes;
       for (size_t k = 0; k < volumes.size(); ++k)
         placed += fmt::format("{}{} {:.6g}", k == 0 ? ", of which " : ", ",

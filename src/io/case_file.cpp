@@ -177,9 +177,9 @@ int material_index(TableReader& r, const char* key, const std::vector<SoilMateri
 }
 
 // two_phase_keys: collects the keys given that only a case with soil uses; dimension: the mesh's;
-// materials: the case's soil materials (an inlet's soil may be one).
+// materials: the case's soil materials (an inlet's soil may be one), none without soil.
 BoundaryCondition read_boundary(TableReader r, bool& is_axis, std::vector<std::string>& two_phase_keys, int dimension,
-                                const std::vector<SoilMaterial>& materials) {
+                                const std::vector<SoilMaterial>* materials) {
   BoundaryCondition bc;
   const std::string type = r.choice("type", "", {"wall", "slip", "symmetry", "atmosphere", "axis", "periodic", "inlet"});
   is_axis = type == "axis";
@@ -208,12 +208,17 @@ BoundaryCondition read_boundary(TableReader r, bool& is_axis, std::vector<std::s
                                          : numbers_of_size(r, "velocity", {}, 2, "[u, v]");
     for (size_t c = 0; c < velocity.size(); ++c) bc.velocity[c] = velocity[c];
     for (const char* key : {"soil_fraction", "soil_depth", "material"})
-      if (r.has(key)) two_phase_keys.push_back(r.key_path(key));
+      if (r.has(key)) {  // named as such before their values are checked against a soil there is not
+        if (!materials)
+          throw CaseError(fmt::format("{}: applies to cases with soil only (this case has [fluid], no [soil])",
+                                      r.key_path(key)));
+        two_phase_keys.push_back(r.key_path(key));
+      }
     bc.inflow_soil_fraction = r.number("soil_fraction", 0.0);
     r.require_range("soil_fraction", bc.inflow_soil_fraction, 0.0, 1.0);
     bc.inflow_soil_depth = r.number("soil_depth", bc.inflow_soil_depth);
     r.require_range("soil_depth", bc.inflow_soil_depth, 1e-300, std::numeric_limits<double>::infinity(), "positive");
-    bc.inflow_material = material_index(r, "material", materials);
+    if (materials) bc.inflow_material = material_index(r, "material", *materials);
   } else {
     bc.kind = BoundaryKind::atmosphere;
     bc.pressure = r.number("pressure", 0.0);
@@ -655,7 +660,7 @@ TimeSettings read_time(TableReader& top, double& time_interface_courant, std::ve
 }
 
 BoundarySet read_boundaries(TableReader& top, const GridSpec& mesh, std::vector<std::string>& two_phase_keys,
-                            const std::vector<SoilMaterial>& materials) {
+                            const std::vector<SoilMaterial>* materials) {
   BoundarySet boundaries;
   TableReader b = top.table("boundary");
   if (!b.present()) throw CaseError("boundary: missing table [boundary] (west, east, south, north)" + top.misspelling_of("boundary"));
@@ -1063,7 +1068,7 @@ CaseConfig read_case(const toml::table& root, const std::filesystem::path& sourc
                                     top.has("fluid") ? ", and [fluid] for its one phase" : "", top.misspelling_of("soil")));
     c.fluid = read_fluid(top);
   }
-  c.flow.boundaries = read_boundaries(top, c.mesh, two_phase_keys, c.soil ? c.soil->materials : std::vector<SoilMaterial>{});
+  c.flow.boundaries = read_boundaries(top, c.mesh, two_phase_keys, c.soil ? &c.soil->materials : nullptr);
   if (c.soil) {  // each material is laid out by a shape or comes in through an inlet
     std::vector<bool> used(c.soil->materials.size() + 1, false);
     for (int m : c.soil->initial_material) used[size_t(m)] = true;

@@ -69,14 +69,7 @@ FlowSolver::FlowSolver(const Grid& grid, const FlowSettings& settings)
 
   for (Side s : sides_of_dimension(dimension_))
     if (boundary(settings.boundaries, s).kind == BoundaryKind::atmosphere) has_pressure_boundary_ = true;
-  if (has_inlet(settings.boundaries))  // an inlet's faces carry its inflow from the start, the rest none
-    fill_owned_faces_any(
-        grid, per_axis(face_), [](int, int, int, int) { return 0.0; },
-        [&](int axis, int i, int j, int k, int sign) {
-          const FaceGeometry& fg = face_along(axis, sign);
-          if (!grid.outside(i + fg.di, j + fg.dj, k + fg.dk)) return 0.0;
-          return imposed_normal_velocity(boundary(settings.boundaries, fg.side), axis);
-        });
+  impose_inlet_face_velocities();  // an inlet's faces carry its inflow from the start
   shared_momentum_matrix_ = momentum_matrix_shared(settings, grid.axisymmetric(), dimension_);
 
   MPI_Comm comm = grid.comm();
@@ -291,9 +284,29 @@ void FlowSolver::restore_state() {
   dt_ = saved_dt_;
 }
 
+// An inlet's faces hold its velocity; every other face keeps its own.
+void FlowSolver::impose_inlet_face_velocities() {
+  const auto& b = grid_.owned();
+  const int n[3] = {grid_.nx(), grid_.ny(), grid_.nz()};
+  for (Side side : sides_of_dimension(dimension_)) {
+    const auto& bc = boundary(settings_.boundaries, side);
+    if (bc.kind != BoundaryKind::inlet || !grid_.owns_boundary(side)) continue;
+    const int axis = normal_axis(side);
+    FieldArray f = local_array(grid_, *face_[axis]);  // the boundary face: index -1 or n - 1 along the axis
+    int lo[3] = {b.xs, b.ys, b.zs}, hi[3] = {b.xe(), b.ye(), b.ze()};
+    lo[axis] = face_on(side).sign < 0 ? -1 : n[axis] - 1;
+    hi[axis] = lo[axis] + 1;
+    for (int k = lo[2]; k < hi[2]; ++k)
+      for (int j = lo[1]; j < hi[1]; ++j)
+        for (int i = lo[0]; i < hi[0]; ++i) f.volume()[k][j][i] = bc.velocity[axis];
+  }
+}
+
 // Fields restored from local values (a snapshot, a checkpoint) carry the blocked cells' mirrors into
-// their global vectors; a blocked cell is at rest.
+// their global vectors; a blocked cell is at rest. A checkpoint's inlet faces are those of the run that
+// wrote it, whose inlet the case may have changed.
 void FlowSolver::clear_blocked_cells() {
+  impose_inlet_face_velocities();
   if (!blocked_) return;
   for (int a = 0; a < dimension_; ++a)
     for (auto* f : {vel_[a].get(), vel_old_[a].get()}) zero_blocked_cells(grid_, blocked_, *f);

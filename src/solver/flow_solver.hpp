@@ -103,6 +103,7 @@ class FlowSolver {
   void restore_state();
   // Zero velocity in the blocked cells' global values, after they were read from local ones.
   void clear_blocked_cells();
+  void impose_inlet_face_velocities();
   // What a checkpoint holds to continue a run exactly: the fields a step starts from, and the last
   // step's size (the look-ahead extrapolates with it).
   std::vector<Field*> checkpoint_fields() { return state_fields(); }

@@ -144,11 +144,15 @@ void SoilPhase::check_restored_fraction() const {
 }
 
 void SoilPhase::clear_blocked_cells() {
-  if (!blocked_) return;
+  // A checkpoint's ghosts beyond an inlet are those of the run that wrote it, whose inlet the case may
+  // have changed.
+  const bool inlet = has_inlet(flow_settings_.boundaries);
+  if (!blocked_ && !inlet) return;
   for (auto& f : disp_)
     if (f) zero_blocked_cells(grid_, blocked_, *f);
   fill_fraction_ghosts(*c_);  // zeroes c there, and mirrors anew
   fill_share_ghosts(share_);
+  if (inlet) fill_displacement_ghosts();
 }
 
 void SoilPhase::restore_state() {

@@ -128,6 +128,16 @@ TEST(Restart, PeriodicChuteContinuesExactlyFromItsLastCheckpoint) {
   std::printf("periodic chute restarted from its checkpoint at t = %.3g s\n", t);
 }
 
+// A chute fed through an inlet (1 mm cells), stopped while its front still runs: the inlet's ghosts
+// and faces are the case's again after the checkpoint is read.
+TEST(Restart, AChuteFedThroughAnInletContinuesExactlyFromItsLastCheckpoint) {
+  const double t = expect_restart_reproduces(
+      "cases/chute_inlet.toml",
+      {"mesh.cells=[100,15]", "time.end=0.2", "output.interval=0.1", "output.fields=false", "output.progress_seconds=0"},
+      120, true);
+  std::printf("fed chute restarted from its checkpoint at t = %.3g s\n", t);
+}
+
 // Preconditioners kept over several solves (solver.*.reuse_preconditioner) are rebuilt where a
 // checkpoint is written, as a restarted run builds its own there.
 TEST(Restart, DamBreakWithReusedPreconditionersContinuesExactly) {

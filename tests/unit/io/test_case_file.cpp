@@ -242,6 +242,11 @@ TEST(CaseFile, AnInletRefusesWhatItCannotBe) {
                          "boundary.east={type = \"atmosphere\"}"});
   EXPECT_NE(one_phase.find("boundary.west.soil_fraction: applies to cases with soil only"), std::string::npos)
       << one_phase;
+  for (const char* key : {"material = \"clay\"", "soil_fraction = 1.5"}) {  // named before their values are read
+    const std::string west = "boundary.west={type = \"inlet\", velocity = [1.0, 0.0], " + std::string(key) + "}";
+    const std::string e = error_of(minimal, {west, "boundary.east={type = \"atmosphere\"}"});
+    EXPECT_NE(e.find("applies to cases with soil only (this case has [fluid], no [soil])"), std::string::npos) << e;
+  }
   EXPECT_NO_THROW(parse_case(minimal, {"boundary.west={type = \"inlet\", velocity = [1.0, 0.0]}",
                                        "boundary.east={type = \"atmosphere\"}"}));
 }
