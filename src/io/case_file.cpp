@@ -206,7 +206,26 @@ BoundaryCondition read_boundary(TableReader r, bool& is_axis, std::vector<std::s
                                   r.misspelling_of("velocity")));
     const auto velocity = dimension == 3 ? numbers_of_size(r, "velocity", {}, 3, "[u, v, w] on a mesh of layers")
                                          : numbers_of_size(r, "velocity", {}, 2, "[u, v]");
-    for (size_t c = 0; c < velocity.size(); ++c) bc.velocity[c] = velocity[c];
+    for (size_t c = 0; c < velocity.size(); ++c) bc.velocity[c] = bc.inflow_velocity[c] = velocity[c];
+    if (r.has("schedule")) {  // [t, factor] pairs: the inflow's velocity by time
+      bc.inflow_schedule = r.pairs("schedule", 1);
+      for (size_t k = 0; k < bc.inflow_schedule.size(); ++k) {
+        const auto& [t, factor] = bc.inflow_schedule[k];
+        if (!(t >= 0.0))
+          throw CaseError(fmt::format("{}: the time of pair {} is {} s; times are from the start, 0 or later",
+                                      r.key_path("schedule"), k, t));
+        if (k > 0 && !(t >= bc.inflow_schedule[k - 1][0]))
+          throw CaseError(fmt::format("{}: the times must not decrease (pair {} at {} s after pair {} at {} s)",
+                                      r.key_path("schedule"), k, t, k - 1, bc.inflow_schedule[k - 1][0]));
+        if (k > 1 && t == bc.inflow_schedule[k - 2][0])
+          throw CaseError(fmt::format("{}: three pairs at {} s; a jump is two pairs of one time",
+                                      r.key_path("schedule"), t));
+        if (!(factor >= 0.0))
+          throw CaseError(fmt::format("{}: the factor of pair {} is {}; the inflow's velocity is scaled by a factor "
+                                      "of 0 or more (0 closes the inlet, as a wall at rest)",
+                                      r.key_path("schedule"), k, factor));
+      }
+    }
     for (const char* key : {"soil_fraction", "soil_depth", "material"})
       if (r.has(key)) {  // named as such before their values are checked against a soil there is not
         if (!materials)

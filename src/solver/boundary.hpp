@@ -4,6 +4,7 @@
 #include <array>
 #include <limits>
 #include <optional>
+#include <vector>
 
 #include "mesh/grid.hpp"
 #include "models/rheology/wall_friction.hpp"
@@ -34,6 +35,12 @@ struct BoundaryCondition {
   double inflow_soil_depth = std::numeric_limits<double>::infinity();
   // Inlet: the soil material it carries (index into the case's materials; 0, the first, by default).
   int inflow_material = 0;
+  // Inlet: its velocity at a factor of 1, and the factor by time, pairs (t, factor) of non-decreasing
+  // t, linear between them, the first factor before the first and the last after the last (a jump:
+  // two pairs of one time, the later one holding from that time on). None: a factor of 1 throughout.
+  // `velocity` holds inflow_velocity times the factor at the time the flow is solved for.
+  std::array<double, 3> inflow_velocity{0.0, 0.0, 0.0};
+  std::vector<std::array<double, 2>> inflow_schedule;
   // Density of what lies beyond an open bottom (the mixture at inflow_soil_fraction; the fluid of a
   // single-phase case), whose hydrostatic head below the top the bottom's pressure is. 0: unset.
   double outside_density = 0.0;
@@ -59,6 +66,37 @@ inline double imposed_normal_velocity(const BoundaryCondition& bc, int axis) {
 
 inline bool has_inlet(const BoundarySet& b) {
   return std::any_of(b.begin(), b.end(), [](const BoundaryCondition& bc) { return bc.kind == BoundaryKind::inlet; });
+}
+
+// The factor on an inlet's velocity at time t (BoundaryCondition::inflow_schedule).
+inline double inflow_factor(const std::vector<std::array<double, 2>>& schedule, double t) {
+  if (schedule.empty()) return 1.0;
+  size_t k = schedule.size();  // after the loop, schedule[k - 1] is the last pair at or before t
+  while (k > 0 && schedule[k - 1][0] > t) --k;
+  if (k == 0) return schedule.front()[1];  // before the first time
+  const auto& a = schedule[k - 1];
+  if (k == schedule.size()) return a[1];  // after the last
+  const auto& b = schedule[k];  // b's time is past t, so past a's: no division by zero
+  return a[1] + (b[1] - a[1]) * (t - a[0]) / (b[0] - a[0]);
+}
+
+// The first time of an inlet's schedule after t (steps land on it, so that a step of the schedule is
+// met exactly); infinity where there is none.
+inline double next_inflow_time(const BoundarySet& b, double t) {
+  double next = std::numeric_limits<double>::infinity();
+  for (const auto& bc : b)
+    if (bc.kind == BoundaryKind::inlet)
+      for (const auto& point : bc.inflow_schedule)
+        if (point[0] > t * (1 + 1e-12) + 1e-300) next = std::min(next, point[0]);
+  return next;
+}
+
+// The time at which a step ending at t_end, of size dt, takes its inlets' schedules: the middle of the
+// step after it, taken to be as long (or to end at the schedule's next time), over which the faces its
+// solve leaves carry the inflow. Exact for a factor that is constant between the schedule's times,
+// second order in the step across a ramp.
+inline double inflow_time_after(const BoundarySet& b, double t_end, double dt) {
+  return 0.5 * (t_end + std::min(t_end + dt, next_inflow_time(b, t_end)));
 }
 
 // Inflow soil fraction of an inlet's face whose extent along y is [y_low, y_high], the domain's bottom

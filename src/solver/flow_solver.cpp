@@ -69,7 +69,7 @@ FlowSolver::FlowSolver(const Grid& grid, const FlowSettings& settings)
 
   for (Side s : sides_of_dimension(dimension_))
     if (boundary(settings.boundaries, s).kind == BoundaryKind::atmosphere) has_pressure_boundary_ = true;
-  impose_inlet_face_velocities();  // an inlet's faces carry its inflow from the start
+  impose_inlet_face_velocities();  // an inlet's faces carry its inflow from the start (a schedule's: Simulation)
   shared_momentum_matrix_ = momentum_matrix_shared(settings, grid.axisymmetric(), dimension_);
 
   MPI_Comm comm = grid.comm();
@@ -284,6 +284,19 @@ void FlowSolver::restore_state() {
   dt_ = saved_dt_;
 }
 
+// An inlet of a schedule takes its velocity at time t; the velocity's ghosts follow.
+bool FlowSolver::set_inflow_time(double t) {
+  bool changed = false;
+  for (auto& bc : settings_.boundaries) {
+    if (bc.kind != BoundaryKind::inlet || bc.inflow_schedule.empty()) continue;
+    const double factor = inflow_factor(bc.inflow_schedule, t);
+    for (int c = 0; c < 3; ++c) bc.velocity[c] = factor * bc.inflow_velocity[c];
+    changed = true;
+  }
+  if (changed) fill_velocity_ghosts();
+  return changed;
+}
+
 // An inlet's faces hold its velocity; every other face keeps its own.
 void FlowSolver::impose_inlet_face_velocities() {
   const auto& b = grid_.owned();
@@ -303,10 +316,8 @@ void FlowSolver::impose_inlet_face_velocities() {
 }
 
 // Fields restored from local values (a snapshot, a checkpoint) carry the blocked cells' mirrors into
-// their global vectors; a blocked cell is at rest. A checkpoint's inlet faces are those of the run that
-// wrote it, whose inlet the case may have changed.
+// their global vectors; a blocked cell is at rest.
 void FlowSolver::clear_blocked_cells() {
-  impose_inlet_face_velocities();
   if (!blocked_) return;
   for (int a = 0; a < dimension_; ++a)
     for (auto* f : {vel_[a].get(), vel_old_[a].get()}) zero_blocked_cells(grid_, blocked_, *f);

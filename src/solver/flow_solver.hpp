@@ -103,6 +103,11 @@ class FlowSolver {
   void restore_state();
   // Zero velocity in the blocked cells' global values, after they were read from local ones.
   void clear_blocked_cells();
+  // Inlets: the velocity of those of a schedule at time t (the end of the step about to be solved:
+  // the faces it leaves carry that inflow over the next step's sweeps); whether any has one.
+  bool set_inflow_time(double t);
+  // Inlets' faces at their velocity (at the start, and after a checkpoint, whose inlet the case may
+  // have changed).
   void impose_inlet_face_velocities();
   // What a checkpoint holds to continue a run exactly: the fields a step starts from, and the last
   // step's size (the look-ahead extrapolates with it).

@@ -41,6 +41,8 @@ Simulation::Simulation(MPI_Comm comm, const CaseConfig& config, std::filesystem:
     }
   }
   flow_ = std::make_unique<FlowSolver>(*grid_, config.flow);
+  if (flow_->set_inflow_time(inflow_time_after(config.flow.boundaries, 0.0, config.time.dt)))
+    flow_->impose_inlet_face_velocities();  // the first step's sweeps carry this inflow
   flow_->set_blocked(blocked_.get());
   if (config.soil) {
     soil_ = std::make_unique<SoilPhase>(*grid_, flow_->settings(), *config.soil);
@@ -206,9 +208,12 @@ StepReport Simulation::take_step(double& step_dt, long& retried) {
   };
   for (int attempt = 0;; ++attempt) {
     if (soil_) {  // explicit interface, then the implicit flow step
-      soil_->advect(*flow_, step_dt);
+      soil_->advect(*flow_, step_dt);  // by the last step's faces, and its inlets' inflow
+      flow_->set_inflow_time(inflow_time_after(config_.flow.boundaries, time_ + step_dt, step_dt));
       soil_->refresh(*flow_);
       update_solve_region();
+    } else {
+      flow_->set_inflow_time(inflow_time_after(config_.flow.boundaries, time_ + step_dt, step_dt));
     }
     try {
       r = flow_->step(step_dt);
@@ -286,7 +291,9 @@ RunSummary Simulation::run(const StepObserver& after_step) {
     // output, and its return to full length, disturb the velocity by more than the steady test
     // allows, and with a long relaxation. Such a run writes each output at the end of the step that
     // reaches its time.
-    const double t_land = tc.steady_tolerance > 0.0 ? tc.end : t_out;
+    // Steps land on the times of the inlets' schedules too: a step of the schedule is met exactly.
+    const double t_land =
+        std::min(tc.steady_tolerance > 0.0 ? tc.end : t_out, next_inflow_time(config_.flow.boundaries, time_));
     double step_dt = dt;
     if (time_ + step_dt > t_land * (1 - 1e-12)) step_dt = t_land - time_;
     else if (time_ + 1.5 * step_dt > t_land) step_dt = 0.5 * (t_land - time_);  // avoid a sliver step

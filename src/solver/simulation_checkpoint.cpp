@@ -113,6 +113,9 @@ std::string Simulation::boundaries() const {
                        : fmt::format("inlet [{:.9g}, {:.9g}] m/s", bc.velocity[0], bc.velocity[1]);
         text += fmt::format(", c {:.9g} below {:.9g} m, material {}", bc.inflow_soil_fraction, bc.inflow_soil_depth,
                             bc.inflow_material);
+        for (size_t k = 0; k < bc.inflow_schedule.size(); ++k)
+          text += fmt::format("{}[{:.9g} s, {:.9g}]", k == 0 ? ", schedule " : " ", bc.inflow_schedule[k][0],
+                              bc.inflow_schedule[k][1]);
         break;
     }
   }
@@ -163,6 +166,9 @@ void Simulation::restart() {
     throw CheckpointError("the checkpoint's state does not match this case's model");
   if (soil_) soil_->restore_scalars(std::span<const double>(scalars.shared).subspan(1), scalars.summed);
   flow_->set_last_dt(scalars.shared[0]);
+  // The inlets' faces as the last step left them (of the case's inlets, which may have changed).
+  flow_->set_inflow_time(inflow_time_after(config_.flow.boundaries, run.time, scalars.shared[0]));
+  flow_->impose_inlet_face_velocities();
   time_ = run.time;
   restart_time_ = run.time;
   restart_dt_ = run.next_dt;

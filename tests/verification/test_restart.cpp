@@ -136,6 +136,14 @@ TEST(Restart, AChuteFedThroughAnInletContinuesExactlyFromItsLastCheckpoint) {
       {"mesh.cells=[100,15]", "time.end=0.2", "output.interval=0.1", "output.fields=false", "output.progress_seconds=0"},
       120, true);
   std::printf("fed chute restarted from its checkpoint at t = %.3g s\n", t);
+  // The same fed on a ramp, its factor in the middle of the step after the checkpoint's.
+  const double ramped = expect_restart_reproduces(
+      "cases/chute_inlet.toml",
+      {"mesh.cells=[100,15]", "time.end=0.2", "output.interval=0.1", "output.fields=false", "output.progress_seconds=0",
+       "boundary.west={type = \"inlet\", velocity = [0.3708, 0.0], soil_fraction = 1.0, soil_depth = 0.005, "
+       "schedule = [[0.0, 0.5], [0.3, 1.0]]}"},
+      120, true);
+  std::printf("chute fed on a ramp restarted from its checkpoint at t = %.3g s\n", ramped);
 }
 
 // Preconditioners kept over several solves (solver.*.reuse_preconditioner) are rebuilt where a

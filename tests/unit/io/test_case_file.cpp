@@ -206,6 +206,41 @@ TEST(CaseFile, AnInletReadsItsVelocitySoilDepthAndMaterial) {
   EXPECT_NO_THROW(parse_case(two_phase, east_inlet));
 }
 
+// An inlet's schedule: its velocity by time, linear between pairs, a jump at a time given twice.
+TEST(CaseFile, AnInletsScheduleScalesItsVelocityByTime) {
+  const CaseConfig c = parse_case(
+      two_phase, {"soil.rheology.friction_angle=30", "boundary.east={type = \"atmosphere\"}",
+                  "boundary.west={type = \"inlet\", velocity = [0.5, 0.0], schedule = [[0.5, 0.2], [1.0, 1.0], "
+                  "[2.0, 1.0], [2.0, 0.0]]}"});
+  const auto& schedule = boundary(c.flow.boundaries, Side::west).inflow_schedule;
+  ASSERT_EQ(schedule.size(), 4u);
+  EXPECT_EQ(boundary(c.flow.boundaries, Side::west).inflow_velocity[0], 0.5);
+  EXPECT_EQ(inflow_factor(schedule, 0.0), 0.2);  // the first factor before the first time
+  EXPECT_EQ(inflow_factor(schedule, 0.5), 0.2);
+  EXPECT_DOUBLE_EQ(inflow_factor(schedule, 0.75), 0.6);
+  EXPECT_EQ(inflow_factor(schedule, 1.5), 1.0);
+  EXPECT_EQ(inflow_factor(schedule, std::nextafter(2.0, 0.0)), 1.0);
+  EXPECT_EQ(inflow_factor(schedule, 2.0), 0.0);  // from the jump's time on, its later factor
+  EXPECT_EQ(inflow_factor(schedule, 7.0), 0.0);
+  EXPECT_EQ(inflow_factor({}, 3.0), 1.0);
+  // Steps land on the schedule's times, each once.
+  EXPECT_EQ(next_inflow_time(c.flow.boundaries, 0.0), 0.5);
+  EXPECT_EQ(next_inflow_time(c.flow.boundaries, 0.5), 1.0);
+  EXPECT_EQ(next_inflow_time(c.flow.boundaries, 1.2), 2.0);
+  EXPECT_TRUE(std::isinf(next_inflow_time(c.flow.boundaries, 2.0)));
+  auto refusal = [&](const std::string& schedule_text) {
+    const std::string west = "boundary.west={type = \"inlet\", velocity = [0.5, 0.0], schedule = " + schedule_text + "}";
+    return error_of(two_phase, {"soil.rheology.friction_angle=30", "boundary.east={type = \"atmosphere\"}", west});
+  };
+  EXPECT_NE(refusal("[[1.0, 1.0], [0.5, 0.0]]").find("boundary.west.schedule: the times must not decrease (pair 1 at "
+                                                      "0.5 s after pair 0 at 1 s)"), std::string::npos);
+  EXPECT_NE(refusal("[[0.0, -1.0]]").find("boundary.west.schedule: the factor of pair 0 is -1"), std::string::npos);
+  EXPECT_NE(refusal("[[-1.0, 1.0]]").find("the time of pair 0 is -1 s"), std::string::npos);
+  EXPECT_NE(refusal("[[1.0, 1.0], [1.0, 0.0], [1.0, 1.0]]").find("three pairs at 1 s"), std::string::npos);
+  EXPECT_NE(refusal("[]").find("boundary.west.schedule"), std::string::npos);
+  EXPECT_NE(refusal("[1.0, 2.0]").find("boundary.west.schedule"), std::string::npos);
+}
+
 TEST(CaseFile, AnInletRefusesWhatItCannotBe) {
   const std::vector<std::string> open_east{"soil.rheology.friction_angle=30", "boundary.east={type = \"atmosphere\"}"};
   auto error_with = [&](const std::string& west, std::vector<std::string> more = {}) {
