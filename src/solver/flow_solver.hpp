@@ -103,8 +103,9 @@ class FlowSolver {
   void restore_state();
   // Zero velocity in the blocked cells' global values, after they were read from local ones.
   void clear_blocked_cells();
-  // Inlets: the velocity of those of a schedule at time t (the end of the step about to be solved:
-  // the faces it leaves carry that inflow over the next step's sweeps); whether any has one.
+  // Inlets: the velocity of those of a schedule at time t (Simulation takes the middle of the step after
+  // the one about to be solved: the faces it leaves carry that inflow over that step's sweeps);
+  // whether any has one.
   bool set_inflow_time(double t);
   // Inlets' faces at their velocity (at the start, and after a checkpoint, whose inlet the case may
   // have changed).

@@ -192,7 +192,13 @@ double Simulation::choose_dt(double dt_previous) const {
 // with a step sized for the velocities it produced: the step size lags the flow by one step, and an
 // implicit step can survive a Courant number of a few but not of hundreds. step_dt becomes the length
 // of the step taken; each step taken again counts in `retried`.
-StepReport Simulation::take_step(double& step_dt, long& retried) {
+StepReport Simulation::take_step(double& step_dt, long& retried, double planned_end) {
+  const double planned_dt = step_dt;
+  // The inlets' schedules from the step's end, as a restart from its checkpoint takes them.
+  auto set_inflow = [&] {
+    const double t_end = step_dt == planned_dt ? planned_end : time_ + step_dt;
+    flow_->set_inflow_time(inflow_time_after(config_.flow.boundaries, t_end, step_dt));
+  };
   const auto& tc = config_.time;
   StepReport r;
   const bool may_retry = tc.adaptive;
@@ -209,11 +215,11 @@ StepReport Simulation::take_step(double& step_dt, long& retried) {
   for (int attempt = 0;; ++attempt) {
     if (soil_) {  // explicit interface, then the implicit flow step
       soil_->advect(*flow_, step_dt);  // by the last step's faces, and its inlets' inflow
-      flow_->set_inflow_time(inflow_time_after(config_.flow.boundaries, time_ + step_dt, step_dt));
+      set_inflow();
       soil_->refresh(*flow_);
       update_solve_region();
     } else {
-      flow_->set_inflow_time(inflow_time_after(config_.flow.boundaries, time_ + step_dt, step_dt));
+      set_inflow();
     }
     try {
       r = flow_->step(step_dt);
@@ -298,7 +304,9 @@ RunSummary Simulation::run(const StepObserver& after_step) {
     if (time_ + step_dt > t_land * (1 - 1e-12)) step_dt = t_land - time_;
     else if (time_ + 1.5 * step_dt > t_land) step_dt = 0.5 * (t_land - time_);  // avoid a sliver step
     for (int a = 0; a < components; ++a) PetscCallAbort(grid_->comm(), VecCopy(flow_->velocity(a).global(), previous[a]));
-    const StepReport r = take_step(step_dt, summary.retried_steps);
+    double planned_end = time_ + step_dt;
+    if (std::abs(planned_end - t_out) <= 1e-12 * std::max(1.0, t_out)) planned_end = t_out;  // as time_ below
+    const StepReport r = take_step(step_dt, summary.retried_steps, planned_end);
     time_ += step_dt;
     if (soil_) record_history(step_dt);
     ++summary.steps;
@@ -313,11 +321,19 @@ RunSummary Simulation::run(const StepObserver& after_step) {
     const double speed = flow_->max_speed();
     stop_if_diverged(speed, steps_);  // numbered over the whole run, restarts included
     if (after_step) after_step(*this, step_dt);  // an accepted step: one that did not diverge
-    const bool steady = tc.steady_tolerance > 0.0 && is_steady(previous, step_dt, speed);
+    // Neither stop holds while an inlet's schedule has a change to come, and the soil is not at rest
+    // while an inlet lets soil in.
+    const bool schedule_ahead = next_inflow_time(config_.flow.boundaries, time_) < tc.end;
+    bool soil_coming_in = false;
+    for (Side side : sides_of_dimension(grid_->dimension())) {
+      const BoundaryCondition& bc = boundary(flow_->settings().boundaries, side);  // at the step's factor
+      soil_coming_in |= bc.inflow_soil_fraction > 0.0 && imposed_normal_velocity(bc, normal_axis(side)) != 0.0;
+    }
+    const bool steady = tc.steady_tolerance > 0.0 && !schedule_ahead && is_steady(previous, step_dt, speed);
     // The soil at rest (time.rest_speed): slower than it everywhere, once it has moved (the speed the
     // history recorded for this step).
-    const bool at_rest = tc.rest_speed > 0.0 && soil_ && soil_speed_ < tc.rest_speed &&
-                         soil_->largest_displacement() > soil_->moved_distance();
+    const bool at_rest = tc.rest_speed > 0.0 && soil_ && !schedule_ahead && !soil_coming_in &&
+                         soil_speed_ < tc.rest_speed && soil_->largest_displacement() > soil_->moved_distance();
     const bool at_output = time_ >= t_out - 1e-12 * std::max(1.0, t_out);
     if (at_output && std::abs(time_ - t_out) <= 1e-12 * std::max(1.0, t_out)) time_ = t_out;
     // The steady state is written where it is reached, its line samples marked as such; so is the

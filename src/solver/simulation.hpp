@@ -85,7 +85,9 @@ class Simulation {
   void write_line_samples(const std::vector<double>& u, const std::vector<double>& v,
                           const std::vector<double>& p) const;
   double choose_dt(double dt_previous) const;
-  StepReport take_step(double& step_dt, long& retried);
+  // planned_end: where the step as planned ends (snapped to an output time as the run's time will be);
+  // its inlets' schedules are taken from there.
+  StepReport take_step(double& step_dt, long& retried, double planned_end);
   void stop_if_diverged(double speed, long steps);
   bool is_steady(OwnedVec (&before)[3], double step_dt, double speed) const;
   double courant_after(double dt) const;  // flow Courant number of the current velocities over dt

@@ -109,11 +109,12 @@ void Simulation::write_line_samples(const std::vector<double>& u, const std::vec
   const SideRule no_slip{SideRule::Kind::value, 0.0}, linear{SideRule::Kind::linear, 0.0};
   const int dimension = g.dimension();
   std::vector<Sampled> q;
-  q.push_back({"u", u, velocity_side_rules(config_.flow.boundaries, 0, dimension), no_slip});
-  q.push_back({"v", v, velocity_side_rules(config_.flow.boundaries, 1, dimension), no_slip});
+  // The sides as the flow was solved (an inlet's velocity at its schedule's factor).
+  const BoundarySet& sides = flow_->settings().boundaries;
+  q.push_back({"u", u, velocity_side_rules(sides, 0, dimension), no_slip});
+  q.push_back({"v", v, velocity_side_rules(sides, 1, dimension), no_slip});
   if (dimension == 3)
-    q.push_back({"w", gather_to_root(g, flow_->velocity(2)), velocity_side_rules(config_.flow.boundaries, 2, 3),
-                 no_slip});
+    q.push_back({"w", gather_to_root(g, flow_->velocity(2)), velocity_side_rules(sides, 2, 3), no_slip});
   q.push_back({"p", p, pressure_side_rules(), linear});
   q.push_back({"viscosity", gather_to_root(g, flow_->viscosity()), SideRules{}, SideRule{}});
   if (soil_) {

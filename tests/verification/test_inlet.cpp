@@ -288,6 +288,25 @@ TEST(Inlet, AScheduledInflowLetsInItsVolume) {
   EXPECT_NEAR(ramp.volume / ramped, 1.0, 5e-3);
 }
 
+// Fed for 0.1 s, closed until 0.5 s and opened again: the soil that came in first comes to rest while
+// the inlet is closed (at t = 0.29 s, where a run without the reopening stops), but a run told to stop
+// at rest (time.rest_speed) goes on while the schedule has a change to come.
+TEST(Inlet, ARunDoesNotStopAtRestBeforeItsScheduleEnds) {
+  const std::string text =
+      soil_inlet_case(0.01, false, ", schedule = [[0.0, 1.0], [0.1, 1.0], [0.1, 0.0], [0.5, 0.0], [0.5, 1.0]]");
+  Simulation sim(PETSC_COMM_WORLD,
+                 parse_case(text, {"output.progress_seconds=0", "time.end=0.6", "output.interval=0.6",
+                                   "mesh.cells=[40, 10]", "mesh.upper=[0.2, 0.05]", "time.rest_speed=1e-3"}),
+                 "");
+  const RunSummary s = sim.run();
+  const double volume = sim.soil()->budget(sim.flow()).soil_volume, exact = 0.2 * 0.01 * (0.1 + (s.time - 0.5));
+  if (test::is_root())
+    std::printf("stopped at t = %.4g s (at rest: %s), soil let in %.15g against %.15g\n", s.time,
+                s.soil_at_rest ? "yes" : "no", volume, exact);
+  EXPECT_GT(s.time, 0.5);
+  EXPECT_NEAR(volume / exact, 1.0, 1e-12);
+}
+
 TEST(Inlet, ASoilMaterialFedAloneFillsItsShare) {
   std::string text = soil_inlet_case(0.01, false, ", material = \"weak\"");
   const std::string materials = "[[soil.materials]]\nname = \"weak\"\nfriction_angle = 10.0\n\n[mixture]";
