@@ -162,18 +162,24 @@ std::vector<double> numbers_of_size(TableReader& r, std::string_view key, std::v
   return v;
 }
 
-// The soil material named by `key` of r: 0 for the rheology's own (the key left out), k for
+void read_material_name(TableReader& r, std::string& material) {
+  material = r.string("material", "");
+  if (r.has("material") && material.empty())
+    throw CaseError(r.key_path("material") + ": empty; name a [[soil.materials]] entry, or leave the key out for the "
+                    "rheology's own soil");
+}
+
+// The soil material `name`, given at key_path: 0 for none (the rheology's own soil), k for
 // materials[k - 1].
-int material_index(TableReader& r, const char* key, const std::vector<SoilMaterial>& materials) {
-  const std::string name = r.string(key, "");
-  if (!r.has(key)) return 0;
-  const auto it = std::find_if(materials.begin(), materials.end(), [&](const SoilMaterial& m) { return m.name == name; });
+int material_index(const std::string& name, const std::string& key_path, const std::vector<SoilMaterial>& materials) {
+  if (name.empty()) return 0;
+  const auto it =
+      std::find_if(materials.begin(), materials.end(), [&](const SoilMaterial& m) { return m.name == name; });
   if (it != materials.end()) return int(it - materials.begin()) + 1;
   std::string names;
   for (const auto& m : materials) names += (names.empty() ? "" : ", ") + m.name;
-  throw CaseError(fmt::format("{}: no soil material named '{}' ({})", r.key_path(key), name,
-                              names.empty() ? "the case has no [[soil.materials]]; leave the key out for the rheology's own soil"
-                                            : "the case's are: " + names));
+  throw CaseError(fmt::format("{}: no soil material named '{}' ({})", key_path, name,
+                              names.empty() ? "the case has no [[soil.materials]]" : "the case's are: " + names));
 }
 
 // two_phase_keys: collects the keys given that only a case with soil uses; dimension: the mesh's;
@@ -181,7 +187,8 @@ int material_index(TableReader& r, const char* key, const std::vector<SoilMateri
 BoundaryCondition read_boundary(TableReader r, bool& is_axis, std::vector<std::string>& two_phase_keys, int dimension,
                                 const std::vector<SoilMaterial>* materials) {
   BoundaryCondition bc;
-  const std::string type = r.choice("type", "", {"wall", "slip", "symmetry", "atmosphere", "axis", "periodic", "inlet"});
+  const std::string type =
+      r.choice("type", "", {"wall", "slip", "symmetry", "atmosphere", "axis", "periodic", "inlet"});
   is_axis = type == "axis";
   if (type == "periodic") {
     bc.kind = BoundaryKind::periodic;  // joined to the opposite side; read_boundaries checks the pair
@@ -237,7 +244,11 @@ BoundaryCondition read_boundary(TableReader r, bool& is_axis, std::vector<std::s
     r.require_range("soil_fraction", bc.inflow_soil_fraction, 0.0, 1.0);
     bc.inflow_soil_depth = r.number("soil_depth", bc.inflow_soil_depth);
     r.require_range("soil_depth", bc.inflow_soil_depth, 1e-300, std::numeric_limits<double>::infinity(), "positive");
-    if (materials) bc.inflow_material = material_index(r, "material", *materials);
+    if (materials) {
+      std::string material;
+      read_material_name(r, material);
+      bc.inflow_material = material_index(material, r.key_path("material"), *materials);
+    }
   } else {
     bc.kind = BoundaryKind::atmosphere;
     bc.pressure = r.number("pressure", 0.0);
@@ -360,13 +371,6 @@ interface::Polygon polygon_of(std::vector<std::array<double, 2>> points, const s
 
 // material: where given, the shape's `material` key is read into it ("" when absent); elsewhere the key
 // is unknown.
-void read_material_name(TableReader& r, std::string& material) {
-  material = r.string("material", "");
-  if (r.has("material") && material.empty())
-    throw CaseError(r.key_path("material") + ": empty; name a [[soil.materials]] entry, or leave the key out for the "
-                    "rheology's own soil");
-}
-
 interface::Shape read_shape(TableReader r, std::string* material = nullptr) {
   if (material) read_material_name(r, *material);
   const std::string shape = r.choice("shape", "", {"box", "circle", "ring", "polygon"});
@@ -553,18 +557,7 @@ SoilSettings read_soil(TableReader& top, std::vector<std::string>& without_effec
       if (solid) s.initial_soil_3d.push_back(*solid);
       else s.initial_soil.push_back(read_shape(shape, &material));
       s.initial_shape_is_solid.push_back(solid.has_value());
-      int index = 0;
-      if (!material.empty()) {
-        const auto it = std::find_if(s.materials.begin(), s.materials.end(), [&](const SoilMaterial& m) { return m.name == material; });
-        if (it == s.materials.end()) {
-          std::string names;
-          for (const auto& m : s.materials) names += (names.empty() ? "" : ", ") + m.name;
-          throw CaseError(fmt::format("{}: no soil material named '{}' ({})", shape.key_path("material"), material,
-                                      names.empty() ? "the case has no [[soil.materials]]" : "the case's are: " + names));
-        }
-        index = int(it - s.materials.begin()) + 1;
-      }
-      s.initial_material.push_back(index);
+      s.initial_material.push_back(material_index(material, shape.key_path("material"), s.materials));
     }
     if (s.initial_soil.empty() && s.initial_soil_3d.empty() && !init.misspelling_of("soil").empty())
       throw CaseError("initial.soil: at least one shape is required" + init.misspelling_of("soil"));
@@ -736,7 +729,8 @@ BoundarySet read_boundaries(TableReader& top, const GridSpec& mesh, std::vector<
                                   "whole inlet carries soil_fraction", side_name(s), side_name(s)));
   }
   if (has_inlet(boundaries) &&
-      std::none_of(boundaries.begin(), boundaries.end(), [](const BoundaryCondition& bc) { return bc.kind == BoundaryKind::atmosphere; }))
+      std::none_of(boundaries.begin(), boundaries.end(),
+                   [](const BoundaryCondition& bc) { return bc.kind == BoundaryKind::atmosphere; }))
     throw CaseError("boundary: an inlet needs an open side (type = \"atmosphere\") for its flow to leave by; "
                     "the incompressible flow of a closed domain cannot take in more");
   return boundaries;

@@ -39,7 +39,8 @@ inline double quadratic_wall_derivative(double f1, double f2, double wall, doubl
 // On the wall face of cell (i, j) at `sign` (-1 low, +1 high) along `axis`: as face_strain_rate, but
 // with the derivatives across the wall quadratic through the wall and the first two cell centres, as
 // the momentum flux takes them under numerics.wall_gradient = "quadratic". `wall_velocity` is the
-// wall's (its normal component zero) or an inlet's; `no_shear` (a slip wall) keeps the tangential component's derivative at zero.
+// wall's (its normal component zero) or an inlet's; `no_shear` (a slip wall) keeps the tangential
+// component's derivative at zero.
 rheology::StrainRate quadratic_wall_strain_rate(const Grid& g, const double* const* u, const double* const* v, int axis,
                                                 int i, int j, int sign, std::array<double, 2> wall_velocity,
                                                 bool no_shear);

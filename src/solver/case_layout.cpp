@@ -86,7 +86,8 @@ std::string check_blocked_cells(const Grid& g, const CaseConfig& config, const s
             const bool low = s == Side::west || s == Side::south || s == Side::front;
             if (boundary(config.flow.boundaries, s).kind == BoundaryKind::inlet && at[axis] == (low ? 0 : n[axis] - 1))
               return fmt::format("obstacle: the cell at {} is blocked against the inlet on the {} side, whose flow "
-                                 "would enter it; keep the obstacles off the inlet's side", where(i, j, k), side_name(s));
+                                 "would enter it; keep the obstacles off the inlet's side",
+                                 where(i, j, k), side_name(s));
           }
           for (int s = 0; s < step_count; s += 2) {
             const Cell& d = steps[s];

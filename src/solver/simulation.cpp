@@ -117,7 +117,8 @@ InitialState check_initial_state(MPI_Comm comm, const CaseConfig& config) {
   const PlacedSoil placed = initial_soil_placed(grid, config, blocked.get());
   state.soil_volume = placed.in_open_cells;
   state.soil_in_obstacles = placed.in_blocked_cells;
-  if (config.soil->has_initial_shapes() && !(state.soil_volume > 0.0)) throw no_initial_soil(config, grid, blocked != nullptr);
+  if (config.soil->has_initial_shapes() && !(state.soil_volume > 0.0))
+    throw no_initial_soil(config, grid, blocked != nullptr);
   if (!config.soil->materials.empty()) {  // the shares as a run lays them out
     SoilPhase soil(grid, config.flow, *config.soil);
     soil.set_blocked(blocked.get());

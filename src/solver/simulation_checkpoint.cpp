@@ -109,7 +109,8 @@ std::string Simulation::boundaries() const {
                             bc.total_pressure ? "total" : "static", bc.inflow_soil_fraction);
         break;
       case BoundaryKind::inlet:
-        text += layers ? fmt::format("inlet [{:.9g}, {:.9g}, {:.9g}] m/s", bc.velocity[0], bc.velocity[1], bc.velocity[2])
+        text += layers ? fmt::format("inlet [{:.9g}, {:.9g}, {:.9g}] m/s", bc.velocity[0], bc.velocity[1],
+                                     bc.velocity[2])
                        : fmt::format("inlet [{:.9g}, {:.9g}] m/s", bc.velocity[0], bc.velocity[1]);
         text += fmt::format(", c {:.9g} below {:.9g} m, material {}", bc.inflow_soil_fraction, bc.inflow_soil_depth,
                             bc.inflow_material);

@@ -165,8 +165,8 @@ void SoilPhase::update_face_viscosity(FlowSolver& flow) const {
         const int il = sign < 0 ? i - (axis == 0) : i, jl = sign < 0 ? j - (axis == 1) : j;
         auto wall_rate = [&] {
           return quadratic_wall && bc.kind != BoundaryKind::atmosphere
-                     ? quadratic_wall_strain_rate(grid_, u.data(), v.data(), axis, i, j, sign, {bc.velocity[0], bc.velocity[1]},
-                                                  bc.kind == BoundaryKind::slip)
+                     ? quadratic_wall_strain_rate(grid_, u.data(), v.data(), axis, i, j, sign,
+                                                  {bc.velocity[0], bc.velocity[1]}, bc.kind == BoundaryKind::slip)
                      : face_strain_rate(grid_, u.data(), v.data(), axis, il, jl);
         };
         if (at_face) {

@@ -133,7 +133,8 @@ TEST(Restart, PeriodicChuteContinuesExactlyFromItsLastCheckpoint) {
 TEST(Restart, AChuteFedThroughAnInletContinuesExactlyFromItsLastCheckpoint) {
   const double t = expect_restart_reproduces(
       "cases/chute_inlet.toml",
-      {"mesh.cells=[100,15]", "time.end=0.2", "output.interval=0.1", "output.fields=false", "output.progress_seconds=0"},
+      {"mesh.cells=[100,15]", "time.end=0.2", "output.interval=0.1", "output.fields=false",
+       "output.progress_seconds=0"},
       120, true);
   std::printf("fed chute restarted from its checkpoint at t = %.3g s\n", t);
   // The same fed on a ramp, its factor in the middle of the step after the checkpoint's.

@@ -229,7 +229,8 @@ TEST(CaseFile, AnInletsScheduleScalesItsVelocityByTime) {
   EXPECT_EQ(next_inflow_time(c.flow.boundaries, 1.2), 2.0);
   EXPECT_TRUE(std::isinf(next_inflow_time(c.flow.boundaries, 2.0)));
   auto refusal = [&](const std::string& schedule_text) {
-    const std::string west = "boundary.west={type = \"inlet\", velocity = [0.5, 0.0], schedule = " + schedule_text + "}";
+    const std::string west =
+        "boundary.west={type = \"inlet\", velocity = [0.5, 0.0], schedule = " + schedule_text + "}";
     return error_of(two_phase, {"soil.rheology.friction_angle=30", "boundary.east={type = \"atmosphere\"}", west});
   };
   EXPECT_NE(refusal("[[1.0, 1.0], [0.5, 0.0]]").find("boundary.west.schedule: the times must not decrease (pair 1 at "

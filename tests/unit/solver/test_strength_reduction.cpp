@@ -148,7 +148,8 @@ TEST(StrengthReduction, RefusesWhatHasNoStrengthToReduce) {
   without.erase(without.find("[soil.rheology]"), std::string("[soil.rheology]\nfriction_angle = 30.0\ncohesion = 5000.0\n").size());
   const CaseConfig newtonian = parse_case(without, {"soil.viscosity=1e-3"});  // a Newtonian dense phase
   EXPECT_NE(refusal(newtonian, 1.0).find("needs soil with a rheology"), std::string::npos);
-  const CaseConfig fed = parse_case(slope, {"boundary.west={type = \"inlet\", velocity = [0.1, 0.0], soil_fraction = 1.0}"});
+  const CaseConfig fed =
+      parse_case(slope, {"boundary.west={type = \"inlet\", velocity = [0.1, 0.0], soil_fraction = 1.0}"});
   EXPECT_NE(refusal(fed, 1.0).find("boundary.west is an inlet: strength reduction looks for"), std::string::npos)
       << refusal(fed, 1.0);
 }
