@@ -240,6 +240,18 @@ BoundaryCondition read_boundary(TableReader r, bool& is_axis, std::vector<std::s
                                       r.key_path(key)));
         two_phase_keys.push_back(r.key_path(key));
       }
+    for (int axis = 0; axis < 3; ++axis) {  // the opening: [low, high] across the side (read_boundaries checks)
+      const std::string key = fmt::format("span_{}", "xyz"[axis]);
+      if (!r.has(key)) continue;
+      if (axis == 2 && dimension != 3)
+        throw CaseError(fmt::format("{}: a planar mesh has no z across its sides (a mesh of layers has, "
+                                    "mesh.cells = [nx, ny, nz])", r.key_path(key)));
+      const auto span = numbers_of_size(r, key, {}, 2, "[low, high] of the opening, m");
+      if (!(span[0] < span[1]))
+        throw CaseError(fmt::format("{}: [{}, {}]; the opening runs from its low end to a higher one",
+                                    r.key_path(key), span[0], span[1]));
+      bc.inflow_span[axis] = {span[0], span[1]};
+    }
     bc.inflow_soil_fraction = r.number("soil_fraction", 0.0);
     r.require_range("soil_fraction", bc.inflow_soil_fraction, 0.0, 1.0);
     bc.inflow_soil_depth = r.number("soil_depth", bc.inflow_soil_depth);
@@ -717,12 +729,26 @@ BoundarySet read_boundaries(TableReader& top, const GridSpec& mesh, std::vector<
                                   side_name(s)));
     if (bc.kind != BoundaryKind::inlet) continue;
     const int axis = normal_axis(s);
-    const bool low = s == Side::west || s == Side::south || s == Side::front;
+    const bool low = is_low_side(s);
     const double inward = low ? bc.velocity[axis] : -bc.velocity[axis];
     if (!(inward > 0.0))
       throw CaseError(fmt::format("boundary.{}.velocity: an inlet's velocity must point into the domain (its {} "
                                   "component {} than 0); a wall sliding along itself is type = \"wall\"",
                                   side_name(s), "xyz"[axis], low ? "greater" : "less"));
+    for (int across = 0; across < mesh.dimension(); ++across) {
+      const auto& span = bc.inflow_span[across];
+      if (!std::isfinite(span[0]) && !std::isfinite(span[1])) continue;
+      if (across == axis)
+        throw CaseError(fmt::format("boundary.{}.span_{}: the {} side lies across {}; its opening is given along the "
+                                    "side ({})", side_name(s), "xyz"[axis], side_name(s), "xyz"[axis],
+                                    mesh.dimension() == 3 ? (axis == 0 ? "span_y, span_z" : axis == 1 ? "span_x, span_z"
+                                                                                                       : "span_x, span_y")
+                                                          : (axis == 0 ? "span_y" : "span_x")));
+      if (!(span[0] < mesh.upper[across] && span[1] > mesh.lower[across]))
+        throw CaseError(fmt::format("boundary.{}.span_{}: [{}, {}] lies outside the side, which runs from {} to {} "
+                                    "along {}", side_name(s), "xyz"[across], span[0], span[1], mesh.lower[across],
+                                    mesh.upper[across], "xyz"[across]));
+    }
     if (axis == 1 && std::isfinite(bc.inflow_soil_depth))
       throw CaseError(fmt::format("boundary.{}.soil_depth: the depth is measured up from the bottom along y, so it "
                                   "applies to inlets on the west, east, front or back sides; on the {} side the "
@@ -1086,7 +1112,7 @@ CaseConfig read_case(const toml::table& root, const std::filesystem::path& sourc
     std::vector<bool> used(c.soil->materials.size() + 1, false);
     for (int m : c.soil->initial_material) used[size_t(m)] = true;
     for (const auto& bc : c.flow.boundaries)
-      if (bc.kind == BoundaryKind::inlet && bc.inflow_soil_fraction > 0.0) used[size_t(bc.inflow_material)] = true;
+      if (carries_soil(bc)) used[size_t(bc.inflow_material)] = true;
     for (size_t k = 1; k < used.size(); ++k)
       if (!used[k])
         throw CaseError(fmt::format("soil.materials[{}]: no initial.soil shape is of material '{}' (give one `material "
@@ -1094,9 +1120,7 @@ CaseConfig read_case(const toml::table& root, const std::filesystem::path& sourc
                                     c.soil->materials[k - 1].name));
   }
   if (c.soil && c.soil->initial_soil.empty() && c.soil->initial_soil_3d.empty() &&
-      std::none_of(c.flow.boundaries.begin(), c.flow.boundaries.end(), [](const BoundaryCondition& bc) {
-        return bc.kind == BoundaryKind::inlet && bc.inflow_soil_fraction > 0.0;
-      })) {
+      std::none_of(c.flow.boundaries.begin(), c.flow.boundaries.end(), carries_soil)) {
     if (!top.has("initial"))
       throw CaseError("initial: missing table [[initial.soil]] (where the soil starts; only an inlet of soil can fill "
                       "a domain that starts without)" + top.misspelling_of("initial"));

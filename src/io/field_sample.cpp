@@ -14,7 +14,7 @@ SideRules velocity_side_rules(const BoundarySet& boundaries, int axis, int dimen
     const bool normal = normal_axis(s) == axis;
     switch (bc.kind) {
       case BoundaryKind::wall:  // its normal component is zero
-      case BoundaryKind::inlet: r = {SideRule::Kind::value, bc.velocity[axis]}; break;
+      case BoundaryKind::inlet: r = {SideRule::Kind::value, bc.velocity[axis], bc.inflow_span}; break;
       case BoundaryKind::slip: r = normal ? SideRule{SideRule::Kind::value, 0.0} : SideRule{}; break;
       case BoundaryKind::atmosphere: r = SideRule{}; break;
       case BoundaryKind::periodic: r = SideRule{}; break;  // unread: sample_field takes the join's mean
@@ -65,7 +65,12 @@ double sample_field(const Grid& g, const std::vector<double>& values, const Side
   bracket(nx, g.spec().lower[0], g.spec().upper[0], x, [&](int i) { return g.xc(i); }, a, wx);
   bracket(ny, g.spec().lower[1], g.spec().upper[1], y, [&](int j) { return g.yc(j); }, b, wy);
   if (nz > 1) bracket(nz, g.spec().lower[2], g.spec().upper[2], z, [&](int k) { return g.zc(k); }, c, wz);
-  const auto rule = [&](Side s) -> const SideRule& { return sides[static_cast<int>(s)]; };
+  // The rule of side s at the face of the cell i, j, k on it (a value held over a span: its share there).
+  const auto rule = [&](Side s, int i, int j, int k) {
+    SideRule r = sides[static_cast<int>(s)];
+    if (r.kind == SideRule::Kind::value) r.value *= span_share(r.span, g, s, i, j, k);
+    return r;
+  };
   const auto cell = [&](int i, int j, int k) { return values[(size_t(k) * ny + j) * nx + i]; };
   // Value at node column i (-1 = west side, nx = east side), cell row j and layer k; on a periodic
   // strip both are the join, between the end columns.
@@ -74,27 +79,27 @@ double sample_field(const Grid& g, const std::vector<double>& values, const Side
       const double west = 0.5 * g.dx(0), east = 0.5 * g.dx(nx - 1);  // the join's distances to their centres
       return (cell(0, j, k) * east + cell(nx - 1, j, k) * west) / (west + east);
     }
-    if (i == -1) return side_value(rule(Side::west), cell(0, j, k), nx > 1 ? cell(1, j, k) : 0.0, 0.5 * g.dx(0),
+    if (i == -1) return side_value(rule(Side::west, i, j, k), cell(0, j, k), nx > 1 ? cell(1, j, k) : 0.0, 0.5 * g.dx(0),
                                    nx > 1 ? g.xc(1) - g.xc(0) : 0.0);
-    if (i == nx) return side_value(rule(Side::east), cell(nx - 1, j, k), nx > 1 ? cell(nx - 2, j, k) : 0.0,
+    if (i == nx) return side_value(rule(Side::east, i, j, k), cell(nx - 1, j, k), nx > 1 ? cell(nx - 2, j, k) : 0.0,
                                    0.5 * g.dx(nx - 1), nx > 1 ? g.xc(nx - 1) - g.xc(nx - 2) : 0.0);
     return cell(i, j, k);
   };
   // ... at node (i, j) of layer k, j = -1 the south side, ny the north side. A corner takes the rule
   // of the south or north side applied to the values of its column (the west or east side's).
   const auto in_layer = [&](int i, int j, int k) {
-    if (j == -1) return side_value(rule(Side::south), in_row(i, 0, k), ny > 1 ? in_row(i, 1, k) : 0.0, 0.5 * g.dy(0),
+    if (j == -1) return side_value(rule(Side::south, i, j, k), in_row(i, 0, k), ny > 1 ? in_row(i, 1, k) : 0.0, 0.5 * g.dy(0),
                                    ny > 1 ? g.yc(1) - g.yc(0) : 0.0);
-    if (j == ny) return side_value(rule(Side::north), in_row(i, ny - 1, k), ny > 1 ? in_row(i, ny - 2, k) : 0.0,
+    if (j == ny) return side_value(rule(Side::north, i, j, k), in_row(i, ny - 1, k), ny > 1 ? in_row(i, ny - 2, k) : 0.0,
                                    0.5 * g.dy(ny - 1), ny > 1 ? g.yc(ny - 1) - g.yc(ny - 2) : 0.0);
     return in_row(i, j, k);
   };
   // ... at node (i, j, k), k = -1 the front side, nz the back side (a mesh of layers only), by the
   // front's or back's rule on the values of the layers next to it.
   const auto node = [&](int i, int j, int k) {
-    if (k == -1) return side_value(rule(Side::front), in_layer(i, j, 0), nz > 1 ? in_layer(i, j, 1) : 0.0,
+    if (k == -1) return side_value(rule(Side::front, i, j, k), in_layer(i, j, 0), nz > 1 ? in_layer(i, j, 1) : 0.0,
                                    0.5 * g.dz(0), nz > 1 ? g.zc(1) - g.zc(0) : 0.0);
-    if (k == nz) return side_value(rule(Side::back), in_layer(i, j, nz - 1), nz > 1 ? in_layer(i, j, nz - 2) : 0.0,
+    if (k == nz) return side_value(rule(Side::back, i, j, k), in_layer(i, j, nz - 1), nz > 1 ? in_layer(i, j, nz - 2) : 0.0,
                                    0.5 * g.dz(nz - 1), nz > 1 ? g.zc(nz - 1) - g.zc(nz - 2) : 0.0);
     return in_layer(i, j, k);
   };

@@ -18,11 +18,14 @@ struct SideRule {
   enum class Kind { value, zero_gradient, linear };
   Kind kind = Kind::zero_gradient;
   double value = 0.0;  // the value on the side, for Kind::value
+  // The value holds over this span of the side ([low, high] along each axis across it), and is zero
+  // outside: an inlet open in part (BoundaryCondition::inflow_span). A face cut by it takes its share.
+  std::array<std::array<double, 2>, 3> span = BoundaryCondition{}.inflow_span;
 };
 using SideRules = std::array<SideRule, 6>;  // indexed by Side (a planar mesh reads the first four)
 
 // The rules for velocity component `axis` (0 = x, 1 = y, 2 = z) on the sides of a mesh of `dimension`:
-// a wall's velocity on a wall (normal part zero), zero normal velocity and a free tangential one on a
+// a wall's velocity on a wall (normal part zero), an inlet's over its opening, zero normal velocity and a free tangential one on a
 // slip side, a zero gradient at an atmosphere.
 SideRules velocity_side_rules(const BoundarySet& boundaries, int axis, int dimension);
 // The rules for the pressure: the last two cells' line continued on every side.

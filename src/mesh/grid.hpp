@@ -45,6 +45,8 @@ inline double outward_normal(Side s, int axis) {
   if (axis != normal_axis(s)) return 0.0;
   return static_cast<int>(s) % 2 == 0 ? -1.0 : 1.0;
 }
+// A side at the low end of its axis (west, south, front).
+inline bool is_low_side(Side s) { return static_cast<int>(s) % 2 == 0; }
 // The side a boundary face lies on, from its axis and its sign (-1 low, +1 high).
 inline Side side_of(int axis, int sign) { return static_cast<Side>(2 * axis + (sign < 0 ? 0 : 1)); }
 

@@ -2,6 +2,7 @@
 // Boundary conditions of the flow, one per side of the box.
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <limits>
 #include <optional>
 #include <vector>
@@ -41,6 +42,14 @@ struct BoundaryCondition {
   // `velocity` holds inflow_velocity times the factor at the time the flow is solved for.
   std::array<double, 3> inflow_velocity{0.0, 0.0, 0.0};
   std::vector<std::array<double, 2>> inflow_schedule;
+  // Inlet: its opening, [low, high] along each axis across the side (the entry along the side's normal
+  // is not read); outside it the side is a wall at rest. Infinite: the whole side is open.
+  std::array<std::array<double, 2>, 3> inflow_span{{{-std::numeric_limits<double>::infinity(),
+                                                     std::numeric_limits<double>::infinity()},
+                                                    {-std::numeric_limits<double>::infinity(),
+                                                     std::numeric_limits<double>::infinity()},
+                                                    {-std::numeric_limits<double>::infinity(),
+                                                     std::numeric_limits<double>::infinity()}}};
   // Density of what lies beyond an open bottom (the mixture at inflow_soil_fraction; the fluid of a
   // single-phase case), whose hydrostatic head below the top the bottom's pressure is. 0: unset.
   double outside_density = 0.0;
@@ -58,14 +67,60 @@ inline bool holds_velocity(const BoundaryCondition& bc) {
   return bc.kind == BoundaryKind::wall || bc.kind == BoundaryKind::inlet;
 }
 
-// The velocity along `axis` (the side's normal) through a side that fixes it: an inlet's inflow, zero
-// through a wall or a slip side. Atmosphere sides have none of their own (their flux is solved for).
-inline double imposed_normal_velocity(const BoundaryCondition& bc, int axis) {
-  return bc.kind == BoundaryKind::inlet ? bc.velocity[axis] : 0.0;
-}
 
 inline bool has_inlet(const BoundarySet& b) {
   return std::any_of(b.begin(), b.end(), [](const BoundaryCondition& bc) { return bc.kind == BoundaryKind::inlet; });
+}
+
+// An inlet that lets soil in (when its velocity's factor is not zero).
+inline bool carries_soil(const BoundaryCondition& bc) {
+  return bc.kind == BoundaryKind::inlet && bc.inflow_soil_fraction > 0.0;
+}
+
+// An inlet open over part of its side only (BoundaryCondition::inflow_span).
+inline bool opens_in_part(const BoundaryCondition& bc) {
+  if (bc.kind != BoundaryKind::inlet) return false;
+  for (const auto& span : bc.inflow_span)
+    if (std::isfinite(span[0]) || std::isfinite(span[1])) return true;
+  return false;
+}
+
+// The share of the face that the side's cell (or ghost) i, j, k has on the side which lies in a span
+// ([low, high] along each axis across the side), or in an inlet's opening: by length across the side, by r dr along an axisymmetric mesh's radius (so that
+// the share times the face's area is the open area). 1 on any other side and on an inlet open over
+// the whole side.
+inline double span_share(const std::array<std::array<double, 2>, 3>& span, const Grid& grid, Side side, int i, int j,
+                         int k) {
+  const int at[3] = {i, j, k};
+  double share = 1.0;
+  for (int axis = 0; axis < grid.dimension(); ++axis) {
+    if (axis == normal_axis(side)) continue;
+    const double low = grid.centre(axis, at[axis]) - 0.5 * grid.width(axis, at[axis]);
+    const double high = low + grid.width(axis, at[axis]);
+    const double from = std::max(low, span[axis][0]), to = std::min(high, span[axis][1]);
+    if (!(to > from)) return 0.0;
+    share *= axis == 0 && grid.axisymmetric() ? (to * to - from * from) / (high * high - low * low)
+                                              : (to - from) / (high - low);
+  }
+  return share;
+}
+inline double open_share(const BoundaryCondition& bc, const Grid& grid, Side side, int i, int j, int k) {
+  return opens_in_part(bc) ? span_share(bc.inflow_span, grid, side, i, j, k) : 1.0;
+}
+
+// The velocity a side holds at the face of its cell (or ghost) i, j, k: a wall's, or an inlet's over
+// the face's open share (its mean over the face; a wall at rest outside the opening).
+inline std::array<double, 3> held_velocity(const BoundaryCondition& bc, const Grid& grid, Side side, int i, int j,
+                                           int k) {
+  if (!opens_in_part(bc)) return bc.velocity;
+  const double share = open_share(bc, grid, side, i, j, k);
+  return {share * bc.velocity[0], share * bc.velocity[1], share * bc.velocity[2]};
+}
+
+// Whether the face of the side's cell (or ghost) i, j, k lets an inlet's inflow in: an inlet's face
+// with some of it open.
+inline bool lets_in(const BoundaryCondition& bc, const Grid& grid, Side side, int i, int j, int k) {
+  return bc.kind == BoundaryKind::inlet && open_share(bc, grid, side, i, j, k) > 0.0;
 }
 
 // The factor on an inlet's velocity at time t (BoundaryCondition::inflow_schedule).
@@ -99,9 +154,20 @@ inline double inflow_time_after(const BoundarySet& b, double t_end, double dt) {
   return 0.5 * (t_end + std::min(t_end + dt, next_inflow_time(b, t_end)));
 }
 
+// The velocity along the side's normal through the face of its cell i, j, k where the side fixes it:
+// an inlet's inflow (over the face's open share), zero through a wall or a slip side. Atmosphere sides
+// have none of their own (their flux is solved for).
+inline double imposed_normal_velocity(const BoundaryCondition& bc, const Grid& grid, Side side, int i, int j, int k) {
+  if (bc.kind != BoundaryKind::inlet) return 0.0;
+  return open_share(bc, grid, side, i, j, k) * bc.velocity[normal_axis(side)];
+}
+
 // Inflow soil fraction of an inlet's face whose extent along y is [y_low, y_high], the domain's bottom
-// at y_bottom: the share of the face below the inlet's soil depth, times its soil fraction.
+// at y_bottom: the share of the face's opening below the inlet's soil depth, times its soil fraction.
 inline double inlet_face_soil_fraction(const BoundaryCondition& bc, double y_low, double y_high, double y_bottom) {
+  y_low = std::max(y_low, bc.inflow_span[1][0]);  // the open part of the face (all of it without a span)
+  y_high = std::min(y_high, bc.inflow_span[1][1]);
+  if (!(y_high > y_low)) return 0.0;
   const double top = y_bottom + bc.inflow_soil_depth;
   const double below = std::clamp((top - y_low) / (y_high - y_low), 0.0, 1.0);
   return bc.inflow_soil_fraction * below;

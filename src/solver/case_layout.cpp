@@ -34,7 +34,7 @@ CaseError no_initial_soil(const CaseConfig& config, const Grid& g, bool obstacle
 void check_materials_hold_soil(const CaseConfig& config, const std::vector<double>& volumes) {
   auto inlet_carries = [&](size_t k) {  // a material an inlet brings in may start with none
     return std::any_of(config.flow.boundaries.begin(), config.flow.boundaries.end(), [&](const BoundaryCondition& bc) {
-      return bc.kind == BoundaryKind::inlet && bc.inflow_soil_fraction > 0.0 && size_t(bc.inflow_material) == k;
+      return carries_soil(bc) && size_t(bc.inflow_material) == k;
     });
   };
   for (size_t k = 1; k < volumes.size(); ++k)
@@ -83,8 +83,7 @@ std::string check_blocked_cells(const Grid& g, const CaseConfig& config, const s
           for (Side s : sides_of_dimension(g.dimension())) {  // an inlet's flow would enter the obstacle
             const int at[3] = {i, j, k}, n[3] = {nx, ny, nz};
             const int axis = normal_axis(s);
-            const bool low = s == Side::west || s == Side::south || s == Side::front;
-            if (boundary(config.flow.boundaries, s).kind == BoundaryKind::inlet && at[axis] == (low ? 0 : n[axis] - 1))
+            if (at[axis] == (is_low_side(s) ? 0 : n[axis] - 1) && lets_in(boundary(config.flow.boundaries, s), g, s, i, j, k))
               return fmt::format("obstacle: the cell at {} is blocked against the inlet on the {} side, whose flow "
                                  "would enter it; keep the obstacles off the inlet's side",
                                  where(i, j, k), side_name(s));

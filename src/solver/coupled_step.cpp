@@ -240,7 +240,7 @@ class FlowSolver::CoupledRows {
         const double d = 0.5 * grid_.width(axis, index_along(axis, i, j, k));
         double pb;
         if (!boundary_pressure(fg, i, j, k, pb)) {  // a wall's flux is zero, an inlet's given
-          r -= s * area * imposed_normal_velocity(boundary(f_.settings_.boundaries, fg.side), axis);
+          r -= s * area * imposed_normal_velocity(boundary(f_.settings_.boundaries, fg.side), grid_, fg.side, i, j, k);
           continue;
         }
         const double mob = rau[k][j][i];
@@ -435,7 +435,7 @@ void FlowSolver::update_coupled_face_velocities() {
         // An obstacle's wall, a side of an obstacle's cell, or a wall side: no flux; an inlet's is given.
         if (!grid_.outside(i + fg.di, j + fg.dj, k + fg.dk) || is_blocked(mask.data(), i, j, k)) return 0.0;
         const auto& bc = boundary(settings_.boundaries, fg.side);
-        if (bc.kind != BoundaryKind::atmosphere) return imposed_normal_velocity(bc, axis);
+        if (bc.kind != BoundaryKind::atmosphere) return imposed_normal_velocity(bc, grid_, fg.side, i, j, k);
         return vel.view[axis][k][j][i] +
                mobility.view[axis][k][j][i] * (on_face(ff.view, i, j, k, fg) - fcell.view[axis][k][j][i]);
       },

@@ -311,7 +311,8 @@ void FlowSolver::impose_inlet_face_velocities() {
     hi[axis] = lo[axis] + 1;
     for (int k = lo[2]; k < hi[2]; ++k)
       for (int j = lo[1]; j < hi[1]; ++j)
-        for (int i = lo[0]; i < hi[0]; ++i) f.volume()[k][j][i] = bc.velocity[axis];
+        for (int i = lo[0]; i < hi[0]; ++i)
+          f.volume()[k][j][i] = imposed_normal_velocity(bc, grid_, side, i, j, k);
   }
 }
 

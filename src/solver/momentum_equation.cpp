@@ -21,9 +21,11 @@ namespace {
 // The viscous stress on a boundary face (a side or an obstacle), by the two-point gradient from the
 // cell centre to the wall: a wall holds every component at its velocity, a slip wall the normal one at
 // zero, an atmosphere none (zero-gradient velocity; its lagged transpose part stays, side_force.cpp).
-// normal_conductance is stress_factor mu A and tangential mu A, both without the half cell width.
+// normal_conductance is stress_factor mu A and tangential mu A, both without the half cell width; wall is
+// the velocity the face holds (held_velocity).
 void add_boundary_face_stress(const Grid& grid, const NumericsSettings& num, const BoundaryCondition& bc,
-                              const VolumeView vel[], int i, int j, int k, const FaceGeometry& fg,
+                              const std::array<double, 3>& wall, const VolumeView vel[], int i, int j, int k,
+                              const FaceGeometry& fg,
                               double normal_conductance, double tangential_conductance, double extra[],
                               double src[]) {
   const int dimension = grid.dimension();
@@ -32,7 +34,7 @@ void add_boundary_face_stress(const Grid& grid, const NumericsSettings& num, con
   if (holds_velocity(bc)) {
     for (int c = 0; c < dimension; ++c) {
       extra[c] += coeff;
-      src[c] += coeff * bc.velocity[c];  // a wall's normal component is zero
+      src[c] += coeff * wall[c];  // a wall's normal component is zero
     }
   } else if (bc.kind == BoundaryKind::slip) {
     extra[fg.axis] += coeff;  // impermeable: normal component zero; no shear
@@ -42,7 +44,7 @@ void add_boundary_face_stress(const Grid& grid, const NumericsSettings& num, con
   // two-point stress is mu per tangential and stress_factor mu for the normal component.
   for (int c = 0; c < dimension; ++c) {
     if (bc.kind == BoundaryKind::slip && c != fg.axis) continue;  // no shear at a slip wall
-    const double uw = bc.velocity[c];
+    const double uw = wall[c];
     const double quadratic = wall_gradient(grid, vel[c], i, j, k, fg, uw, true);
     const double two_point = wall_gradient(grid, vel[c], i, j, k, fg, uw, false);
     src[c] -= (c == fg.axis ? normal_conductance : tangential_conductance) * (quadratic - two_point);
@@ -130,7 +132,8 @@ void FlowSolver::assemble_momentum(double dt) {
           }
           if (is_boundary) {
             const auto& bc = is_obstacle ? obstacle_wall : boundary(settings_.boundaries, fg.side);
-            add_boundary_face_stress(grid_, num, bc, vel.view, i, j, k, fg, stress_factor * mu_face * area,
+            const auto wall = is_obstacle ? bc.velocity : held_velocity(bc, grid_, fg.side, i, j, k);
+            add_boundary_face_stress(grid_, num, bc, wall, vel.view, i, j, k, fg, stress_factor * mu_face * area,
                                      mu_face * area, extra, src);
             if (bc.kind == BoundaryKind::inlet) {  // the inflow brings the inlet's momentum, upwind
               const double inflow =  // kg/s
@@ -138,7 +141,7 @@ void FlowSolver::assemble_momentum(double dt) {
                        : rhoP * (-fg.sign * on_face(face_vel.view, i, j, k, fg) * area);
               if (inflow > 0.0) {
                 diag += inflow;
-                for (int c = 0; c < dim; ++c) src[c] += inflow * bc.velocity[c];
+                for (int c = 0; c < dim; ++c) src[c] += inflow * wall[c];
               }
             }
             continue;

@@ -90,7 +90,7 @@ void FlowSolver::assemble_pressure_rhs() {
           if (grid_.outside(in, jn, kn)) {
             const auto& bc = boundary(settings_.boundaries, fg.side);
             if (bc.kind != BoundaryKind::atmosphere) {  // walls: no flux; an inlet's is given
-              rhs -= fg.sign * imposed_normal_velocity(bc, fg.axis) * area;
+              rhs -= fg.sign * imposed_normal_velocity(bc, grid_, fg.side, i, j, k) * area;
               continue;
             }
             const double d_half = 0.5 * grid_.width(fg.axis, index_along(fg.axis, i, j, k));
@@ -132,8 +132,9 @@ void FlowSolver::correct_velocities() {
       [&](int axis, int i, int j, int k, int sign) {
         // Walls are impermeable and their face force stays zero (pressure hydrostatic at the wall); an
         // inlet's velocity is given.
-        const auto& bc = boundary(settings_.boundaries, side_of(axis, sign));
-        if (bc.kind != BoundaryKind::atmosphere) return imposed_normal_velocity(bc, axis);
+        const Side side = side_of(axis, sign);
+        const auto& bc = boundary(settings_.boundaries, side);
+        if (bc.kind != BoundaryKind::atmosphere) return imposed_normal_velocity(bc, grid_, side, i, j, k);
         return h.view[axis][k][j][i] + ra.view[axis][k][j][i] * on_face(ff.view, i, j, k, face_along(axis, sign));
       });
   // Cell velocities from the reconstructed cell force.

@@ -65,9 +65,10 @@ FlowSolver::WallForces FlowSolver::wall_forces() const {
     f[axis] += (p[k][j][i] + rho[k][j][i] * g[axis] * sign * d_half) * area * sign;
     // The implicit part, 2 mu (v_c - v_wall,c) / (h/2) (mu without the transpose stress), on every
     // component at a wall and on the normal one at a slip side, with the case's wall gradient.
+    const auto held = held_velocity(bc, grid_, s, i, j, k);
     for (int c = 0; c < dim; ++c) {
       if (bc.kind == BoundaryKind::slip && c != axis) continue;  // no shear on a slip side
-      const double wall = bc.velocity[c];  // a wall's normal component is zero
+      const double wall = held[c];  // a wall's normal component is zero
       const double two_point = wall_gradient(grid_, vel.view[c], i, j, k, fg, wall, false);
       const double gradient = wall_gradient(grid_, vel.view[c], i, j, k, fg, wall, num.quadratic_wall_gradient);
       // stress_factor on the implicit two-point part, as assembled; the quadratic correction on top

@@ -328,7 +328,7 @@ RunSummary Simulation::run(const StepObserver& after_step) {
     bool soil_coming_in = false;
     for (Side side : sides_of_dimension(grid_->dimension())) {
       const BoundaryCondition& bc = boundary(flow_->settings().boundaries, side);  // at the step's factor
-      soil_coming_in |= bc.inflow_soil_fraction > 0.0 && imposed_normal_velocity(bc, normal_axis(side)) != 0.0;
+      soil_coming_in |= carries_soil(bc) && bc.velocity[normal_axis(side)] != 0.0;
     }
     const bool steady = tc.steady_tolerance > 0.0 && !schedule_ahead && is_steady(previous, step_dt, speed);
     // The soil at rest (time.rest_speed): slower than it everywhere, once it has moved (the speed the

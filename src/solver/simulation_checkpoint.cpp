@@ -117,6 +117,10 @@ std::string Simulation::boundaries() const {
         for (size_t k = 0; k < bc.inflow_schedule.size(); ++k)
           text += fmt::format("{}[{:.9g} s, {:.9g}]", k == 0 ? ", schedule " : " ", bc.inflow_schedule[k][0],
                               bc.inflow_schedule[k][1]);
+        for (int axis = 0; axis < 3; ++axis)  // an inlet open over its whole side reads as before spans
+          if (std::isfinite(bc.inflow_span[axis][0]) || std::isfinite(bc.inflow_span[axis][1]))
+            text += fmt::format(", span_{} [{:.9g}, {:.9g}] m", "xyz"[axis], bc.inflow_span[axis][0],
+                                bc.inflow_span[axis][1]);
         break;
     }
   }

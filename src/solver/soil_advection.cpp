@@ -54,8 +54,8 @@ const Field& SoilPhase::soil_region(int reach, double floor) const {
           // A ghost beyond two sides (an edge's) takes the later axis's side, as the ghosts were filled.
           const Side side = k < 0 ? Side::front : k >= nz ? Side::back : j < 0 ? Side::south : j >= ny ? Side::north
                                                                         : i < 0 ? Side::west : Side::east;
-          const bool inlet_side = outside && boundary(flow_settings_.boundaries, side).kind == BoundaryKind::inlet;
-          if (inlet_side) a.volume()[k][j][i] = 1.0;
+          const bool inlet_face = outside && lets_in(boundary(flow_settings_.boundaries, side), grid_, side, i, j, k);
+          if (inlet_face) a.volume()[k][j][i] = 1.0;
           else if (is_blocked(mask.data(), i, j, k) || (outside && !open_side(side))) a.volume()[k][j][i] = 0.0;
         }
     in = region_[1].get();

@@ -125,10 +125,11 @@ double SoilPhase::compute_dissipation(const FlowSolver& flow) {
     const double mu_f = s == Side::west ? fmx[j][i - 1] : s == Side::east ? fmx[j][i]
                       : s == Side::south ? fmy[j - 1][i] : fmy[j][i];
     const FaceGeometry& fg = face_on(s);
+    const auto held = held_velocity(bc, grid_, s, i, j, 0);
     double work = 0.0;
     for (int c = 0; c < 2; ++c) {
       if (bc.kind == BoundaryKind::slip && c != n) continue;  // no shear on a slip side
-      const double wall = bc.velocity[c];  // a wall's normal component is zero
+      const double wall = held[c];  // a wall's normal component is zero
       const double gradient = wall_gradient(grid_, q[c], i, j, fg, wall, num.quadratic_wall_gradient);
       work += (c == n ? normal_factor : 1.0) * mu_f * A * gradient * (q[c][j][i] - wall);
     }

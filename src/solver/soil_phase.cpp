@@ -225,16 +225,16 @@ void SoilPhase::initialise_materials() {
 
 // Ghosts of a material share: walls copy the nearest cell (zero gradient), blocked cells hold none;
 // soil coming in through an atmosphere side is the rheology's own (share 0), through an inlet the
-// inlet's material (share 1 of its own material, 0 of the others).
+// inlet's material (share 1 of its own material, 0 of the others) where it is open.
 void SoilPhase::fill_share_ghosts(Field& f, int material) const {
   zero_blocked_cells(grid_, blocked_, f);
   f.scatter_to_local();
   FieldArray a(grid_.field_dm(), f.local());
   mirror_into_blocked(grid_, blocked_, a.volume(), 1.0);
-  fill_side_ghosts(grid_, a.volume(), [&](Side side, double, double first) {
+  fill_side_ghosts(grid_, a.volume(), [&](Side side, double, double first, const int* at) {
     const auto& bc = boundary(flow_settings_.boundaries, side);
     if (bc.kind == BoundaryKind::atmosphere) return 0.0;
-    if (bc.kind == BoundaryKind::inlet) return bc.inflow_material == material ? 1.0 : 0.0;
+    if (lets_in(bc, grid_, side, at[0], at[1], at[2])) return bc.inflow_material == material ? 1.0 : 0.0;
     return first;
   });
 }
@@ -252,7 +252,8 @@ void SoilPhase::cell_shares(const std::deque<ConstFieldArray>& m, int i, int j, 
 
 // Ghosts of c: soil carried in through an atmosphere boundary has the boundary's inflow fraction,
 // through an inlet the inlet's below its soil depth (each ghost the share of its height below it);
-// walls mirror, which gives interface normals meeting a wall at right angles.
+// walls mirror, which gives interface normals meeting a wall at right angles, and so does an inlet
+// outside its opening.
 void SoilPhase::fill_fraction_ghosts(Field& f) const {
   zero_blocked_cells(grid_, blocked_, f);  // no soil in a blocked cell (a sweep leaves there the mirror it read)
   f.scatter_to_local();
@@ -261,7 +262,7 @@ void SoilPhase::fill_fraction_ghosts(Field& f) const {
   const double bottom = grid_.spec().lower[1];
   fill_side_ghosts(grid_, a.volume(), [&](Side side, double inner, double, const int* where) {
     const auto& bc = boundary(flow_settings_.boundaries, side);
-    if (bc.kind == BoundaryKind::inlet) {
+    if (lets_in(bc, grid_, side, where[0], where[1], where[2])) {
       const int j = where[1];
       return inlet_face_soil_fraction(bc, grid_.yf(j) - grid_.dy(j), grid_.yf(j), bottom);
     }
@@ -276,8 +277,8 @@ void SoilPhase::fill_displacement_ghosts() {
       fill_copied_ghosts(grid_, blocked_, *d);
       if (!has_inlet(flow_settings_.boundaries)) continue;
       FieldArray a = local_array(grid_, *d);
-      fill_side_ghosts(grid_, a.volume(), [&](Side side, double, double first) {
-        return boundary(flow_settings_.boundaries, side).kind == BoundaryKind::inlet ? 0.0 : first;
+      fill_side_ghosts(grid_, a.volume(), [&](Side side, double, double first, const int* at) {
+        return lets_in(boundary(flow_settings_.boundaries, side), grid_, side, at[0], at[1], at[2]) ? 0.0 : first;
       });
     }
 }

@@ -210,7 +210,8 @@ void SoilPhase::update_face_viscosity_3d(FlowSolver& flow) const {
         const int il = i - (sign < 0 && axis == 0), jl = j - (sign < 0 && axis == 1), kl = k - (sign < 0 && axis == 2);
         auto wall_rate = [&] {
           return quadratic_wall && bc.kind != BoundaryKind::atmosphere
-                     ? quadratic_wall_strain_rate(grid_, v, axis, i, j, k, sign, bc.velocity,
+                     ? quadratic_wall_strain_rate(grid_, v, axis, i, j, k, sign,
+                                                  held_velocity(bc, grid_, side_of(axis, sign), i, j, k),
                                                   bc.kind == BoundaryKind::slip)
                      : face_strain_rate(grid_, v, axis, il, jl, kl);
         };
@@ -463,10 +464,11 @@ double SoilPhase::compute_dissipation_3d(const FlowSolver& flow) {
     if (grid_.outside(in, jn, kn) || blocked(in, jn, kn)) {
       const auto& bc = blocked(in, jn, kn) ? obstacle_wall : boundary(flow_settings_.boundaries, fg.side);
       if (bc.kind == BoundaryKind::atmosphere) return 0.0;
+      const auto held = held_velocity(bc, grid_, fg.side, i, j, k);
       double work = 0.0;
       for (int c = 0; c < 3; ++c) {
         if (bc.kind == BoundaryKind::slip && c != fg.axis) continue;  // no shear on a slip side
-        const double wall = bc.velocity[c];  // a wall's normal component is zero
+        const double wall = held[c];  // a wall's normal component is zero
         const double gradient = wall_gradient(grid_, vel.view[c], i, j, k, fg, wall, num.quadratic_wall_gradient);
         work += (c == fg.axis ? normal_factor : 1.0) * mu_f * A * gradient * (vel.view[c][k][j][i] - wall);
       }

@@ -163,10 +163,14 @@ void SoilPhase::update_face_viscosity(FlowSolver& flow) const {
                                               : obstacle_wall;
         // The face between the ghost and the cell, the ghost's velocity encoding the wall.
         const int il = sign < 0 ? i - (axis == 0) : i, jl = sign < 0 ? j - (axis == 1) : j;
+        auto wall_velocity = [&]() -> std::array<double, 2> {
+          const auto held = held_velocity(bc, grid_, side_of(axis, sign), i, j, 0);
+          return {held[0], held[1]};
+        };
         auto wall_rate = [&] {
           return quadratic_wall && bc.kind != BoundaryKind::atmosphere
-                     ? quadratic_wall_strain_rate(grid_, u.data(), v.data(), axis, i, j, sign,
-                                                  {bc.velocity[0], bc.velocity[1]}, bc.kind == BoundaryKind::slip)
+                     ? quadratic_wall_strain_rate(grid_, u.data(), v.data(), axis, i, j, sign, wall_velocity(),
+                                                  bc.kind == BoundaryKind::slip)
                      : face_strain_rate(grid_, u.data(), v.data(), axis, il, jl);
         };
         if (at_face) {

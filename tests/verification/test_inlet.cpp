@@ -11,6 +11,10 @@
 //   halfway through a cell, whose ghost holds half of it) and on a mesh of layers; the soil fraction
 //   stays within [0, 1]; the history's outflow is minus that volume; the soil entering carries no
 //   displacement; a soil material fed alone fills its share.
+// - An inlet open over part of its side (span_x, span_y, span_z), a wall at rest elsewhere: the soil
+//   let in is U times the open area below the soil depth times t, to round-off, where the opening's
+//   ends and the depth cut cells (one face cut by both), through a slot in the top of a planar and of
+//   an axisymmetric mesh (the hole's area by r dr) and on a mesh of layers; none enters outside it.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -305,6 +309,74 @@ TEST(Inlet, ARunDoesNotStopAtRestBeforeItsScheduleEnds) {
                 s.soil_at_rest ? "yes" : "no", volume, exact);
   EXPECT_GT(s.time, 0.5);
   EXPECT_NEAR(volume / exact, 1.0, 1e-12);
+}
+
+// Soil fed through the west side between span_y[0] and the soil depth, air above it up to span_y[1]: U
+// (d - y0) t. The opening's low end cuts a cell and the depth another, or both cut one face.
+TEST(Inlet, SoilFedThroughPartOfASideFillsAtItsRate) {
+  const double speed = 0.2, t = 0.3;
+  const SoilFed apart = run_soil_inlet(soil_inlet_case(0.0175, false, ", span_y = [0.0075, 0.03]"), false);
+  const SoilFed one_face = run_soil_inlet(soil_inlet_case(0.014, false, ", span_y = [0.0125, 0.03]"), false);
+  const double exact_apart = speed * (0.0175 - 0.0075) * t, exact_one_face = speed * (0.014 - 0.0125) * t;
+  if (test::is_root())
+    std::printf("soil let in through part of the side: %.15g and %.15g m^2 against %.15g and %.15g; c in [%.2g, "
+                "1 + %.2g]\n", apart.volume, one_face.volume, exact_apart, exact_one_face, apart.lowest_c,
+                apart.highest_c - 1.0);
+  EXPECT_NEAR(apart.volume / exact_apart, 1.0, 1e-12);
+  EXPECT_NEAR(apart.outflow / exact_apart, -1.0, 1e-12);
+  EXPECT_NEAR(one_face.volume / exact_one_face, 1.0, 1e-12);
+  if (test::is_root()) {
+    EXPECT_GE(apart.lowest_c, -1e-12);
+    EXPECT_LE(apart.highest_c, 1.0 + 1e-12);
+  }
+}
+
+// Soil poured at 0.2 m/s through a slot in the top (a wall elsewhere) onto the floor 5 cm below, the air
+// leaving through the open east side; on an axisymmetric mesh a hole about the axis.
+SoilFed run_slot(const std::string& span, bool axisymmetric) {
+  std::string text = soil_inlet_case(0.01, false);
+  auto replace = [&](const std::string& from, const std::string& to) {
+    const size_t at = text.find(from);
+    if (at == std::string::npos) throw std::runtime_error("run_slot: no '" + from + "' in the case");
+    text.replace(at, from.size(), to);
+  };
+  replace("north = { type = \"atmosphere\" }", "north = { type = \"inlet\", velocity = [0.0, -0.2], soil_fraction "
+                                               "= 1.0, span_x = " + span + " }");
+  const size_t west = text.find("west = {");
+  text.replace(west, text.find('}', west) + 1 - west, axisymmetric ? "west = { type = \"axis\" }" : "west = { type = \"wall\" }");
+  if (axisymmetric) replace("[mesh]", "[mesh]\ngeometry = \"axisymmetric\"");
+  return run_soil_inlet(text, false);
+}
+
+TEST(Inlet, SoilPouredThroughASlotInTheTopFillsAtItsRate) {
+  const double speed = 0.2, t = 0.3;
+  const SoilFed slot = run_slot("[0.0725, 0.1075]", false);
+  const SoilFed hole = run_slot("[-1.0, 0.0125]", true);
+  const double exact_slot = speed * 0.035 * t, exact_hole = speed * 0.5 * 0.0125 * 0.0125 * t;  // per radian
+  if (test::is_root())
+    std::printf("soil poured through a slot: %.15g m^2 against %.15g; through a hole about the axis %.15g m^3/rad "
+                "against %.15g; c in [%.2g, 1 + %.2g]\n", slot.volume, exact_slot, hole.volume, exact_hole,
+                slot.lowest_c, slot.highest_c - 1.0);
+  EXPECT_NEAR(slot.volume / exact_slot, 1.0, 1e-12);
+  EXPECT_NEAR(slot.outflow / exact_slot, -1.0, 1e-12);
+  EXPECT_NEAR(hole.volume / exact_hole, 1.0, 1e-12);
+  if (test::is_root()) {
+    EXPECT_GE(slot.lowest_c, -1e-12);
+    EXPECT_LE(slot.highest_c, 1.0 + 1e-12);
+  }
+}
+
+// On a mesh of layers 2 cm deep: soil from 2.5 mm to the depth of 1 cm, in the front 1.25 cm.
+TEST(Inlet, SoilFedThroughPartOfASideOfAMeshOfLayersFillsAtItsRate) {
+  const double speed = 0.2, t = 0.3;
+  const SoilFed fed =
+      run_soil_inlet(soil_inlet_case(0.01, true, ", span_y = [0.0025, 0.05], span_z = [-1.0, 0.0125]"), true);
+  const double exact = speed * (0.01 - 0.0025) * 0.0125 * t;
+  if (test::is_root())
+    std::printf("soil let in through part of a side of a mesh of layers: %.15g m^3 against %.15g\n", fed.volume,
+                exact);
+  EXPECT_NEAR(fed.volume / exact, 1.0, 1e-12);
+  EXPECT_NEAR(fed.outflow / exact, -1.0, 1e-12);
 }
 
 TEST(Inlet, ASoilMaterialFedAloneFillsItsShare) {

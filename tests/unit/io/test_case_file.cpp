@@ -242,6 +242,48 @@ TEST(CaseFile, AnInletsScheduleScalesItsVelocityByTime) {
   EXPECT_NE(refusal("[1.0, 2.0]").find("boundary.west.schedule"), std::string::npos);
 }
 
+// An inlet open over part of its side: span_y on the west side (and span_x on the north), [low, high];
+// a face of the side takes its open share (by r dr along an axisymmetric mesh's radius), and the soil
+// fraction of its opening below the soil depth.
+TEST(CaseFile, AnInletOpensOverItsSpan) {
+  const std::vector<std::string> open_east{"soil.rheology.friction_angle=30", "boundary.east={type = \"atmosphere\"}"};
+  auto with = [&](const std::string& west, std::vector<std::string> more = {}) {
+    auto o = open_east;
+    o.push_back("boundary.west=" + west);
+    o.insert(o.end(), more.begin(), more.end());
+    return o;
+  };
+  const CaseConfig c = parse_case(
+      two_phase, with("{type = \"inlet\", velocity = [0.5, 0.1], soil_fraction = 0.6, soil_depth = 0.3, "
+                      "span_y = [0.1875, 0.5]}"));
+  const BoundaryCondition& west = boundary(c.flow.boundaries, Side::west);
+  EXPECT_EQ(west.inflow_span[1][0], 0.1875);
+  EXPECT_EQ(west.inflow_span[1][1], 0.5);
+  EXPECT_TRUE(opens_in_part(west));
+  EXPECT_FALSE(opens_in_part(boundary(c.flow.boundaries, Side::south)));
+  const Grid g(PETSC_COMM_SELF, c.mesh);  // cells of 1/8 m: the span cuts the second one in half
+  EXPECT_EQ(open_share(west, g, Side::west, 0, 0, 0), 0.0);
+  EXPECT_EQ(open_share(west, g, Side::west, 0, 1, 0), 0.5);
+  EXPECT_EQ(open_share(west, g, Side::west, 0, 2, 0), 1.0);
+  EXPECT_EQ(open_share(west, g, Side::west, 0, 4, 0), 0.0);
+  EXPECT_EQ(imposed_normal_velocity(west, g, Side::west, 0, 1, 0), 0.25);
+  EXPECT_EQ(held_velocity(west, g, Side::west, 0, 1, 0)[1], 0.05);
+  EXPECT_FALSE(lets_in(west, g, Side::west, 0, 0, 0));
+  EXPECT_TRUE(lets_in(west, g, Side::west, 0, 1, 0));
+  // The face [0.125, 0.25]: open from 0.1875, soil up to 0.3; [0.25, 0.375]: soil in the lower 0.05 of it.
+  EXPECT_DOUBLE_EQ(inlet_face_soil_fraction(west, 0.125, 0.25, 0.0), 0.6);
+  EXPECT_DOUBLE_EQ(inlet_face_soil_fraction(west, 0.25, 0.375, 0.0), 0.6 * 0.4);
+  // The top's opening about the axis of an axisymmetric mesh: by r dr, (0.1875^2 - 0.125^2) / (0.25^2 - 0.125^2).
+  const CaseConfig hole = parse_case(
+      two_phase, with("{type = \"axis\"}", {"mesh.geometry = \"axisymmetric\"",
+                                            "boundary.north={type = \"inlet\", velocity = [0.0, -1.0], span_x = [0.0, "
+                                            "0.1875]}"}));
+  const Grid r(PETSC_COMM_SELF, hole.mesh);
+  const BoundaryCondition& north = boundary(hole.flow.boundaries, Side::north);
+  EXPECT_DOUBLE_EQ(open_share(north, r, Side::north, 1, 7, 0), (0.1875 * 0.1875 - 0.125 * 0.125) / (0.25 * 0.25 - 0.125 * 0.125));
+  EXPECT_EQ(open_share(north, r, Side::north, 0, 7, 0), 1.0);
+}
+
 TEST(CaseFile, AnInletRefusesWhatItCannotBe) {
   const std::vector<std::string> open_east{"soil.rheology.friction_angle=30", "boundary.east={type = \"atmosphere\"}"};
   auto error_with = [&](const std::string& west, std::vector<std::string> more = {}) {
@@ -270,6 +312,17 @@ TEST(CaseFile, AnInletRefusesWhatItCannotBe) {
                                                                  "1.0], soil_depth = 0.1}"});
   EXPECT_NE(bottom.find("boundary.south.soil_depth: the depth is measured up from the bottom"), std::string::npos)
       << bottom;
+  const std::string normal = error_with("{type = \"inlet\", velocity = [1.0, 0.0], span_x = [0.0, 0.5]}");
+  EXPECT_NE(normal.find("boundary.west.span_x: the west side lies across x; its opening is given along the side "
+                        "(span_y)"), std::string::npos) << normal;
+  const std::string reversed = error_with("{type = \"inlet\", velocity = [1.0, 0.0], span_y = [0.5, 0.2]}");
+  EXPECT_NE(reversed.find("boundary.west.span_y: [0.5, 0.2]; the opening runs from its low end"), std::string::npos)
+      << reversed;
+  const std::string beyond = error_with("{type = \"inlet\", velocity = [1.0, 0.0], span_y = [1.5, 2.0]}");
+  EXPECT_NE(beyond.find("boundary.west.span_y: [1.5, 2] lies outside the side, which runs from 0 to 1 along y"),
+            std::string::npos) << beyond;
+  const std::string planar = error_with("{type = \"inlet\", velocity = [1.0, 0.0], span_z = [0.0, 0.5]}");
+  EXPECT_NE(planar.find("boundary.west.span_z: a planar mesh has no z"), std::string::npos) << planar;
   const std::string stray = error_with("{type = \"inlet\", velocity = [1.0, 0.0], pressure = 3.0}");
   EXPECT_NE(stray.find("boundary.west.pressure"), std::string::npos) << stray;
   // One phase: the soil keys belong to cases with soil.
