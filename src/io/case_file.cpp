@@ -738,12 +738,12 @@ BoundarySet read_boundaries(TableReader& top, const GridSpec& mesh, std::vector<
     for (int across = 0; across < mesh.dimension(); ++across) {
       const auto& span = bc.inflow_span[across];
       if (!std::isfinite(span[0]) && !std::isfinite(span[1])) continue;
-      if (across == axis)
+      if (across == axis) {
+        const char* along[3][2] = {{"span_y", "span_y, span_z"}, {"span_x", "span_x, span_z"}, {"", "span_x, span_y"}};
         throw CaseError(fmt::format("boundary.{}.span_{}: the {} side lies across {}; its opening is given along the "
                                     "side ({})", side_name(s), "xyz"[axis], side_name(s), "xyz"[axis],
-                                    mesh.dimension() == 3 ? (axis == 0 ? "span_y, span_z" : axis == 1 ? "span_x, span_z"
-                                                                                                       : "span_x, span_y")
-                                                          : (axis == 0 ? "span_y" : "span_x")));
+                                    along[axis][mesh.dimension() == 3]));
+      }
       if (!(span[0] < mesh.upper[across] && span[1] > mesh.lower[across]))
         throw CaseError(fmt::format("boundary.{}.span_{}: [{}, {}] lies outside the side, which runs from {} to {} "
                                     "along {}", side_name(s), "xyz"[across], span[0], span[1], mesh.lower[across],

@@ -79,28 +79,34 @@ double sample_field(const Grid& g, const std::vector<double>& values, const Side
       const double west = 0.5 * g.dx(0), east = 0.5 * g.dx(nx - 1);  // the join's distances to their centres
       return (cell(0, j, k) * east + cell(nx - 1, j, k) * west) / (west + east);
     }
-    if (i == -1) return side_value(rule(Side::west, i, j, k), cell(0, j, k), nx > 1 ? cell(1, j, k) : 0.0, 0.5 * g.dx(0),
-                                   nx > 1 ? g.xc(1) - g.xc(0) : 0.0);
-    if (i == nx) return side_value(rule(Side::east, i, j, k), cell(nx - 1, j, k), nx > 1 ? cell(nx - 2, j, k) : 0.0,
-                                   0.5 * g.dx(nx - 1), nx > 1 ? g.xc(nx - 1) - g.xc(nx - 2) : 0.0);
+    if (i == -1)
+      return side_value(rule(Side::west, i, j, k), cell(0, j, k), nx > 1 ? cell(1, j, k) : 0.0, 0.5 * g.dx(0),
+                        nx > 1 ? g.xc(1) - g.xc(0) : 0.0);
+    if (i == nx)
+      return side_value(rule(Side::east, i, j, k), cell(nx - 1, j, k), nx > 1 ? cell(nx - 2, j, k) : 0.0,
+                        0.5 * g.dx(nx - 1), nx > 1 ? g.xc(nx - 1) - g.xc(nx - 2) : 0.0);
     return cell(i, j, k);
   };
   // ... at node (i, j) of layer k, j = -1 the south side, ny the north side. A corner takes the rule
   // of the south or north side applied to the values of its column (the west or east side's).
   const auto in_layer = [&](int i, int j, int k) {
-    if (j == -1) return side_value(rule(Side::south, i, j, k), in_row(i, 0, k), ny > 1 ? in_row(i, 1, k) : 0.0, 0.5 * g.dy(0),
-                                   ny > 1 ? g.yc(1) - g.yc(0) : 0.0);
-    if (j == ny) return side_value(rule(Side::north, i, j, k), in_row(i, ny - 1, k), ny > 1 ? in_row(i, ny - 2, k) : 0.0,
-                                   0.5 * g.dy(ny - 1), ny > 1 ? g.yc(ny - 1) - g.yc(ny - 2) : 0.0);
+    if (j == -1)
+      return side_value(rule(Side::south, i, j, k), in_row(i, 0, k), ny > 1 ? in_row(i, 1, k) : 0.0, 0.5 * g.dy(0),
+                        ny > 1 ? g.yc(1) - g.yc(0) : 0.0);
+    if (j == ny)
+      return side_value(rule(Side::north, i, j, k), in_row(i, ny - 1, k), ny > 1 ? in_row(i, ny - 2, k) : 0.0,
+                        0.5 * g.dy(ny - 1), ny > 1 ? g.yc(ny - 1) - g.yc(ny - 2) : 0.0);
     return in_row(i, j, k);
   };
   // ... at node (i, j, k), k = -1 the front side, nz the back side (a mesh of layers only), by the
   // front's or back's rule on the values of the layers next to it.
   const auto node = [&](int i, int j, int k) {
-    if (k == -1) return side_value(rule(Side::front, i, j, k), in_layer(i, j, 0), nz > 1 ? in_layer(i, j, 1) : 0.0,
-                                   0.5 * g.dz(0), nz > 1 ? g.zc(1) - g.zc(0) : 0.0);
-    if (k == nz) return side_value(rule(Side::back, i, j, k), in_layer(i, j, nz - 1), nz > 1 ? in_layer(i, j, nz - 2) : 0.0,
-                                   0.5 * g.dz(nz - 1), nz > 1 ? g.zc(nz - 1) - g.zc(nz - 2) : 0.0);
+    if (k == -1)
+      return side_value(rule(Side::front, i, j, k), in_layer(i, j, 0), nz > 1 ? in_layer(i, j, 1) : 0.0, 0.5 * g.dz(0),
+                        nz > 1 ? g.zc(1) - g.zc(0) : 0.0);
+    if (k == nz)
+      return side_value(rule(Side::back, i, j, k), in_layer(i, j, nz - 1), nz > 1 ? in_layer(i, j, nz - 2) : 0.0,
+                        0.5 * g.dz(nz - 1), nz > 1 ? g.zc(nz - 1) - g.zc(nz - 2) : 0.0);
     return in_layer(i, j, k);
   };
   const int i0 = a - 1, j0 = b - 1;  // node index n is cell n - 1

@@ -25,8 +25,8 @@ struct SideRule {
 using SideRules = std::array<SideRule, 6>;  // indexed by Side (a planar mesh reads the first four)
 
 // The rules for velocity component `axis` (0 = x, 1 = y, 2 = z) on the sides of a mesh of `dimension`:
-// a wall's velocity on a wall (normal part zero), an inlet's over its opening, zero normal velocity and a free tangential one on a
-// slip side, a zero gradient at an atmosphere.
+// a wall's velocity on a wall (normal part zero), an inlet's over its opening, zero normal velocity and a
+// free tangential one on a slip side, a zero gradient at an atmosphere.
 SideRules velocity_side_rules(const BoundarySet& boundaries, int axis, int dimension);
 // The rules for the pressure: the last two cells' line continued on every side.
 SideRules pressure_side_rules();

@@ -86,9 +86,9 @@ inline bool opens_in_part(const BoundaryCondition& bc) {
 }
 
 // The share of the face that the side's cell (or ghost) i, j, k has on the side which lies in a span
-// ([low, high] along each axis across the side), or in an inlet's opening: by length across the side, by r dr along an axisymmetric mesh's radius (so that
-// the share times the face's area is the open area). 1 on any other side and on an inlet open over
-// the whole side.
+// ([low, high] along each axis across the side), or in an inlet's opening: by length across the side,
+// by r dr along an axisymmetric mesh's radius (so that the share times the face's area is the open
+// area). 1 on any other side and on an inlet open over the whole side.
 inline double span_share(const std::array<std::array<double, 2>, 3>& span, const Grid& grid, Side side, int i, int j,
                          int k) {
   const int at[3] = {i, j, k};

@@ -83,7 +83,8 @@ std::string check_blocked_cells(const Grid& g, const CaseConfig& config, const s
           for (Side s : sides_of_dimension(g.dimension())) {  // an inlet's flow would enter the obstacle
             const int at[3] = {i, j, k}, n[3] = {nx, ny, nz};
             const int axis = normal_axis(s);
-            if (at[axis] == (is_low_side(s) ? 0 : n[axis] - 1) && lets_in(boundary(config.flow.boundaries, s), g, s, i, j, k))
+            const bool on_side = at[axis] == (is_low_side(s) ? 0 : n[axis] - 1);
+            if (on_side && lets_in(boundary(config.flow.boundaries, s), g, s, i, j, k))
               return fmt::format("obstacle: the cell at {} is blocked against the inlet on the {} side, whose flow "
                                  "would enter it; keep the obstacles off the inlet's side",
                                  where(i, j, k), side_name(s));

@@ -343,7 +343,8 @@ SoilFed run_slot(const std::string& span, bool axisymmetric) {
   replace("north = { type = \"atmosphere\" }", "north = { type = \"inlet\", velocity = [0.0, -0.2], soil_fraction "
                                                "= 1.0, span_x = " + span + " }");
   const size_t west = text.find("west = {");
-  text.replace(west, text.find('}', west) + 1 - west, axisymmetric ? "west = { type = \"axis\" }" : "west = { type = \"wall\" }");
+  text.replace(west, text.find('}', west) + 1 - west,
+               axisymmetric ? "west = { type = \"axis\" }" : "west = { type = \"wall\" }");
   if (axisymmetric) replace("[mesh]", "[mesh]\ngeometry = \"axisymmetric\"");
   return run_soil_inlet(text, false);
 }

@@ -280,7 +280,8 @@ TEST(CaseFile, AnInletOpensOverItsSpan) {
                                             "0.1875]}"}));
   const Grid r(PETSC_COMM_SELF, hole.mesh);
   const BoundaryCondition& north = boundary(hole.flow.boundaries, Side::north);
-  EXPECT_DOUBLE_EQ(open_share(north, r, Side::north, 1, 7, 0), (0.1875 * 0.1875 - 0.125 * 0.125) / (0.25 * 0.25 - 0.125 * 0.125));
+  EXPECT_DOUBLE_EQ(open_share(north, r, Side::north, 1, 7, 0),
+                   (0.1875 * 0.1875 - 0.125 * 0.125) / (0.25 * 0.25 - 0.125 * 0.125));
   EXPECT_EQ(open_share(north, r, Side::north, 0, 7, 0), 1.0);
 }
 
