@@ -749,6 +749,11 @@ BoundarySet read_boundaries(TableReader& top, const GridSpec& mesh, std::vector<
                                     "along {}", side_name(s), "xyz"[across], span[0], span[1], mesh.lower[across],
                                     mesh.upper[across], "xyz"[across]));
     }
+    if (carries_soil(bc) && !(bc.inflow_span[1][0] < mesh.lower[1] + bc.inflow_soil_depth))
+      throw CaseError(fmt::format("boundary.{}.span_y: the opening starts at y = {}, above the soil's depth (up to y = "
+                                  "{}), so the inlet would let in air only; lower the opening, deepen soil_depth, or "
+                                  "leave soil_fraction out", side_name(s), bc.inflow_span[1][0],
+                                  mesh.lower[1] + bc.inflow_soil_depth));
     if (axis == 1 && std::isfinite(bc.inflow_soil_depth))
       throw CaseError(fmt::format("boundary.{}.soil_depth: the depth is measured up from the bottom along y, so it "
                                   "applies to inlets on the west, east, front or back sides; on the {} side the "

@@ -88,10 +88,17 @@ inline bool opens_in_part(const BoundaryCondition& bc) {
 // The share of the face that the side's cell (or ghost) i, j, k has on the side which lies in a span
 // ([low, high] along each axis across the side), or in an inlet's opening: by length across the side,
 // by r dr along an axisymmetric mesh's radius (so that the share times the face's area is the open
-// area). 1 on any other side and on an inlet open over the whole side.
+// area). 1 on any other side and on an inlet open over the whole side. A ghost beyond an edge of the
+// side takes the share of the side's cell it lies beside (across a periodic join, the cell it stands
+// for), so that an opening to the end of the side is open there whatever end it is given.
 inline double span_share(const std::array<std::array<double, 2>, 3>& span, const Grid& grid, Side side, int i, int j,
                          int k) {
-  const int at[3] = {i, j, k};
+  const int n[3] = {grid.nx(), grid.ny(), grid.nz()};
+  int at[3] = {i, j, k};
+  for (int axis = 0; axis < 3; ++axis) {
+    if (axis == 0 && grid.periodic_x()) at[axis] = (at[axis] % n[axis] + n[axis]) % n[axis];
+    at[axis] = std::clamp(at[axis], 0, n[axis] - 1);
+  }
   double share = 1.0;
   for (int axis = 0; axis < grid.dimension(); ++axis) {
     if (axis == normal_axis(side)) continue;

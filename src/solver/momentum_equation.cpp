@@ -141,7 +141,9 @@ void FlowSolver::assemble_momentum(double dt) {
                        : rhoP * (-fg.sign * on_face(face_vel.view, i, j, k, fg) * area);
               if (inflow > 0.0) {
                 diag += inflow;
-                for (int c = 0; c < dim; ++c) src[c] += inflow * wall[c];
+                // at the inlet's own velocity: on a face its opening cuts, the inflow (its open share)
+                // enters at v_in over the open part, not at the face's mean
+                for (int c = 0; c < dim; ++c) src[c] += inflow * bc.velocity[c];
               }
             }
             continue;

@@ -283,6 +283,10 @@ TEST(CaseFile, AnInletOpensOverItsSpan) {
   EXPECT_DOUBLE_EQ(open_share(north, r, Side::north, 1, 7, 0),
                    (0.1875 * 0.1875 - 0.125 * 0.125) / (0.25 * 0.25 - 0.125 * 0.125));
   EXPECT_EQ(open_share(north, r, Side::north, 0, 7, 0), 1.0);
+  // A ghost beyond an end of the side takes the share of the side's cell beside it.
+  EXPECT_EQ(open_share(north, r, Side::north, -1, 8, 0), 1.0);
+  EXPECT_EQ(open_share(north, r, Side::north, 8, 8, 0), 0.0);
+  EXPECT_EQ(open_share(west, g, Side::west, -1, 8, 0), 0.0);
 }
 
 TEST(CaseFile, AnInletRefusesWhatItCannotBe) {
@@ -322,6 +326,10 @@ TEST(CaseFile, AnInletRefusesWhatItCannotBe) {
   const std::string beyond = error_with("{type = \"inlet\", velocity = [1.0, 0.0], span_y = [1.5, 2.0]}");
   EXPECT_NE(beyond.find("boundary.west.span_y: [1.5, 2] lies outside the side, which runs from 0 to 1 along y"),
             std::string::npos) << beyond;
+  const std::string airy = error_with("{type = \"inlet\", velocity = [1.0, 0.0], soil_fraction = 1.0, soil_depth = 0.2, "
+                                      "span_y = [0.25, 0.5]}");
+  EXPECT_NE(airy.find("boundary.west.span_y: the opening starts at y = 0.25, above the soil's depth (up to y = 0.2)"),
+            std::string::npos) << airy;
   const std::string planar = error_with("{type = \"inlet\", velocity = [1.0, 0.0], span_z = [0.0, 0.5]}");
   EXPECT_NE(planar.find("boundary.west.span_z: a planar mesh has no z"), std::string::npos) << planar;
   const std::string stray = error_with("{type = \"inlet\", velocity = [1.0, 0.0], pressure = 3.0}");
