@@ -326,8 +326,8 @@ TEST(CaseFile, AnInletRefusesWhatItCannotBe) {
   const std::string beyond = error_with("{type = \"inlet\", velocity = [1.0, 0.0], span_y = [1.5, 2.0]}");
   EXPECT_NE(beyond.find("boundary.west.span_y: [1.5, 2] lies outside the side, which runs from 0 to 1 along y"),
             std::string::npos) << beyond;
-  const std::string airy = error_with("{type = \"inlet\", velocity = [1.0, 0.0], soil_fraction = 1.0, soil_depth = 0.2, "
-                                      "span_y = [0.25, 0.5]}");
+  const std::string airy = error_with(
+      "{type = \"inlet\", velocity = [1.0, 0.0], soil_fraction = 1.0, soil_depth = 0.2, span_y = [0.25, 0.5]}");
   EXPECT_NE(airy.find("boundary.west.span_y: the opening starts at y = 0.25, above the soil's depth (up to y = 0.2)"),
             std::string::npos) << airy;
   const std::string planar = error_with("{type = \"inlet\", velocity = [1.0, 0.0], span_z = [0.0, 0.5]}");
