@@ -311,6 +311,16 @@ TEST(Inlet, ARunDoesNotStopAtRestBeforeItsScheduleEnds) {
   EXPECT_NEAR(volume / exact, 1.0, 1e-12);
 }
 
+// The soil let in is `exact` to round-off, the history's outflow minus it, and c stays within [0, 1].
+void expect_let_in(const SoilFed& fed, double exact) {
+  EXPECT_NEAR(fed.volume / exact, 1.0, 1e-12);
+  EXPECT_NEAR(fed.outflow / exact, -1.0, 1e-12);
+  if (test::is_root()) {
+    EXPECT_GE(fed.lowest_c, -1e-12);
+    EXPECT_LE(fed.highest_c, 1.0 + 1e-12);
+  }
+}
+
 // Soil fed through the west side between span_y[0] and the soil depth, air above it up to span_y[1]: U
 // (d - y0) t. The opening's low end cuts a cell and the depth another, or both cut one face.
 TEST(Inlet, SoilFedThroughPartOfASideFillsAtItsRate) {
@@ -322,13 +332,8 @@ TEST(Inlet, SoilFedThroughPartOfASideFillsAtItsRate) {
     std::printf("soil let in through part of the side: %.15g and %.15g m^2 against %.15g and %.15g; c in [%.2g, "
                 "1 + %.2g]\n", apart.volume, one_face.volume, exact_apart, exact_one_face, apart.lowest_c,
                 apart.highest_c - 1.0);
-  EXPECT_NEAR(apart.volume / exact_apart, 1.0, 1e-12);
-  EXPECT_NEAR(apart.outflow / exact_apart, -1.0, 1e-12);
-  EXPECT_NEAR(one_face.volume / exact_one_face, 1.0, 1e-12);
-  if (test::is_root()) {
-    EXPECT_GE(apart.lowest_c, -1e-12);
-    EXPECT_LE(apart.highest_c, 1.0 + 1e-12);
-  }
+  expect_let_in(apart, exact_apart);
+  expect_let_in(one_face, exact_one_face);
 }
 
 // Soil poured at 0.2 m/s through a slot in the top (a wall elsewhere) onto the floor 5 cm below, the air
@@ -358,13 +363,8 @@ TEST(Inlet, SoilPouredThroughASlotInTheTopFillsAtItsRate) {
     std::printf("soil poured through a slot: %.15g m^2 against %.15g; through a hole about the axis %.15g m^3/rad "
                 "against %.15g; c in [%.2g, 1 + %.2g]\n", slot.volume, exact_slot, hole.volume, exact_hole,
                 slot.lowest_c, slot.highest_c - 1.0);
-  EXPECT_NEAR(slot.volume / exact_slot, 1.0, 1e-12);
-  EXPECT_NEAR(slot.outflow / exact_slot, -1.0, 1e-12);
-  EXPECT_NEAR(hole.volume / exact_hole, 1.0, 1e-12);
-  if (test::is_root()) {
-    EXPECT_GE(slot.lowest_c, -1e-12);
-    EXPECT_LE(slot.highest_c, 1.0 + 1e-12);
-  }
+  expect_let_in(slot, exact_slot);
+  expect_let_in(hole, exact_hole);
 }
 
 // On a mesh of layers 2 cm deep: soil from 2.5 mm to the depth of 1 cm, in the front 1.25 cm.
@@ -376,8 +376,7 @@ TEST(Inlet, SoilFedThroughPartOfASideOfAMeshOfLayersFillsAtItsRate) {
   if (test::is_root())
     std::printf("soil let in through part of a side of a mesh of layers: %.15g m^3 against %.15g\n", fed.volume,
                 exact);
-  EXPECT_NEAR(fed.volume / exact, 1.0, 1e-12);
-  EXPECT_NEAR(fed.outflow / exact, -1.0, 1e-12);
+  expect_let_in(fed, exact);
 }
 
 TEST(Inlet, ASoilMaterialFedAloneFillsItsShare) {
