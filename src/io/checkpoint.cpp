@@ -437,8 +437,8 @@ void write_run(const std::filesystem::path& path, const RunCheckpoint& r, std::u
   for (const auto& [t, f] : r.series) fmt::format_to(out, "{:a} {}\n", t, f);
   fmt::format_to(out, "history {}\n", r.history.size());
   for (const auto& row : r.history) fmt::format_to(out, "{}\n", row);
-  fmt::format_to(out, "domain {}\nsteps {}\nphysics {}\nfields {}\nboundaries {}\n", r.domain, r.steps, r.physics,
-                 r.fields, r.boundaries);
+  fmt::format_to(out, "domain {}\nsteps {}\nphysics {}\nfields {}\nboundaries {}\nboundary_work {:a}\n", r.domain,
+                 r.steps, r.physics, r.fields, r.boundaries, r.boundary_work);
   const std::string_view body(text.data(), text.size());
   write_file_atomically(path, [&](std::ostream& file) {
     file << body;
@@ -523,6 +523,12 @@ RunCheckpoint read_run(const std::filesystem::path& path, std::optional<std::uin
     else if (name == "physics") r.physics = text;
     else if (name == "fields") r.fields = text;
     else if (name == "boundaries") r.boundaries = text;
+    else if (name == "boundary_work") {
+      r.boundary_work = hex_double(text);
+      if (!std::isfinite(r.boundary_work))
+        throw CheckpointError(
+            fmt::format("{}: '{}' is not the energy brought in through the sides", path.string(), text));
+    }
   }
   if (!text_matches)
     throw CheckpointError(fmt::format("{} does not match its checksum (altered after it was written)", path.string()));
@@ -648,15 +654,16 @@ RunCheckpoint read_checkpoint(MPI_Comm comm, const std::filesystem::path& dir, c
   if (recorded[0] && recorded[1] != checksum)
     agree(comm, fmt::format("the checkpoint is damaged: {} does not match the checksum in run.txt (altered after it was "
                             "written, or of another checkpoint)", (from / fields_file).string()));
-  double clock[6] = {run.time, run.next_dt, double(run.output_index), run.dissipated_energy, run.initial_soil_volume,
-                     double(run.steps)};
-  MPI_Bcast(clock, 6, MPI_DOUBLE, 0, comm);
+  double clock[7] = {run.time, run.next_dt, double(run.output_index), run.dissipated_energy, run.initial_soil_volume,
+                     double(run.steps), run.boundary_work};
+  MPI_Bcast(clock, 7, MPI_DOUBLE, 0, comm);
   run.time = clock[0];
   run.next_dt = clock[1];
   run.output_index = int(clock[2]);
   run.dissipated_energy = clock[3];
   run.initial_soil_volume = clock[4];
   run.steps = long(clock[5]);
+  run.boundary_work = clock[6];
   return run;
 }
 

@@ -37,6 +37,7 @@ struct RunCheckpoint {
   std::string physics; // the materials and gravity, as Simulation describes them ("" in older checkpoints)
   std::string fields;  // the fields' names in the order written ("" in older checkpoints)
   std::string boundaries;  // the sides' conditions, as Simulation describes them ("" in older checkpoints)
+  double boundary_work = 0.0;  // the energy brought in through the sides so far (0 in older checkpoints)
 };
 
 // The numbers a checkpoint holds besides the fields: `shared` are the same on every rank (a step

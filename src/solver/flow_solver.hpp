@@ -149,9 +149,12 @@ class FlowSolver {
   // Force of the flow on the obstacles, all together (N/m), as on a static no-slip wall. Collective.
   std::array<double, 3> obstacle_force() const;
   // Both at once, in one pass over the faces and one reduction (the history's, every step).
+  // And the work the sides' forces do on the flow per unit time, W per metre of depth (W on a mesh of
+  // layers): a moving wall's and an inlet's, and an atmosphere's pressure on what crosses it.
   struct WallForces {
     std::array<std::array<double, 3>, 6> sides;
     std::array<double, 3> obstacle;
+    double power = 0.0;
   };
   WallForces wall_forces() const;
 

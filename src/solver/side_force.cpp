@@ -26,6 +26,9 @@ namespace granflow {
 //     of the viscous stress; the momentum carried through the side is not a force on it.
 //   - On an obstacle (mesh/obstacles.hpp): each face between an open and a blocked cell, as a
 //     static no-slip wall.
+// The work the sides do on the flow per unit time is minus each face's force times the velocity on
+// the face: a wall's or an inlet's own (held_velocity), at an atmosphere the face's normal velocity
+// and the cell's tangential one. A static wall does none, an obstacle's included.
 FlowSolver::WallForces FlowSolver::wall_forces() const {
   const auto& b = grid_.owned();
   const int dim = dimension_;
@@ -36,8 +39,8 @@ FlowSolver::WallForces FlowSolver::wall_forces() const {
   const VolumeView p = p_array.volume(), rho = rho_array.volume();
   const AxisViews vel(grid_, vel_), face_mu(grid_, face_mu_), face_vel(grid_, face_);
 
-  // (x, y, z) per side, in the order of Side, then the obstacles'.
-  std::array<double, 21> force{};
+  // (x, y, z) per side, in the order of Side, then the obstacles', then the sides' power.
+  std::array<double, 22> force{};
   const BlockedView mask(grid_, blocked_);
   // The face of cell (i, j, k) on its side s, into f.
   auto add_face = [&](Side s, int i, int j, int k, const BoundaryCondition& bc, double* f) {
@@ -75,6 +78,21 @@ FlowSolver::WallForces FlowSolver::wall_forces() const {
       f[c] += stress_factor * mu * area * two_point + (c == axis ? stress_factor : 1.0) * mu * area * (gradient - two_point);
     }
   };
+  // The face of cell (i, j, k) on side s, into the side's force, and its work rate into the power.
+  double& power = force[21];
+  auto add_side_face = [&](Side s, int i, int j, int k) {
+    const auto& bc = boundary(settings_.boundaries, s);
+    double* f = &force[3 * static_cast<int>(s)];
+    const double before[3] = {f[0], f[1], f[2]};
+    add_face(s, i, j, k, bc, f);
+    if (is_blocked(mask.data(), i, j, k)) return;
+    std::array<double, 3> on_side = held_velocity(bc, grid_, s, i, j, k);
+    if (bc.kind == BoundaryKind::atmosphere) {
+      for (int c = 0; c < dim; ++c) on_side[c] = vel.view[c][k][j][i];
+      on_side[normal_axis(s)] = on_face(face_vel.view, i, j, k, face_on(s));
+    }
+    for (int c = 0; c < dim; ++c) power -= (f[c] - before[c]) * on_side[c];
+  };
   // Each side's faces this rank holds, in the planar order of rows (west and east by row j, then south
   // and north by column i), layer by layer.
   const int n[3] = {grid_.nx(), grid_.ny(), grid_.nz()};
@@ -82,17 +100,17 @@ FlowSolver::WallForces FlowSolver::wall_forces() const {
     for (int j = b.ys; j < b.ye(); ++j)
       for (Side s : {Side::west, Side::east})
         if (grid_.owns_boundary(s))
-          add_face(s, s == Side::west ? 0 : n[0] - 1, j, k, boundary(settings_.boundaries, s), &force[3 * static_cast<int>(s)]);
+          add_side_face(s, s == Side::west ? 0 : n[0] - 1, j, k);
     for (int i = b.xs; i < b.xe(); ++i)
       for (Side s : {Side::south, Side::north})
         if (grid_.owns_boundary(s))
-          add_face(s, i, s == Side::south ? 0 : n[1] - 1, k, boundary(settings_.boundaries, s), &force[3 * static_cast<int>(s)]);
+          add_side_face(s, i, s == Side::south ? 0 : n[1] - 1, k);
   }
   for (Side s : {Side::front, Side::back})
     if (grid_.owns_boundary(s))
       for (int j = b.ys; j < b.ye(); ++j)
         for (int i = b.xs; i < b.xe(); ++i)
-          add_face(s, i, j, s == Side::front ? 0 : n[2] - 1, boundary(settings_.boundaries, s), &force[3 * static_cast<int>(s)]);
+          add_side_face(s, i, j, s == Side::front ? 0 : n[2] - 1);
   if (mask.data())
     for (int k = b.zs; k < b.ze(); ++k)
       for (int j = b.ys; j < b.ye(); ++j)
@@ -103,6 +121,7 @@ FlowSolver::WallForces FlowSolver::wall_forces() const {
   WallForces out;
   for (int s = 0; s < 6; ++s) out.sides[s] = {force[3 * s], force[3 * s + 1], force[3 * s + 2]};
   out.obstacle = {force[18], force[19], force[20]};
+  out.power = force[21];
   return out;
 }
 

@@ -64,6 +64,9 @@ class Simulation {
   double time() const { return time_; }
   const StepReport& last_step() const { return last_step_; }  // the flow step last taken
   double dissipated_energy() const { return dissipated_energy_; }  // J per metre depth (or radian), so far
+  // The energy brought in through the sides so far, J per metre depth (or radian): the kinetic and
+  // potential energy carried in less that carried out, and the work of the sides' forces.
+  double boundary_work() const { return boundary_work_; }
 
   // Writes the field series entry and the line samples for the current state.
   void write_output();
@@ -116,6 +119,7 @@ class Simulation {
   std::unique_ptr<VtkSeries> series_;
   std::vector<std::string> history_;  // rows of history.csv, rewritten whole at each output
   double dissipated_energy_ = 0.0;
+  double boundary_work_ = 0.0;
   double soil_speed_ = 0.0;  // largest speed over the soil (c >= 0.5) at the end of the last step, as recorded
   double initial_soil_volume_ = 0.0;
   double time_ = 0.0;

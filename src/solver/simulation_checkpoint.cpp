@@ -133,7 +133,7 @@ std::string Simulation::boundaries() const {
 void Simulation::write_checkpoint(double next_dt) {
   if (out_.empty() || !config_.output.checkpoints) return;
   RunCheckpoint run{time_, next_dt, output_index_, dissipated_energy_, initial_soil_volume_, history_, {}, domain(), steps_, physics(),
-                    checkpoint_field_names(), boundaries()};
+                    checkpoint_field_names(), boundaries(), boundary_work_};
   if (series_) run.series = series_->entries();
   CheckpointScalars scalars{{flow_->last_dt()}, {}};
   if (soil_) {
@@ -186,19 +186,22 @@ void Simulation::restart() {
                        "case's\n", ours, run.boundaries);
   output_index_ = run.output_index;
   dissipated_energy_ = run.dissipated_energy;
+  boundary_work_ = run.boundary_work;
   initial_soil_volume_ = run.initial_soil_volume;
   history_ = std::move(run.history);
-  // A checkpoint's history written before the soil_speed column (the 13th) has one field fewer: the
-  // column is left empty there (NaN), so that each row stays under its header.
-  constexpr std::size_t fields_with_speed = 13;
+  // A checkpoint's history written before the soil_speed column (the 13th) or the boundary_work
+  // column (the 14th) has a field or two fewer: those columns are left empty there (NaN), so that each
+  // row stays under its header. (Its boundary_work goes on from 0.)
+  constexpr std::size_t base_fields = 14;
+  const bool layers = grid_->dimension() == 3;
+  const std::size_t expected = base_fields + (layers ? 18 : 8) + (blocked_ ? (layers ? 3 : 2) : 0);
   for (auto& row : history_) {
     const std::size_t fields = 1 + std::count(row.begin(), row.end(), ',');
-    const std::size_t expected = fields_with_speed + 2 * planar_sides.size() + (blocked_ ? 2 : 0);
-    if (fields + 1 == expected) {
-      std::size_t at = 0;
-      for (std::size_t k = 0; k + 1 < fields_with_speed; ++k) at = row.find(',', at) + 1;
-      row.insert(at, "nan,");
-    }
+    if (fields + 2 != expected && fields + 1 != expected) continue;
+    const bool without_speed = fields + 2 == expected;
+    std::size_t at = 0;
+    for (std::size_t k = 0; k < (without_speed ? 12 : 13); ++k) at = row.find(',', at) + 1;
+    row.insert(at, without_speed ? "nan,nan," : "nan,");
   }
   if (series_) series_->restore_entries(std::move(run.series));
   if (soil_) soil_->refresh(*flow_);

@@ -241,7 +241,8 @@ void Simulation::record_history(double dt) {
   dissipated_energy_ += b.dissipation_rate * dt;
   soil_->accumulate_lode_energy(dt);
   const auto c = gather_to_root(*grid_, soil_->soil_fraction());
-  const auto [force, obstacle] = flow_->wall_forces();
+  const auto [force, obstacle, side_power] = flow_->wall_forces();
+  boundary_work_ += (b.convected_energy_rate + side_power) * dt;
   soil_speed_ = soil_->largest_speed(*flow_);  // what time.rest_speed reads, once per step
   if (rank_ != 0) return;
   const PileShape shape = pile_shape(*grid_, c, wall_column_);
@@ -249,10 +250,12 @@ void Simulation::record_history(double dt) {
   const auto planes = planes_of(*grid_, c);
   for (size_t k = 0; k < planes.size(); ++k)
     toe_contour = std::max(toe_contour, toe_of(iso_line(*grid_, planes[k], 0.5, open_square(int(k)))));
-  std::string row = fmt::format("{:.12g},{:.12g},{:.15g},{:.15g},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g},{:.12g},{:.15g},{:.6g}",
-                                time_, dt, b.soil_volume, b.air_volume, b.kinetic_energy, b.potential_energy,
-                                dissipated_energy_, toe_contour, shape.toe_thickness, shape.wall_height, b.mixture_mass,
-                                b.soil_outflow, soil_speed_);
+  std::string row =
+      fmt::format("{:.12g},{:.12g},{:.15g},{:.15g},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g},{:.12g},{:.15g},{:.6g},"
+                  "{:.9g}",
+                  time_, dt, b.soil_volume, b.air_volume, b.kinetic_energy, b.potential_energy, dissipated_energy_,
+                  toe_contour, shape.toe_thickness, shape.wall_height, b.mixture_mass, b.soil_outflow, soil_speed_,
+                  boundary_work_);
   // (x, y) on the four sides of a planar mesh, (x, y, z) on the six of a mesh of layers.
   if (grid_->dimension() == 2)
     for (Side side : planar_sides) row += fmt::format(",{:.12g},{:.12g}", force[int(side)][0], force[int(side)][1]);
@@ -267,7 +270,7 @@ void Simulation::write_history() const {
   if (rank_ != 0) return;
   write_file_atomically(out_ / "history.csv", [&](std::ostream& out) {
     fmt::print(out, "time,dt,soil_volume,air_volume,kinetic_energy,potential_energy,dissipated_energy,"
-                    "toe_contour,toe_one_cell,wall_height,mixture_mass,soil_outflow,soil_speed");
+                    "toe_contour,toe_one_cell,wall_height,mixture_mass,soil_outflow,soil_speed,boundary_work");
     if (grid_->dimension() == 2)
       for (Side side : planar_sides) fmt::print(out, ",force_{0}_x,force_{0}_y", side_name(side));
     else

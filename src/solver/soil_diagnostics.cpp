@@ -8,6 +8,7 @@
 #include <numbers>
 #include <optional>
 
+#include "mesh/axis_views.hpp"
 #include "mesh/gather.hpp"
 #include "mesh/largest.hpp"
 #include "mesh/obstacles.hpp"
@@ -265,7 +266,7 @@ SoilBudget SoilPhase::budget(const FlowSolver& flow) {
   ConstFieldArray u = local_read(grid_, flow.velocity(0)), v = local_read(grid_, flow.velocity(1));
   ConstFieldArray rho(grid_.field_dm(), flow.density().global());
   const auto m = share_arrays(false);
-  double s[7] = {0, 0, 0, 0, compute_dissipation(flow), 0, outflow_};
+  double s[8] = {0, 0, 0, 0, compute_dissipation(flow), 0, outflow_, convected_energy_rate(flow)};
   const BlockedView mask(grid_, blocked_);
   // Periodic sides: the weight along x is the soil's in excess of the air's, (rho_s - rho_a) c g_x (the
   // air's own is carried by the mean pressure gradient, FlowSettings::periodic_ambient_density), and
@@ -287,9 +288,58 @@ SoilBudget SoilPhase::budget(const FlowSolver& flow) {
         s[3] -= phase_density * (g[0] * grid_.xc(i) + g[1] * grid_.yc(j)) * V;
       s[5] += rho[j][i] * V;
     }
-  double t[7];
-  MPI_Allreduce(s, t, 7, MPI_DOUBLE, MPI_SUM, grid_.comm());
-  return {t[0], t[1], t[2], t[3], t[4], t[5], t[6]};
+  double t[8];
+  MPI_Allreduce(s, t, 8, MPI_DOUBLE, MPI_SUM, grid_.comm());
+  return {t[0], t[1], t[2], t[3], t[4], t[5], t[6], t[7]};
+}
+
+// The kinetic and potential energy carried in through the sides per unit time, each face's outward
+// velocity v_n (the one the sweeps carry) times minus the energy density upwind of it: of the cell
+// where the flow leaves; where it enters, of what enters (the ghost's c and soil, at an inlet's
+// velocity or, through an open side, the cell's). The potential energy is the budget's, of the face's
+// centre (along a periodic strip the soil's weight in excess of the air's). Periodic joins, walls and
+// obstacles carry none.
+double SoilPhase::convected_energy_rate(const FlowSolver& flow) const {
+  const auto& b = grid_.owned();
+  const int dim = grid_.dimension();
+  const auto& g = flow_settings_.gravity;
+  const double rho_a = settings_.air_density;
+  const ConstFieldArray c_array(grid_.field_dm(), c_->local());  // ghosted: what comes in
+  const VolumeView c = c_array.volume();
+  const AxisViews vel(grid_, [&](int a) -> const Field& { return flow.velocity(a); });
+  const AxisViews face_vel(grid_, [&](int a) -> const Field& { return flow.face_velocity(a); });
+  const auto m = share_arrays(true);
+  const BlockedView mask(grid_, blocked_);
+  const bool periodic = grid_.periodic_x();
+  double rate = 0.0;
+  for (int k = b.zs; k < b.ze(); ++k)
+    for (int j = b.ys; j < b.ye(); ++j)
+      for (int i = b.xs; i < b.xe(); ++i) {
+        if (is_blocked(mask.data(), i, j, k)) continue;
+        for (const FaceGeometry& fg : cell_faces(dim)) {
+          const int in = i + fg.di, jn = j + fg.dj, kn = k + fg.dk;
+          if (!grid_.outside(in, jn, kn)) continue;
+          const BoundaryCondition& bc = boundary(flow_settings_.boundaries, fg.side);
+          if (bc.kind != BoundaryKind::atmosphere && bc.kind != BoundaryKind::inlet) continue;
+          const double outward = fg.sign * on_face(face_vel.view, i, j, k, fg);
+          if (outward == 0.0) continue;
+          const bool leaving = outward > 0.0;
+          const int iu = leaving ? i : in, ju = leaving ? j : jn, ku = leaving ? k : kn;
+          const double cu = c[ku][ju][iu];
+          const double density = cell_soil_density(m, iu, ju, ku) * cu + rho_a * (1.0 - cu);
+          double speed2 = 0.0;
+          for (int a = 0; a < dim; ++a) {
+            const double v = !leaving && bc.kind == BoundaryKind::inlet ? bc.velocity[a] : vel.view[a][k][j][i];
+            speed2 += v * v;
+          }
+          double x[3] = {grid_.xc(i), grid_.yc(j), dim == 3 ? grid_.zc(k) : 0.0};
+          x[fg.axis] += 0.5 * fg.sign * grid_.width(fg.axis, index_along(fg.axis, i, j, k));
+          const double potential = periodic ? -((density - rho_a) * g[0] * x[0] + density * (g[1] * x[1] + g[2] * x[2]))
+                                            : -density * (g[0] * x[0] + g[1] * x[1] + g[2] * x[2]);
+          rate -= (0.5 * density * speed2 + potential) * outward * grid_.face_area(fg.axis, i, j, k, fg.sign);
+        }
+      }
+  return rate;
 }
 
 }  // namespace granflow

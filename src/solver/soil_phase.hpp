@@ -31,6 +31,9 @@ struct SoilBudget {
   double dissipation_rate = 0;                      // W per metre depth, int 2 mu D:D dV
   double mixture_mass = 0;                          // kg per metre depth, int rho dV of the mixture
   double soil_outflow = 0;                          // soil volume carried out through open sides so far
+  // W per metre depth: the kinetic and potential energy the flow carries in through the sides per
+  // unit time (out: negative), with the phases' masses, as the energies above take them
+  double convected_energy_rate = 0;
 };
 
 class SoilPhase {
@@ -140,6 +143,7 @@ class SoilPhase {
   // The domain's cells for the sweeps: the ghosts beyond a boundary are boundary ghosts.
   interface::DomainCells domain_cells() const { return {grid_.nx(), grid_.ny(), grid_.periodic_x()}; }
   double compute_dissipation(const FlowSolver& flow);
+  double convected_energy_rate(const FlowSolver& flow) const;  // this rank's share (SoilBudget)
   double mixture_viscosity(double c, double pressure, const rheology::StrainRate& rate,
                            const double* shares = nullptr) const;
   // ... on the face of a wall normal to `wall_axis`, the soil's shear against it read from wall_rate.

@@ -531,7 +531,7 @@ SoilBudget SoilPhase::budget_3d(const FlowSolver& flow) {
   const auto m = share_arrays(false);
   const VolumeView c = c_array.volume(), rho = rho_array.volume();
   const AxisViews vel(grid_, [&](int a) -> const Field& { return flow.velocity(a); });
-  double s[7] = {0, 0, 0, 0, compute_dissipation_3d(flow), 0, outflow_};
+  double s[8] = {0, 0, 0, 0, compute_dissipation_3d(flow), 0, outflow_, convected_energy_rate(flow)};
   const BlockedView mask(grid_, blocked_);
   // A periodic strip's potential energy as in 2D (soil_diagnostics.cpp): the soil's weight along x in
   // excess of the air's, its first moment run on through the join.
@@ -555,9 +555,9 @@ SoilBudget SoilPhase::budget_3d(const FlowSolver& flow) {
           s[3] -= phase_density * (g[0] * grid_.xc(i) + g[1] * grid_.yc(j) + g[2] * grid_.zc(k)) * V;
         s[5] += rho[k][j][i] * V;
       }
-  double t[7];
-  MPI_Allreduce(s, t, 7, MPI_DOUBLE, MPI_SUM, grid_.comm());
-  return {t[0], t[1], t[2], t[3], t[4], t[5], t[6]};
+  double t[8];
+  MPI_Allreduce(s, t, 8, MPI_DOUBLE, MPI_SUM, grid_.comm());
+  return {t[0], t[1], t[2], t[3], t[4], t[5], t[6], t[7]};
 }
 
 }  // namespace granflow

@@ -5,7 +5,10 @@
 // continuum of constant friction. Measured on the shipped 2.5 mm cells to t = 1.5 s
 // (scripts/compare_silo.py, docs/validation.md): the soil's Q within 1.9 % as the fill falls from
 // 0.28 to 0.13 m, Q ~ h^0.01; water's Q ~ h^0.49. Here 5 mm cells to t = 0.8 s: the soil's Q ~ h^0.046,
-// water's h^0.49, and Q ~ L^1.46 between slots of 4 and 8 cm.
+// water's h^0.49, and Q ~ L^1.46 between slots of 4 and 8 cm. And the energy budget of the open silo:
+// over [0.2, 0.8] s the kinetic, potential and dissipated energy gained is what the sides brought in
+// (history's boundary_work: the energy the outflow carries out), to a share of the potential energy
+// released.
 #include <gtest/gtest.h>
 #include <fmt/format.h>
 
@@ -31,6 +34,9 @@ struct Discharge {
 
 struct SiloRun {
   Discharge early, late;  // over [0.2, 0.5] s and [0.5, 0.8] s
+  // (kinetic + potential + dissipated energy gained - brought in) / potential energy released, and the
+  // share of that released which the outflow carries out, over [0.2, 0.8] s
+  double energy_residual = 0.0, carried_out = 0.0;
 };
 
 SiloRun run_silo(const std::string& case_file, double half_slot) {
@@ -49,7 +55,13 @@ SiloRun run_silo(const std::string& case_file, double half_slot) {
       return Discharge{2.0 * (test::interp(t, outflow, t1) - test::interp(t, outflow, t0)) / (t1 - t0),
                        0.5 * (test::interp(t, volume, t0) + test::interp(t, volume, t1)) / silo_half_width};
     };
-    r = SiloRun{window(0.2, 0.5), window(0.5, 0.8)};
+    auto change = [&](const char* column) {
+      return test::interp(t, h.at(column), 0.8) - test::interp(t, h.at(column), 0.2);
+    };
+    const double released = -change("potential_energy");
+    r = SiloRun{window(0.2, 0.5), window(0.5, 0.8),
+                (change("kinetic_energy") + change("dissipated_energy") - change("boundary_work")) / released - 1.0,
+                -change("boundary_work") / released};
   }
   test::remove_scratch(out);
   return r;
@@ -73,6 +85,17 @@ TEST(SiloDischarge, SoilDrainsAtARateOfItsSlotAloneAndWaterAsTheHeightLeft) {
                 r->early.fill, r->late.rate, r->late.fill, fill_exponent(*r));
   std::printf("soil: Q ~ L^%.3f between L = 4 and 8 cm (Beverloo 1.5); Q / (g^0.5 L^1.5) = %.3f\n", slot_exponent,
               soil.early.rate / (std::sqrt(g) * std::pow(0.04, 1.5)));
+  for (const auto& [name, r] : {std::pair{"soil, L = 4 cm", &soil}, std::pair{"water, L = 4 cm", &water}})
+    std::printf("%s: of the potential energy released over t = 0.2-0.8 s the outflow carried out %.4f; budget "
+                "residual %+.2e\n", name, r->carried_out, r->energy_residual);
+  // The soil dissipates most of what it releases, and its budget closes (measured -0.15 %). Water's
+  // jet carries most of it out; what the jet loses to the convection scheme on these 5 mm cells (4
+  // across the slot) is missing from its budget, -11 % here and -0.6 % on the shipped 2.5 mm cells;
+  // a budget with more than was released would be energy from nowhere.
+  EXPECT_LT(std::abs(soil.energy_residual), 0.02);
+  EXPECT_GT(water.carried_out, 0.8);
+  EXPECT_LT(water.energy_residual, 0.0);
+  EXPECT_GT(water.energy_residual, -0.15);
   // Each drained far enough that the two laws part: water's sqrt(h) alone would change Q by 4 % or more.
   for (const SiloRun* r : {&soil, &water}) EXPECT_LT(r->late.fill, 0.92 * r->early.fill);
   EXPECT_LT(std::abs(fill_exponent(soil)), 0.1);  // 0.046 here, 0.012 on 2.5 mm cells
