@@ -191,7 +191,9 @@ TEST(SoilPhase3d, UnderTheCoupledSolveMomentumMovesWithTheMassAsInThePlanarRun) 
 // The water column in a shorter channel whose east end is open (an atmosphere): the water leaves
 // through it. On 24 x 24 cells and on 24 x 24 x 3 with slip front and back, to t = 0.2 s: each layer
 // is the planar run (the open side's hydrostatic head taken per layer), the soil that left is the
-// planar run's, and the soil in the domain plus the soil that left is the initial soil to 1e-11.
+// planar run's, and the soil in the domain plus the soil that left is the initial soil to 1e-11. The
+// energy the outflow carries out per unit time, and the work of the sides' forces, are the planar run's
+// per metre.
 TEST(SoilPhase3d, WaterLeavesThroughAnOpenSideAsInThePlanarRun) {
   auto run = [](int layers) {
     GridSpec spec;
@@ -203,10 +205,11 @@ TEST(SoilPhase3d, WaterLeavesThroughAnOpenSideAsInThePlanarRun) {
     const double volume0 = r.soil.budget(r.flow).soil_volume;
     for (int step = 0; step < 100; ++step) r.step(2e-3);
     const SoilBudget b = r.soil.budget(r.flow);
-    const double depth = layers > 1 ? spec.upper[2] : 1.0;
+    const double depth = layers > 1 ? spec.upper[2] : 1.0, side_power = r.flow.wall_forces().power;
     return std::vector<std::vector<double>>{gather_to_all(r.grid, r.soil.soil_fraction()),
                                             {b.soil_outflow / volume0, (b.soil_volume + b.soil_outflow) / volume0 - 1.0,
-                                             b.kinetic_energy / depth}};
+                                             b.kinetic_energy / depth, b.convected_energy_rate / depth,
+                                             side_power / depth}};
   };
   const auto planar = run(1), layered = run(3);
   const size_t plane = planar[0].size();
@@ -221,6 +224,11 @@ TEST(SoilPhase3d, WaterLeavesThroughAnOpenSideAsInThePlanarRun) {
   EXPECT_LT(std::abs(layered[1][1]), 1e-11);  // to the pressure solve's divergence, as in the planar run
   EXPECT_LT(c_difference, 1e-6);
   EXPECT_NEAR(layered[1][2], planar[1][2], 1e-6 * planar[1][2]);
+  std::printf("  energy carried in %.6g W per metre (planar %.6g), work of the sides %.6g (planar %.6g)\n",
+              layered[1][3], planar[1][3], layered[1][4], planar[1][4]);
+  EXPECT_LT(planar[1][3], 0.0);  // carried out
+  EXPECT_NEAR(layered[1][3], planar[1][3], 1e-6 * std::abs(planar[1][3]));
+  EXPECT_NEAR(layered[1][4], planar[1][4], 1e-6 * std::abs(planar[1][3]));
 }
 
 // Lube et al.'s (2004) column of a = h0 / r0 = 1/2 (cases/lube2004_a05.toml: r0 = 0.2 m, sand at
