@@ -88,9 +88,9 @@ TEST(SiloDischarge, SoilDrainsAtARateOfItsSlotAloneAndWaterAsTheHeightLeft) {
   for (const auto& [name, r] : {std::pair{"soil, L = 4 cm", &soil}, std::pair{"water, L = 4 cm", &water}})
     std::printf("%s: of the potential energy released over t = 0.2-0.8 s the outflow carried out %.4f; budget "
                 "residual %+.2e\n", name, r->carried_out, r->energy_residual);
-  // The soil dissipates most of what it releases, and its budget closes (measured -0.15 %). Water's
+  // The soil dissipates most of what it releases, and its budget closes (measured -0.15 % here). Water's
   // jet carries most of it out; what the jet loses to the convection scheme on these 5 mm cells (4
-  // across the slot) is missing from its budget, -11 % here and -0.6 % on the shipped 2.5 mm cells;
+  // across the slot) is missing from its budget, -11 % here and -0.54 % on the shipped 2.5 mm cells;
   // a budget with more than was released would be energy from nowhere.
   EXPECT_LT(std::abs(soil.energy_residual), 0.02);
   EXPECT_GT(water.carried_out, 0.8);

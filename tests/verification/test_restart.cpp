@@ -25,6 +25,8 @@ namespace {
 using test::expect_restart_reproduces;
 using test::scratch;
 
+std::string refusal(Simulation& sim);
+
 // Makes a checkpoint one of those written before run.txt ended with the checksums: takes off that
 // line, so that a test may alter the files and reach the checks a checksum would come before.
 void as_written_before_checksums(const std::filesystem::path& checkpoint) {
@@ -108,6 +110,78 @@ TEST(Restart, CollapseContinuesFromACheckpointOfBeforeTheJoinsMoment) {
         as_written_before_checksums(checkpoint);
       });
   std::printf("collapse restarted from a checkpoint without the join's moment at t = %.3g s\n", t);
+}
+
+// A checkpoint written before the energy through the sides was kept: run.txt without its boundary_work
+// line and history rows without that column. It is read: its rows take the column empty (nan), so that
+// each stays under its header, and the run goes on with the energy through the sides from 0, which then
+// grows as the never-stopped run's does from the checkpoint on. A value that is not a number is refused.
+TEST(Restart, ACheckpointOfBeforeTheEnergyThroughTheSidesGoesOnFromZero) {
+  const auto whole_dir = scratch("restart_work_whole"), dir = scratch("restart_work");
+  test::remove_scratch(whole_dir);
+  test::remove_scratch(dir);
+  const std::vector<std::string> first{"mesh.cells=[30,10]", "time.end=0.04", "output.interval=0.04",
+                                       "output.progress_seconds=0", "output.fields=false"};
+  auto second = first;
+  second[1] = "time.end=0.08";
+  const auto case_file = test::repo_path("cases/bui2008_experiment.toml");
+  double work_at_checkpoint = 0.0, work_at_end = 0.0;
+  {
+    Simulation whole(PETSC_COMM_WORLD, load_case(case_file, second), whole_dir);
+    whole.run();
+    work_at_end = whole.boundary_work();
+    Simulation stopped(PETSC_COMM_WORLD, load_case(case_file, first), dir);
+    stopped.run();
+    work_at_checkpoint = stopped.boundary_work();
+  }
+  const auto run_txt = dir / "checkpoint" / "run.txt";
+  std::string old_text;
+  if (test::is_root()) {
+    as_written_before_checksums(dir / "checkpoint");
+    std::istringstream in(test::file_text(run_txt));
+    std::string line;
+    bool in_history = false;
+    while (std::getline(in, line)) {
+      if (line.rfind("boundary_work ", 0) == 0) continue;
+      if (in_history && line.rfind("domain ", 0) == 0) in_history = false;
+      if (in_history) {  // without its 14th field
+        size_t at = 0;
+        for (int k = 0; k < 13; ++k) at = line.find(',', at) + 1;
+        line.erase(at, line.find(',', at) + 1 - at);
+      }
+      if (line.rfind("history ", 0) == 0) in_history = true;
+      old_text += line + "\n";
+    }
+    std::ofstream(run_txt) << old_text;
+  }
+  MPI_Barrier(PETSC_COMM_WORLD);
+  {
+    Simulation resumed(PETSC_COMM_WORLD, load_case(case_file, second), dir);
+    resumed.restart();
+    EXPECT_EQ(resumed.boundary_work(), 0.0);
+    resumed.run();
+    std::printf("energy through the sides from t = 0.04 to 0.08 s: %.12g J/m after the restart, %.12g in the run "
+                "never stopped\n", resumed.boundary_work(), work_at_end - work_at_checkpoint);
+    EXPECT_NE(work_at_checkpoint, 0.0);
+    EXPECT_NEAR(resumed.boundary_work(), work_at_end - work_at_checkpoint, 1e-9 * std::abs(work_at_end));
+  }
+  if (test::is_root()) {
+    const auto h = test::read_csv((dir / "history.csv").string());
+    const auto &t = h.at("time"), &work = h.at("boundary_work"), &speed = h.at("soil_speed");
+    ASSERT_GT(t.size(), 2u);
+    EXPECT_TRUE(std::isnan(work.front()));
+    EXPECT_TRUE(std::isfinite(speed.front()));  // the columns after it stay under their headers
+    EXPECT_TRUE(std::isfinite(h.at("force_north_y").front()));
+    EXPECT_TRUE(std::isfinite(work.back()));
+    std::string text = old_text + "boundary_work abc\n";
+    std::ofstream(run_txt) << text;
+  }
+  MPI_Barrier(PETSC_COMM_WORLD);
+  Simulation damaged(PETSC_COMM_WORLD, load_case(case_file, second), dir);
+  const std::string refused = refusal(damaged);
+  EXPECT_NE(refused.find("'abc' is not the energy brought in through the sides"), std::string::npos) << refused;
+  test::remove_scratch(whole_dir);
+  test::remove_scratch(dir);
 }
 
 TEST(Restart, CavityContinuesExactlyFromItsLastCheckpoint) {
