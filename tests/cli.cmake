@@ -646,6 +646,33 @@ add_test(NAME scripts_compare_bagnold_inlet
 set_tests_properties(scripts_compare_bagnold_inlet PROPERTIES LABELS cli
                      PASS_REGULAR_EXPRESSION "\nflux_m2_s = 0[.]001854\ndepth_for_flux_bagnold_m = 0[.]00999[67][0-9]*\ndepth_for_flux_model_m = 0[.]0100[0-9]+\ndepth_computed_m = 0[.]00[89][0-9]+ [(]the sample's soil fraction times its spacing[)]\n.*\nwarning: u changed by [^\n]*the flow is not yet steady"
                      FAIL_REGULAR_EXPRESSION "Traceback;error:;steadiness = null")
+# The energy budget over a window: the gains, the dissipation and the energy brought in through the
+# sides, and the residual as a share of the potential energy released and of what was brought in; a
+# window beyond the run, and a history of before boundary_work, are refused.
+file(WRITE ${CMAKE_CURRENT_BINARY_DIR}/budget_run/history.csv
+     "time,dt,kinetic_energy,potential_energy,dissipated_energy,boundary_work\n0.0,0.1,0.0,10.0,0.0,0.0\n"
+     "1.0,0.1,1.0,6.0,2.0,-1.0\n2.0,0.1,1.0,2.0,3.5,-3.0\n")
+file(WRITE ${CMAKE_CURRENT_BINARY_DIR}/budget_old/history.csv
+     "time,dt,kinetic_energy,potential_energy,dissipated_energy\n0.0,0.1,0.0,10.0,0.0\n1.0,0.1,1.0,6.0,2.0\n")
+add_test(NAME scripts_energy_budget
+         COMMAND ${GRANFLOW_EXPECT_STATUS} 0 /usr/bin/python3 ${CMAKE_SOURCE_DIR}/scripts/energy_budget.py
+                 ${CMAKE_CURRENT_BINARY_DIR}/budget_run)
+set_tests_properties(scripts_energy_budget PROPERTIES LABELS cli
+                     PASS_REGULAR_EXPRESSION "budget_run: t = 0 to 2 s\n  kinetic energy gained +1\n  potential energy gained +-8\n  dissipated +3[.]5\n  brought in through sides +-3\n  residual [(]gained [+] dissipated - brought in[)] -0[.]5: -6[.]2500% of the potential energy released, [+]16[.]6667% of the energy brought in\n$"
+                     FAIL_REGULAR_EXPRESSION "Traceback;error:")
+add_test(NAME scripts_energy_budget_window
+         COMMAND ${GRANFLOW_EXPECT_STATUS} 0 /usr/bin/python3 ${CMAKE_SOURCE_DIR}/scripts/energy_budget.py
+                 ${CMAKE_CURRENT_BINARY_DIR}/budget_run --from 0.5 --to 1.5)
+set_tests_properties(scripts_energy_budget_window PROPERTIES LABELS cli
+                     PASS_REGULAR_EXPRESSION "t = 0[.]5 to 1[.]5 s\n  kinetic energy gained +0[.]5\n  potential energy gained +-4\n  dissipated +1[.]75\n  brought in through sides +-1[.]5\n  residual [^\n]* -0[.]25: -6[.]2500% of the potential energy released, [+]16[.]6667% of the energy brought in\n$"
+                     FAIL_REGULAR_EXPRESSION "Traceback;error:")
+add_test(NAME scripts_energy_budget_refusals
+         COMMAND ${GRANFLOW_EXPECT_STATUS} 1 sh -c "/usr/bin/python3 \"$0\" \"$1\" --to 3 2>&1; /usr/bin/python3 \"$0\" \"$2\" 2>&1; exit 1"
+                 ${CMAKE_SOURCE_DIR}/scripts/energy_budget.py ${CMAKE_CURRENT_BINARY_DIR}/budget_run
+                 ${CMAKE_CURRENT_BINARY_DIR}/budget_old)
+set_tests_properties(scripts_energy_budget_refusals PROPERTIES LABELS cli
+                     PASS_REGULAR_EXPRESSION "^error: the window 0 to 3 s is not within the run's 0 to 2 s, from an earlier time to a later one\nerror: [^\n]*budget_old/history.csv: no column boundary_work [(]written by an earlier granflow. run the case again[)]\n$"
+                     FAIL_REGULAR_EXPRESSION "Traceback")
 # The axisymmetric comparison scores each run it finds and skips, with a note, a run that did not
 # start with its case's soil (here a cylinder of half the radius under lube2004_a05's name).
 add_test(NAME scripts_compare_axisymmetric_skips_another_block
