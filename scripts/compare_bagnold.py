@@ -8,7 +8,8 @@ Reads the latest line sample RUN_DIR/profile.csv and the case as the run took it
 (RUN_DIR/granflow_case.toml: the slope from the gravity vector, the densities, the mu(I) constants,
 the grain size and the viscosity floor mu_min, the layer's depth from its initial box). A chute fed
 through an inlet on its west side and started without soil has no initial box: its steady layer is
-the one that carries the inlet's flux q = u soil_fraction soil_depth, each profile at its own depth
+the one that carries the inlet's flux q = u soil_fraction soil_depth (over its opening, span_y, where it
+has one), each profile at its own depth
 for q (Bagnold's h = (q / (0.6 A))^(2/5)), and the depth the run reached is printed beside them
 from the sample's soil fraction. It prints, at
 each sample point in the layer, the computed velocity against two profiles, each relative to the
@@ -52,7 +53,12 @@ def read_case(run_dir):
         }
         west = case["boundary"]["west"]
         if not case.get("initial", {}).get("soil") and west.get("type") == "inlet":
-            m["flux"] = west["velocity"][0] * west.get("soil_fraction", 0.0) * west.get("soil_depth", m["height"])
+            # the soil enters over the inlet's opening (span_y, heights as the mesh's) below its depth
+            bottom = case["mesh"].get("lower", [0.0, 0.0])[1]
+            span = west.get("span_y", [bottom, bottom + m["height"]])
+            top = min(west.get("soil_depth", m["height"]), span[1] - bottom, m["height"])
+            opening = max(top - max(span[0] - bottom, 0.0), 0.0)
+            m["flux"] = west["velocity"][0] * west.get("soil_fraction", 0.0) * opening
             m["depth"] = None  # each profile's own, for the flux
         else:
             box = case["initial"]["soil"][0]
