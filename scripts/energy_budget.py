@@ -7,8 +7,8 @@ Reads RUN_DIR/history.csv (linear between steps; by default from its first row t
 what the run gained over the window: kinetic and potential energy, the energy dissipated, and the
 energy brought in through the sides (boundary_work: the kinetic and potential energy carried in less
 that carried out, and the work of the sides' pressure and stress). The budget closes when gained +
-dissipated = brought in; its residual is printed as a share of the potential energy released and of the
-energy brought in (each where it is not zero). J per metre of depth on a planar mesh (per radian on an
+dissipated = brought in; its residual is printed as a share of the potential energy released (where
+some was) and of the energy brought in (where it is not zero). J per metre of depth on a planar mesh (per radian on an
 axisymmetric one), J on a mesh of layers.
 """
 import argparse
@@ -56,7 +56,7 @@ def main():
     print(f"  dissipated                 {dissipated:14.6g}")
     print(f"  brought in through sides   {brought_in:14.6g}")
     shares = []
-    if potential != 0.0:
+    if potential < 0.0:
         shares.append(f"{residual / -potential:+.4%} of the potential energy released")
     if brought_in != 0.0:
         shares.append(f"{residual / brought_in:+.4%} of the energy brought in")
