@@ -295,11 +295,10 @@ SoilBudget SoilPhase::budget(const FlowSolver& flow) {
 
 // The kinetic and potential energy carried in through the sides per unit time, each face's outward
 // velocity v_n (the one the next step's sweeps carry: over a run, the faces of each step once) times
-// minus the energy density upwind of it: of the cell
-// where the flow leaves; where it enters, of what enters (the ghost's c and soil, at an inlet's
-// velocity or, through an open side, the cell's). The potential energy is the budget's, of the face's
-// centre (along a periodic strip the soil's weight in excess of the air's). Periodic joins, walls and
-// obstacles carry none.
+// minus the energy density upwind of it: of the cell where the flow leaves; where it enters, of what
+// enters (the ghost's c and soil, at an inlet's velocity or, through an open side, the cell's). The
+// potential energy is the budget's, of the face's centre (along a periodic strip the soil's weight in
+// excess of the air's). Periodic joins, walls and obstacles carry none.
 double SoilPhase::convected_energy_rate(const FlowSolver& flow) const {
   const auto& b = grid_.owned();
   const int dim = grid_.dimension();
