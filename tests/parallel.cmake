@@ -119,7 +119,6 @@ set_tests_properties(cli_stability_restart_2_ranks PROPERTIES
   LABELS parallel TIMEOUT 300
   ENVIRONMENT "OMPI_ALLOW_RUN_AS_ROOT=1;OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1;OMPI_MCA_rmaps_base_oversubscribe=1")
 
-# The suites that hold ranks to one another's results take both cores: beside another test their ranks
-# were oversubscribed, and a fed chute's two ranks, whose factorisation then sums in another order,
-# once came 1.4e-4 m/s apart from the one rank's run (5e-12 on cores of their own).
+# The suites that run two ranks take both cores: beside another test their ranks would share them and
+# run at half speed.
 set_tests_properties(parallel_tests_2_ranks flow_3d_2_ranks PROPERTIES PROCESSORS 2)

@@ -65,7 +65,7 @@ class SoilPhase {
   // sweeps as keep it stable over dt.
   void transport_displacement(const FlowSolver& flow, double dt);
   // Largest Courant number of one VoF sweep for a step dt, over the faces that can carry soil in
-  // `substeps` sub-steps: those within that many cells of it (interface::soil_region).
+  // `substeps` sub-steps: those within that many cells of more than round-off of it (interface::soil_region).
   double interface_courant(const FlowSolver& flow, double dt, int substeps = 1) const;
 
   // Diagnostic fields at output: ||D|| ([YS] Eq. 8), Lode angle in degrees, strain norm.
