@@ -89,7 +89,8 @@ double SoilPhase::interface_courant(const FlowSolver& flow, double dt, int subst
   ConstFieldArray fx = local_read(grid_, flow.face_velocity(0)), fy = local_read(grid_, flow.face_velocity(1));
   // Soil of at most 1e-15 of a cell is round-off, present on one rank layout and exactly 0 on another:
   // counting it, the step size jumped by a few percent between layouts from a face of air beside it.
-  // Leaving its faces uncounted can move at most that much soil beyond its bounds.
+  // The sweeps still cross its faces: one faster than a sweep's limit may take a cell's trace below 0, by
+  // that trace times the face's Courant number, or let it grow until it counts again.
   constexpr double round_off_fraction = 1e-15;
   ConstFieldArray region(grid_.field_dm(), soil_region(substeps, round_off_fraction).local());
   const double co = larger_or_nan(
