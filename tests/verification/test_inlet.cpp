@@ -407,27 +407,23 @@ TEST(Inlet, RoundOffTracesOfSoilInTheAirDoNotSizeTheStep) {
   sim.run();
   SoilPhase& soil = *sim.soil();
   const double dt = 1e-3, clean = soil.interface_courant(sim.flow(), dt, 2);
-  auto with_traces = [&](double trace) {
-    const Grid& g = sim.grid();
-    Field& c = soil.soil_fraction();
-    const std::vector<double> kept = gather_to_root(g, c);
+  const Grid& g = sim.grid();
+  Field& c = soil.soil_fraction();
+  auto replace = [&](double from, double to) {  // in every owned cell that holds `from`
     {
       FieldArray a(g.field_dm(), c.global());
       const CellBox& b = g.owned();
       for (int j = b.ys; j < b.ye(); ++j)
         for (int i = b.xs; i < b.xe(); ++i)
-          if (a.data()[j][i] == 0.0) a.data()[j][i] = trace;
+          if (a.data()[j][i] == from) a.data()[j][i] = to;
     }
     c.scatter_to_local();
+  };
+  auto with_traces = [&](double trace) {
+    const std::vector<double> kept = gather_to_root(g, c);
+    replace(0.0, trace);
     const double co = soil.interface_courant(sim.flow(), dt, 2);
-    {
-      FieldArray a(g.field_dm(), c.global());  // back as it was
-      const CellBox& b = g.owned();
-      for (int j = b.ys; j < b.ye(); ++j)
-        for (int i = b.xs; i < b.xe(); ++i)
-          if (a.data()[j][i] == trace) a.data()[j][i] = 0.0;
-    }
-    c.scatter_to_local();
+    replace(trace, 0.0);  // back as it was
     EXPECT_EQ(gather_to_root(g, c), kept);
     return co;
   };
