@@ -87,12 +87,9 @@ const Field& SoilPhase::soil_region(int reach, double floor) const {
 double SoilPhase::interface_courant(const FlowSolver& flow, double dt, int substeps) const {
   if (grid_.dimension() == 3) return interface_courant_3d(flow, dt);  // over the whole mesh
   ConstFieldArray fx = local_read(grid_, flow.face_velocity(0)), fy = local_read(grid_, flow.face_velocity(1));
-  // Soil of at most 1e-15 of a cell is round-off, present on one rank layout and exactly 0 on another:
-  // counting it, the step size jumped by a few percent between layouts from a face of air beside it.
-  // The sweeps still cross its faces: one faster than a sweep's limit may take a cell's trace below 0, by
-  // that trace times the face's Courant number, or let it grow until it counts again.
-  constexpr double round_off_fraction = 1e-15;
-  ConstFieldArray region(grid_.field_dm(), soil_region(substeps, round_off_fraction).local());
+  // Round-off soil (interface::round_off_soil) is cleared after each advection, so c holds none here;
+  // a checkpoint of an older run may, and counted it would size the step by a face of air beside it.
+  ConstFieldArray region(grid_.field_dm(), soil_region(substeps, interface::round_off_soil).local());
   const double co = larger_or_nan(
       interface::max_sweep_courant(0, dt, fx.data(), grid_.dx_data(), grid_.dy_data(), grid_.owned(), radial_weights(),
                                    region.data()),
@@ -167,6 +164,7 @@ void SoilPhase::advect(FlowSolver& flow, double dt) {
     sweep(second, h, *c_tmp_, *c_, false, carry_mass ? soil_through[second]->data() : nullptr, mass_through(second),
           face[second]);
   }
+  clear_round_off_soil();
   if (carry_mass) {
     // Mass flux = u rho(c_swept), the mixture density of what crossed the face: c_swept = s / u with s
     // the soil's volume flux per unit area over the step. With the linear mixture that is the phases'
@@ -182,6 +180,18 @@ void SoilPhase::advect(FlowSolver& flow, double dt) {
     for (int j = b.ys - 1; j < b.ye(); ++j)
       for (int i = b.xs; i < b.xe(); ++i) to_mass(1, fy.data(), i, j);
   }
+}
+
+void SoilPhase::clear_round_off_soil() {
+  {
+    FieldArray c(grid_.field_dm(), c_->global());
+    const auto& b = grid_.owned();
+    for (int k = b.zs; k < b.ze(); ++k)
+      for (int j = b.ys; j < b.ye(); ++j)
+        for (int i = b.xs; i < b.xe(); ++i)
+          if (std::abs(c.volume()[k][j][i]) <= interface::round_off_soil) c.volume()[k][j][i] = 0.0;
+  }
+  fill_fraction_ghosts(*c_);
 }
 
 double SoilPhase::face_mass_flux(double u, double soil, double soil_mass, double dt) const {

@@ -175,7 +175,7 @@ void SoilPhase::initialise() {
         c[j][i] = initial_soil.fraction(x0, x0 + grid_.dx(i), y0, y0 + grid_.dy(j), grid_.axisymmetric());
       }
   }
-  fill_fraction_ghosts(*c_);
+  clear_round_off_soil();
   if (materials_) initialise_materials();
 }
 

@@ -227,6 +227,9 @@ class SoilPhase {
   std::unique_ptr<Field> overburden_;  // rho_s g times the soil depth above each centre (Pa)
   std::unique_ptr<ColumnDepth> column_depth_;  // made at the first overburden (collective)
   void compute_overburden(const std::array<double, 3>& gravity);
+  // Sets c to 0 on the owned cells whose soil is round-off (interface::round_off_soil) and refreshes its
+  // ghosts: after the initial shapes and after each advection.
+  void clear_round_off_soil();
   // On a mesh of layers (soil_phase_3d.cpp): the public operations' 3D forms.
   void initialise_3d();
   void initialise_materials_3d();

@@ -58,7 +58,7 @@ void SoilPhase::initialise_3d() {
               soil.fraction(lower, {lower[0] + grid_.dx(i), lower[1] + grid_.dy(j), lower[2] + grid_.dz(k)});
         }
   }
-  fill_fraction_ghosts(*c_);
+  clear_round_off_soil();
   if (materials_) initialise_materials_3d();
 }
 
@@ -373,6 +373,7 @@ void SoilPhase::advect_3d(FlowSolver& flow, double dt) {
     c_->copy_from(*from);
     for (size_t q = 0; q < share_.size(); ++q) share_[q]->copy_from(*(*shares_from)[q]);
   }
+  clear_round_off_soil();
   if (!carry_mass) return;
   // The soil volume (and mass) through each face over the step to the mixture's mass flux, as in 2D.
   for (int axis = 0; axis < 3; ++axis) {

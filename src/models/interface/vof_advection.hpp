@@ -103,4 +103,10 @@ double max_sweep_courant(int axis, double dt, const double* const* face_velocity
 // from the soil may move fast.
 void soil_region(const double* const* in, CellBox owned, double** region_out, double floor = 0.0);
 
+// Soil of at most this share of a cell, of either sign, is round-off: what a geometric sweep leaves
+// where its strip grazes the interface (1e-20 to 1e-16), present on one rank layout and exactly 0 on
+// another. The soil phase clears it after each advection (SoilPhase::clear_round_off_soil), so that
+// "any soil" is the same region on every layout.
+inline constexpr double round_off_soil = 1e-15;
+
 }  // namespace granflow::interface
