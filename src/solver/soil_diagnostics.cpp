@@ -12,6 +12,7 @@
 #include "mesh/gather.hpp"
 #include "mesh/largest.hpp"
 #include "mesh/obstacles.hpp"
+#include "models/mixture/potential_energy.hpp"
 #include "models/rheology/invariants.hpp"
 #include "models/strain/euler_almansi.hpp"
 #include "operators/strain_rate.hpp"
@@ -282,10 +283,7 @@ SoilBudget SoilPhase::budget(const FlowSolver& flow) {
       s[0] += c[j][i] * V;
       s[1] += (1.0 - c[j][i]) * V;
       s[2] += 0.5 * phase_density * (u[j][i] * u[j][i] + v[j][i] * v[j][i]) * V;
-      if (periodic)
-        s[3] -= ((phase_density - rho_a) * g[0] * grid_.xc(i) + phase_density * g[1] * grid_.yc(j)) * V;
-      else
-        s[3] -= phase_density * (g[0] * grid_.xc(i) + g[1] * grid_.yc(j)) * V;
+      s[3] += mixture::potential_energy_density(phase_density, rho_a, g, {grid_.xc(i), grid_.yc(j), 0.0}, periodic) * V;
       s[5] += rho[j][i] * V;
     }
   double t[8];
@@ -332,10 +330,9 @@ double SoilPhase::convected_energy_rate(const FlowSolver& flow) const {
             const double v = !leaving && bc.kind == BoundaryKind::inlet ? bc.velocity[a] : vel.view[a][k][j][i];
             speed2 += v * v;
           }
-          double x[3] = {grid_.xc(i), grid_.yc(j), dim == 3 ? grid_.zc(k) : 0.0};
+          std::array<double, 3> x{grid_.xc(i), grid_.yc(j), dim == 3 ? grid_.zc(k) : 0.0};
           x[fg.axis] += 0.5 * fg.sign * grid_.width(fg.axis, index_along(fg.axis, i, j, k));
-          const double potential = periodic ? -((density - rho_a) * g[0] * x[0] + density * (g[1] * x[1] + g[2] * x[2]))
-                                            : -density * (g[0] * x[0] + g[1] * x[1] + g[2] * x[2]);
+          const double potential = mixture::potential_energy_density(density, rho_a, g, x, periodic);
           rate -= (0.5 * density * speed2 + potential) * outward * grid_.face_area(fg.axis, i, j, k, fg.sign);
         }
       }

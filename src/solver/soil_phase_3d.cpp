@@ -24,6 +24,7 @@
 #include "models/interface/material_transport.hpp"
 #include "models/interface/vof_advection_3d.hpp"
 #include "models/interface/wetted_fraction.hpp"
+#include "models/mixture/potential_energy.hpp"
 #include "models/rheology/invariants.hpp"
 #include "models/strain/euler_almansi.hpp"
 #include "operators/face_interpolation.hpp"
@@ -549,11 +550,8 @@ SoilBudget SoilPhase::budget_3d(const FlowSolver& flow) {
         s[0] += cc * V;
         s[1] += (1.0 - cc) * V;
         s[2] += 0.5 * phase_density * speed2 * V;
-        if (periodic)
-          s[3] -= ((phase_density - rho_a) * g[0] * grid_.xc(i) +
-                   phase_density * (g[1] * grid_.yc(j) + g[2] * grid_.zc(k))) * V;
-        else
-          s[3] -= phase_density * (g[0] * grid_.xc(i) + g[1] * grid_.yc(j) + g[2] * grid_.zc(k)) * V;
+        s[3] += mixture::potential_energy_density(phase_density, rho_a, g, {grid_.xc(i), grid_.yc(j), grid_.zc(k)},
+                                                  periodic) * V;
         s[5] += rho[k][j][i] * V;
       }
   double t[8];
