@@ -316,6 +316,13 @@ add_test(NAME cli_check_lays_out_obstacles_of_layers
          COMMAND sh -c "out=$(\"$0\" check \"$1\" --set \"obstacle=[{shape='sphere', centre=[0.3,0.0,0.3], radius=0.05}]\" 2>&1) && echo \"$out\" | grep -q '40 x 16 x 40 cells.*276 cells blocked by obstacles' || { echo \"$out\"; exit 1; }; out=$(\"$0\" check \"$1\" --set \"obstacle=[{shape='box', lower=[0.25,0,0.2], upper=[0.35,0.05,0.21]}]\" 2>&1); test $? -eq 2 && echo \"$out\" | grep -q 'x = 0.255 m, y = 0.005 m, z = 0.205 m is a wall one cell thick' || { echo \"$out\"; exit 1; }"
                  $<TARGET_FILE:granflow> ${CMAKE_SOURCE_DIR}/cases/lube2004_a05_3d.toml)
 set_tests_properties(cli_check_lays_out_obstacles_of_layers PROPERTIES LABELS cli)
+# Terrain from an elevation model (cases/terrain/valley.asc, a height map) under a slab of soil: the
+# cells whose centre lies under the valley's surface are blocked, and the slab holds the soil above the
+# terrain, as counted independently by sampling each cell's 16^3 points against the same surfaces.
+add_test(NAME cli_check_lays_out_terrain_of_a_height_map
+         COMMAND ${GRANFLOW_EXPECT_STATUS} 0 $<TARGET_FILE:granflow> check ${CMAKE_SOURCE_DIR}/cases/terrain_landslide_3d.toml)
+set_tests_properties(cli_check_lays_out_terrain_of_a_height_map PROPERTIES LABELS cli
+                     PASS_REGULAR_EXPRESSION "valid [(]40 x 20 x 15 cells, t_end = 3 s. initial soil 0[.]00356 m\\^3. 2400 cells blocked by obstacles, which leave out 0[.]01024 m\\^3 of the initial shapes' soil[)]")
 # ... and with soil materials, each one's soil; a material whose shapes all lie under later shapes
 # holds none, which check finds as a run does (exit 2, the message naming it).
 add_test(NAME cli_check_says_each_materials_soil

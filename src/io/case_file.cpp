@@ -17,6 +17,7 @@
 #include <string_view>
 
 #include "io/case_error.hpp"
+#include "io/height_map_file.hpp"
 #include "io/points_file.hpp"
 #include "io/table_reader.hpp"
 #include "io/text_file.hpp"
@@ -385,6 +386,9 @@ interface::Polygon polygon_of(std::vector<std::array<double, 2>> points, const s
 // is unknown.
 interface::Shape read_shape(TableReader r, std::string* material = nullptr) {
   if (material) read_material_name(r, *material);
+  if (r.has("shape") && r.string("shape", "") == "height_map")
+    throw CaseError(r.key_path("shape") + ": a height map is a solid of a mesh of layers (mesh.cells of three "
+                    "numbers); on a planar mesh a terrain profile is a polygon (points or points_file)");
   const std::string shape = r.choice("shape", "", {"box", "circle", "ring", "polygon"});
   interface::Shape out;
   if (shape == "box") {
@@ -412,12 +416,36 @@ interface::Shape read_shape(TableReader r, std::string* material = nullptr) {
   return out;
 }
 
+// A height map's nodes (`origin`, `spacing`, `heights`: rows along z, each along x; a `heights_file` was
+// read into them before, read_height_map_files) and the `bottom` of its solid.
+interface::HeightMap read_height_map(TableReader& r) {
+  r.known_elsewhere("heights_file");
+  interface::HeightMap map;
+  map.origin = r.required_pair("origin");
+  map.spacing = r.required_pair("spacing");
+  for (const double d : map.spacing)
+    if (!(d > 0.0)) throw CaseError(fmt::format("{}: expected two positive numbers [dx, dz]", r.key_path("spacing")));
+  const auto rows = r.grid("heights", 2, 2);
+  map.nz = int(rows.size());
+  map.nx = int(rows.front().size());
+  for (const auto& row : rows) map.heights.insert(map.heights.end(), row.begin(), row.end());
+  if (auto bottom = r.optional_number("bottom")) {
+    map.bottom = *bottom;
+    const double top = *std::max_element(map.heights.begin(), map.heights.end());
+    if (!(top > map.bottom))
+      throw CaseError(fmt::format("{}: the height map is empty (its highest node, {} m, is not above its bottom, {} m)",
+                                  r.key_path("bottom"), top, map.bottom));
+  }
+  return map;
+}
+
 // On a mesh of layers, a shape of its own (interface::Shape3): a box of three-number corners, a sphere,
-// or a vertical cylinder (a granular column); none for a planar shape, which is extruded across the
-// whole depth.
+// a vertical cylinder (a granular column) or the ground under a height map; none for a planar shape,
+// which is extruded across the whole depth.
 std::optional<interface::Shape3> read_solid(TableReader r, std::string* material = nullptr) {
   if (material) read_material_name(r, *material);
-  const std::string shape = r.choice("shape", "", {"box", "circle", "ring", "polygon", "sphere", "cylinder"});
+  const std::string shape =
+      r.choice("shape", "", {"box", "circle", "ring", "polygon", "sphere", "cylinder", "height_map"});
   auto point3 = [&](const char* key) {
     if (!r.has(key)) throw CaseError(r.key_path(key) + ": missing" + r.misspelling_of(key));
     const auto v = numbers_of_size(r, key, {}, 3, "[x, y, z]");
@@ -443,6 +471,8 @@ std::optional<interface::Shape3> read_solid(TableReader r, std::string* material
       throw CaseError(fmt::format("{}: the cylinder is empty (top {} must exceed bottom {})", r.key_path("top"),
                                   column.top, column.bottom));
     out = column;
+  } else if (shape == "height_map") {
+    out = read_height_map(r);
   }
   if (out) r.finish();
   return out;
@@ -1225,35 +1255,74 @@ std::string shortest_floats(std::string_view toml) {
   return out;
 }
 
+// Calls at(shape, path) on each shape's table of the initial soil and of the obstacles, path naming it
+// ("obstacle[2]").
+template <class At>
+void for_each_shape(toml::table& root, At&& at) {
+  auto each = [&](toml::array* shapes, const std::string& path) {
+    if (!shapes) return;
+    for (size_t k = 0; k < shapes->size(); ++k)
+      if (toml::table* shape = shapes->get(k)->as_table()) at(*shape, fmt::format("{}[{}]", path, k));
+  };
+  if (toml::table* initial = root["initial"].as_table()) each((*initial)["soil"].as_array(), "initial.soil");
+  each(root["obstacle"].as_array(), "obstacle");
+}
+
+// The file a shape's `FILE_KEY = "name"` names, for a shape of kind `kind`: a relative path is taken from
+// the case file's directory. `what` says what the file holds.
+std::filesystem::path shape_file(const toml::table& shape, const std::string& key, const std::string& kind,
+                                 const char* what, const std::filesystem::path& source) {
+  const auto name = shape.get(key.substr(key.rfind('.') + 1))->value<std::string>();
+  if (!name) throw CaseError(fmt::format("{}: expected a string, the name of {}", key, what));
+  if (name->empty()) throw CaseError(fmt::format("{}: empty; name {}", key, what));
+  const auto given = shape.contains("shape") ? shape.get("shape")->value<std::string>() : std::nullopt;
+  if (given != kind) throw CaseError(fmt::format("{}: used only with shape = \"{}\"", key, kind));
+  std::filesystem::path file(*name);
+  if (file.is_relative() && !source.parent_path().empty()) file = source.parent_path() / file;
+  return file;
+}
+
 // Polygons whose outline is a file (`points_file`, io/points_file.hpp): the points are read into the
 // tree as the shape's `points`, so that the case as run (granflow_case.toml) holds them and every
-// reader after sees one kind of polygon. A relative path is taken from the case file's directory.
+// reader after sees one kind of polygon.
 void read_points_files(toml::table& root, const std::filesystem::path& source) {
-  auto read_array = [&](toml::array* shapes, const std::string& path) {
-    if (!shapes) return;
-    for (size_t k = 0; k < shapes->size(); ++k) {
-      toml::table* shape = shapes->get(k)->as_table();
-      if (!shape || !shape->contains("points_file")) continue;
-      const std::string key = fmt::format("{}[{}].points_file", path, k);
-      const auto name = shape->get("points_file")->value<std::string>();
-      if (!name) throw CaseError(key + ": expected the name of a file of points (a string)");
-      if (name->empty()) throw CaseError(key + ": empty; name a file of points (x and y in m, a point per line)");
-      const auto kind = shape->contains("shape") ? shape->get("shape")->value<std::string>() : std::nullopt;
-      if (kind != "polygon") throw CaseError(key + ": used only with shape = \"polygon\"");
-      if (shape->contains("points"))
-        throw CaseError(fmt::format("{}[{}]: give the polygon's points or its points_file, not both", path, k));
-      std::filesystem::path file(*name);
-      if (file.is_relative() && !source.parent_path().empty()) file = source.parent_path() / file;
-      const auto vertices = read_points_file(file, key);
-      polygon_of(vertices, fmt::format("{} ('{}')", key, file.string()));  // its errors name the file
-      toml::array points;
-      for (const auto& [x, y] : vertices) points.push_back(toml::array{x, y});
-      shape->erase("points_file");
-      shape->insert("points", std::move(points));
+  for_each_shape(root, [&](toml::table& shape, const std::string& path) {
+    if (!shape.contains("points_file")) return;
+    const std::string key = path + ".points_file";
+    const auto file = shape_file(shape, key, "polygon", "a file of points (x and y in m, a point per line)", source);
+    if (shape.contains("points"))
+      throw CaseError(fmt::format("{}: give the polygon's points or its points_file, not both", path));
+    const auto vertices = read_points_file(file, key);
+    polygon_of(vertices, fmt::format("{} ('{}')", key, file.string()));  // its errors name the file
+    toml::array points;
+    for (const auto& [x, y] : vertices) points.push_back(toml::array{x, y});
+    shape.erase("points_file");
+    shape.insert("points", std::move(points));
+  });
+}
+
+// Height maps whose nodes are a file (`heights_file`, io/height_map_file.hpp): read into the tree as the
+// shape's `origin`, `spacing` and `heights`, as a polygon's points_file is.
+void read_height_map_files(toml::table& root, const std::filesystem::path& source) {
+  for_each_shape(root, [&](toml::table& shape, const std::string& path) {
+    if (!shape.contains("heights_file")) return;
+    const std::string key = path + ".heights_file";
+    const auto file = shape_file(shape, key, "height_map", "an ESRI ASCII grid of heights (.asc)", source);
+    for (const char* given : {"origin", "spacing", "heights"})
+      if (shape.contains(given))
+        throw CaseError(fmt::format("{}: give the height map's {} in its heights_file or here, not both", path, given));
+    const interface::HeightMap map = read_height_map_file(file, key);
+    toml::array heights;
+    for (int r = 0; r < map.nz; ++r) {
+      toml::array row;
+      for (int i = 0; i < map.nx; ++i) row.push_back(map.heights[size_t(r) * map.nx + i]);
+      heights.push_back(std::move(row));
     }
-  };
-  if (toml::table* initial = root["initial"].as_table()) read_array((*initial)["soil"].as_array(), "initial.soil");
-  read_array(root["obstacle"].as_array(), "obstacle");
+    shape.erase("heights_file");
+    shape.insert("origin", toml::array{map.origin[0], map.origin[1]});
+    shape.insert("spacing", toml::array{map.spacing[0], map.spacing[1]});
+    shape.insert("heights", std::move(heights));
+  });
 }
 
 CaseConfig parse_case_here(std::string_view text, const std::vector<std::string>& overrides,
@@ -1267,6 +1336,7 @@ CaseConfig parse_case_here(std::string_view text, const std::vector<std::string>
   }
   for (const auto& o : overrides) apply_override(root, o);
   read_points_files(root, source);
+  read_height_map_files(root, source);
   CaseConfig c = read_case(root, source);
   c.overrides = overrides;
   std::ostringstream as_run;

@@ -75,23 +75,9 @@ std::string shown(std::string_view line) {
 }  // namespace
 
 std::vector<std::array<double, 2>> read_points_file(const std::filesystem::path& file, const std::string& key_path) {
-  std::error_code ec;
-  if (std::filesystem::is_directory(file, ec))
-    throw CaseError(fmt::format("{}: '{}' is a directory, not a file of points", key_path, file.string()));
   // Some 30 bytes a point: room for eight million of them.
   constexpr std::size_t limit = std::size_t(256) << 20;
-  const TextFile read = read_text_file(file, limit);
-  switch (read.status) {
-    case TextFile::Status::read: break;
-    case TextFile::Status::cannot_open:
-      throw CaseError(fmt::format("{}: cannot open '{}': {}", key_path, file.string(), read.reason));
-    case TextFile::Status::cannot_read:
-      throw CaseError(fmt::format("{}: cannot read '{}': {}", key_path, file.string(), read.reason));
-    case TextFile::Status::too_long:
-      throw CaseError(fmt::format("{}: '{}' is longer than {} MiB, not a file of points", key_path, file.string(),
-                                  limit >> 20));
-  }
-  std::istringstream in(read.text);
+  std::istringstream in(read_named_file(file, limit, key_path, "a file of points"));
   std::vector<std::array<double, 2>> points;
   std::vector<double> numbers;
   bool first = true;

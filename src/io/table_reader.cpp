@@ -207,6 +207,32 @@ std::vector<std::array<double, 2>> TableReader::pairs(std::string_view key, size
   return out;
 }
 
+std::vector<std::vector<double>> TableReader::grid(std::string_view key, size_t min_rows, size_t min_columns) {
+  const toml::node* n = get(key);
+  const auto expected = fmt::format("an array of at least {} rows of numbers, each at least {} long", min_rows,
+                                    min_columns);
+  if (!n) missing(key, expected);
+  const toml::array* arr = n->as_array();
+  if (!arr || arr->size() < min_rows) type_error(key, expected.c_str());
+  std::vector<std::vector<double>> out;
+  for (const auto& e : *arr) {
+    const toml::array* row = e.as_array();
+    if (!row) type_error(key, expected.c_str());
+    auto& values = out.emplace_back();
+    for (const auto& v : *row) {
+      const auto x = number_of(v);
+      if (!x || !std::isfinite(*x)) type_error(key, expected.c_str());
+      require_magnitude(key, *x);
+      values.push_back(*x);
+    }
+    if (values.size() < min_columns) type_error(key, expected.c_str());
+    if (values.size() != out.front().size())
+      throw CaseError(fmt::format("{}: row {} holds {} numbers and row 1 {}: the rows are of one length", key_path(key),
+                                  out.size(), values.size(), out.front().size()));
+  }
+  return out;
+}
+
 TableReader TableReader::table(std::string_view key) {
   const toml::node* n = get(key);
   if (!n) return TableReader(nullptr, key_path(key));

@@ -45,6 +45,9 @@ class TableReader {
   std::array<double, 2> required_pair(std::string_view key);
   // An array of [x, y] pairs, at least min_size of them.
   std::vector<std::array<double, 2>> pairs(std::string_view key, size_t min_size);
+  // A required grid of finite numbers: an array of rows, each an array of numbers, all of one length,
+  // at least min_rows of at least min_columns.
+  std::vector<std::vector<double>> grid(std::string_view key, size_t min_rows, size_t min_columns);
 
   // A sub-table; absent gives a reader with present() == false whose reads return their fallbacks.
   TableReader table(std::string_view key);

@@ -18,4 +18,10 @@ struct TextFile {
 // /dev/zero, would otherwise be read until memory runs out).
 TextFile read_text_file(const std::filesystem::path& file, std::size_t limit);
 
+// The text of a file a case's key names (`key_path`: "obstacle[0].points_file"), `what` saying what it
+// should hold ("a file of points"): throws CaseError naming the key and the file where it is a
+// directory, cannot be opened or read, or is longer than `limit` bytes.
+std::string read_named_file(const std::filesystem::path& file, std::size_t limit, const std::string& key_path,
+                            const char* what);
+
 }  // namespace granflow

@@ -109,6 +109,15 @@ TEST(Obstacles3d, BlockedFloorAndWallsAreTheDomainsOwn) {
       "walls of the soil's own friction");
 }
 
+// The floor built as the ground under a height map (terrain from an elevation model, flat here at the
+// domain's floor): the same flow as on the domain's own floor, to round-off.
+TEST(Obstacles3d, AFloorOfAHeightMapIsTheDomainsOwn) {
+  expect_built_walls_are_the_domains(
+      "", "[{shape=\"height_map\", origin=[-1,-1], spacing=[2,2], heights=[[0,0],[0,0]]}, "
+          "{shape=\"box\", lower=[-1,-1,-1], upper=[0,1,1]}, {shape=\"box\", lower=[-1,-1,-1], upper=[1,1,0]}]",
+      "the floor of a height map");
+}
+
 // The same with walls of their own friction (`friction_angle`, `adhesion`), each below the soil's
 // friction in simple shear (tan 18.4 deg), so that the soil slides on all three: obstacles of the same
 // friction are the same walls. Each blocked cell takes its own obstacle's friction (the floor's cells

@@ -5,7 +5,41 @@
 
 namespace granflow::interface {
 
+double surface_height(const HeightMap& map, double x, double z) {
+  // The cell of the grid, clamped so that the last node's line belongs to the cell before it.
+  const double u = (x - map.origin[0]) / map.spacing[0], w = (z - map.origin[1]) / map.spacing[1];
+  const int i = std::clamp(int(std::floor(u)), 0, map.nx - 2), r = std::clamp(int(std::floor(w)), 0, map.nz - 2);
+  const double a = u - i, b = w - r;
+  const double* row = map.heights.data() + size_t(r) * map.nx + i;
+  const double low = row[0] + a * (row[1] - row[0]), high = row[map.nx] + a * (row[map.nx + 1] - row[map.nx]);
+  return low + b * (high - low);
+}
+
 namespace {
+// The grid's extent: its first and last nodes along x (0) or z (1).
+std::array<double, 2> extent(const HeightMap& map, int axis) {
+  const int n = axis == 0 ? map.nx : map.nz;
+  return {map.origin[axis], map.origin[axis] + (n - 1) * map.spacing[axis]};
+}
+
+// The lowest and highest heights the surface takes over [x0, x1] x [z0, z1] (within the extent): those
+// of the nodes of the grid's cells that overlap it, since bilinear values lie between their cell's nodes'.
+std::array<double, 2> surface_range(const HeightMap& m, double x0, double x1, double z0, double z1) {
+  auto cells = [&](double from, double to, int axis, int n) {
+    const double o = m.origin[axis], d = m.spacing[axis];
+    return std::array<int, 2>{std::clamp(int(std::floor((from - o) / d)), 0, n - 2),
+                              std::clamp(int(std::floor((to - o) / d)), 0, n - 2)};
+  };
+  const auto ci = cells(x0, x1, 0, m.nx), cr = cells(z0, z1, 1, m.nz);
+  std::array<double, 2> range{std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity()};
+  for (int r = cr[0]; r <= cr[1] + 1; ++r)
+    for (int i = ci[0]; i <= ci[1] + 1; ++i) {
+      const double h = m.heights[size_t(r) * m.nx + i];
+      range = {std::min(range[0], h), std::max(range[1], h)};
+    }
+  return range;
+}
+
 struct Contains3 {
   double x, y, z;
   bool operator()(const Box3& b) const {
@@ -23,6 +57,10 @@ struct Contains3 {
   bool operator()(const Extrusion& e) const {
     return z >= e.z_lower && z <= e.z_upper && interface::contains(e.section, x, y);
   }
+  bool operator()(const HeightMap& m) const {
+    const auto ex = extent(m, 0), ez = extent(m, 1);
+    return x >= ex[0] && x <= ex[1] && z >= ez[0] && z <= ez[1] && y >= m.bottom && y <= surface_height(m, x, z);
+  }
 };
 }  // namespace
 
@@ -38,6 +76,11 @@ std::array<Point3, 2> bounding_box(const Shape3& shape) {
   if (const auto* c = std::get_if<VerticalCylinder>(&shape))
     return {Point3{c->centre_xz[0] - c->radius, c->bottom, c->centre_xz[1] - c->radius},
             Point3{c->centre_xz[0] + c->radius, c->top, c->centre_xz[1] + c->radius}};
+  if (const auto* m = std::get_if<HeightMap>(&shape)) {
+    const auto ex = extent(*m, 0), ez = extent(*m, 1);
+    return {Point3{ex[0], m->bottom, ez[0]},
+            Point3{ex[1], *std::max_element(m->heights.begin(), m->heights.end()), ez[1]}};
+  }
   const auto& e = std::get<Extrusion>(shape);
   const auto [lo, hi] = bounding_box(e.section);
   return {Point3{lo[0], lo[1], e.z_lower}, Point3{hi[0], hi[1], e.z_upper}};
@@ -78,6 +121,13 @@ double ShapeUnion3::fraction(const Point3& lower, const Point3& upper, int sampl
     for (int a = 0; a < 3; ++a) small_shape_here = small_shape_here || hi[a] - lo[a] < upper[a] - lower[a];
     if (!small_shape_here && std::holds_alternative<Extrusion>(shapes_[k]))
       small_shape_here = sections_[k].may_pass_between_probes(lower[0], upper[0], lower[1], upper[1]);
+    if (const auto* m = std::get_if<HeightMap>(&shapes_[k]); m && !small_shape_here) {
+      // The surface may rise or dip between the probes (a grid finer than the cell): sampled wherever
+      // its heights over the cell reach into the cell's.
+      const auto h = surface_range(*m, std::max(lower[0], lo[0]), std::min(upper[0], hi[0]), std::max(lower[2], lo[2]),
+                                   std::min(upper[2], hi[2]));
+      small_shape_here = h[0] < upper[1] && h[1] > lower[1];
+    }
   }
   int probe = contains(0.5 * (lower[0] + upper[0]), 0.5 * (lower[1] + upper[1]), 0.5 * (lower[2] + upper[2]));
   for (int c = 0; c < 8; ++c)

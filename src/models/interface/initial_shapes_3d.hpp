@@ -1,10 +1,12 @@
 // Initial soil regions in 3D (y up, as in 2D): boxes, spheres, vertical cylinders (a granular column),
-// and any 2D shape (initial_shapes.hpp) drawn in the x-y plane and extruded along z (a 2D case's block
-// across a channel); their union, and the fraction of a cell they cover.
+// the ground under a height map (terrain from an elevation model), and any 2D shape (initial_shapes.hpp)
+// drawn in the x-y plane and extruded along z (a 2D case's block across a channel); their union, and
+// the fraction of a cell they cover.
 #pragma once
 
 #include <array>
 #include <cstddef>
+#include <limits>
 #include <variant>
 #include <vector>
 
@@ -31,7 +33,20 @@ struct Extrusion {
   Shape section;
   double z_lower, z_upper;
 };
-using Shape3 = std::variant<Box3, Sphere, VerticalCylinder, Extrusion>;
+// The ground under a surface y = h(x, z) given at the nodes of a regular grid over x and z (a terrain's
+// digital elevation model), bilinear between the nodes: the points over the grid's extent from `bottom`
+// up to the surface.
+struct HeightMap {
+  std::array<double, 2> origin{0.0, 0.0};   // x and z of the first node, m
+  std::array<double, 2> spacing{1.0, 1.0};  // between nodes along x and z, m
+  int nx = 0, nz = 0;                       // nodes along x and z, at least 2 each
+  std::vector<double> heights;              // nx * nz, x fastest: node (i, r) at (origin + (i dx, r dz))
+  double bottom = -std::numeric_limits<double>::infinity();
+};
+// h(x, z), bilinear in the grid's cell that holds (x, z), which must lie within the grid's extent.
+double surface_height(const HeightMap& map, double x, double z);
+
+using Shape3 = std::variant<Box3, Sphere, VerticalCylinder, Extrusion, HeightMap>;
 
 bool contains(const Shape3& shape, double x, double y, double z);
 // The smallest axis-aligned box around the shape: {lower, upper}.
@@ -45,9 +60,10 @@ class ShapeUnion3 {
   bool shape_contains(std::size_t k, double x, double y, double z) const;  // shape k alone
   std::size_t size() const { return shapes_.size(); }
   // Fraction of the cell [lower, upper] inside the union, by samples^3 midpoint sampling where the
-  // cell's eight corners and centre disagree or a shape's outline may pass between them (error
-  // O(1/samples) in those cells). As in 2D, a large sphere's or cylinder's surface bulging through a
-  // face of the cell between its probes is not caught: a sliver of the cell's volume.
+  // cell's eight corners and centre disagree or a shape's outline may pass between them, as in every
+  // cell a height map's surface may cross (error O(1/samples) in those cells). As in 2D, a large
+  // sphere's or cylinder's surface bulging through a face of the cell between its probes is not
+  // caught: a sliver of the cell's volume.
   double fraction(const Point3& lower, const Point3& upper, int samples = 16) const;
 
  private:

@@ -72,5 +72,46 @@ TEST(InitialShapes3d, BoundingBoxes) {
   EXPECT_DOUBLE_EQ(ehi[2], 3.0);
 }
 
+// A height map: bilinear between its nodes, so a plane is taken exactly; the ground under it from its
+// bottom, over its extent only; and the fractions a mesh lays from it hold the volume under it.
+TEST(InitialShapes3d, AHeightMapIsTheGroundUnderItsBilinearSurface) {
+  // The plane y = 0.2 + 0.3 x + 0.1 z on nodes 0.25 apart over [0, 1] x [0, 1].
+  HeightMap plane{{0.0, 0.0}, {0.25, 0.25}, 5, 5, {}};
+  for (int r = 0; r < 5; ++r)
+    for (int i = 0; i < 5; ++i) plane.heights.push_back(0.2 + 0.3 * 0.25 * i + 0.1 * 0.25 * r);
+  for (const auto& [x, z] : {std::array{0.0, 0.0}, std::array{0.37, 0.81}, std::array{1.0, 1.0}, std::array{0.5, 0.9}})
+    EXPECT_NEAR(surface_height(plane, x, z), 0.2 + 0.3 * x + 0.1 * z, 1e-15) << x << " " << z;
+  EXPECT_TRUE(contains(plane, 0.5, 0.34, 0.5));    // the surface is at 0.40 there
+  EXPECT_FALSE(contains(plane, 0.5, 0.41, 0.5));
+  EXPECT_FALSE(contains(plane, 1.01, 0.0, 0.5));   // beyond the extent
+  EXPECT_TRUE(contains(plane, 0.5, -5.0, 0.5));    // no bottom: all the way down
+  HeightMap slab = plane;
+  slab.bottom = 0.1;
+  EXPECT_FALSE(contains(slab, 0.5, 0.05, 0.5));
+  const auto [lo, hi] = bounding_box(slab);
+  EXPECT_EQ(lo, (Point3{0.0, 0.1, 0.0}));
+  EXPECT_NEAR(hi[1], 0.6, 1e-15);
+  // Under the plane from y = 0.1: 0.2 + 0.15 + 0.05 - 0.1 = 0.3 of the unit square.
+  EXPECT_NEAR(laid_volume(ShapeUnion3({slab}), 20), 0.3, 1e-3);
+  // A saddle, one cell of its grid: bilinear between its corners' 0.9, 0.1, 0.1, 0.9, mean 0.5.
+  const HeightMap saddle{{0.0, 0.0}, {1.0, 1.0}, 2, 2, {0.9, 0.1, 0.1, 0.9}};
+  EXPECT_NEAR(surface_height(saddle, 0.25, 0.75), 0.4, 1e-15);
+  EXPECT_NEAR(laid_volume(ShapeUnion3({saddle}), 20), 0.5, 1e-3);
+}
+
+// A height map's grid finer than the cells: a spike between the nine probes of a cell (its corners
+// and centre) is sampled, as a shape smaller than the cell is.
+TEST(InitialShapes3d, AHeightMapFinerThanTheCellIsSampled) {
+  // Flat at y = -1 under the cell [0, 1]^3 but for one node at (0.3, 0.3) raised to y = 2.
+  HeightMap spike{{0.0, 0.0}, {0.1, 0.1}, 11, 11, std::vector<double>(121, -1.0)};
+  spike.heights[3 * 11 + 3] = 2.0;
+  const ShapeUnion3 u({spike});
+  EXPECT_FALSE(u.contains(0.5, 0.5, 0.5));
+  // The pyramid over the node's four cells: base 0.2 x 0.2, 3 high, of which the part above y = 0.
+  const double inside = u.fraction({0.0, 0.0, 0.0}, {1.0, 1.0, 1.0});
+  EXPECT_GT(inside, 0.0);
+  EXPECT_LT(inside, 0.04);
+}
+
 }  // namespace
 }  // namespace granflow::interface

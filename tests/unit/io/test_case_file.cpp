@@ -1317,6 +1317,74 @@ TEST(CaseFile, AMeshOfLayersReadsObstacleSolids) {
   EXPECT_FALSE(parse_case(layered).has_obstacles());
 }
 
+// A height map (terrain from an elevation model) is a solid of a mesh of layers: given inline, or read
+// from an ESRI ASCII grid beside the case into the case as run. What is not a grid, an empty solid, the
+// file with another shape or beside the inline nodes, and a height map on a planar mesh are refused.
+TEST(CaseFile, AHeightMapIsASolidOfAMeshOfLayers) {
+  const std::string coupled = "numerics.pressure_coupling=\"coupled\"";
+  const std::string inline_map =
+      "obstacle=[{shape=\"height_map\", origin=[0.0, -0.2], spacing=[0.4, 0.2], "
+      "heights=[[0.1, 0.2, 0.3], [0.1, 0.2, 0.35], [0.1, 0.25, 0.3]]}]";
+  const CaseConfig c = parse_case(layered, {coupled, inline_map});
+  ASSERT_EQ(c.obstacle_solids.size(), 1u);
+  const auto& map = std::get<interface::HeightMap>(c.obstacle_solids[0]);
+  EXPECT_EQ(map.nx, 3);
+  EXPECT_EQ(map.nz, 3);
+  EXPECT_EQ(map.spacing, (std::array<double, 2>{0.4, 0.2}));
+  EXPECT_EQ(map.heights[5], 0.35);  // row 1 along z, node 2 along x
+  EXPECT_TRUE(std::isinf(map.bottom));
+
+  namespace fs = std::filesystem;
+  const fs::path dir = fs::temp_directory_path() / ("granflow_height_map_case_" + std::to_string(::getpid()));
+  fs::create_directories(dir / "terrain");
+  std::ofstream(dir / "terrain" / "dem.asc") << "ncols 3\nnrows 3\nxllcenter 0\nyllcenter -0.2\ncellsize 0.2\n"
+                                                "0.3 0.3 0.3\n0.2 0.2 0.2\n0.1 0.1 0.1\n";
+  const fs::path source = dir / "case.toml";
+  const CaseConfig from_file = parse_case(
+      layered, {"initial.soil=[{shape=\"height_map\", heights_file=\"terrain/dem.asc\", bottom=0.0}]"}, source);
+  ASSERT_EQ(from_file.soil->initial_soil_3d.size(), 1u);
+  const auto& soil = std::get<interface::HeightMap>(from_file.soil->initial_soil_3d[0]);
+  EXPECT_EQ(soil.heights, (std::vector<double>{0.1, 0.1, 0.1, 0.2, 0.2, 0.2, 0.3, 0.3, 0.3}));
+  EXPECT_EQ(soil.bottom, 0.0);
+  EXPECT_NE(from_file.as_run.find("heights = [ [ 0.1, 0.1, 0.1 ]"), std::string::npos) << from_file.as_run;
+  EXPECT_EQ(from_file.as_run.find("heights_file"), std::string::npos) << from_file.as_run;
+  // The case as run reads back to the same map.
+  EXPECT_EQ(std::get<interface::HeightMap>(parse_case(from_file.as_run).soil->initial_soil_3d[0]).heights, soil.heights);
+
+  auto error = [&](const std::string& obstacle) { return error_of(layered, {coupled, obstacle}, source); };
+  const std::string ragged = error("obstacle=[{shape=\"height_map\", origin=[0.0, 0.0], spacing=[0.1, 0.1], "
+                                   "heights=[[0.1, 0.2, 0.3], [0.1, 0.2]]}]");
+  EXPECT_NE(ragged.find("obstacle[0].heights: row 2 holds 2 numbers and row 1 3"), std::string::npos) << ragged;
+  const std::string single = error("obstacle=[{shape=\"height_map\", origin=[0.0, 0.0], spacing=[0.1, 0.1], "
+                                   "heights=[[0.1, 0.2, 0.3]]}]");
+  EXPECT_NE(single.find("obstacle[0].heights: expected an array of at least 2 rows"), std::string::npos) << single;
+  const std::string spacing = error("obstacle=[{shape=\"height_map\", origin=[0.0, 0.0], spacing=[0.1, -0.1], "
+                                    "heights=[[0.1, 0.2], [0.1, 0.2]]}]");
+  EXPECT_NE(spacing.find("obstacle[0].spacing: expected two positive numbers"), std::string::npos) << spacing;
+  const std::string empty = error("obstacle=[{shape=\"height_map\", origin=[0.0, 0.0], spacing=[0.1, 0.1], "
+                                  "heights=[[0.1, 0.2], [0.1, 0.2]], bottom=0.2}]");
+  EXPECT_NE(empty.find("obstacle[0].bottom: the height map is empty"), std::string::npos) << empty;
+  const std::string misspelt = error("obstacle=[{shape=\"height_map\", origin=[0.0, 0.0], spacing=[0.1, 0.1], "
+                                     "heigths=[[0.1, 0.2], [0.1, 0.2]]}]");
+  EXPECT_NE(misspelt.find("obstacle[0].heights: missing"), std::string::npos) << misspelt;
+  EXPECT_NE(misspelt.find("heigths"), std::string::npos) << misspelt;
+  const std::string both = error("obstacle=[{shape=\"height_map\", heights_file=\"terrain/dem.asc\", "
+                                 "heights=[[0.1, 0.2], [0.1, 0.2]]}]");
+  EXPECT_NE(both.find("obstacle[0]: give the height map's heights in its heights_file or here, not both"),
+            std::string::npos) << both;
+  const std::string polygon = error("obstacle=[{shape=\"polygon\", heights_file=\"terrain/dem.asc\"}]");
+  EXPECT_NE(polygon.find("obstacle[0].heights_file: used only with shape = \"height_map\""), std::string::npos)
+      << polygon;
+  const std::string outside = error("obstacle=[{shape=\"height_map\", origin=[5.0, 0.0], spacing=[0.1, 0.1], "
+                                    "heights=[[0.1, 0.2], [0.1, 0.2]]}]");
+  EXPECT_NE(outside.find("obstacle[0]: the shape within [5, 5.1]"), std::string::npos) << outside;
+  const std::string planar = error_of(two_phase, {"soil.rheology.friction_angle=30", coupled,
+                                                  "obstacle=[{shape=\"height_map\", origin=[0.0, 0.0], spacing=[0.1, 0.1], "
+                                                  "heights=[[0.1, 0.2], [0.1, 0.2]]}]"});
+  EXPECT_NE(planar.find("obstacle[0].shape: a height map is a solid of a mesh of layers"), std::string::npos) << planar;
+  fs::remove_all(dir);
+}
+
 // A line sample's points have three coordinates on a mesh of layers (a planar one's z is 0).
 TEST(CaseFile, AMeshOfLayersReadsLineSamplesOfThreeCoordinates) {
   const CaseConfig c = parse_case(layered, {"output.line=[{name=\"a\", start=[0.0, 0.1, -0.2], end=[0.8, 0.1, 0.2]}]"});
