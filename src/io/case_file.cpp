@@ -421,14 +421,23 @@ interface::Shape read_shape(TableReader r, std::string* material = nullptr) {
 interface::HeightMap read_height_map(TableReader& r) {
   r.known_elsewhere("heights_file");
   interface::HeightMap map;
-  map.origin = r.required_pair("origin");
-  map.spacing = r.required_pair("spacing");
-  for (const double d : map.spacing)
+  auto required = [&](const char* key, const char* what) {
+    if (!r.has(key)) throw CaseError(fmt::format("{}: missing ({}){}", r.key_path(key), what, r.misspelling_of(key)));
+    return numbers_of_size(r, key, {}, 2, what);
+  };
+  const auto origin = required("origin", "[x, z] of the first node");
+  const auto spacing = required("spacing", "[dx, dz] between the nodes");
+  for (const double d : spacing)
     if (!(d > 0.0)) throw CaseError(fmt::format("{}: expected two positive numbers [dx, dz]", r.key_path("spacing")));
+  map.spacing = {spacing[0], spacing[1]};
   const auto rows = r.grid("heights", 2, 2);
   map.nz = int(rows.size());
   map.nx = int(rows.front().size());
   for (const auto& row : rows) map.heights.insert(map.heights.end(), row.begin(), row.end());
+  // `offset` moves the map as a whole: an elevation model in survey coordinates to the mesh's.
+  const auto offset = numbers_of_size(r, "offset", {0.0, 0.0, 0.0}, 3, "[x, y, z] added to the map's coordinates");
+  map.origin = {origin[0] + offset[0], origin[1] + offset[2]};
+  for (double& h : map.heights) h += offset[1];
   if (auto bottom = r.optional_number("bottom")) {
     map.bottom = *bottom;
     const double top = *std::max_element(map.heights.begin(), map.heights.end());

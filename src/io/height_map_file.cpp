@@ -4,10 +4,8 @@
 
 #include <algorithm>
 #include <cctype>
-#include <charconv>
 #include <cmath>
 #include <map>
-#include <optional>
 #include <string_view>
 
 #include "io/case_error.hpp"
@@ -22,24 +20,6 @@ std::string lower_case(std::string_view text) {
   std::string out(text);
   std::transform(out.begin(), out.end(), out.begin(), [](unsigned char ch) { return char(std::tolower(ch)); });
   return out;
-}
-
-std::optional<double> number_of(std::string_view field) {
-  double value = 0.0;
-  const char* first = field.data() + (!field.empty() && field.front() == '+' ? 1 : 0);
-  const auto [ptr, ec] = std::from_chars(first, field.data() + field.size(), value);
-  if (ec != std::errc() || ptr != field.data() + field.size() || field.empty()) return std::nullopt;
-  return value;
-}
-
-// A field as a message shows it: its first 40 bytes, those that are not printable ASCII as \xNN.
-std::string shown(std::string_view field) {
-  std::string out;
-  for (size_t i = 0; i < std::min<size_t>(field.size(), 40); ++i) {
-    const auto byte = static_cast<unsigned char>(field[i]);
-    out += byte >= 0x20 && byte < 0x7f ? std::string(1, char(byte)) : fmt::format("\\x{:02X}", byte);
-  }
-  return field.size() > 40 ? out + "..." : out;
 }
 
 }  // namespace
@@ -64,25 +44,25 @@ interface::HeightMap read_height_map_file(const std::filesystem::path& file, con
     const size_t end = std::min(text.find('\n', at), text.size());
     size_t k = at;
     const std::string_view key = next_field(k, end);
-    if (!key.empty() && number_of(key)) break;  // the first height
+    if (!key.empty() && number_in(key)) break;  // the first height
     ++line;
     const std::string_view whole = text.substr(at, end - at);
     at = end + 1;
     if (key.empty()) continue;
     const std::string_view value = next_field(k, end);
-    const auto number = number_of(value);
+    const auto number = number_in(value);
     if (!number || !next_field(k, end).empty())
       throw CaseError(fmt::format("{}: expected a header key and its number (ncols, nrows, xllcorner, yllcorner, "
-                                  "cellsize, NODATA_value), found '{}'", where(line), shown(whole)));
+                                  "cellsize, NODATA_value), found '{}'", where(line), printable(whole, 40)));
     const std::string name = lower_case(key);
     static const char* const known[] = {"ncols", "nrows", "xllcorner", "xllcenter", "yllcorner", "yllcenter",
                                         "cellsize", "dx", "dy", "nodata_value"};
     if (std::find(std::begin(known), std::end(known), name) == std::end(known))
       throw CaseError(fmt::format("{}: unknown header key '{}' (an ESRI ASCII grid has ncols, nrows, xllcorner or "
                                   "xllcenter, yllcorner or yllcenter, cellsize or dx and dy, NODATA_value)",
-                                  where(line), shown(key)));
+                                  where(line), printable(key, 40)));
     if (!header.emplace(name, *number).second)
-      throw CaseError(fmt::format("{}: '{}' given twice", where(line), shown(key)));
+      throw CaseError(fmt::format("{}: '{}' given twice", where(line), printable(key, 40)));
   }
   auto need = [&](const char* name) {
     const auto it = header.find(name);
@@ -123,7 +103,13 @@ interface::HeightMap read_height_map_file(const std::filesystem::path& file, con
       throw CaseError(fmt::format("{}: '{}': {}", key_path, file.string(), problem));
   const bool has_nodata = header.count("nodata_value") != 0;
   const double nodata = has_nodata ? header.at("nodata_value") : 0.0;
-  // The heights, row by row from the north; stored from the south (z up from the origin).
+  // The heights, row by row from the north; stored from the south (z up from the origin). Each takes
+  // two bytes at least (a digit and a blank): a header asking for more than the file holds is refused
+  // before the heights are made room for.
+  const size_t rest = at < text.size() ? text.size() - at : 0;
+  if (double(map.nx) * map.nz > 0.5 * double(rest) + 1.0)
+    throw CaseError(fmt::format("{}: '{}' asks for ncols x nrows = {} x {} heights, more than the rest of the file "
+                                "({} bytes) can hold", key_path, file.string(), map.nx, map.nz, rest));
   map.heights.assign(size_t(map.nx) * map.nz, 0.0);
   size_t read_count = 0;
   const size_t total = map.heights.size();
@@ -132,15 +118,15 @@ interface::HeightMap read_height_map_file(const std::filesystem::path& file, con
     ++line;
     size_t k = at;
     for (std::string_view field = next_field(k, end); !field.empty(); field = next_field(k, end)) {
-      const auto h = number_of(field);
-      if (!h || !std::isfinite(*h))
-        throw CaseError(fmt::format("{}: expected a height, found '{}'", where(line), shown(field)));
+      const auto h = number_in(field);
       if (read_count == total)
         throw CaseError(fmt::format("{}: more heights than ncols x nrows = {} x {}", where(line), map.nx, map.nz));
       const int row = int(read_count / map.nx), col = int(read_count % map.nx);
-      if (has_nodata && *h == nodata)
+      if (h && has_nodata && (*h == nodata || (std::isnan(nodata) && std::isnan(*h))))
         throw CaseError(fmt::format("{}: no height (NODATA) at row {}, column {}: a height map needs every node "
                                     "(fill the model's gaps first)", where(line), row + 1, col + 1));
+      if (!h || !std::isfinite(*h))
+        throw CaseError(fmt::format("{}: expected a height, found '{}'", where(line), printable(field, 40)));
       if (auto problem = magnitude_problem(*h); !problem.empty())
         throw CaseError(fmt::format("{}: {}", where(line), problem));
       map.heights[size_t(map.nz - 1 - row) * map.nx + col] = *h;

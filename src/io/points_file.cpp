@@ -3,7 +3,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
-#include <charconv>
+#include <optional>
 #include <cmath>
 #include <sstream>
 #include <string_view>
@@ -42,34 +42,16 @@ bool parse_numbers(std::string_view line, std::vector<double>& out, bool& any) {
     size_t end = k;
     while (end < line.size() && !blank(line[end]) && !delimiter(line[end])) ++end;
     const std::string_view field = line.substr(k, end - k);
-    double value = 0.0;
-    const char* first = field.data() + (!field.empty() && field.front() == '+' ? 1 : 0);  // empty: ',,'
-    const auto [ptr, ec] = std::from_chars(first, field.data() + field.size(), value);
-    if (ec != std::errc() || ptr != field.data() + field.size())
+    const std::optional<double> value = number_in(field);  // none for an empty field: ',,'
+    if (!value)
       all = false;
     else
       any = true;
-    out.push_back(value);
+    out.push_back(value.value_or(0.0));
     k = end;
     if (!skip_separator(true)) all = false;
   }
   return all;
-}
-
-// A line as a message shows it: its first 80 bytes, those that are not printable ASCII as \xNN, so
-// a binary file named by mistake does not fill the terminal with its bytes.
-std::string shown(std::string_view line) {
-  constexpr size_t most = 80;
-  std::string out;
-  for (size_t i = 0; i < std::min(line.size(), most); ++i) {
-    const auto byte = static_cast<unsigned char>(line[i]);
-    if (byte >= 0x20 && byte < 0x7f)
-      out += char(byte);
-    else
-      out += fmt::format("\\x{:02X}", byte);
-  }
-  if (line.size() > most) out += fmt::format("... ({} bytes)", line.size());
-  return out;
 }
 
 }  // namespace
@@ -96,7 +78,7 @@ std::vector<std::array<double, 2>> read_points_file(const std::filesystem::path&
     if (header) continue;
     if (!parsed || numbers.size() != 2 || !std::isfinite(numbers[0]) || !std::isfinite(numbers[1]))
       throw CaseError(fmt::format("{}: {}:{}: expected two numbers, x and y in m, found '{}'", key_path, file.string(),
-                                  number, shown(line)));
+                                  number, printable(line, 80)));
     for (const double x : {numbers[0], numbers[1]})
       if (auto problem = magnitude_problem(x); !problem.empty())
         throw CaseError(fmt::format("{}: {}:{}: {}", key_path, file.string(), number, problem));

@@ -2,7 +2,9 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cerrno>
+#include <charconv>
 #include <cstring>
 #include <fstream>
 
@@ -39,6 +41,30 @@ std::string read_named_file(const std::filesystem::path& file, std::size_t limit
       throw CaseError(fmt::format("{}: '{}' is longer than {} MiB, not {}", key_path, file.string(), limit >> 20, what));
   }
   return std::move(read.text);
+}
+
+std::optional<double> number_in(std::string_view field) {
+  if (field.starts_with('+')) {
+    field.remove_prefix(1);
+    if (field.starts_with('-') || field.starts_with('+')) return std::nullopt;
+  }
+  double value = 0.0;
+  const auto [ptr, ec] = std::from_chars(field.data(), field.data() + field.size(), value);
+  if (field.empty() || ec != std::errc() || ptr != field.data() + field.size()) return std::nullopt;
+  return value;
+}
+
+std::string printable(std::string_view text, std::size_t most) {
+  std::string out;
+  for (std::size_t i = 0; i < std::min(text.size(), most); ++i) {
+    const auto byte = static_cast<unsigned char>(text[i]);
+    if (byte >= 0x20 && byte < 0x7f)
+      out += char(byte);
+    else
+      out += fmt::format("\\x{:02X}", byte);
+  }
+  if (text.size() > most) out += fmt::format("... ({} bytes)", text.size());
+  return out;
 }
 
 }  // namespace granflow

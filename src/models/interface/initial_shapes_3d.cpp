@@ -6,9 +6,11 @@
 namespace granflow::interface {
 
 double surface_height(const HeightMap& map, double x, double z) {
-  // The cell of the grid, clamped so that the last node's line belongs to the cell before it.
-  const double u = (x - map.origin[0]) / map.spacing[0], w = (z - map.origin[1]) / map.spacing[1];
-  const int i = std::clamp(int(std::floor(u)), 0, map.nx - 2), r = std::clamp(int(std::floor(w)), 0, map.nz - 2);
+  // Grid units, held at the outer nodes (the half cell beyond them takes their heights); the cell of the
+  // grid, the last node's line belonging to the cell before it.
+  const double u = std::clamp((x - map.origin[0]) / map.spacing[0], 0.0, double(map.nx - 1));
+  const double w = std::clamp((z - map.origin[1]) / map.spacing[1], 0.0, double(map.nz - 1));
+  const int i = std::min(int(u), map.nx - 2), r = std::min(int(w), map.nz - 2);
   const double a = u - i, b = w - r;
   const double* row = map.heights.data() + size_t(r) * map.nx + i;
   const double low = row[0] + a * (row[1] - row[0]), high = row[map.nx] + a * (row[map.nx + 1] - row[map.nx]);
@@ -16,10 +18,12 @@ double surface_height(const HeightMap& map, double x, double z) {
 }
 
 namespace {
-// The grid's extent: its first and last nodes along x (0) or z (1).
+// The map's extent along x (0) or z (1): its nodes' and half a spacing beyond the outer ones, as each
+// node of an elevation model stands for the cell of the grid around it.
 std::array<double, 2> extent(const HeightMap& map, int axis) {
   const int n = axis == 0 ? map.nx : map.nz;
-  return {map.origin[axis], map.origin[axis] + (n - 1) * map.spacing[axis]};
+  const double half = 0.5 * map.spacing[axis];
+  return {map.origin[axis] - half, map.origin[axis] + (n - 1) * map.spacing[axis] + half};
 }
 
 // The lowest and highest heights the surface takes over [x0, x1] x [z0, z1] (within the extent): those

@@ -34,8 +34,9 @@ struct Extrusion {
   double z_lower, z_upper;
 };
 // The ground under a surface y = h(x, z) given at the nodes of a regular grid over x and z (a terrain's
-// digital elevation model), bilinear between the nodes: the points over the grid's extent from `bottom`
-// up to the surface.
+// digital elevation model), bilinear between the nodes: the points from `bottom` up to the surface over
+// the grid's extent, which reaches half a spacing beyond the outer nodes (each node stands for the cell
+// of the grid around it, as an elevation model's cells do), the surface there level with them.
 struct HeightMap {
   std::array<double, 2> origin{0.0, 0.0};   // x and z of the first node, m
   std::array<double, 2> spacing{1.0, 1.0};  // between nodes along x and z, m
@@ -43,7 +44,7 @@ struct HeightMap {
   std::vector<double> heights;              // nx * nz, x fastest: node (i, r) at (origin + (i dx, r dz))
   double bottom = -std::numeric_limits<double>::infinity();
 };
-// h(x, z), bilinear in the grid's cell that holds (x, z), which must lie within the grid's extent.
+// h(x, z): bilinear in the grid's cell that holds (x, z); beyond the outer nodes, theirs.
 double surface_height(const HeightMap& map, double x, double z);
 
 using Shape3 = std::variant<Box3, Sphere, VerticalCylinder, Extrusion, HeightMap>;

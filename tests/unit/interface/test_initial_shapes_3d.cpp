@@ -83,13 +83,16 @@ TEST(InitialShapes3d, AHeightMapIsTheGroundUnderItsBilinearSurface) {
     EXPECT_NEAR(surface_height(plane, x, z), 0.2 + 0.3 * x + 0.1 * z, 1e-15) << x << " " << z;
   EXPECT_TRUE(contains(plane, 0.5, 0.34, 0.5));    // the surface is at 0.40 there
   EXPECT_FALSE(contains(plane, 0.5, 0.41, 0.5));
-  EXPECT_FALSE(contains(plane, 1.01, 0.0, 0.5));   // beyond the extent
+  // Half a spacing beyond the outer nodes the surface is level with them; further out, nothing.
+  EXPECT_TRUE(contains(plane, 1.1, 0.5 + 0.05 - 1e-9, 0.5));
+  EXPECT_FALSE(contains(plane, 1.1, 0.5 + 0.05 + 1e-9, 0.5));
+  EXPECT_FALSE(contains(plane, 1.13, 0.0, 0.5));
   EXPECT_TRUE(contains(plane, 0.5, -5.0, 0.5));    // no bottom: all the way down
   HeightMap slab = plane;
   slab.bottom = 0.1;
   EXPECT_FALSE(contains(slab, 0.5, 0.05, 0.5));
   const auto [lo, hi] = bounding_box(slab);
-  EXPECT_EQ(lo, (Point3{0.0, 0.1, 0.0}));
+  EXPECT_EQ(lo, (Point3{-0.125, 0.1, -0.125}));
   EXPECT_NEAR(hi[1], 0.6, 1e-15);
   // Under the plane from y = 0.1: 0.2 + 0.15 + 0.05 - 0.1 = 0.3 of the unit square.
   EXPECT_NEAR(laid_volume(ShapeUnion3({slab}), 20), 0.3, 1e-3);
@@ -97,6 +100,23 @@ TEST(InitialShapes3d, AHeightMapIsTheGroundUnderItsBilinearSurface) {
   const HeightMap saddle{{0.0, 0.0}, {1.0, 1.0}, 2, 2, {0.9, 0.1, 0.1, 0.9}};
   EXPECT_NEAR(surface_height(saddle, 0.25, 0.75), 0.4, 1e-15);
   EXPECT_NEAR(laid_volume(ShapeUnion3({saddle}), 20), 0.5, 1e-3);
+}
+
+// An elevation model whose nodes are the centres of a mesh's columns (an ESRI grid of the mesh's cells,
+// its corner at the mesh's) covers every column: its nodes' coordinates, origin + i spacing, and the
+// mesh's centres, lower + (i + 1/2) width, round apart, and the last centre may fall past the last node
+// by that round-off; the half spacing the map reaches beyond its outer nodes holds it.
+TEST(InitialShapes3d, AHeightMapOfTheMeshsCellsCoversEveryColumn) {
+  for (const int n : {7, 15, 40, 41, 97}) {
+    const double lower = 0.1, upper = 0.8, width = (upper - lower) / n;
+    const HeightMap flat{{lower + 0.5 * width, lower + 0.5 * width}, {width, width}, n, n,
+                         std::vector<double>(size_t(n) * n, 0.5)};
+    int covered = 0;
+    for (int k = 0; k < n; ++k)
+      for (int i = 0; i < n; ++i)
+        covered += contains(flat, lower + (i + 0.5) * (upper - lower) / n, 0.25, lower + (k + 0.5) * (upper - lower) / n);
+    EXPECT_EQ(covered, n * n) << n;
+  }
 }
 
 // A height map's grid finer than the cells: a spike between the nine probes of a cell (its corners

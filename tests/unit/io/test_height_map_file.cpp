@@ -81,6 +81,16 @@ TEST_F(HeightMapFile, RefusesWhatIsNotACompleteGrid) {
   EXPECT_NE(unknown.find("bad.asc:5: unknown header key 'celsize'"), std::string::npos) << unknown;
   EXPECT_NE(error("ncols 2\nnrows two\n").find("bad.asc:2: expected a header key and its number"), std::string::npos);
   EXPECT_NE(error(head + "1 2\n3 1e200\n").find("beyond the magnitudes"), std::string::npos);
+  // GDAL writes NODATA_value nan: a nan height is then a hole, named as one.
+  const std::string nan_hole = error(head + "NODATA_value nan\n1 2\nnan 4\n");
+  EXPECT_NE(nan_hole.find("bad.asc:8: no height (NODATA) at row 2, column 1"), std::string::npos) << nan_hole;
+  EXPECT_NE(error(head + "1 2\n3 +-4\n").find("expected a height, found '+-4'"), std::string::npos);
+  // A header asking for more heights than the file can hold is refused before room is made for them.
+  const std::string huge = error("ncols 100000000\nnrows 100000000\nxllcorner 0\nyllcorner 0\ncellsize 1\n1 2\n");
+  EXPECT_NE(huge.find("asks for ncols x nrows = 100000000 x 100000000 heights, more than the rest of the file (4 "
+                      "bytes) can hold"),
+            std::string::npos)
+      << huge;
   const std::string none = error("");
   EXPECT_NE(none.find("has no ncols in its header"), std::string::npos) << none;
   try {
