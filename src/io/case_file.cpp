@@ -1320,7 +1320,26 @@ void read_height_map_files(toml::table& root, const std::filesystem::path& sourc
     for (const char* given : {"origin", "spacing", "heights"})
       if (shape.contains(given))
         throw CaseError(fmt::format("{}: give the height map's {} in its heights_file or here, not both", path, given));
-    const interface::HeightMap map = read_height_map_file(file, key);
+    // Only the nodes over the domain are kept (read into the run's record, held by each rank): an
+    // elevation model usually covers far more. The domain's x and z in the map's coordinates, where the
+    // case gives its corners (the tables' own checks come after) and the shape's offset.
+    interface::HeightMap map = read_height_map_file(file, key);
+    auto three = [](const toml::node* n) -> std::optional<std::array<double, 3>> {
+      const toml::array* a = n ? n->as_array() : nullptr;
+      if (!a || a->size() != 3) return std::nullopt;
+      std::array<double, 3> v{};
+      for (size_t k = 0; k < 3; ++k) {
+        const auto x = (*a)[k].value<double>();
+        if (!x || !std::isfinite(*x)) return std::nullopt;
+        v[k] = *x;
+      }
+      return v;
+    };
+    const auto lower = three(root.at_path("mesh.lower").node()), upper = three(root.at_path("mesh.upper").node());
+    const auto offset = shape.contains("offset") ? three(shape.get("offset")) : std::array<double, 3>{};
+    if (lower && upper && offset)
+      map = interface::cropped(map, {(*lower)[0] - (*offset)[0], (*upper)[0] - (*offset)[0]},
+                               {(*lower)[2] - (*offset)[2], (*upper)[2] - (*offset)[2]});
     toml::array heights;
     for (int r = 0; r < map.nz; ++r) {
       toml::array row;

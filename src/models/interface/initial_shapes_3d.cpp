@@ -17,6 +17,31 @@ double surface_height(const HeightMap& map, double x, double z) {
   return low + b * (high - low);
 }
 
+HeightMap cropped(const HeightMap& map, std::array<double, 2> x_range, std::array<double, 2> z_range) {
+  // The first and last node along an axis whose cells reach into [from, to].
+  auto nodes = [&](std::array<double, 2> range, int axis, int n) {
+    const double o = map.origin[axis], d = map.spacing[axis];
+    const double first = std::floor((range[0] - o) / d), last = std::ceil((range[1] - o) / d);
+    if (!(last >= 0.0 && first <= n - 1)) return std::array<int, 2>{0, -1};  // no overlap
+    std::array<int, 2> out{int(std::max(first, 0.0)), int(std::min(last, double(n - 1)))};
+    if (out[1] == out[0]) {  // at least two nodes
+      if (out[0] > 0) --out[0];
+      else ++out[1];
+    }
+    return out;
+  };
+  const auto xi = nodes(x_range, 0, map.nx), zr = nodes(z_range, 1, map.nz);
+  if (xi[1] < xi[0] || zr[1] < zr[0]) return map;
+  HeightMap out = map;
+  out.nx = xi[1] - xi[0] + 1;
+  out.nz = zr[1] - zr[0] + 1;
+  out.origin = {map.origin[0] + xi[0] * map.spacing[0], map.origin[1] + zr[0] * map.spacing[1]};
+  out.heights.clear();
+  for (int r = zr[0]; r <= zr[1]; ++r)
+    for (int i = xi[0]; i <= xi[1]; ++i) out.heights.push_back(map.heights[size_t(r) * map.nx + i]);
+  return out;
+}
+
 namespace {
 // The map's extent along x (0) or z (1): its nodes' and half a spacing beyond the outer ones, as each
 // node of an elevation model stands for the cell of the grid around it.

@@ -47,6 +47,11 @@ struct HeightMap {
 // h(x, z): bilinear in the grid's cell that holds (x, z); beyond the outer nodes, theirs.
 double surface_height(const HeightMap& map, double x, double z);
 
+// The map cut down to the nodes the surface takes over [x_range] x [z_range] (those of the grid's cells
+// that reach into it, at least two along each axis): the same heights there. A map that does not reach
+// the ranges is returned whole.
+HeightMap cropped(const HeightMap& map, std::array<double, 2> x_range, std::array<double, 2> z_range);
+
 using Shape3 = std::variant<Box3, Sphere, VerticalCylinder, Extrusion, HeightMap>;
 
 bool contains(const Shape3& shape, double x, double y, double z);

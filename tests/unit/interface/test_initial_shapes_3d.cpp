@@ -119,6 +119,26 @@ TEST(InitialShapes3d, AHeightMapOfTheMeshsCellsCoversEveryColumn) {
   }
 }
 
+// An elevation model cut down to a domain keeps the surface over it: the same heights there from far
+// fewer nodes. One that does not reach the domain is kept whole (for the case to say it lies outside).
+TEST(InitialShapes3d, AHeightMapCutToTheDomainKeepsItsSurfaceThere) {
+  HeightMap model{{-3.0, -2.0}, {0.5, 0.25}, 41, 33, {}};
+  for (int r = 0; r < model.nz; ++r)
+    for (int i = 0; i < model.nx; ++i) model.heights.push_back(std::sin(0.7 * i) + std::cos(0.3 * r) + 0.01 * i * r);
+  const HeightMap cut = cropped(model, {1.2, 4.1}, {0.3, 0.9});
+  EXPECT_EQ(cut.nx, 8);  // nodes at x = 1.0 .. 4.5
+  EXPECT_EQ(cut.nz, 4);  // z = 0.25 .. 1.0
+  double largest = 0.0;
+  for (double x = 1.2; x <= 4.1; x += 0.037)
+    for (double z = 0.3; z <= 0.9; z += 0.021)
+      largest = std::max(largest, std::abs(surface_height(cut, x, z) - surface_height(model, x, z)));
+  EXPECT_LT(largest, 1e-12);
+  // A range narrower than a spacing keeps two nodes; one beyond the model keeps it whole.
+  EXPECT_EQ(cropped(model, {1.1, 1.2}, {0.3, 0.31}).nx, 2);
+  EXPECT_EQ(cropped(model, {1.0, 1.0}, {0.3, 0.31}).nx, 2);
+  EXPECT_EQ(cropped(model, {50.0, 60.0}, {0.3, 0.9}).heights.size(), model.heights.size());
+}
+
 // A height map's grid finer than the cells: a spike between the nine probes of a cell (its corners
 // and centre) is sampled, as a shape smaller than the cell is.
 TEST(InitialShapes3d, AHeightMapFinerThanTheCellIsSampled) {

@@ -1348,13 +1348,31 @@ TEST(CaseFile, AHeightMapIsASolidOfAMeshOfLayers) {
   EXPECT_EQ(soil.bottom, 0.0);
   EXPECT_NE(from_file.as_run.find("heights = [ [ 0.1, 0.1, 0.1 ]"), std::string::npos) << from_file.as_run;
   EXPECT_EQ(from_file.as_run.find("heights_file"), std::string::npos) << from_file.as_run;
+  // A model reaching far beyond the domain is read as the nodes over it: a 30 x 30 grid of 0.1 m from
+  // (-1, -1) over the domain's [0, 0.8] x [-0.2, 0.2] keeps 10 x 6 nodes, x from -0.05 to 0.85 m.
+  {
+    std::ofstream big(dir / "terrain" / "big.asc");
+    big << "ncols 30\nnrows 30\nxllcorner -1.0\nyllcorner -1.0\ncellsize 0.1\n";
+    for (int r = 0; r < 30; ++r) {
+      for (int i = 0; i < 30; ++i) big << 0.01 * (i + r) << ' ';
+      big << '\n';
+    }
+  }
+  const CaseConfig cut = parse_case(
+      layered, {"initial.soil=[{shape=\"height_map\", heights_file=\"terrain/big.asc\", bottom=-1.0}]"}, source);
+  const auto& kept = std::get<interface::HeightMap>(cut.soil->initial_soil_3d[0]);
+  EXPECT_EQ(kept.nx, 10);
+  EXPECT_EQ(kept.nz, 6);
+  EXPECT_NEAR(kept.origin[0], -0.05, 1e-12);
+  EXPECT_NEAR(kept.origin[1], -0.25, 1e-12);
   // `offset` moves a map in survey coordinates to the mesh's: x and z to the origin, y to the heights.
   const CaseConfig moved = parse_case(
       layered, {"initial.soil=[{shape=\"height_map\", heights_file=\"terrain/dem.asc\", offset=[0.1, -0.05, 0.2]}]"},
       source);
   const auto& shifted = std::get<interface::HeightMap>(moved.soil->initial_soil_3d[0]);
   EXPECT_EQ(shifted.origin, (std::array<double, 2>{0.1, 0.0}));
-  EXPECT_NEAR(shifted.heights[8], 0.25, 1e-15);
+  ASSERT_EQ(shifted.nz, 2);  // moved along z by 0.2 m, the domain's z up to 0.2 m needs the rows at 0 and 0.2 m
+  EXPECT_NEAR(shifted.heights[5], 0.15, 1e-15);
   // The case as run reads back to the same map.
   EXPECT_EQ(std::get<interface::HeightMap>(parse_case(from_file.as_run).soil->initial_soil_3d[0]).heights, soil.heights);
 
