@@ -17,20 +17,28 @@ double surface_height(const HeightMap& map, double x, double z) {
   return low + b * (high - low);
 }
 
+namespace {
+// The first and last node along x (axis 0) or z (1) of the grid cells that reach into [from, to] (the
+// heights between them take), clamped to the grid; {0, -1} where none does.
+std::array<int, 2> node_span(const HeightMap& map, int axis, std::array<double, 2> range) {
+  const int n = axis == 0 ? map.nx : map.nz;
+  const double o = map.origin[axis], d = map.spacing[axis];
+  const double first = std::floor((range[0] - o) / d), last = std::ceil((range[1] - o) / d);
+  if (!(last >= 0.0 && first <= n - 1)) return {0, -1};
+  return {int(std::max(first, 0.0)), int(std::min(last, double(n - 1)))};
+}
+}  // namespace
+
 HeightMap cropped(const HeightMap& map, std::array<double, 2> x_range, std::array<double, 2> z_range) {
-  // The first and last node along an axis whose cells reach into [from, to].
-  auto nodes = [&](std::array<double, 2> range, int axis, int n) {
-    const double o = map.origin[axis], d = map.spacing[axis];
-    const double first = std::floor((range[0] - o) / d), last = std::ceil((range[1] - o) / d);
-    if (!(last >= 0.0 && first <= n - 1)) return std::array<int, 2>{0, -1};  // no overlap
-    std::array<int, 2> out{int(std::max(first, 0.0)), int(std::min(last, double(n - 1)))};
+  auto nodes = [&](std::array<double, 2> range, int axis) {
+    auto out = node_span(map, axis, range);
     if (out[1] == out[0]) {  // at least two nodes
       if (out[0] > 0) --out[0];
       else ++out[1];
     }
     return out;
   };
-  const auto xi = nodes(x_range, 0, map.nx), zr = nodes(z_range, 1, map.nz);
+  const auto xi = nodes(x_range, 0), zr = nodes(z_range, 1);
   if (xi[1] < xi[0] || zr[1] < zr[0]) return map;
   HeightMap out = map;
   out.nx = xi[1] - xi[0] + 1;
@@ -54,15 +62,10 @@ std::array<double, 2> extent(const HeightMap& map, int axis) {
 // The lowest and highest heights the surface takes over [x0, x1] x [z0, z1] (within the extent): those
 // of the nodes of the grid's cells that overlap it, since bilinear values lie between their cell's nodes'.
 std::array<double, 2> surface_range(const HeightMap& m, double x0, double x1, double z0, double z1) {
-  auto cells = [&](double from, double to, int axis, int n) {
-    const double o = m.origin[axis], d = m.spacing[axis];
-    return std::array<int, 2>{std::clamp(int(std::floor((from - o) / d)), 0, n - 2),
-                              std::clamp(int(std::floor((to - o) / d)), 0, n - 2)};
-  };
-  const auto ci = cells(x0, x1, 0, m.nx), cr = cells(z0, z1, 1, m.nz);
+  const auto ci = node_span(m, 0, {x0, x1}), cr = node_span(m, 1, {z0, z1});
   std::array<double, 2> range{std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity()};
-  for (int r = cr[0]; r <= cr[1] + 1; ++r)
-    for (int i = ci[0]; i <= ci[1] + 1; ++i) {
+  for (int r = cr[0]; r <= cr[1]; ++r)
+    for (int i = ci[0]; i <= ci[1]; ++i) {
       const double h = m.heights[size_t(r) * m.nx + i];
       range = {std::min(range[0], h), std::max(range[1], h)};
     }
