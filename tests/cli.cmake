@@ -323,6 +323,27 @@ add_test(NAME cli_check_lays_out_terrain_of_a_height_map
          COMMAND ${GRANFLOW_EXPECT_STATUS} 0 $<TARGET_FILE:granflow> check ${CMAKE_SOURCE_DIR}/cases/terrain_landslide_3d.toml)
 set_tests_properties(cli_check_lays_out_terrain_of_a_height_map PROPERTIES LABELS cli
                      PASS_REGULAR_EXPRESSION "valid [(]40 x 20 x 15 cells, t_end = 3 s. initial soil 0[.]00356 m\\^3. 2400 cells blocked by obstacles, which leave out 0[.]01024 m\\^3 of the initial shapes' soil[)]")
+# A height map rougher than the cells: a node 6 cm above its neighbours on the 2 cm cells stands in one
+# column, a ridge one cell wide, which is lowered to the mesh: its three cells above the neighbours'
+# three are opened (30 blocked less 3, 3 x 8e-6 m^3). Asked to refuse it, check says where the wall is.
+set(SPIKED_MAP "obstacle=[{shape='height_map', origin=[0.39, 0.13], spacing=[0.02, 0.02], heights=[[0.06, 0.06, 0.06], [0.06, 0.12, 0.06], [0.06, 0.06, 0.06]]}]")
+add_test(NAME cli_check_lowers_the_thin_ridges_of_a_height_map
+         COMMAND ${GRANFLOW_EXPECT_STATUS} 0 $<TARGET_FILE:granflow> check ${CMAKE_SOURCE_DIR}/cases/terrain_landslide_3d.toml --set "${SPIKED_MAP}")
+set_tests_properties(cli_check_lowers_the_thin_ridges_of_a_height_map PROPERTIES LABELS cli
+                     PASS_REGULAR_EXPRESSION " 27 cells blocked by obstacles. 3 cells of ridges one cell wide lowered to the mesh [(]obstacle\\[0\\]: 3, 2[.]4e-05 m\\^3[)]")
+string(REPLACE "shape='height_map'," "shape='height_map', thin_ridges='refuse'," SPIKED_MAP_REFUSED "${SPIKED_MAP}")
+add_test(NAME cli_check_refuses_the_thin_ridges_of_a_height_map_when_asked
+         COMMAND ${GRANFLOW_EXPECT_STATUS} 2 $<TARGET_FILE:granflow> check ${CMAKE_SOURCE_DIR}/cases/terrain_landslide_3d.toml --set "${SPIKED_MAP_REFUSED}")
+set_tests_properties(cli_check_refuses_the_thin_ridges_of_a_height_map_when_asked PROPERTIES LABELS cli
+                     PASS_REGULAR_EXPRESSION "error: [^\n]*terrain_landslide_3d.toml: obstacle: the cell at x = 0[.]41 m, y = 0[.]07 m, z = 0[.]15 m is a wall one cell thick")
+# The same ridge on the ranks' boundary (x = 0.4 m on 40 cells), lowered alike on
+# two ranks: the same cells blocked as on one (cli_check_lowers_the_thin_ridges_of_a_height_map).
+add_test(NAME cli_check_2_ranks_lowers_the_thin_ridges_of_a_height_map
+         COMMAND ${MPIRUN} -np 2 --oversubscribe $<TARGET_FILE:granflow> check ${CMAKE_SOURCE_DIR}/cases/terrain_landslide_3d.toml --set "${SPIKED_MAP}")
+set_tests_properties(cli_check_2_ranks_lowers_the_thin_ridges_of_a_height_map PROPERTIES
+  LABELS parallel TIMEOUT 120
+  PASS_REGULAR_EXPRESSION " 27 cells blocked by obstacles. 3 cells of ridges one cell wide lowered to the mesh [(]obstacle\\[0\\]: 3, 2[.]4e-05 m\\^3[)]"
+  ENVIRONMENT "OMPI_ALLOW_RUN_AS_ROOT=1;OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1;OMPI_MCA_rmaps_base_oversubscribe=1")
 # ... and with soil materials, each one's soil; a material whose shapes all lie under later shapes
 # holds none, which check finds as a run does (exit 2, the message naming it).
 add_test(NAME cli_check_says_each_materials_soil

@@ -167,6 +167,7 @@ int check_case(const std::string& case_file, const std::vector<std::string>& ove
         if (c.soil && laid_out.soil_in_obstacles > 0.0)
           placed += fmt::format(", which leave out {:.6g} {} of the initial shapes' soil", laid_out.soil_in_obstacles,
                                 granflow::volume_unit(c.mesh));
+        if (!laid_out.ridges_lowered.empty()) placed += "; " + laid_out.ridges_lowered;
       }
       fmt::print("{}: valid ({} cells, t_end = {} s{})\n", case_file, granflow::cell_counts(c.mesh), c.time.end, placed);
       std::fflush(stdout);  // before the warnings on stderr, also where both go to one file

@@ -125,6 +125,7 @@ int run_case(const std::string& case_file, const std::vector<std::string>& overr
     fmt::print("granflow: {} on {} cells {}to t = {} s, output in {}\n", config.title, cell_counts(config.mesh),
                restart ? fmt::format("from the checkpoint at t = {:.6g} s ", sim.time()) : "",
                config.time.end, out_dir);
+  if (rank == 0 && !sim.ridges_lowered().empty()) fmt::print("obstacles: {}\n", sim.ridges_lowered());
   if (rank == 0)
     for (const auto& line : case_advice(config)) fmt::print(stderr, "warning: {}\n", line);
   std::fflush(stdout);  // the banner is there even if the run is killed (stdout is buffered into a file)

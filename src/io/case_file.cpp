@@ -1028,10 +1028,14 @@ void require_solid_in_domain(const interface::Shape3& solid, const GridSpec& mes
   const auto [lo, hi] = interface::bounding_box(solid);
   bool inside = true;
   for (int a = 0; a < 3; ++a) inside = inside && lo[a] < mesh.upper[a] && hi[a] > mesh.lower[a];
+  // A height map without a bottom reaches down without end.
+  auto span = [](double low, double high) {
+    return std::isinf(low) ? fmt::format("below {:.6g}", high) : fmt::format("[{:.6g}, {:.6g}]", low, high);
+  };
   if (!inside)
-    throw CaseError(fmt::format("{} within [{}, {}] x [{}, {}] x [{}, {}] lies outside the domain [{}, {}] x [{}, {}] x "
-                                "[{}, {}]", what, lo[0], hi[0], lo[1], hi[1], lo[2], hi[2], mesh.lower[0], mesh.upper[0],
-                                mesh.lower[1], mesh.upper[1], mesh.lower[2], mesh.upper[2]));
+    throw CaseError(fmt::format("{} within x {}, y {}, z {} lies outside the domain [{}, {}] x [{}, {}] x [{}, {}]", what,
+                                span(lo[0], hi[0]), span(lo[1], hi[1]), span(lo[2], hi[2]), mesh.lower[0],
+                                mesh.upper[0], mesh.lower[1], mesh.upper[1], mesh.lower[2], mesh.upper[2]));
 }
 
 // What a mesh of layers has so far (docs/method.md, "Known limitations"), refused with the key to change.
@@ -1188,6 +1192,10 @@ CaseConfig read_case(const toml::table& root, const std::filesystem::path& sourc
   c.output = read_output(top, c.mesh, c.time.end);
   for (TableReader obstacle : top.tables("obstacle")) {
     c.obstacle_friction.push_back(read_wall_friction(obstacle, two_phase_keys));
+    // An elevation model rougher than the cells stands in single columns; lowered by default, as a user
+    // would resample it to the mesh by hand (the other solids are drawn for the mesh, and refused).
+    const bool height_map = layers && obstacle.has("shape") && obstacle.string("shape", "") == "height_map";
+    c.obstacle_lowers_thin_ridges.push_back(height_map && obstacle.choice("thin_ridges", "lower", {"lower", "refuse"}) == "lower");
     if (layers) {  // a solid, or a planar shape across the whole depth (a terrain profile's ridge)
       if (auto solid = read_solid(obstacle)) c.obstacle_solids.push_back(*solid);
       else c.obstacle_solids.push_back(interface::Extrusion{read_shape(obstacle), c.mesh.lower[2], c.mesh.upper[2]});

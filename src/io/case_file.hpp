@@ -82,6 +82,9 @@ struct CaseConfig {
   // Each obstacle's own friction against the soil (friction_angle, adhesion), or none: its faces then
   // hold the soil as its own strength does, as the domain's walls (solver/boundary.hpp).
   std::vector<std::optional<rheology::WallFriction>> obstacle_friction;
+  // Per obstacle: whether its ridges one cell wide are lowered to the mesh (a height map's
+  // `thin_ridges = "lower"`, its default; mesh/thin_ridges.hpp), or refused as any such wall is.
+  std::vector<bool> obstacle_lowers_thin_ridges;
   // Keys the case gives that its other choices make of no effect, each "KEY: why" (a warning, not an
   // error: a key kept for switching numerics with --set is legitimate; case_advice prints them).
   std::vector<std::string> keys_without_effect;

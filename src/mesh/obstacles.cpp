@@ -71,8 +71,13 @@ long mark_blocked_cells(const Grid& g, const interface::ShapeUnion& shapes, Fiel
   return mark_cells(g, [&](int i, int j, int) { return shapes.contains(g.xc(i), g.yc(j)); }, mask);
 }
 
-long mark_blocked_cells(const Grid& g, const interface::ShapeUnion3& solids, Field& mask) {
-  return mark_cells(g, [&](int i, int j, int k) { return solids.contains(g.xc(i), g.yc(j), g.zc(k)); }, mask);
+long mark_blocked_cells(const Grid& g, const interface::ShapeUnion3& solids, Field& mask,
+                        std::span<const long> kept_open) {
+  const long nx = g.nx(), ny = g.ny();
+  return mark_cells(g, [&](int i, int j, int k) {
+    return solids.contains(g.xc(i), g.yc(j), g.zc(k)) &&
+           !std::binary_search(kept_open.begin(), kept_open.end(), (k * ny + j) * nx + i);
+  }, mask);
 }
 
 namespace {

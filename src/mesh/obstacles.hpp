@@ -7,6 +7,7 @@
 // domain's walls get theirs from the boundary conditions; an obstacle's blocked cells get them from
 // mirror_into_blocked, in the local (ghosted) arrays only: the global vectors keep zero there.
 #include <optional>
+#include <span>
 #include <vector>
 
 #include "mesh/field.hpp"
@@ -35,9 +36,11 @@ class BlockedView {
 
 // Marks the cells whose centre lies in any of the shapes (1, else 0), ghosts included; returns the
 // number of blocked cells over all ranks. Collective. A planar mesh takes planar shapes, a mesh of
-// layers solids.
+// layers solids, and leaves open the cells `kept_open` lists (global indices (k * ny + j) * nx + i,
+// ascending, the same on every rank: ridges one cell wide lowered, mesh/thin_ridges.hpp).
 long mark_blocked_cells(const Grid& g, const interface::ShapeUnion& shapes, Field& mask);
-long mark_blocked_cells(const Grid& g, const interface::ShapeUnion3& solids, Field& mask);
+long mark_blocked_cells(const Grid& g, const interface::ShapeUnion3& solids, Field& mask,
+                        std::span<const long> kept_open = {});
 
 // Marks each cell with one plus the index of the last shape that holds its centre, 0 where none does,
 // ghosts included: which obstacle a blocked cell belongs to (the last listed where they overlap).

@@ -8,6 +8,7 @@
 #include "io/collective_failure.hpp"
 #include "mesh/gather.hpp"
 #include "mesh/obstacles.hpp"
+#include "mesh/thin_ridges.hpp"
 #include "models/interface/initial_shapes.hpp"
 #include "solver/boundary.hpp"
 
@@ -160,6 +161,50 @@ std::vector<long> centres_held(const Grid& g, const CaseConfig& config) {
       for (size_t k = 0; k < centres.size(); ++k) centres[k] += obstacles.shape_contains(k, g.xc(i), g.yc(j));
   return centres;
 }
+
+// The ridges one cell wide of the obstacles that lower theirs (height maps, mesh/thin_ridges.hpp), opened
+// in the mask, its copy on rank 0 and the layout's counts. A cell is opened only where no obstacle that
+// keeps its ridges holds its centre. Collective.
+void lower_thin_ridges(const Grid& g, const CaseConfig& config, const interface::ShapeUnion3& solids, Field& mask,
+                       ObstacleLayout& layout) {
+  const auto& lowers = config.obstacle_lowers_thin_ridges;
+  if (g.dimension() != 3 || std::find(lowers.begin(), lowers.end(), true) == lowers.end()) return;
+  int rank;
+  MPI_Comm_rank(g.comm(), &rank);
+  std::vector<long> opened;
+  const size_t count_of_solids = config.obstacle_solids.size();
+  auto lowers_its = [&](size_t s) { return s < lowers.size() && lowers[s]; };
+  layout.ridge_cells_opened.assign(count_of_solids, 0);
+  if (rank == 0) {
+    const long nx = g.nx(), ny = g.ny();
+    std::vector<size_t> last_holder;  // per opened cell, the obstacle it is counted against
+    auto centre_of = [&](long n) {
+      return std::array<int, 3>{int(n % nx), int(n / nx % ny), int(n / (nx * ny))};
+    };
+    opened = open_thin_ridges(g.nx(), g.ny(), g.nz(), g.periodic_x(), layout.mask_on_root, [&](long n) {
+      const auto [i, j, k] = centre_of(n);
+      for (size_t s = 0; s < count_of_solids; ++s)
+        if (!lowers_its(s) && solids.shape_contains(s, g.xc(i), g.yc(j), g.zc(k))) return false;
+      return true;  // blocked, so held by an obstacle, and by none that keeps its ridges
+    });
+    for (const long n : opened) {
+      const auto [i, j, k] = centre_of(n);
+      size_t holder = 0;
+      for (size_t s = 0; s < count_of_solids; ++s)
+        if (solids.shape_contains(s, g.xc(i), g.yc(j), g.zc(k))) holder = s;  // the last listed, as the mask's index
+      ++layout.ridge_cells_opened[holder];
+      layout.ridge_volume_opened += g.volume(i, j, k);
+    }
+  }
+  long count = long(opened.size());
+  MPI_Bcast(&count, 1, MPI_LONG, 0, g.comm());
+  if (count == 0) return;
+  opened.resize(size_t(count));
+  MPI_Bcast(opened.data(), int(count), MPI_LONG, 0, g.comm());
+  MPI_Bcast(layout.ridge_cells_opened.data(), int(count_of_solids), MPI_LONG, 0, g.comm());
+  MPI_Bcast(&layout.ridge_volume_opened, 1, MPI_DOUBLE, 0, g.comm());
+  layout.blocked_cells = mark_blocked_cells(g, solids, mask, opened);
+}
 }  // namespace
 
 
@@ -174,20 +219,35 @@ ObstacleLayout lay_out_obstacles(const Grid& g, const CaseConfig& config, Field&
       throw case_error(config, fmt::format("obstacle[{}]: the shape holds no cell centre on this {} mesh (cells are "
                                   "blocked whole, by their centres)", k, cell_counts(g.spec())));
   ObstacleLayout layout;
-  layout.blocked_cells = g.dimension() == 3 ? mark_blocked_cells(g, interface::ShapeUnion3(config.obstacle_solids), mask)
+  const interface::ShapeUnion3 solids(config.obstacle_solids);
+  layout.blocked_cells = g.dimension() == 3 ? mark_blocked_cells(g, solids, mask)
                                             : mark_blocked_cells(g, interface::ShapeUnion(config.obstacles), mask);
-  if (layout.blocked_cells == g.cell_count()) throw case_error(config, "obstacle: the obstacles block every cell of the domain");
   if (config.soil && config.soil->yield_pressure == YieldPressure::lithostatic_floor)
     throw case_error(config, "obstacle: soil.yield_pressure = \"lithostatic_floor\" takes the soil above each cell up to the "
                     "top, through any obstacle; use \"face\" or \"cell\" with obstacles");
   layout.mask_on_root = gather_to_root(g, mask);
-  std::string problem;
   int rank;
   MPI_Comm_rank(g.comm(), &rank);
+  lower_thin_ridges(g, config, solids, mask, layout);
+  if (layout.blocked_cells == g.cell_count()) throw case_error(config, "obstacle: the obstacles block every cell of the domain");
+  std::string problem;
   if (rank == 0) problem = check_blocked_cells(g, config, layout.mask_on_root, layout.hash);
   if (auto text = first_failure(g.comm(), problem); !text.empty()) throw case_error(config, text);
   MPI_Bcast(&layout.hash, 1, MPI_UINT64_T, 0, g.comm());
   return layout;
+}
+
+std::string ridges_lowered(const ObstacleLayout& layout) {
+  std::string which;
+  long total = 0;
+  for (size_t s = 0; s < layout.ridge_cells_opened.size(); ++s)
+    if (const long n = layout.ridge_cells_opened[s]; n > 0) {
+      which += fmt::format("obstacle[{}]: {}, ", s, n);
+      total += n;
+    }
+  if (total == 0) return {};
+  return fmt::format("{} cell{} of ridges one cell wide lowered to the mesh ({}{:.6g} m^3)", total,
+                     total == 1 ? "" : "s", which, layout.ridge_volume_opened);
 }
 
 PlacedSoil initial_soil_placed(const Grid& g, const CaseConfig& config, const Field* mask) {

@@ -29,7 +29,15 @@ struct ObstacleLayout {
   long blocked_cells = 0;
   std::uint64_t hash = 0;
   std::vector<double> mask_on_root;
+  // The cells of ridges one cell wide opened (mesh/thin_ridges.hpp), per obstacle (the last listed that
+  // holds the cell's centre; empty when no obstacle lowers its ridges), and their volume.
+  std::vector<long> ridge_cells_opened;
+  double ridge_volume_opened = 0.0;
 };
+
+// The ridges one cell wide that laying out opened, said for the user ("" where none were): how many
+// cells of which obstacles, and their volume.
+std::string ridges_lowered(const ObstacleLayout& layout);
 
 // Marks the cells of the case's obstacles into mask (mesh/obstacles.hpp) and checks the whole mask.
 // Collective; every rank throws alike.

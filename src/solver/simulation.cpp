@@ -32,6 +32,7 @@ Simulation::Simulation(MPI_Comm comm, const CaseConfig& config, std::filesystem:
     // What a checkpoint records of them: the fields of one set of obstacles are not another's state.
     obstacles_ = fmt::format(", obstacles blocking {} cells (hash {:016x})", layout.blocked_cells, layout.hash);
     blocked_on_root_ = std::move(layout.mask_on_root);
+    ridges_lowered_ = granflow::ridges_lowered(layout);
     // The west wall the history's wall height is read at (on rank 0): the first column with an open cell.
     if (rank_ == 0) {
       const int nx = grid_->nx();
@@ -111,7 +112,9 @@ InitialState check_initial_state(MPI_Comm comm, const CaseConfig& config) {
   std::unique_ptr<Field> blocked;
   if (config.has_obstacles()) {
     blocked = std::make_unique<Field>(grid);
-    state.blocked_cells = lay_out_obstacles(grid, config, *blocked).blocked_cells;
+    const ObstacleLayout layout = lay_out_obstacles(grid, config, *blocked);
+    state.blocked_cells = layout.blocked_cells;
+    state.ridges_lowered = ridges_lowered(layout);
   }
   if (!config.soil) return state;
   const PlacedSoil placed = initial_soil_placed(grid, config, blocked.get());

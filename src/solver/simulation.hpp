@@ -42,6 +42,7 @@ struct RunSummary {
 // to compare with what was meant.
 struct InitialState {
   long blocked_cells = 0;    // by the obstacles
+  std::string ridges_lowered;  // the obstacles' ridges one cell wide lowered to the mesh ("" if none)
   double soil_volume = 0.0;  // in open cells: m^2 per metre of depth, or m^3 per radian if axisymmetric
   double soil_in_obstacles = 0.0;  // what the initial shapes hold in blocked cells, left out (same units)
   std::vector<double> material_volumes;  // with [[soil.materials]]: the rheology's own soil's, then each material's
@@ -58,6 +59,8 @@ class Simulation {
   using StepObserver = std::function<void(Simulation&, double dt)>;
   RunSummary run(const StepObserver& after_step = {});
   const Grid& grid() const { return *grid_; }
+  // The obstacles' ridges one cell wide that laying out lowered to the mesh, for the user ("" if none).
+  const std::string& ridges_lowered() const { return ridges_lowered_; }
   FlowSolver& flow() { return *flow_; }
   SoilPhase* soil() { return soil_.get(); }
   const CaseConfig& config() const { return config_; }
@@ -111,6 +114,7 @@ class Simulation {
   std::unique_ptr<Field> obstacle_index_;  // each blocked cell's obstacle, with obstacles of their own friction
   int wall_column_ = 0;             // the first column with an open cell: the history's wall height (rank 0)
   std::string obstacles_;           // the blocked cells as domain() records them ("" without obstacles)
+  std::string ridges_lowered_;      // the obstacles' ridges one cell wide lowered to the mesh ("" if none)
   std::vector<double> blocked_on_root_;  // the mask gathered to rank 0 (empty elsewhere, and without obstacles)
   std::function<bool(int, int)> open_square(int layer) const;
   bool in_blocked_cell(double x, double y, double z) const;

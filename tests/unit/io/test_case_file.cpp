@@ -1333,6 +1333,13 @@ TEST(CaseFile, AHeightMapIsASolidOfAMeshOfLayers) {
   EXPECT_EQ(map.spacing, (std::array<double, 2>{0.4, 0.2}));
   EXPECT_EQ(map.heights[5], 0.35);  // row 1 along z, node 2 along x
   EXPECT_TRUE(std::isinf(map.bottom));
+  // As terrain it lowers its ridges one cell wide to the mesh unless asked to refuse them.
+  EXPECT_EQ(c.obstacle_lowers_thin_ridges, std::vector<bool>{true});
+  std::string refusing = inline_map;
+  refusing.insert(refusing.find("origin"), "thin_ridges=\"refuse\", ");
+  EXPECT_EQ(parse_case(layered, {coupled, refusing}).obstacle_lowers_thin_ridges, std::vector<bool>{false});
+  EXPECT_EQ(parse_case(layered, {coupled, "obstacle=[{shape=\"sphere\", centre=[0.4, 0.0, 0.0], radius=0.1}]"})
+                .obstacle_lowers_thin_ridges, std::vector<bool>{false});
 
   namespace fs = std::filesystem;
   const fs::path dir = fs::temp_directory_path() / ("granflow_height_map_case_" + std::to_string(::getpid()));
@@ -1402,8 +1409,16 @@ TEST(CaseFile, AHeightMapIsASolidOfAMeshOfLayers) {
       << polygon;
   const std::string outside = error("obstacle=[{shape=\"height_map\", origin=[5.0, 0.0], spacing=[0.1, 0.1], "
                                     "heights=[[0.1, 0.2], [0.1, 0.2]]}]");
-  EXPECT_NE(outside.find("obstacle[0]: the shape within [4.95, 5.1"), std::string::npos) << outside;
-  EXPECT_NE(outside.find("lies outside the domain"), std::string::npos) << outside;
+  EXPECT_NE(outside.find("obstacle[0]: the shape within x [4.95, 5.15], y below 0.2, z [-0.05, 0.15] lies outside "
+                         "the domain"), std::string::npos) << outside;
+  std::string misnamed = refusing;
+  misnamed.replace(misnamed.find("refuse"), 6, "smooth");
+  const std::string unknown_choice = error(misnamed);
+  EXPECT_NE(unknown_choice.find("obstacle[0].thin_ridges"), std::string::npos) << unknown_choice;
+  EXPECT_NE(unknown_choice.find("'smooth' is not one of: lower, refuse"), std::string::npos) << unknown_choice;
+  const std::string of_soil = error_of(layered, {coupled, "initial.soil=[{shape=\"height_map\", thin_ridges=\"lower\", "
+                                       "origin=[0.0, 0.0], spacing=[0.1, 0.1], heights=[[0.1, 0.2], [0.1, 0.2]]}]"}, source);
+  EXPECT_NE(of_soil.find("initial.soil[0].thin_ridges: unknown key"), std::string::npos) << of_soil;
   const std::string planar = error_of(two_phase, {"soil.rheology.friction_angle=30", coupled,
                                                   "obstacle=[{shape=\"height_map\", origin=[0.0, 0.0], spacing=[0.1, 0.1], "
                                                   "heights=[[0.1, 0.2], [0.1, 0.2]]}]"});
@@ -1479,7 +1494,7 @@ TEST(CaseFile, AMeshOfLayersRefusesWhatItLacks) {
       {{"output.line=[{name=\"a\", start=[0.0, 0.1, 0.0], end=[0.5, 0.1, 0.3]}]"},
        "output.line[0].end: [0.5, 0.1, 0.3] lies outside the domain [0, 0.8] x [0, 0.6] x [-0.2, 0.2]"},
       {{"numerics.pressure_coupling=\"coupled\"", "obstacle=[{shape=\"sphere\", centre=[5.0, 5.0, 5.0], radius=0.1}]"},
-       "obstacle[0]: the shape within [4.9, 5.1] x [4.9, 5.1] x [4.9, 5.1] lies outside the domain"},
+       "obstacle[0]: the shape within x [4.9, 5.1], y [4.9, 5.1], z [4.9, 5.1] lies outside the domain"},
       {{"obstacle=[{shape=\"box\", lower=[0.0, 0.0, 0.0], upper=[0.1, 0.1, 0.1]}]"},
        "obstacle: needs numerics.pressure_coupling = \"coupled\""},
       {{"initial.soil=[{shape=\"sphere\", centre=[5.0, 5.0, 5.0], radius=0.1}]"}, "lies outside the domain"},
