@@ -855,9 +855,13 @@ NumericsSettings read_numerics(TableReader& top, bool granular, int band,
     throw CaseError(fmt::format("numerics.momentum_transport: \"conservative\" needs numerics.pressure_coupling = "
                                 "\"coupled\" (it is \"{}\"); use \"advective\" with the projection and PISO",
                                 coupling));
+  num.density_jump_keeps_kinetic_energy =
+      n.choice("density_jump", "keep_kinetic_energy", {"keep_kinetic_energy", "keep_velocity"}) == "keep_kinetic_energy";
   auto without_effect = [&](const char* key, bool used, const char* why) {
     if (n.has(key) && !used) keys_without_effect.push_back(n.key_path(key) + ": " + why);
   };
+  without_effect("density_jump", num.conservative_momentum,
+                 "used only with numerics.momentum_transport = \"conservative\" (the coupled solve's default)");
   without_effect("blending", conv == "blended", "used only with numerics.convection = \"blended\"");
   // The projection and PISO factorise nothing: a case switched to them keeps its coupled settings.
   without_effect("later_iterations", coupled, "used only with numerics.pressure_coupling = \"coupled\"");

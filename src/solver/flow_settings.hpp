@@ -50,6 +50,12 @@ struct NumericsSettings {
   // soil enters the velocity its light air had. Coupled solve only (the case file's default there);
   // needs a soil phase; a single fluid is the same either way.
   bool conservative_momentum = false;
+  // Under the conservative transport, where the mixture's density at a cell's new fraction differs from
+  // the mass the step's fluxes left there (the arctan mixture): the next step starts from the momentum
+  // that keeps the kinetic energy it was carried with (true, "keep_kinetic_energy"), or at the carried
+  // velocity (false, "keep_velocity"), which gains the jump's kinetic energy where soil spreads thin
+  // (models/mixture/carried_momentum.hpp).
+  bool density_jump_keeps_kinetic_energy = true;
 };
 
 struct FlowSettings {

@@ -1,6 +1,9 @@
 #include "solver/flow_solver.hpp"
 
 #include "mesh/face_loop.hpp"
+#include "mesh/axis_views.hpp"
+#include "models/mixture/carried_momentum.hpp"
+#include "solver/cell_faces.hpp"
 #include "mesh/copied_ghosts.hpp"
 #include "mesh/gather.hpp"
 #include "mesh/largest.hpp"
@@ -210,6 +213,7 @@ std::vector<std::pair<const char*, Field*>> FlowSolver::named_state_fields() {
     if (cell_force_[2]) f.emplace_back("cell_force_z", cell_force_[2].get());
   }
   if (solve_region_) f.emplace_back("solve_region", &solve_region_->cells());
+  if (carried_density_) f.emplace_back("carried_density", carried_density_.get());
   return f;
 }
 
@@ -268,10 +272,37 @@ void FlowSolver::update_properties_at_mean_pressure() {
 void FlowSolver::enable_mass_transport() {
   start_density_ = make_field(grid_);
   start_density_->copy_from(*rho_);
+  carried_density_ = make_field(grid_);  // the mixture's density, as its properties fill it (local values)
+  carried_density_->copy_from(*rho_);
+  carried_density_->gather_from_local();
+  start_momentum_density_ = make_field(grid_);
+  start_momentum_density_->copy_from(*carried_density_);
   for (int a = 0; a < dimension_; ++a) {
     mass_flux_[a] = make_field(grid_);
     mass_flux_[a]->set(0.0);
   }
+}
+
+void FlowSolver::carry_momentum_mass(double dt) {
+  const auto& b = grid_.owned();
+  const auto faces = cell_faces(dimension_);
+  {
+    const ConstFieldArray rho0(grid_.field_dm(), start_density_->local());  // as the soil fills it
+    const AxisViews mass_flux(grid_, mass_flux_);
+    FieldArray carried(grid_.field_dm(), carried_density_->global());
+    FieldArray start(grid_.field_dm(), start_momentum_density_->global());
+    for (int k = b.zs; k < b.ze(); ++k)
+      for (int j = b.ys; j < b.ye(); ++j)
+        for (int i = b.xs; i < b.xe(); ++i) {
+          const double rho = rho0.volume()[k][j][i], V = grid_.volume(i, j, k);
+          start.volume()[k][j][i] = mixture::carried_momentum_density(rho, carried.volume()[k][j][i]);
+          double mass = rho * V;  // plus what flows in over the step, less what flows out
+          for (const FaceGeometry& fg : faces)
+            mass -= dt * fg.sign * grid_.face_area(fg.axis, i, j, k, fg.sign) * on_face(mass_flux.view, i, j, k, fg);
+          carried.volume()[k][j][i] = mass / V;
+        }
+  }
+  carried_density_->scatter_to_local();  // a snapshot or checkpoint keeps the local values
 }
 
 void FlowSolver::save_state() {

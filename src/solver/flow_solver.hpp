@@ -77,6 +77,10 @@ class FlowSolver {
   void enable_mass_transport();
   bool carries_mass_transport() const { return start_density_ != nullptr; }
   Field& start_density() { return *start_density_; }
+  // After the soil's advection has filled start_density and the mass fluxes: the momentum each cell
+  // starts the step with, from the mass its momentum was carried with over the last step, and the mass
+  // this step's fluxes leave in it (models/mixture/carried_momentum.hpp).
+  void carry_momentum_mass(double dt);
   Field& mass_flux(int axis) { return *mass_flux_[axis]; }
 
   // Obstacles and terrain (mesh/obstacles.hpp): the mask of blocked cells, with ghosts, kept by the
@@ -229,6 +233,9 @@ class FlowSolver {
   std::unique_ptr<Field> p_last_iterate_, p_mean_;
   std::unique_ptr<Field> p_, rho_, mu_, face_mu_[3];
   std::unique_ptr<Field> body_force_[3];
+  // The mass per volume each cell's momentum was carried with over the last step (state: it spans two
+  // steps), and the density of the momentum the step starts with (carry_momentum_mass).
+  std::unique_ptr<Field> carried_density_, start_momentum_density_;
   std::unique_ptr<Field> start_density_, mass_flux_[3];  // enable_mass_transport, mass flux per axis of the mesh
   FieldSnapshot saved_;  // save_state()
   // The velocity per unit of force density a cell's momentum row gives (OpenFOAM's rAU): V / a_P under

@@ -87,11 +87,15 @@ void FlowSolver::assemble_momentum(double dt) {
   //   (rho^n V/dt + sum_in m) v_P - sum_in m v_nb = rho^n V/dt v^n + ...,
   // so soil entering a cell of air brings its own velocity. Otherwise (advective) the cell's density
   // times the face velocity, rho_P (v_P - v^n) V/dt + rho_P sum_in q (v_P - v_nb).
-  std::optional<ConstFieldArray> rho0_array;
+  // The momentum the step starts with is the carried one (models/mixture/carried_momentum.hpp): with
+  // the arctan mixture, not rho^n v^n.
+  std::optional<ConstFieldArray> rho0_array, momentum0_array;
   std::optional<AxisViews> mass_flux;
-  VolumeView rho0 = nullptr;
+  VolumeView rho0 = nullptr, momentum_density0 = nullptr;
   if (carries_mass_transport()) {  // the coupled solve
     rho0 = rho0_array.emplace(grid_.field_dm(), start_density_->local()).volume();
+    if (num.density_jump_keeps_kinetic_energy)
+      momentum_density0 = momentum0_array.emplace(grid_.field_dm(), start_momentum_density_->global()).volume();
     mass_flux.emplace(grid_, mass_flux_);
   }
   std::optional<AxisViews> body_force;
@@ -110,7 +114,8 @@ void FlowSolver::assemble_momentum(double dt) {
         double diag = a_time;
         double extra[3] = {0.0, 0.0, 0.0};
         double src[3] = {};
-        for (int c = 0; c < dim; ++c) src[c] = a_time * vel0.view[c][k][j][i];
+        const double old_momentum = momentum_density0 ? momentum_density0[k][j][i] * V / dt : a_time;
+        for (int c = 0; c < dim; ++c) src[c] = old_momentum * vel0.view[c][k][j][i];
         if (body_force)
           for (int c = 0; c < dim; ++c) src[c] += V * body_force->view[c][k][j][i];
         for (const FaceGeometry& fg : faces) {

@@ -58,7 +58,6 @@ Simulation::Simulation(MPI_Comm comm, const CaseConfig& config, std::filesystem:
     }
     soil_->initialise();
     soil_->refresh(*flow_);
-    if (config.flow.numerics.conservative_momentum) flow_->enable_mass_transport();
     flow_->set_property_update([soil = soil_.get()](FlowSolver& f) { soil->update_properties(f); });
     if (config_.soil->rheology && config_.soil->yield_pressure == YieldPressure::face)
       flow_->set_face_viscosity_update([soil = soil_.get()](FlowSolver& f) { soil->update_face_viscosity(f); });
@@ -73,6 +72,8 @@ Simulation::Simulation(MPI_Comm comm, const CaseConfig& config, std::filesystem:
   flow_->refresh_ghosts();
   flow_->set_hydrostatic_pressure();
   flow_->update_properties();  // the granular viscosity needs the pressure
+  // From the mixture's initial density: the mass the first step's momentum is carried with.
+  if (soil_ && config.flow.numerics.conservative_momentum) flow_->enable_mass_transport();
   if (soil_) initial_soil_volume_ = soil_->budget(*flow_).soil_volume;
   // The budget is summed over all ranks: all stop alike. A case of no initial shapes starts empty
   // (an inlet of soil fills it).

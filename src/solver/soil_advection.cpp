@@ -179,6 +179,8 @@ void SoilPhase::advect(FlowSolver& flow, double dt) {
       for (int i = b.xs - 1; i < b.xe(); ++i) to_mass(0, fx.data(), i, j);
     for (int j = b.ys - 1; j < b.ye(); ++j)
       for (int i = b.xs; i < b.xe(); ++i) to_mass(1, fy.data(), i, j);
+    for (auto& through : soil_through) through.reset();  // the mass fluxes are the flow's to read now
+    flow.carry_momentum_mass(dt);
   }
 }
 

@@ -385,6 +385,8 @@ void SoilPhase::advect_3d(FlowSolver& flow, double dt) {
       m[k][j][i] = face_mass_flux(u[k][j][i], m[k][j][i], soil_mass, dt);
     });
   }
+  for (auto& through : soil_through) through.reset();  // the mass fluxes are the flow's to read now
+  flow.carry_momentum_mass(dt);
 }
 
 // ||D|| ([YS] Eq. 8), the Lode angle, the strain norm ([VoF] Eqs. 13-14) and the stress ratios.

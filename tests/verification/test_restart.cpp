@@ -357,7 +357,8 @@ TEST(Restart, RefusesAMissingOrForeignCheckpoint) {
   Simulation other_numerics(PETSC_COMM_WORLD, load_case(test::repo_path("cases/bui2008_experiment.toml"), numerics), dir);
   const std::string fields = refusal(other_numerics);
   EXPECT_NE(fields.find("the checkpoint holds the fields of other numerics (u v face_u"), std::string::npos) << fields;
-  EXPECT_NE(fields.find("u_previous v_previous solve_region c displacement_x displacement_y); this case's are u v"),
+  EXPECT_NE(fields.find("u_previous v_previous solve_region carried_density c displacement_x displacement_y); this case's "
+                        "are u v"),
             std::string::npos) << fields;
   // A cut fields file, and one of the format before it (a file per rank), are named as such.
   {
