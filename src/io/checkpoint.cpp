@@ -626,6 +626,20 @@ RunCheckpoint read_checkpoint(MPI_Comm comm, const std::filesystem::path& dir, c
     }
     // Other numerics may keep as many fields, of other meanings (cell forces where the look-ahead
     // keeps the last step's velocity): the names tell.
+    // The mass a cell's momentum is carried with is kept only where the step reads it (numerics.density_jump).
+    auto without_carried = [](std::string names) {
+      if (const auto at = names.find(" carried_density"); at != std::string::npos) names.erase(at, 16);
+      return names;
+    };
+    if (problem.empty() && !run.fields.empty() && run.fields != field_names &&
+        without_carried(run.fields) == without_carried(field_names)) {
+      problem = run.fields.size() < field_names.size()
+                    ? "the checkpoint's run started each step at the carried velocity where the mixture's density "
+                      "jumps (written before numerics.density_jump = \"keep_kinetic_energy\" became the default, or "
+                      "with \"keep_velocity\"); restart it with --set numerics.density_jump=keep_velocity"
+                    : "the checkpoint's run kept the kinetic energy a cell's momentum was carried with "
+                      "(numerics.density_jump = \"keep_kinetic_energy\"); restart it with that";
+    }
     if (problem.empty() && !run.fields.empty() && run.fields != field_names) {
       const auto [had, had_rest] = materials_and_other_fields(run.fields);
       const auto [has, has_rest] = materials_and_other_fields(field_names);

@@ -213,7 +213,10 @@ std::vector<std::pair<const char*, Field*>> FlowSolver::named_state_fields() {
     if (cell_force_[2]) f.emplace_back("cell_force_z", cell_force_[2].get());
   }
   if (solve_region_) f.emplace_back("solve_region", &solve_region_->cells());
-  if (carried_density_) f.emplace_back("carried_density", carried_density_.get());
+  // Only where it is read: a run that keeps the velocity at the density's jumps restarts from the
+  // checkpoints written before the carried density was kept.
+  if (carried_density_ && settings_.numerics.density_jump_keeps_kinetic_energy)
+    f.emplace_back("carried_density", carried_density_.get());
   return f;
 }
 

@@ -101,8 +101,9 @@ class FlowSolver {
   void refresh_ghosts();
 
   StepReport step(double dt);
-  // Snapshot of the state a step starts from (velocities, face velocities and forces, pressure), so
-  // that a step that went wrong can be taken again with a smaller time step.
+  // Snapshot of the state a step starts from (velocities, face velocities and forces, pressure, and
+  // the mass each cell's momentum was carried with), so that a step that went wrong can be taken again
+  // with a smaller time step.
   void save_state();
   void restore_state();
   // Zero velocity in the blocked cells' global values, after they were read from local ones.

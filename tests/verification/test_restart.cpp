@@ -360,6 +360,28 @@ TEST(Restart, RefusesAMissingOrForeignCheckpoint) {
   EXPECT_NE(fields.find("u_previous v_previous solve_region carried_density c displacement_x displacement_y); this case's "
                         "are u v"),
             std::string::npos) << fields;
+  // The mass a cell's momentum was carried with is kept only where the step reads it: a checkpoint of a
+  // run that kept the velocity at the density's jumps (and those written before) is told apart, and
+  // the other way round, each with the setting to restart it with.
+  auto velocity_kept = small;
+  velocity_kept.push_back("numerics.density_jump=keep_velocity");
+  Simulation kept(PETSC_COMM_WORLD, load_case(test::repo_path("cases/bui2008_experiment.toml"), velocity_kept), dir);
+  const std::string to_kept = refusal(kept);
+  EXPECT_NE(to_kept.find("kept the kinetic energy a cell's momentum was carried with (numerics.density_jump = "
+                         "\"keep_kinetic_energy\"); restart it with that"), std::string::npos) << to_kept;
+  {
+    const auto older = scratch("restart_velocity_kept");
+    std::filesystem::remove_all(older);
+    Simulation(PETSC_COMM_WORLD, load_case(test::repo_path("cases/bui2008_experiment.toml"), velocity_kept), older).run();
+    Simulation now(PETSC_COMM_WORLD, load_case(test::repo_path("cases/bui2008_experiment.toml"), small), older);
+    const std::string from_kept = refusal(now);
+    EXPECT_NE(from_kept.find("restart it with --set numerics.density_jump=keep_velocity"), std::string::npos) << from_kept;
+    auto longer = velocity_kept;  // ... and restarts with the setting it was written with
+    longer[1] = "time.end=0.1";
+    Simulation again(PETSC_COMM_WORLD, load_case(test::repo_path("cases/bui2008_experiment.toml"), longer), older);
+    EXPECT_NO_THROW(again.restart());
+    std::filesystem::remove_all(older);
+  }
   // A cut fields file, and one of the format before it (a file per rank), are named as such.
   {
     const auto checkpoint = dir / "checkpoint", fields_bin = checkpoint / "fields.bin", kept = dir / "fields.bin.kept";

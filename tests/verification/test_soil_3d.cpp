@@ -29,7 +29,6 @@ struct TwoPhaseRun {
       : grid(PETSC_COMM_WORLD, spec), flow(grid, flow_settings), soil(grid, flow.settings(), soil_settings) {
     soil.initialise();
     soil.refresh(flow);
-    if (flow_settings.numerics.conservative_momentum) flow.enable_mass_transport();
     flow.set_property_update([s = &soil](FlowSolver& f) { s->update_properties(f); });
     if (soil_settings.rheology && soil_settings.yield_pressure == YieldPressure::face)
       flow.set_face_viscosity_update([s = &soil](FlowSolver& f) { s->update_face_viscosity(f); });
@@ -37,6 +36,7 @@ struct TwoPhaseRun {
     flow.refresh_ghosts();
     flow.set_hydrostatic_pressure();
     flow.update_properties();
+    if (flow_settings.numerics.conservative_momentum) flow.enable_mass_transport();  // from the mixture's density
   }
   void step(double dt) {
     soil.advect(flow, dt);
