@@ -287,6 +287,7 @@ void FlowSolver::enable_mass_transport() {
 }
 
 void FlowSolver::carry_momentum_mass(double dt) {
+  if (!settings_.numerics.density_jump_keeps_kinetic_energy) return;  // the step starts at the velocity
   const auto& b = grid_.owned();
   const auto faces = cell_faces(dimension_);
   {
