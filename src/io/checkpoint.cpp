@@ -628,7 +628,8 @@ RunCheckpoint read_checkpoint(MPI_Comm comm, const std::filesystem::path& dir, c
     // keeps the last step's velocity): the names tell.
     // The mass a cell's momentum is carried with is kept only where the step reads it (numerics.density_jump).
     auto without_carried = [](std::string names) {
-      if (const auto at = names.find(" carried_density"); at != std::string::npos) names.erase(at, 16);
+      constexpr std::string_view carried = " carried_density";
+      if (const auto at = names.find(carried); at != std::string::npos) names.erase(at, carried.size());
       return names;
     };
     if (problem.empty() && !run.fields.empty() && run.fields != field_names &&

@@ -1,12 +1,14 @@
 #include "mesh/thin_ridges.hpp"
 
 #include <algorithm>
+#include <array>
 
 namespace granflow {
 
 std::vector<long> open_thin_ridges(int nx, int ny, int nz, bool periodic_x, std::vector<double>& mask,
                                    const std::function<bool(long)>& may_open) {
   auto index = [&](int i, int j, int k) { return (long(k) * ny + j) * nx + i; };
+  auto cell_of = [&](long n) { return std::array<int, 3>{int(n % nx), int(n / nx % ny), int(n / (long(nx) * ny))}; };
   auto blocked = [&](long n) { return mask[size_t(n)] > 0.5; };
   auto open = [&](int i, int j, int k) {
     if (periodic_x) i = (i + nx) % nx;
@@ -24,7 +26,7 @@ std::vector<long> open_thin_ridges(int nx, int ny, int nz, bool periodic_x, std:
   while (!candidates.empty()) {
     std::vector<long> now;
     for (const long n : candidates) {
-      const int i = int(n % nx), j = int(n / nx % ny), k = int(n / (long(nx) * ny));
+      const auto [i, j, k] = cell_of(n);
       if (blocked(n) && thin(i, j, k) && may_open(n)) now.push_back(n);
     }
     std::sort(now.begin(), now.end());
@@ -32,7 +34,7 @@ std::vector<long> open_thin_ridges(int nx, int ny, int nz, bool periodic_x, std:
     for (const long n : now) mask[size_t(n)] = 0.0;  // after the pass: a pass's result does not depend on its order
     candidates.clear();
     for (const long n : now) {
-      const int i = int(n % nx), j = int(n / nx % ny), k = int(n / (long(nx) * ny));
+      const auto [i, j, k] = cell_of(n);
       for (const int di : {-1, 1}) {
         const int ni = periodic_x ? (i + di + nx) % nx : i + di;
         if (ni >= 0 && ni < nx) candidates.push_back(index(ni, j, k));

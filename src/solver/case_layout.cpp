@@ -177,7 +177,6 @@ void lower_thin_ridges(const Grid& g, const CaseConfig& config, const interface:
   layout.ridge_cells_opened.assign(count_of_solids, 0);
   if (rank == 0) {
     const long nx = g.nx(), ny = g.ny();
-    std::vector<size_t> last_holder;  // per opened cell, the obstacle it is counted against
     auto centre_of = [&](long n) {
       return std::array<int, 3>{int(n % nx), int(n / nx % ny), int(n / (nx * ny))};
     };

@@ -5,9 +5,10 @@
 // step plus what flowed in less what flowed out), is not the density of its new soil fraction, rho(c) V,
 // from which the next step starts. Kept at its velocity, the cell would gain (rho - rho_carried) V v^2 / 2
 // of kinetic energy from nowhere where soil spreads (the interpolation is concave above c = 0.07: a cell
-// 20 % full spread over two weighs 59 % more) and lose it where it gathers. Started with the momentum sqrt(rho rho_carried) v instead, it keeps the kinetic
-// energy it was carried with: (sqrt(rho rho_carried) v)^2 / (2 rho) = rho_carried v^2 / 2. Where the mass is
-// conserved (the linear mixture) the two densities agree and so does the momentum.
+// 20 % full spread over two weighs 59 % more) and lose it where it gathers. Started with the momentum
+// sqrt(rho rho_carried) v instead, it keeps the kinetic energy it was carried with:
+// (sqrt(rho rho_carried) v)^2 / (2 rho) = rho_carried v^2 / 2. Where the mass is conserved (the linear
+// mixture) the two densities agree and so does the momentum.
 #include <algorithm>
 #include <cmath>
 
