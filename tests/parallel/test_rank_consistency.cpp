@@ -89,11 +89,12 @@ TEST(RankConsistency, CavityOneAndTwoRanksAgree) {
 // neighbouring rank come from ghost cells, so a missing ghost shows up here. The ranks split the
 // block at x = 0.12-0.13 m.
 TEST(RankConsistency, CollapseWithFaceYieldPressureOneAndTwoRanksAgree) {
-  expect_rank_independent("cases/bui2008_experiment.toml",
-                          test::with_bui2008_projection({"mesh.cells=[25,20]", "mesh.upper=[0.25,0.2]", "time.end=0.1",
-                                                         "output.progress_seconds=0", "soil.yield_pressure=face",
-                                                         "solver.pressure.rtol=1e-12", "solver.momentum.rtol=1e-12"}),
-                          1e-9);  // m/s; measured 4.4e-12, iterative solves to 1e-12
+  expect_rank_independent(
+      "cases/bui2008_experiment.toml",
+      test::bui2008_at_courant_one(test::with_bui2008_projection(
+          {"mesh.cells=[25,20]", "mesh.upper=[0.25,0.2]", "time.end=0.1", "output.progress_seconds=0",
+           "soil.yield_pressure=face", "solver.pressure.rtol=1e-12", "solver.momentum.rtol=1e-12"})),
+      1e-9);  // m/s; measured 4.4e-12, iterative solves to 1e-12
 }
 
 // The same with the shipped case's settings, the coupled solve and the face's own soil fraction. The
@@ -101,9 +102,11 @@ TEST(RankConsistency, CollapseWithFaceYieldPressureOneAndTwoRanksAgree) {
 // before the round-off allowance in SoilPhase::advect one rank layout took one sweep and the other two
 // at t = 0.046 s, and the histories parted by 3e-3 in kinetic energy by t = 0.09 s.
 TEST(RankConsistency, CollapseWithFaceFractionOneAndTwoRanksAgree) {
-  expect_rank_independent("cases/bui2008_experiment.toml",
-                          {"mesh.cells=[25,20]", "mesh.upper=[0.25,0.2]", "time.end=0.1", "output.progress_seconds=0"},
-                          1e-9);  // m/s; measured 9e-15: room for MUMPS's sums in another order, which a collapse amplifies
+  expect_rank_independent(
+      "cases/bui2008_experiment.toml",
+      test::bui2008_at_courant_one(
+          {"mesh.cells=[25,20]", "mesh.upper=[0.25,0.2]", "time.end=0.1", "output.progress_seconds=0"}),
+      1e-9);  // m/s; measured 9e-15: room for MUMPS's sums in another order, which a collapse amplifies
 }
 
 // The same with a narrow air band: the region's system is numbered across both ranks, its top edge,
@@ -112,8 +115,8 @@ TEST(RankConsistency, CollapseWithFaceFractionOneAndTwoRanksAgree) {
 // the outside values there come from the other rank's cells.
 TEST(RankConsistency, CollapseWithAirBandOneAndTwoRanksAgree) {
   expect_rank_independent("cases/bui2008_experiment.toml",
-                          {"mesh.cells=[50,20]", "mesh.upper=[0.5,0.2]", "time.end=0.1", "output.progress_seconds=0",
-                           "numerics.air_band=5"},
+                          test::bui2008_at_courant_one({"mesh.cells=[50,20]", "mesh.upper=[0.5,0.2]", "time.end=0.1",
+                                                        "output.progress_seconds=0", "numerics.air_band=5"}),
                           1e-9);  // m/s; measured 1.5e-13, room as above
 }
 
@@ -182,12 +185,14 @@ std::vector<std::string> layered_block(std::vector<std::string> overrides) {
 }
 
 TEST(RankConsistency, LayeredCollapseOneAndTwoRanksAgree) {
-  expect_rank_independent("cases/bui2008_experiment.toml", layered_block({"mesh.cells=[25,20]", "mesh.upper=[0.25,0.2]"}),
+  expect_rank_independent("cases/bui2008_experiment.toml",
+                          test::bui2008_at_courant_one(layered_block({"mesh.cells=[25,20]", "mesh.upper=[0.25,0.2]"})),
                           1e-9);
 }
 
 TEST(RankConsistency, LayeredCollapseSplitAcrossItsLayersOneAndTwoRanksAgree) {
-  expect_rank_independent("cases/bui2008_experiment.toml", layered_block({"mesh.cells=[12,30]", "mesh.upper=[0.24,0.2]"}),
+  expect_rank_independent("cases/bui2008_experiment.toml",
+                          test::bui2008_at_courant_one(layered_block({"mesh.cells=[12,30]", "mesh.upper=[0.24,0.2]"})),
                           1e-9);
 }
 
@@ -197,15 +202,17 @@ TEST(RankConsistency, LayeredCollapseSplitAcrossItsLayersOneAndTwoRanksAgree) {
 // along z carry shares across the ranks' boundary as the block spreads along x and z.
 TEST(RankConsistency, LayeredCollapseOnAMeshOfLayersSplitAlongZOneAndTwoRanksAgree) {
   const std::string case_file = "cases/bui2008_experiment.toml";
-  const CaseConfig config = load_case(
-      std::string(GRANFLOW_SOURCE_DIR) + "/" + case_file,
-      {"mesh.cells=[12, 10, 16]", "mesh.lower=[0, 0, 0]", "mesh.upper=[0.3, 0.2, 0.32]", "physics.gravity=[0, -9.81, 0]",
-       "boundary.front={type=\"slip\"}", "boundary.back={type=\"wall\"}", "time.end=0.1", "output.progress_seconds=0",
-       "soil.materials=[{name = \"lower\", friction_angle = 10.0, density = 3500.0}, "
-       "{name = \"back\", friction_angle = 30.0, density = 1800.0}]",
-       "initial.soil=[{shape = \"box\", lower = [0, 0, 0.08], upper = [0.2, 0.1, 0.24]}, "
-       "{shape = \"box\", lower = [0, 0, 0.08], upper = [0.2, 0.05, 0.24], material = \"lower\"}, "
-       "{shape = \"box\", lower = [0, 0.05, 0.16], upper = [0.2, 0.1, 0.24], material = \"back\"}]"});
+  const CaseConfig config =
+      load_case(std::string(GRANFLOW_SOURCE_DIR) + "/" + case_file,
+                test::bui2008_at_courant_one(
+                    {"mesh.cells=[12, 10, 16]", "mesh.lower=[0, 0, 0]", "mesh.upper=[0.3, 0.2, 0.32]",
+                     "physics.gravity=[0, -9.81, 0]", "boundary.front={type=\"slip\"}", "boundary.back={type=\"wall\"}",
+                     "time.end=0.1", "output.progress_seconds=0",
+                     "soil.materials=[{name = \"lower\", friction_angle = 10.0, density = 3500.0}, "
+                     "{name = \"back\", friction_angle = 30.0, density = 1800.0}]",
+                     "initial.soil=[{shape = \"box\", lower = [0, 0, 0.08], upper = [0.2, 0.1, 0.24]}, "
+                     "{shape = \"box\", lower = [0, 0, 0.08], upper = [0.2, 0.05, 0.24], material = \"lower\"}, "
+                     "{shape = \"box\", lower = [0, 0.05, 0.16], upper = [0.2, 0.1, 0.24], material = \"back\"}]"}));
   const Grid grid(PETSC_COMM_WORLD, config.mesh);  // the split: each rank all of x and y, part of z
   EXPECT_EQ(grid.owned().xm, 12);
   EXPECT_EQ(grid.owned().ym, 10);
@@ -255,8 +262,9 @@ TEST(RankConsistency, AChuteFedThroughAnInletOneAndTwoRanksAgree) {
 TEST(RankConsistency, AnInletSplitBetweenTheRanksOneAndTwoRanksAgree) {
   expect_rank_independent(
       "cases/bui2008_experiment.toml",
-      {"mesh.cells=[20,40]", "mesh.upper=[0.1,0.2]", "time.end=0.1", "output.progress_seconds=0", "initial.soil=[]",
-       "boundary.west={type = \"inlet\", velocity = [0.2, 0.0], soil_fraction = 1.0, soil_depth = 0.1025}"},
+      test::bui2008_at_courant_one(
+          {"mesh.cells=[20,40]", "mesh.upper=[0.1,0.2]", "time.end=0.1", "output.progress_seconds=0", "initial.soil=[]",
+           "boundary.west={type = \"inlet\", velocity = [0.2, 0.0], soil_fraction = 1.0, soil_depth = 0.1025}"}),
       1e-9);  // m/s; measured 3.2e-14 (c 2.5e-14)
 }
 

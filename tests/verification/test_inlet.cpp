@@ -201,7 +201,7 @@ SoilFed run_soil_inlet(const std::string& text, bool layers) {
   if (layers) overrides.insert(overrides.end(), {"mesh.cells=[40, 10, 4]", "mesh.lower=[0.0, 0.0, 0.0]",
                                                  "mesh.upper=[0.2, 0.05, 0.02]"});
   else overrides.insert(overrides.end(), {"mesh.cells=[40, 10]", "mesh.upper=[0.2, 0.05]"});
-  Simulation sim(PETSC_COMM_WORLD, parse_case(text, overrides), "");
+  Simulation sim(PETSC_COMM_WORLD, parse_case(text, test::bui2008_at_courant_one(overrides)), "");
   sim.run();
   const SoilBudget b = sim.soil()->budget(sim.flow());
   const auto c = gather_to_root(sim.grid(), sim.soil()->soil_fraction());

@@ -39,10 +39,12 @@ constexpr double cell = 0.6 / cells_x;
 // The block of cases/bui2008_experiment.toml at cohesion gamma H / stability_number, run to `end`.
 test::FinishedRun cut(double stability_number, double end) {
   const double cohesion = soil_density * gravity * height / stability_number;
-  return test::run_shipped_case("bui2008_experiment", cells_x, cells_y,
-                                {"soil.rheology.friction_angle=0.001", fmt::format("soil.rheology.cohesion={}", cohesion),
-                                 "numerics.outer_iterations=10", "numerics.outer_tolerance=1e-6",
-                                 fmt::format("time.end={}", end), "output.fields=false", "output.interval=0.1"});
+  return test::run_shipped_case(
+      "bui2008_experiment", cells_x, cells_y,
+      test::bui2008_at_courant_one({"soil.rheology.friction_angle=0.001",
+                                    fmt::format("soil.rheology.cohesion={}", cohesion), "numerics.outer_iterations=10",
+                                    "numerics.outer_tolerance=1e-6", fmt::format("time.end={}", end),
+                                    "output.fields=false", "output.interval=0.1"}));
 }
 
 // Measured: at gamma H / c = 3.5 the face moves 1e-4 cells in 1 s and the soil creeps at 2e-6 m/s;
@@ -72,10 +74,11 @@ TEST(VerticalCut, StandsBelowAndFailsAboveTheBoundsOfLimitAnalysis) {
 // N_c lies a little above limit analysis's, and approaches it as the cells shrink, docs/validation.md).
 TEST(VerticalCut, FactorOfSafetyByStrengthReductionLiesBetweenTheBounds) {
   const double cohesion = soil_density * gravity * height / 3.0;
-  const CaseConfig config = load_case(
-      test::repo_path("cases/bui2008_experiment.toml"),
-      {fmt::format("mesh.cells=[{},{}]", cells_x, cells_y), "soil.rheology.friction_angle=0.001",
-       fmt::format("soil.rheology.cohesion={}", cohesion), "time.end=1.0", "output.progress_seconds=0"});
+  const CaseConfig config =
+      load_case(test::repo_path("cases/bui2008_experiment.toml"),
+                test::bui2008_at_courant_one(
+                    {fmt::format("mesh.cells=[{},{}]", cells_x, cells_y), "soil.rheology.friction_angle=0.001",
+                     fmt::format("soil.rheology.cohesion={}", cohesion), "time.end=1.0", "output.progress_seconds=0"}));
   StrengthReductionSettings settings;
   settings.tolerance = 0.02;
   const StrengthReductionResult r = factor_of_safety(PETSC_COMM_WORLD, config, "", settings);
@@ -99,9 +102,10 @@ test::FinishedRun slope(double beta_deg, double end) {
   const double top = 0.3 * std::tan(beta_deg * std::numbers::pi / 180.0);
   return test::run_shipped_case(
       "bui2008_experiment", 150, 50,
-      {fmt::format("initial.soil=[{{shape = \"polygon\", points = [[0.0, 0.0], [0.3, 0.0], [0.0, {}]]}}]", top),
-       fmt::format("time.end={}", end), "numerics.outer_iterations=10", "numerics.outer_tolerance=1e-6",
-       "output.fields=false", "output.interval=0.1"});
+      test::bui2008_at_courant_one(
+          {fmt::format("initial.soil=[{{shape = \"polygon\", points = [[0.0, 0.0], [0.3, 0.0], [0.0, {}]]}}]", top),
+           fmt::format("time.end={}", end), "numerics.outer_iterations=10", "numerics.outer_tolerance=1e-6",
+           "output.fields=false", "output.interval=0.1"}));
 }
 
 // Measured at 150 x 50 (4 mm cells), t = 1 s: at 19 deg the wall height and the toe move by less than

@@ -11,8 +11,9 @@ namespace {
 
 TEST(SoilAtRest, CollapseStopsWhereItsPileHasComeToRest) {
   // The Bui collapse on 8 mm cells: at rest by about t = 1 s (its pile moves no further to t = 2 s).
-  const auto rest = test::run_shipped_case("bui2008_experiment", 75, 25, {"time.end=5", "time.rest_speed=1e-3"});
-  const auto full = test::run_shipped_case("bui2008_experiment", 75, 25, {"time.end=2"});
+  const auto rest = test::run_shipped_case("bui2008_experiment", 75, 25,
+                                           test::bui2008_at_courant_one({"time.end=5", "time.rest_speed=1e-3"}));
+  const auto full = test::run_shipped_case("bui2008_experiment", 75, 25, test::bui2008_at_courant_one({"time.end=2"}));
   EXPECT_TRUE(rest.summary.soil_at_rest);
   EXPECT_FALSE(full.summary.soil_at_rest);
   if (!test::is_root()) return;
@@ -34,8 +35,9 @@ TEST(SoilAtRest, CollapseStopsWhereItsPileHasComeToRest) {
 
 TEST(SoilAtRest, BlockThatNeverMovesRunsToTheEnd) {
   // Too cohesive to fail: slower than the rest speed from the start, but it has not moved.
-  const auto block = test::run_shipped_case("bui2008_experiment", 75, 25,
-                                            {"time.end=0.3", "time.rest_speed=1e-3", "soil.rheology.cohesion=1e5"});
+  const auto block = test::run_shipped_case(
+      "bui2008_experiment", 75, 25,
+      test::bui2008_at_courant_one({"time.end=0.3", "time.rest_speed=1e-3", "soil.rheology.cohesion=1e5"}));
   EXPECT_FALSE(block.summary.soil_at_rest);
   EXPECT_NEAR(block.summary.time, 0.3, 1e-12);
 }
