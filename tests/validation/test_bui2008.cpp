@@ -1,7 +1,8 @@
 // Validation: the aluminium-bar collapse of Bui et al. (2008) against the experiment's final surface
 // (validation/refdata/bui2008_*.csv), with the paper's rheology (bui2008_experiment) and with mu(I)
 // friction (bui2008_experiment_mu_of_i): at half the paper's resolution in the suite (about 8 s
-// each), at the paper's 300 x 100 on demand (under a minute each on two ranks).
+// each), and at the paper's 300 x 100, the shipped case in the suite (about 90 s on one rank) and
+// mu(I) on demand (under a minute on two ranks).
 #include <gtest/gtest.h>
 
 #include <algorithm>

@@ -1,8 +1,9 @@
 // Checkpoint and restart: a run stopped between outputs and restarted from its last
 // checkpoint ends exactly where the run that was never stopped ends, field by field and row by row
-// of the history, on one rank (tests/verification/restart_check.hpp; two ranks: tests/parallel). The collapse takes the shipped numerics (coupled solve, look-ahead
-// viscosity from the last two steps, two VoF sweeps), so every piece of state a step starts from
-// must come back; the cavity has no soil phase.
+// of the history, on one rank (tests/verification/restart_check.hpp; two ranks: tests/parallel). The collapse takes the numerics
+// of the shipped case at Courant 1 (coupled solve, look-ahead viscosity from the last two steps, two
+// VoF sweeps, test::bui2008_at_courant_one), so every piece of state a step starts from must come
+// back; the cavity has no soil phase.
 #include <gtest/gtest.h>
 
 #include <algorithm>
