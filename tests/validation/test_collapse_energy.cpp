@@ -30,9 +30,7 @@ struct CollapseBudget {
 CollapseBudget run_collapse(const std::string& name, const std::vector<std::string>& overrides) {
   const auto out = test::output_dir(name);
   std::filesystem::remove_all(out);
-  Simulation sim(PETSC_COMM_WORLD,
-                 load_case(test::repo_path("cases/bui2008_experiment.toml"), test::bui2008_at_courant_one(overrides)),
-                 out);
+  Simulation sim(PETSC_COMM_WORLD, test::bui2008_case_at_courant_one(overrides), out);
   CollapseBudget b{sim.run()};
   if (!test::is_root()) return b;
   b.history = test::read_csv((out / "history.csv").string());

@@ -29,11 +29,9 @@ struct Outcome {
 Outcome run_collapse(int substeps, double courant) {
   const auto out = test::output_dir("substeps_" + std::to_string(substeps));
   std::filesystem::remove_all(out);
-  const CaseConfig config = load_case(
-      test::repo_path("cases/bui2008_experiment.toml"),
-      test::bui2008_at_courant_one({"output.progress_seconds=0", "output.interval=0.4", "time.end=0.4",
-                                    "mesh.cells=[75, 25]", "time.interface_substeps=" + std::to_string(substeps),
-                                    "time.courant=" + std::to_string(courant)}));
+  const CaseConfig config = test::bui2008_case_at_courant_one(
+      {"output.progress_seconds=0", "output.interval=0.4", "time.end=0.4", "mesh.cells=[75, 25]",
+       "time.interface_substeps=" + std::to_string(substeps), "time.courant=" + std::to_string(courant)});
   Simulation sim(PETSC_COMM_WORLD, config, out);
   const RunSummary run = sim.run();
   Outcome o{run.steps, run.soil_volume_error, 0.0};

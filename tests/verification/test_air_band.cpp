@@ -38,8 +38,7 @@ struct Outcome {
 Outcome run_collapse(int air_band, std::vector<std::string> overrides = {}) {
   overrides.insert(overrides.end(), {"output.progress_seconds=0", "mesh.cells=[60, 20]", "time.end=0.3",
                                      "output.interval=0.3", "numerics.air_band=" + std::to_string(air_band)});
-  const CaseConfig config =
-      load_case(test::repo_path("cases/bui2008_experiment.toml"), test::bui2008_at_courant_one(overrides));
+  const CaseConfig config = test::bui2008_case_at_courant_one(overrides);
   Simulation sim(PETSC_COMM_WORLD, config, "");
   const RunSummary s = sim.run();
   Outcome o;
@@ -277,11 +276,9 @@ TEST(AirBand, FirstStepTakenAgainIsNoSoilLeavingTheRegion) {
 // Solves that stop at max_iterations are counted over every region the band lays, not from the
 // last one: here every solve stops there (one GMRES iteration to a relative tolerance of 1e-30).
 TEST(AirBand, SolvesAtTheIterationLimitAreCountedOverEveryRegion) {
-  const CaseConfig config = load_case(
-      test::repo_path("cases/bui2008_experiment.toml"),
-      test::bui2008_at_courant_one(
-          {"mesh.cells=[60,20]", "time.end=0.3", "output.progress_seconds=0", "numerics.air_band=5",
-           "solver.coupled={ksp_type = \"gmres\", pc_type = \"lu\", rtol = 1e-30, atol = 0, max_iterations = 1}"}));
+  const CaseConfig config = test::bui2008_case_at_courant_one(
+      {"mesh.cells=[60,20]", "time.end=0.3", "output.progress_seconds=0", "numerics.air_band=5",
+       "solver.coupled={ksp_type = \"gmres\", pc_type = \"lu\", rtol = 1e-30, atol = 0, max_iterations = 1}"});
   Simulation sim(PETSC_COMM_WORLD, config, "");
   const RunSummary s = sim.run();
   std::printf("%ld outer iterations, %ld solves at the limit\n", s.outer_iterations, s.solves_at_iteration_limit);

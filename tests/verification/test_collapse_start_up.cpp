@@ -47,8 +47,7 @@ Watched watch_collapse(double end, std::vector<std::string> overrides = {}) {
   w.probes = {{0.02, 0.02, {}, {}, {}}, {0.06, 0.05, {}, {}, {}}, {0.15, 0.01, {}, {}, {}}, {0.18, 0.03, {}, {}, {}}};
   overrides.insert(overrides.end(), {"output.progress_seconds=0", "mesh.cells=[75,25]",
                                      "time.end=" + std::to_string(end), "output.interval=" + std::to_string(end)});
-  const CaseConfig config =
-      load_case(test::repo_path("cases/bui2008_experiment.toml"), test::bui2008_at_courant_one(overrides));
+  const CaseConfig config = test::bui2008_case_at_courant_one(overrides);
   Simulation sim(PETSC_COMM_WORLD, config, "");
   const int nx = sim.grid().nx();
   const double dx = 0.6 / 75, dy = 0.2 / 25;

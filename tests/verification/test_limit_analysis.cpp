@@ -74,11 +74,9 @@ TEST(VerticalCut, StandsBelowAndFailsAboveTheBoundsOfLimitAnalysis) {
 // N_c lies a little above limit analysis's, and approaches it as the cells shrink, docs/validation.md).
 TEST(VerticalCut, FactorOfSafetyByStrengthReductionLiesBetweenTheBounds) {
   const double cohesion = soil_density * gravity * height / 3.0;
-  const CaseConfig config =
-      load_case(test::repo_path("cases/bui2008_experiment.toml"),
-                test::bui2008_at_courant_one(
-                    {fmt::format("mesh.cells=[{},{}]", cells_x, cells_y), "soil.rheology.friction_angle=0.001",
-                     fmt::format("soil.rheology.cohesion={}", cohesion), "time.end=1.0", "output.progress_seconds=0"}));
+  const CaseConfig config = test::bui2008_case_at_courant_one(
+      {fmt::format("mesh.cells=[{},{}]", cells_x, cells_y), "soil.rheology.friction_angle=0.001",
+       fmt::format("soil.rheology.cohesion={}", cohesion), "time.end=1.0", "output.progress_seconds=0"});
   StrengthReductionSettings settings;
   settings.tolerance = 0.02;
   const StrengthReductionResult r = factor_of_safety(PETSC_COMM_WORLD, config, "", settings);

@@ -25,9 +25,7 @@ struct Collapse {
 
 Collapse collapse(std::vector<std::string> overrides) {
   overrides.insert(overrides.begin(), {"output.progress_seconds=0", "time.end=0.3", "output.interval=0.3"});
-  Simulation sim(PETSC_COMM_WORLD,
-                 load_case(test::repo_path("cases/bui2008_experiment.toml"), test::bui2008_at_courant_one(overrides)),
-                 "");
+  Simulation sim(PETSC_COMM_WORLD, test::bui2008_case_at_courant_one(overrides), "");
   const RunSummary s = sim.run();
   Collapse o;
   o.nx = sim.grid().nx();

@@ -33,9 +33,7 @@ Collapse3d collapse_3d(std::vector<std::string> overrides) {
                    {"output.progress_seconds=0", "time.end=0.2", "output.interval=0.2", "physics.gravity=[0,-9.81,0]",
                     "mesh.upper=[0.3,0.1,0.06]", "boundary.front={type=\"wall\"}", "boundary.back={type=\"wall\"}",
                     "initial.soil=[{shape=\"box\", lower=[0,0,0], upper=[0.1,0.05,0.03]}]"});
-  Simulation sim(PETSC_COMM_WORLD,
-                 load_case(test::repo_path("cases/bui2008_experiment.toml"), test::bui2008_at_courant_one(overrides)),
-                 "");
+  Simulation sim(PETSC_COMM_WORLD, test::bui2008_case_at_courant_one(overrides), "");
   const RunSummary s = sim.run();
   Collapse3d o;
   const Grid& g = sim.grid();

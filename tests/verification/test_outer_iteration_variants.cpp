@@ -33,11 +33,9 @@ struct Outcome {
 };
 
 Outcome run_collapse(const std::string& setting, int outer_iterations) {
-  const CaseConfig config = load_case(
-      test::repo_path("cases/bui2008_experiment.toml"),
-      test::bui2008_at_courant_one(
-          {"output.progress_seconds=0", "mesh.cells=[30, 10]", "time.end=0.06", "output.interval=0.06",
-           "numerics.outer_iterations=" + std::to_string(outer_iterations), "numerics.outer_tolerance=1e-8", setting}));
+  const CaseConfig config = test::bui2008_case_at_courant_one(
+      {"output.progress_seconds=0", "mesh.cells=[30, 10]", "time.end=0.06", "output.interval=0.06",
+       "numerics.outer_iterations=" + std::to_string(outer_iterations), "numerics.outer_tolerance=1e-8", setting});
   Simulation sim(PETSC_COMM_WORLD, config, "");
   const int factorisations_before = test::lu_factorisations();
   const RunSummary s = sim.run();

@@ -28,9 +28,7 @@ CollapseState collapse_under(double p0, bool closed_top = false) {
       "boundary.north={type = \"atmosphere\", pressure = " + std::to_string(p0) + "}",
       "boundary.east={type = \"atmosphere\", pressure = " + std::to_string(p0) + "}"};
   if (closed_top) overrides.insert(overrides.end(), {"boundary.north={type = \"wall\"}", "numerics.air_band=0"});
-  Simulation sim(PETSC_COMM_WORLD,
-                 load_case(test::repo_path("cases/bui2008_experiment.toml"), test::bui2008_at_courant_one(overrides)),
-                 "");
+  Simulation sim(PETSC_COMM_WORLD, test::bui2008_case_at_courant_one(overrides), "");
   sim.run();
   CollapseState s;
   const SoilBudget b = sim.soil()->budget(sim.flow());

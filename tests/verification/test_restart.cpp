@@ -129,13 +129,12 @@ TEST(Restart, ACheckpointOfBeforeTheEnergyThroughTheSidesGoesOnFromZero) {
                                        "output.progress_seconds=0", "output.fields=false"};
   auto second = first;
   second[1] = "time.end=0.08";
-  const auto case_file = test::repo_path("cases/bui2008_experiment.toml");
   double work_at_checkpoint = 0.0, work_at_end = 0.0;
   {
-    Simulation whole(PETSC_COMM_WORLD, load_case(case_file, test::bui2008_at_courant_one(second)), whole_dir);
+    Simulation whole(PETSC_COMM_WORLD, test::bui2008_case_at_courant_one(second), whole_dir);
     whole.run();
     work_at_end = whole.boundary_work();
-    Simulation stopped(PETSC_COMM_WORLD, load_case(case_file, test::bui2008_at_courant_one(first)), dir);
+    Simulation stopped(PETSC_COMM_WORLD, test::bui2008_case_at_courant_one(first), dir);
     stopped.run();
     work_at_checkpoint = stopped.boundary_work();
   }
@@ -161,7 +160,7 @@ TEST(Restart, ACheckpointOfBeforeTheEnergyThroughTheSidesGoesOnFromZero) {
   }
   MPI_Barrier(PETSC_COMM_WORLD);
   {
-    Simulation resumed(PETSC_COMM_WORLD, load_case(case_file, test::bui2008_at_courant_one(second)), dir);
+    Simulation resumed(PETSC_COMM_WORLD, test::bui2008_case_at_courant_one(second), dir);
     resumed.restart();
     EXPECT_EQ(resumed.boundary_work(), 0.0);
     resumed.run();
@@ -182,7 +181,7 @@ TEST(Restart, ACheckpointOfBeforeTheEnergyThroughTheSidesGoesOnFromZero) {
     std::ofstream(run_txt) << text;
   }
   MPI_Barrier(PETSC_COMM_WORLD);
-  Simulation damaged(PETSC_COMM_WORLD, load_case(case_file, test::bui2008_at_courant_one(second)), dir);
+  Simulation damaged(PETSC_COMM_WORLD, test::bui2008_case_at_courant_one(second), dir);
   const std::string refused = refusal(damaged);
   EXPECT_NE(refused.find("'abc' is not the energy brought in through the sides"), std::string::npos) << refused;
   test::remove_scratch(whole_dir);
@@ -328,16 +327,13 @@ TEST(Restart, RefusesAMissingOrForeignCheckpoint) {
   const std::vector<std::string> small{"mesh.cells=[30,10]", "time.end=0.05", "output.interval=0.05",
                                        "output.progress_seconds=0", "output.fields=false"};
   {
-    Simulation sim(PETSC_COMM_WORLD,
-                   load_case(test::repo_path("cases/bui2008_experiment.toml"), test::bui2008_at_courant_one(small)),
-                   dir);
+    Simulation sim(PETSC_COMM_WORLD, test::bui2008_case_at_courant_one(small), dir);
     EXPECT_THROW(sim.restart(), CheckpointError);  // nothing written yet
     sim.run();
   }
   auto other = small;
   other[0] = "mesh.cells=[32,10]";
-  Simulation sim(PETSC_COMM_WORLD,
-                 load_case(test::repo_path("cases/bui2008_experiment.toml"), test::bui2008_at_courant_one(other)), dir);
+  Simulation sim(PETSC_COMM_WORLD, test::bui2008_case_at_courant_one(other), dir);
   const std::string mesh = refusal(sim);
   EXPECT_NE(mesh.find("30 x 10"), std::string::npos) << mesh;
   // With obstacles another mesh blocks other cells too, so the domains differ: the mesh is named,
@@ -362,9 +358,7 @@ TEST(Restart, RefusesAMissingOrForeignCheckpoint) {
   // names tell them apart.
   auto numerics = small;
   numerics.push_back("numerics.first_viscosity=previous_step");
-  Simulation other_numerics(
-      PETSC_COMM_WORLD,
-      load_case(test::repo_path("cases/bui2008_experiment.toml"), test::bui2008_at_courant_one(numerics)), dir);
+  Simulation other_numerics(PETSC_COMM_WORLD, test::bui2008_case_at_courant_one(numerics), dir);
   const std::string fields = refusal(other_numerics);
   EXPECT_NE(fields.find("the checkpoint holds the fields of other numerics (u v face_u"), std::string::npos) << fields;
   EXPECT_NE(fields.find("u_previous v_previous solve_region carried_density c displacement_x displacement_y); this case's "
@@ -375,29 +369,20 @@ TEST(Restart, RefusesAMissingOrForeignCheckpoint) {
   // the other way round, each with the setting to restart it with.
   auto velocity_kept = small;
   velocity_kept.push_back("numerics.density_jump=keep_velocity");
-  Simulation kept(
-      PETSC_COMM_WORLD,
-      load_case(test::repo_path("cases/bui2008_experiment.toml"), test::bui2008_at_courant_one(velocity_kept)), dir);
+  Simulation kept(PETSC_COMM_WORLD, test::bui2008_case_at_courant_one(velocity_kept), dir);
   const std::string to_kept = refusal(kept);
   EXPECT_NE(to_kept.find("kept the kinetic energy a cell's momentum was carried with (numerics.density_jump = "
                          "\"keep_kinetic_energy\"); restart it with that"), std::string::npos) << to_kept;
   {
     const auto older = scratch("restart_velocity_kept");
     std::filesystem::remove_all(older);
-    Simulation(PETSC_COMM_WORLD,
-               load_case(test::repo_path("cases/bui2008_experiment.toml"), test::bui2008_at_courant_one(velocity_kept)),
-               older)
-        .run();
-    Simulation now(PETSC_COMM_WORLD,
-                   load_case(test::repo_path("cases/bui2008_experiment.toml"), test::bui2008_at_courant_one(small)),
-                   older);
+    Simulation(PETSC_COMM_WORLD, test::bui2008_case_at_courant_one(velocity_kept), older).run();
+    Simulation now(PETSC_COMM_WORLD, test::bui2008_case_at_courant_one(small), older);
     const std::string from_kept = refusal(now);
     EXPECT_NE(from_kept.find("restart it with --set numerics.density_jump=keep_velocity"), std::string::npos) << from_kept;
     auto longer = velocity_kept;  // ... and restarts with the setting it was written with
     longer[1] = "time.end=0.1";
-    Simulation again(PETSC_COMM_WORLD,
-                     load_case(test::repo_path("cases/bui2008_experiment.toml"), test::bui2008_at_courant_one(longer)),
-                     older);
+    Simulation again(PETSC_COMM_WORLD, test::bui2008_case_at_courant_one(longer), older);
     EXPECT_NO_THROW(again.restart());
     std::filesystem::remove_all(older);
   }
@@ -406,15 +391,11 @@ TEST(Restart, RefusesAMissingOrForeignCheckpoint) {
     const auto checkpoint = dir / "checkpoint", fields_bin = checkpoint / "fields.bin", kept = dir / "fields.bin.kept";
     std::filesystem::copy_file(fields_bin, kept);
     std::filesystem::resize_file(fields_bin, std::filesystem::file_size(fields_bin) - 8);
-    Simulation cut(PETSC_COMM_WORLD,
-                   load_case(test::repo_path("cases/bui2008_experiment.toml"), test::bui2008_at_courant_one(small)),
-                   dir);
+    Simulation cut(PETSC_COMM_WORLD, test::bui2008_case_at_courant_one(small), dir);
     const std::string truncated = refusal(cut);
     EXPECT_NE(truncated.find("fields.bin is truncated or damaged"), std::string::npos) << truncated;
     std::filesystem::rename(fields_bin, checkpoint / "rank_0.bin");
-    Simulation older(PETSC_COMM_WORLD,
-                     load_case(test::repo_path("cases/bui2008_experiment.toml"), test::bui2008_at_courant_one(small)),
-                     dir);
+    Simulation older(PETSC_COMM_WORLD, test::bui2008_case_at_courant_one(small), dir);
     const std::string format_2 = refusal(older);
     EXPECT_NE(format_2.find("written by an earlier version of granflow (checkpoint format 2"), std::string::npos)
         << format_2;
@@ -448,17 +429,13 @@ TEST(Restart, RefusesAMissingOrForeignCheckpoint) {
       file.write(reinterpret_cast<const char*>(&value), sizeof value);
     };
     poke("u", 7, 3, std::nan(""));
-    Simulation nan_u(PETSC_COMM_WORLD,
-                     load_case(test::repo_path("cases/bui2008_experiment.toml"), test::bui2008_at_courant_one(small)),
-                     dir);
+    Simulation nan_u(PETSC_COMM_WORLD, test::bui2008_case_at_courant_one(small), dir);
     const std::string not_finite = refusal(nan_u);
     EXPECT_NE(not_finite.find("the checkpoint is damaged: its field u holds nan in cell (7, 3)"), std::string::npos)
         << not_finite;
     std::filesystem::copy_file(kept, fields_bin, std::filesystem::copy_options::overwrite_existing);
     poke("c", 2, 1, 2.0);
-    Simulation two(PETSC_COMM_WORLD,
-                   load_case(test::repo_path("cases/bui2008_experiment.toml"), test::bui2008_at_courant_one(small)),
-                   dir);
+    Simulation two(PETSC_COMM_WORLD, test::bui2008_case_at_courant_one(small), dir);
     const std::string outside = refusal(two);
     EXPECT_NE(outside.find("the checkpoint is damaged: its soil fraction c is 2 in cell (2, 1), outside [0, 1]"),
               std::string::npos)
@@ -467,9 +444,7 @@ TEST(Restart, RefusesAMissingOrForeignCheckpoint) {
     poke("c", 2, 1, 1 + 1e-13);
     auto longer = small;
     longer.push_back("time.end=0.1");
-    Simulation round_off(
-        PETSC_COMM_WORLD,
-        load_case(test::repo_path("cases/bui2008_experiment.toml"), test::bui2008_at_courant_one(longer)), dir);
+    Simulation round_off(PETSC_COMM_WORLD, test::bui2008_case_at_courant_one(longer), dir);
     EXPECT_NO_THROW(round_off.restart());
     std::filesystem::rename(kept, fields_bin);
   }
@@ -482,15 +457,11 @@ TEST(Restart, RefusesAMissingOrForeignCheckpoint) {
     std::ofstream(run_txt) << text;
     auto longer = small;
     longer.insert(longer.end(), {"time.end=0.1", "time.max_steps=1000000000000"});
-    Simulation sim(PETSC_COMM_WORLD,
-                   load_case(test::repo_path("cases/bui2008_experiment.toml"), test::bui2008_at_courant_one(longer)),
-                   dir);
+    Simulation sim(PETSC_COMM_WORLD, test::bui2008_case_at_courant_one(longer), dir);
     EXPECT_NO_THROW(sim.restart());
     text.replace(text.find("\nsteps "), std::string("\nsteps 3000000000").size(), "\nsteps 99999999999999999999");
     std::ofstream(run_txt) << text;
-    Simulation damaged(
-        PETSC_COMM_WORLD,
-        load_case(test::repo_path("cases/bui2008_experiment.toml"), test::bui2008_at_courant_one(longer)), dir);
+    Simulation damaged(PETSC_COMM_WORLD, test::bui2008_case_at_courant_one(longer), dir);
     EXPECT_THROW(damaged.restart(), CheckpointError);
   }
   std::filesystem::remove_all(dir);
@@ -509,13 +480,12 @@ TEST(Restart, RefusesACheckpointThatDoesNotMatchItsChecksums) {
   auto earlier = small;
   earlier[1] = "time.end=0.04";
   earlier[2] = "output.interval=0.04";
-  const auto case_path = test::repo_path("cases/bui2008_experiment.toml");
-  Simulation(PETSC_COMM_WORLD, load_case(case_path, test::bui2008_at_courant_one(small)), dir).run();
-  Simulation(PETSC_COMM_WORLD, load_case(case_path, test::bui2008_at_courant_one(earlier)), other).run();
+  Simulation(PETSC_COMM_WORLD, test::bui2008_case_at_courant_one(small), dir).run();
+  Simulation(PETSC_COMM_WORLD, test::bui2008_case_at_courant_one(earlier), other).run();
   auto longer = small;
   longer.push_back("time.end=0.1");
   auto restart_says = [&]() -> std::string {
-    Simulation sim(PETSC_COMM_WORLD, load_case(case_path, test::bui2008_at_courant_one(longer)), dir);
+    Simulation sim(PETSC_COMM_WORLD, test::bui2008_case_at_courant_one(longer), dir);
     try {
       sim.restart();
     } catch (const CheckpointError& e) {

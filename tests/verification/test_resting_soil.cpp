@@ -83,11 +83,9 @@ std::vector<double> extents(const Grid& g, const Field& c_field) {
 // largest displacement is 2e-5 cells (docs/method.md).
 TEST(RestingSoil, CohesiveBlockThatCannotFailStaysPut) {
   // The Bui et al. block with a cohesion far above rho g h: the yield stress is never reached.
-  const CaseConfig config =
-      load_case(test::repo_path("cases/bui2008_experiment.toml"),
-                test::bui2008_at_courant_one({"mesh.cells=[150,50]", "time.end=1.0", "time.max_dt=0.01",
-                                              "soil.rheology.cohesion=1e5", "numerics.pressure_coupling=coupled",
-                                              "soil.face_fraction=face", "output.progress_seconds=0"}));
+  const CaseConfig config = test::bui2008_case_at_courant_one(
+      {"mesh.cells=[150,50]", "time.end=1.0", "time.max_dt=0.01", "soil.rheology.cohesion=1e5",
+       "numerics.pressure_coupling=coupled", "soil.face_fraction=face", "output.progress_seconds=0"});
   Simulation sim(PETSC_COMM_WORLD, config, "");
   const Grid& g = sim.grid();
   const auto before = extents(g, sim.soil()->soil_fraction());

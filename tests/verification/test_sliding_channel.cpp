@@ -53,9 +53,7 @@ ChannelResult slide_in_channel(double theta, double delta_b, const std::string& 
                   delta_b, side_walls, side_walls),
       "mixture.density=\"linear\"", "numerics.air_band=0", "numerics.outer_iterations=10",
       "numerics.outer_tolerance=1e-6", "output.progress_seconds=0"};
-  Simulation sim(PETSC_COMM_WORLD,
-                 load_case(test::repo_path("cases/bui2008_experiment.toml"), test::bui2008_at_courant_one(overrides)),
-                 "");
+  Simulation sim(PETSC_COMM_WORLD, test::bui2008_case_at_courant_one(overrides), "");
   sim.run();
   const Grid& grid = sim.grid();
   const auto c = gather_to_root(grid, sim.soil()->soil_fraction());

@@ -58,8 +58,7 @@ SlidingResult drag_layer(double thickness, double cell, double floor_speed, doub
       "boundary.west={type = \"atmosphere\"}", "boundary.east={type = \"atmosphere\"}",
       fmt::format("boundary.south={{type = \"wall\", velocity = [{}, 0.0]}}", floor_speed),
       "output.progress_seconds=0"};
-  const CaseConfig config =
-      load_case(test::repo_path("cases/bui2008_experiment.toml"), test::bui2008_at_courant_one(overrides));
+  const CaseConfig config = test::bui2008_case_at_courant_one(overrides);
   Simulation sim(PETSC_COMM_WORLD, config, "");
   SlidingResult r;
   const Grid& g = sim.grid();
@@ -130,9 +129,7 @@ InclineResult slide_on_incline(double theta, double end, const std::string& bed 
       "numerics.outer_iterations=10", "numerics.outer_tolerance=1e-6",
       "output.progress_seconds=0"};
   overrides.insert(overrides.end(), more.begin(), more.end());
-  Simulation sim(PETSC_COMM_WORLD,
-                 load_case(test::repo_path("cases/bui2008_experiment.toml"), test::bui2008_at_courant_one(overrides)),
-                 "");
+  Simulation sim(PETSC_COMM_WORLD, test::bui2008_case_at_courant_one(overrides), "");
   sim.run();
   const Grid& grid = sim.grid();
   const auto c = gather_to_root(grid, sim.soil()->soil_fraction());
@@ -257,9 +254,7 @@ TEST(SlidingLayer, OnAnObstacleOfItsOwnFrictionSlidesAsOnAWallOfIt) {
       fmt::format("physics.gravity=[{:.17g}, {:.17g}]", g * std::sin(theta), -g * std::cos(theta)),
       "numerics.air_band=0", "numerics.outer_iterations=10", "numerics.outer_tolerance=1e-6",
       "output.progress_seconds=0"};
-  Simulation sim(PETSC_COMM_WORLD,
-                 load_case(test::repo_path("cases/bui2008_experiment.toml"), test::bui2008_at_courant_one(overrides)),
-                 "");
+  Simulation sim(PETSC_COMM_WORLD, test::bui2008_case_at_courant_one(overrides), "");
   sim.run();
   const auto c = gather_to_root(sim.grid(), sim.soil()->soil_fraction());
   const auto u = gather_to_root(sim.grid(), sim.flow().velocity(0));

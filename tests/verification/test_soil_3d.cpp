@@ -328,8 +328,7 @@ TEST(SoilPhase3d, TheQuadraticWallGradientOfALayerIndependentCollapseIsThePlanar
                          "physics.gravity=[0, -9.81, 0]", "boundary.front={type=\"slip\"}", "boundary.back={type=\"slip\"}"});
     else
       o.push_back("mesh.cells=[60, 20]");
-    Simulation sim(PETSC_COMM_WORLD,
-                   load_case(test::repo_path("cases/bui2008_experiment.toml"), test::bui2008_at_courant_one(o)), "");
+    Simulation sim(PETSC_COMM_WORLD, test::bui2008_case_at_courant_one(o), "");
     sim.run();
     const double depth = layers ? 0.02 : 1.0;
     const SoilBudget b = sim.soil()->budget(sim.flow());

@@ -32,9 +32,7 @@ struct Layers {
 };
 
 Layers run(const std::vector<std::string>& overrides) {
-  Simulation sim(PETSC_COMM_WORLD,
-                 load_case(test::repo_path("cases/bui2008_experiment.toml"), test::bui2008_at_courant_one(overrides)),
-                 "");
+  Simulation sim(PETSC_COMM_WORLD, test::bui2008_case_at_courant_one(overrides), "");
   Layers r;
   auto measure = [&] {
     const Grid& g = sim.grid();
@@ -147,13 +145,12 @@ TEST(SoilMaterials, AWeakLowerLayerCarriesTheBlockFurther) {
 TEST(SoilMaterials, ABedOfTwoDensitiesRestsOnTheFloorWithItsWeight) {
   const double heavy = 5300.0, light = 2650.0, air = 1.0, width = 0.6, g = 9.81;
   Simulation sim(PETSC_COMM_WORLD,
-                 load_case(test::repo_path("cases/bui2008_experiment.toml"),
-                           test::bui2008_at_courant_one(
-                               {"mesh.cells=[60,20]", "time.end=0.2", "output.progress_seconds=0",
-                                "output.fields=false", "boundary.east={type = \"wall\"}",
-                                "soil.materials=[{name = \"heavy\", density = " + std::to_string(heavy) + "}]",
-                                "initial.soil=[{shape = \"box\", lower = [0, 0], upper = [0.6, 0.1]}, "
-                                "{shape = \"box\", lower = [0, 0], upper = [0.6, 0.05], material = \"heavy\"}]"})),
+                 test::bui2008_case_at_courant_one(
+                     {"mesh.cells=[60,20]", "time.end=0.2", "output.progress_seconds=0", "output.fields=false",
+                      "boundary.east={type = \"wall\"}",
+                      "soil.materials=[{name = \"heavy\", density = " + std::to_string(heavy) + "}]",
+                      "initial.soil=[{shape = \"box\", lower = [0, 0], upper = [0.6, 0.1]}, "
+                      "{shape = \"box\", lower = [0, 0], upper = [0.6, 0.05], material = \"heavy\"}]"}),
                  "");
   const RunSummary s = sim.run();
   const auto force = sim.flow().side_forces();

@@ -26,9 +26,7 @@ struct MaterialRun {
 };
 
 MaterialRun run(const std::vector<std::string>& overrides, double depth) {
-  Simulation sim(PETSC_COMM_WORLD,
-                 load_case(test::repo_path("cases/bui2008_experiment.toml"), test::bui2008_at_courant_one(overrides)),
-                 "");
+  Simulation sim(PETSC_COMM_WORLD, test::bui2008_case_at_courant_one(overrides), "");
   MaterialRun r;
   if (sim.soil()->material_count() > 0) r.volumes0 = sim.soil()->material_volumes();
   r.mass0 = sim.soil()->budget(sim.flow()).mixture_mass;
@@ -168,15 +166,13 @@ TEST(SoilMaterials3d, ABedOfTwoDensitiesRestsOnTheFloorWithItsWeight) {
   const double heavy = 5300.0, light = 2650.0, air = 1.0, width = 0.6, depth = 0.02, g = 9.81;
   Simulation sim(
       PETSC_COMM_WORLD,
-      load_case(
-          test::repo_path("cases/bui2008_experiment.toml"),
-          test::bui2008_at_courant_one(
-              {"mesh.cells=[30, 10, 2]", "mesh.lower=[0, 0, 0]", "mesh.upper=[0.6, 0.2, 0.02]",
-               "physics.gravity=[0, -9.81, 0]", "boundary.front={type=\"wall\"}", "boundary.back={type=\"wall\"}",
-               "boundary.east={type = \"wall\"}", "time.end=0.1", "output.progress_seconds=0", "output.fields=false",
-               "soil.materials=[{name = \"heavy\", density = " + std::to_string(heavy) + "}]",
-               "initial.soil=[{shape = \"box\", lower = [0, 0], upper = [0.6, 0.1]}, "
-               "{shape = \"box\", lower = [0, 0, 0], upper = [0.6, 0.05, 0.02], material = \"heavy\"}]"})),
+      test::bui2008_case_at_courant_one(
+          {"mesh.cells=[30, 10, 2]", "mesh.lower=[0, 0, 0]", "mesh.upper=[0.6, 0.2, 0.02]",
+           "physics.gravity=[0, -9.81, 0]", "boundary.front={type=\"wall\"}", "boundary.back={type=\"wall\"}",
+           "boundary.east={type = \"wall\"}", "time.end=0.1", "output.progress_seconds=0", "output.fields=false",
+           "soil.materials=[{name = \"heavy\", density = " + std::to_string(heavy) + "}]",
+           "initial.soil=[{shape = \"box\", lower = [0, 0], upper = [0.6, 0.1]}, "
+           "{shape = \"box\", lower = [0, 0, 0], upper = [0.6, 0.05, 0.02], material = \"heavy\"}]"}),
       "");
   const RunSummary s = sim.run();
   const auto force = sim.flow().side_forces();

@@ -10,11 +10,12 @@
 #include <map>
 #include <sstream>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "io/case_file.hpp"
-#include "mesh/gather.hpp"
 #include "mesh/field.hpp"
+#include "mesh/gather.hpp"
 
 namespace granflow::test {
 
@@ -54,6 +55,11 @@ inline std::vector<std::string> bui2008_at_courant_one(std::vector<std::string> 
   overrides.insert(overrides.begin(), {"time.courant=1", "time.interface_substeps=2", "numerics.outer_iterations=2",
                                        "numerics.viscosity_pressure=mean_of_last_two"});
   return overrides;
+}
+
+// cases/bui2008_experiment.toml at Courant 1 (bui2008_at_courant_one) with these overrides.
+inline CaseConfig bui2008_case_at_courant_one(std::vector<std::string> overrides) {
+  return load_case(repo_path("cases/bui2008_experiment.toml"), bui2008_at_courant_one(std::move(overrides)));
 }
 
 // The Bui et al. case run as it was written before the coupled solve: the projection with the cells'
