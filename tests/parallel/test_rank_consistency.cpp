@@ -91,9 +91,9 @@ TEST(RankConsistency, CavityOneAndTwoRanksAgree) {
 TEST(RankConsistency, CollapseWithFaceYieldPressureOneAndTwoRanksAgree) {
   expect_rank_independent(
       "cases/bui2008_experiment.toml",
-      test::bui2008_at_courant_one(test::with_bui2008_projection(
-          {"mesh.cells=[25,20]", "mesh.upper=[0.25,0.2]", "time.end=0.1", "output.progress_seconds=0",
-           "soil.yield_pressure=face", "solver.pressure.rtol=1e-12", "solver.momentum.rtol=1e-12"})),
+      test::with_bui2008_projection({"mesh.cells=[25,20]", "mesh.upper=[0.25,0.2]", "time.end=0.1",
+                                     "output.progress_seconds=0", "soil.yield_pressure=face",
+                                     "solver.pressure.rtol=1e-12", "solver.momentum.rtol=1e-12"}),
       1e-9);  // m/s; measured 4.4e-12, iterative solves to 1e-12
 }
 

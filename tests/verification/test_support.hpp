@@ -63,13 +63,15 @@ inline CaseConfig bui2008_case_at_courant_one(std::vector<std::string> overrides
 }
 
 // The Bui et al. case run as it was written before the coupled solve: the projection with the cells'
-// mixtures, one VoF sweep per step and three outer iterations from the last step's velocity. Tests
-// whose tolerances were set on that set-up append these overrides to their own.
+// mixtures, one VoF sweep per step and three outer iterations from the last step's velocity, the
+// later ones' yield stress at the mean of the last two pressures. Tests whose tolerances were set on
+// that set-up append these overrides to their own; they set every key bui2008_at_courant_one does.
 inline std::vector<std::string> with_bui2008_projection(std::vector<std::string> overrides) {
   overrides.insert(overrides.end(), {"numerics.pressure_coupling=projection", "numerics.air_band=0",
                                      "soil.face_fraction=cells",
                                      "time.courant=0.5", "time.interface_substeps=1", "numerics.outer_iterations=3",
-                                     "numerics.first_viscosity=previous_step"});
+                                     "numerics.first_viscosity=previous_step",
+                                     "numerics.viscosity_pressure=mean_of_last_two"});
   return overrides;
 }
 
