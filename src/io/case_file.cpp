@@ -556,6 +556,9 @@ SoilSettings read_soil(TableReader& top, std::vector<std::string>& without_effec
     if (s.materials.size() + 1 > size_t(rheology::SoilMaterials::max_count))
       throw CaseError(fmt::format("soil.materials: {} materials, more than the {} a case may have besides the rheology's own",
                                   s.materials.size(), rheology::SoilMaterials::max_count - 1));
+    // N/m; water against air 0.072 at 20 C. Zero: none (the surface force is not computed).
+    s.surface_tension = so.number("surface_tension", 0.0);
+    so.require_range("surface_tension", s.surface_tension, 0.0, inf, "zero or positive");
     s.displacement = so.boolean("displacement", s.rheology.has_value());
     // A granular soil's viscosity is taken on the faces by default, each choice defaulting to the one
     // before it: the cells' evaluations let a pile next to air creep (docs/method.md).

@@ -134,6 +134,7 @@ class FlowSolver::CoupledRows {
         face_vel_(grid_, flow.face_),
         mobility_(grid_, flow.pressure_mobility_),
         cell_force_(grid_, flow.cell_force_),
+        source_(grid_, flow.face_source_, flow.has_face_source() ? flow.dimension_ : 0),
         mask_(flow.grid_, flow.blocked_) {}
 
   double density(int i, int j, int k) const { return rho_[k][j][i]; }
@@ -213,7 +214,8 @@ class FlowSolver::CoupledRows {
       cols[m] = MatStencil{kn, jn, in, pressure_};
       vals[m++] = s * w;
       p_centre += -s * w;
-      r += 0.5 * Vol * rhoP * (g_[c] - f_.ambient_weight(c) / rho_f);
+      const double extra = f_.face_source_at(source_.view, c, std::min(i, in), std::min(j, jn), std::min(k, kn));
+      r += 0.5 * Vol * rhoP * (g_[c] - f_.ambient_weight(c) / rho_f + extra / rho_f);
     }
     cols[m] = MatStencil{k, j, i, pressure_};
     vals[m++] = p_centre;
@@ -258,8 +260,9 @@ class FlowSolver::CoupledRows {
       p_centre += mob * area / d;
       cols[m] = MatStencil{kn, jn, in, pressure_};
       vals[m++] = -mob * area / d;
+      const double extra = f_.face_source_at(source_.view, axis, std::min(i, in), std::min(j, jn), std::min(k, kn));
       r += -s * area * mob * rho_f * g_[axis] + s * area * mob * f_.ambient_weight(axis) +
-           s * area * mob * 0.5 * (fcell[k][j][i] + fcell[kn][jn][in]);
+           s * area * mob * 0.5 * (fcell[k][j][i] + fcell[kn][jn][in]) - s * area * mob * extra;
     }
     for (int c = 0; c < dim_; ++c) {
       cols[m] = MatStencil{k, j, i, c};
@@ -284,7 +287,7 @@ class FlowSolver::CoupledRows {
   const std::array<double, 3>& g_;
   const ConstFieldArray rho_array_, p_array_;
   const VolumeView rho_, p_now_;
-  const AxisViews vel_, face_vel_, mobility_, cell_force_;
+  const AxisViews vel_, face_vel_, mobility_, cell_force_, source_;
   const BlockedView mask_;
 };
 

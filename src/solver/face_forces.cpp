@@ -7,6 +7,7 @@
 #include <cmath>
 #include <optional>
 
+#include "mesh/axis_views.hpp"
 #include "mesh/face_loop.hpp"
 #include "mesh/gather.hpp"
 #include "mesh/obstacles.hpp"
@@ -139,12 +140,14 @@ void FlowSolver::compute_face_forces() {
     face_vel[a] = face_arrays[a].emplace(grid_.field_dm(), face_[a]->local()).volume();
   }
   const BlockedView mask(grid_, blocked_);
+  const AxisViews source(grid_, face_source_, has_face_source() ? dimension_ : 0);
   fill_owned_faces_any(
       grid_, per_axis(face_force_),
       [&](int axis, int i, int j, int k) {
         const int in = i + (axis == 0), jn = j + (axis == 1), kn = k + (axis == 2);
         const double d = grid_.centre(axis, index_along(axis, in, jn, kn)) - grid_.centre(axis, index_along(axis, i, j, k));
-        return -(p[kn][jn][in] - p[k][j][i]) / d + 0.5 * (rho[k][j][i] + rho[kn][jn][in]) * g[axis] - ambient_weight(axis);
+        return -(p[kn][jn][in] - p[k][j][i]) / d + 0.5 * (rho[k][j][i] + rho[kn][jn][in]) * g[axis] -
+               ambient_weight(axis) + face_source_at(source.view, axis, i, j, k);
       },
       [&](int axis, int i, int j, int k, int sign) {
         const FaceGeometry& fg = box_faces[2 * axis + (sign < 0)];

@@ -113,6 +113,14 @@ void FlowSolver::enable_body_force() {
     }
 }
 
+void FlowSolver::enable_face_source() {
+  for (int a = 0; a < dimension_; ++a)
+    if (!face_source_[a]) {
+      face_source_[a] = make_field(grid_);
+      face_source_[a]->set(0.0);
+    }
+}
+
 FlowSolver::~FlowSolver() = default;
 
 // ---------------------------------------------------------------------------------------------

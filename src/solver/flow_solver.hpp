@@ -66,6 +66,13 @@ class FlowSolver {
   // Zero unless enable_body_force() was called.
   void enable_body_force();
   Field& body_force(int axis) { return *body_force_[axis]; }
+  // A force per unit volume on the interior faces (N/m^3, indexed like face_velocity), acting where
+  // rho_f g does and balanced by the pressure gradient the same way: the surface tension
+  // sigma kappa_f grad_f(c) of models/interface/surface_tension.hpp. Zero unless enabled; its owner
+  // fills it before each step (boundary faces are not read).
+  void enable_face_source();
+  Field& face_source(int axis) { return *face_source_[axis]; }
+  bool has_face_source() const { return face_source_[0] != nullptr; }
   const Field& face_velocity(int axis) const { return *face_[axis]; }
 
   // The mass the momentum equation carries under numerics.momentum_transport = "conservative" (coupled
@@ -234,6 +241,11 @@ class FlowSolver {
   std::unique_ptr<Field> p_last_iterate_, p_mean_;
   std::unique_ptr<Field> p_, rho_, mu_, face_mu_[3];
   std::unique_ptr<Field> body_force_[3];
+  std::unique_ptr<Field> face_source_[3];  // enable_face_source
+  // The face source of `axis` at the face [k][j][i] (0 without one), in the local arrays of face_source_.
+  double face_source_at(const VolumeView source[], int axis, int i, int j, int k) const {
+    return source[axis] ? source[axis][k][j][i] : 0.0;
+  }
   // The mass per volume each cell's momentum was carried with over the last step (state: it spans two
   // steps), and the density of the momentum the step starts with (carry_momentum_mass).
   std::unique_ptr<Field> carried_density_, start_momentum_density_;

@@ -77,6 +77,7 @@ void FlowSolver::assemble_pressure_rhs() {
   const AxisViews q0(grid_, vel_old_), face_old(grid_, face_old_), face_vel(grid_, face_), vel(grid_, vel_);
   const ConstFieldArray rho_array = local_read(grid_, *rho_);
   const VolumeView rho = rho_array.volume();
+  const AxisViews source(grid_, face_source_, has_face_source() ? dimension_ : 0);
   const auto faces = cell_faces(dimension_);
   FieldArray r(grid_.field_dm(), rhs_);
   for (int k = b.zs; k < b.ze(); ++k)
@@ -104,7 +105,10 @@ void FlowSolver::assemble_pressure_rhs() {
                                                        on_face(face_old.view, i, j, k, fg));
           const double rA = face_coefficient(rav, rho, i, j, k, fg);
           const double rho_f = 0.5 * (rho[k][j][i] + rho[kn][jn][in]);
-          rhs -= fg.sign * (ustar + rA * rho_f * g[fg.axis] - rA * ambient_weight(fg.axis)) * area;
+          // The face's source sits at the face [k][j][i] of the lower of its two cells.
+          const double f_extra =
+              face_source_at(source.view, fg.axis, std::min(i, in), std::min(j, jn), std::min(k, kn));
+          rhs -= fg.sign * (ustar + rA * rho_f * g[fg.axis] - rA * ambient_weight(fg.axis) + rA * f_extra) * area;
         }
         r.volume()[k][j][i] = rhs;
       }

@@ -58,6 +58,10 @@ Simulation::Simulation(MPI_Comm comm, const CaseConfig& config, std::filesystem:
     }
     soil_->initialise();
     soil_->refresh(*flow_);
+    if (config.soil->surface_tension > 0.0) {
+      surface_tension_ = std::make_unique<SurfaceTensionForce>(*grid_, config.soil->surface_tension, blocked_.get());
+      surface_tension_->fill(soil_->soil_fraction(), *flow_);
+    }
     flow_->set_property_update([soil = soil_.get()](FlowSolver& f) { soil->update_properties(f); });
     if (config_.soil->rheology && config_.soil->yield_pressure == YieldPressure::face)
       flow_->set_face_viscosity_update([soil = soil_.get()](FlowSolver& f) { soil->update_face_viscosity(f); });
@@ -188,6 +192,7 @@ double Simulation::choose_dt(double dt_previous) const {
     else if (ci > 0.0) dt = std::min(dt, dt_previous * limit / ci);
   }
   dt = std::min({dt, dt_previous * t.max_growth, t.max_dt});
+  if (surface_tension_) dt = std::min(dt, capillary_time_step());
   return dt;
 }
 
@@ -222,6 +227,7 @@ StepReport Simulation::take_step(double& step_dt, long& retried, double planned_
       soil_->advect(*flow_, step_dt);  // by the last step's faces, and its inlets' inflow
       set_inflow();
       soil_->refresh(*flow_);
+      if (surface_tension_) surface_tension_->fill(soil_->soil_fraction(), *flow_);
       update_solve_region();
     } else {
       set_inflow();
@@ -287,6 +293,7 @@ RunSummary Simulation::run(const StepObserver& after_step) {
   // number from the second, as the step is chosen from the flow).
   double dt = !restarted_ ? std::min(tc.dt, tc.max_dt)
                           : (tc.adaptive ? std::min(restart_dt_, tc.max_dt) : std::min(tc.dt, tc.max_dt));
+  if (surface_tension_) dt = std::min(dt, capillary_time_step());  // a fixed step too
   if (!restarted_) write_output();
   OwnedVec previous[3];  // freed also when the loop ends in an exception (divergence, an observer that stops the run)
   const int components = grid_->dimension();

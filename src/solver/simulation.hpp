@@ -10,6 +10,7 @@
 #include "solver/divergence_error.hpp"
 #include "solver/flow_solver.hpp"
 #include "solver/soil_phase.hpp"
+#include "solver/surface_tension_force.hpp"
 
 namespace granflow {
 
@@ -120,6 +121,11 @@ class Simulation {
   bool in_blocked_cell(double x, double y, double z) const;
   std::unique_ptr<FlowSolver> flow_;
   std::unique_ptr<SoilPhase> soil_;
+  std::unique_ptr<SurfaceTensionForce> surface_tension_;  // soil.surface_tension > 0
+  // Its limit on the step (solver/surface_tension_force.hpp).
+  double capillary_time_step() const {
+    return surface_tension_->time_step_limit(config_.soil->soil_density, config_.soil->air_density);
+  }
   std::unique_ptr<VtkSeries> series_;
   std::vector<std::string> history_;  // rows of history.csv, rewritten whole at each output
   double dissipated_energy_ = 0.0;

@@ -70,7 +70,10 @@ std::string Simulation::physics() const {
   if (!config_.soil) return text + fmt::format("; fluid {:.9g} kg/m^3, {:.9g} Pa s", config_.fluid.density, config_.fluid.viscosity);
   const SoilSettings& s = *config_.soil;
   text += fmt::format("; air {:.9g} kg/m^3, {:.9g} Pa s; soil {:.9g} kg/m^3", s.air_density, s.air_viscosity, s.soil_density);
-  if (!s.rheology) return text + fmt::format(", {:.9g} Pa s", s.soil_viscosity);
+  // Recorded only where there is one, so that a record without it stands for none.
+  const std::string tension =
+      s.surface_tension > 0.0 ? fmt::format("; surface tension {:.9g} N/m", s.surface_tension) : "";
+  if (!s.rheology) return text + fmt::format(", {:.9g} Pa s", s.soil_viscosity) + tension;
   const auto& r = *s.rheology;
   text += ", " + rheology_record(r);
   for (const auto& m : s.materials) {
@@ -82,7 +85,7 @@ std::string Simulation::physics() const {
       text += fmt::format("; {}: {}", m.name, material_record(q));
     if (q.density != s.soil_density) text += fmt::format(", {:.9g} kg/m^3", q.density);
   }
-  return text;
+  return text + tension;
 }
 
 // The sides' conditions, as a checkpoint records them (apart from the physics, so that a checkpoint

@@ -770,6 +770,18 @@ TEST(CaseFile, GranularSoilDefaultsToTheFaceViscosityAndTheCoupledSolveOverAnAir
   EXPECT_EQ(water.soil->face_fraction, FaceFraction::cells);
 }
 
+// soil.surface_tension: N/m, none by default; a negative one is named, and so is one in a case without soil.
+TEST(CaseFile, SurfaceTension) {
+  const std::string phi = "soil.rheology.friction_angle=30";
+  EXPECT_EQ(parse_case(two_phase, {phi}).soil->surface_tension, 0.0);
+  EXPECT_EQ(parse_case(two_phase, {phi, "soil.surface_tension=0.072"}).soil->surface_tension, 0.072);
+  const std::string negative = error_of(two_phase, {phi, "soil.surface_tension=-0.072"});
+  EXPECT_NE(negative.find("soil.surface_tension"), std::string::npos) << negative;
+  EXPECT_NE(negative.find("zero or positive"), std::string::npos) << negative;
+  const std::string misspelt = error_of(two_phase, {phi, "soil.surface_tensoin=0.072"});
+  EXPECT_NE(misspelt.find("surface_tension"), std::string::npos) << misspelt;
+}
+
 // time.rest_speed: soil cases only, whose soil carries its displacement (which tells that it moved).
 TEST(CaseFile, RestSpeedNeedsSoilThatCarriesItsDisplacement) {
   EXPECT_EQ(parse_case(two_phase, {"soil.rheology.friction_angle=30", "time.rest_speed=1e-3"}).time.rest_speed, 1e-3);

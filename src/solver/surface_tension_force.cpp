@@ -1,0 +1,139 @@
+// The stencils of the surface tension's face source (solver/surface_tension_force.hpp): the smoothing
+// of c, the curvature from the normals on the cells' faces, and the force on each face.
+#include "solver/surface_tension_force.hpp"
+
+#include <array>
+#include <cmath>
+
+#include "mesh/face_loop.hpp"
+#include "mesh/obstacles.hpp"
+#include "mesh/side_ghosts.hpp"
+#include "models/interface/surface_tension.hpp"
+#include "solver/cell_faces.hpp"
+
+namespace granflow {
+
+SurfaceTensionForce::SurfaceTensionForce(const Grid& grid, double sigma, const Field* blocked)
+    : grid_(grid), sigma_(sigma), blocked_(blocked) {
+  for (auto& f : smoothed_) f = std::make_unique<Field>(grid);
+  curvature_ = std::make_unique<Field>(grid);
+  weight_ = std::make_unique<Field>(grid);
+  curvature_->set(0.0);
+  weight_->set(0.0);
+}
+
+double SurfaceTensionForce::time_step_limit(double density_a, double density_b) const {
+  return interface::capillary_time_step(density_a, density_b, grid_.min_spacing(), sigma_);
+}
+
+// Ghosts beyond the sides and in the obstacles as mirror images of the cells inside.
+void SurfaceTensionForce::fill_mirror_ghosts(Field& f) const {
+  FieldArray a = local_array(grid_, f);
+  mirror_into_blocked(grid_, blocked_, a.volume(), 1.0);
+  fill_side_ghosts(grid_, a.volume(), [](Side, double inner, double) { return inner; });
+}
+
+void SurfaceTensionForce::smooth(const Field& from, Field& to) const {
+  const auto& b = grid_.owned();
+  const bool layers = grid_.dimension() == 3;
+  const int reach_z = layers ? 1 : 0;
+  {
+    const ConstFieldArray in = local_read(grid_, from);
+    FieldArray out(grid_.field_dm(), to.global());
+    const VolumeView c = in.volume();
+    for (int k = b.zs; k < b.ze(); ++k)
+      for (int j = b.ys; j < b.ye(); ++j)
+        for (int i = b.xs; i < b.xe(); ++i) {
+          double sum = 0.0;
+          for (int dk = -reach_z; dk <= reach_z; ++dk) {
+            const double wz = layers ? interface::smoothing_weight(dk) : 1.0;
+            for (int dj = -1; dj <= 1; ++dj)
+              for (int di = -1; di <= 1; ++di)
+                sum +=
+                    wz * interface::smoothing_weight(dj) * interface::smoothing_weight(di) * c[k + dk][j + dj][i + di];
+          }
+          out.volume()[k][j][i] = sum;
+        }
+  }
+  to.scatter_to_local();
+  fill_mirror_ghosts(to);
+}
+
+// kappa = -div(n) over each owned cell's faces, n = grad(c~)/|grad(c~)| on the face: the difference
+// across it along its normal, the mean of its two cells' central differences across. Faces on a side or
+// an obstacle's wall have no normal component (the mirror). The weight of a cell is |grad(c~)| there.
+void SurfaceTensionForce::compute_curvature(const Field& smoothed) {
+  const auto& b = grid_.owned();
+  const int dim = grid_.dimension();
+  {
+    const ConstFieldArray s_array = local_read(grid_, smoothed);
+    const VolumeView s = s_array.volume();
+    const BlockedView mask(grid_, blocked_);
+    FieldArray kappa(grid_.field_dm(), curvature_->global()), weight(grid_.field_dm(), weight_->global());
+    // The central difference of c~ along `axis` at cell (i, j, k) (ghosts included).
+    auto central = [&](int axis, int i, int j, int k) {
+      const int di = axis == 0, dj = axis == 1, dk = axis == 2;
+      const double span = grid_.centre(axis, index_along(axis, i + di, j + dj, k + dk)) -
+                          grid_.centre(axis, index_along(axis, i - di, j - dj, k - dk));
+      return (s[k + dk][j + dj][i + di] - s[k - dk][j - dj][i - di]) / span;
+    };
+    for (int k = b.zs; k < b.ze(); ++k)
+      for (int j = b.ys; j < b.ye(); ++j)
+        for (int i = b.xs; i < b.xe(); ++i) {
+          if (is_blocked(mask.data(), i, j, k)) {
+            kappa.volume()[k][j][i] = weight.volume()[k][j][i] = 0.0;
+            continue;
+          }
+          double outward = 0.0, gradient2 = 0.0;
+          for (int axis = 0; axis < dim; ++axis) {
+            const double g = central(axis, i, j, k);
+            gradient2 += g * g;
+            for (int sign : {-1, 1}) {
+              const int in = i + sign * (axis == 0), jn = j + sign * (axis == 1), kn = k + sign * (axis == 2);
+              if (grid_.outside(in, jn, kn) || is_blocked(mask.data(), in, jn, kn)) continue;
+              const double d = std::abs(grid_.centre(axis, index_along(axis, in, jn, kn)) -
+                                        grid_.centre(axis, index_along(axis, i, j, k)));
+              const double along = sign * (s[kn][jn][in] - s[k][j][i]) / d;  // + axis component
+              std::array<double, 2> across{0.0, 0.0};
+              int m = 0;
+              for (int other = 0; other < dim; ++other)
+                if (other != axis) across[m++] = 0.5 * (central(other, i, j, k) + central(other, in, jn, kn));
+              const double n_along = interface::unit_normal_component(along, across[0], across[1]);
+              outward += sign * n_along * grid_.face_area(axis, i, j, k, sign);
+            }
+          }
+          kappa.volume()[k][j][i] = interface::cell_curvature(outward, grid_.volume(i, j, k));
+          weight.volume()[k][j][i] = std::sqrt(gradient2);
+        }
+  }
+  curvature_->scatter_to_local();
+  weight_->scatter_to_local();
+}
+
+void SurfaceTensionForce::fill(const Field& soil_fraction, FlowSolver& flow) {
+  smoothed_[0]->copy_from(soil_fraction);
+  fill_mirror_ghosts(*smoothed_[0]);
+  for (int pass = 0; pass < smoothing_passes; ++pass) smooth(*smoothed_[pass % 2], *smoothed_[(pass + 1) % 2]);
+  compute_curvature(*smoothed_[smoothing_passes % 2]);
+
+  flow.enable_face_source();
+  const ConstFieldArray c_array = local_read(grid_, soil_fraction), kappa_array = local_read(grid_, *curvature_),
+                        weight_array = local_read(grid_, *weight_);
+  const VolumeView c = c_array.volume(), kappa = kappa_array.volume(), weight = weight_array.volume();
+  const BlockedView mask(grid_, blocked_);
+  std::array<Field*, 3> faces{};
+  for (int a = 0; a < grid_.dimension(); ++a) faces[a] = &flow.face_source(a);
+  fill_owned_faces_any(
+      grid_, faces,
+      [&](int axis, int i, int j, int k) {
+        const int in = i + (axis == 0), jn = j + (axis == 1), kn = k + (axis == 2);
+        const double d =
+            grid_.centre(axis, index_along(axis, in, jn, kn)) - grid_.centre(axis, index_along(axis, i, j, k));
+        const double kappa_f =
+            interface::face_curvature(kappa[k][j][i], weight[k][j][i], kappa[kn][jn][in], weight[kn][jn][in]);
+        return interface::surface_tension_face_force(sigma_, kappa_f, c[k][j][i], c[kn][jn][in], d);
+      },
+      [](int, int, int, int, int) { return 0.0; }, mask.data());
+}
+
+}  // namespace granflow

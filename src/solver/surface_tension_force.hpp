@@ -1,0 +1,42 @@
+#pragma once
+// The surface tension of the soil-air interface as the flow solver's face source (FlowSolver::
+// face_source): the curvature of a smoothed soil fraction, then sigma kappa_f (c_N - c_P) / d on each
+// interior face (models/interface/surface_tension.hpp). The domain's sides and obstacles' walls
+// mirror the fraction, so the interface meets them at a right angle (a neutral contact angle).
+#include <memory>
+
+#include "mesh/field.hpp"
+#include "mesh/grid.hpp"
+#include "solver/flow_solver.hpp"
+
+namespace granflow {
+
+class SurfaceTensionForce {
+ public:
+  // sigma: N/m, > 0. blocked: the mask of blocked cells (obstacles), or null.
+  SurfaceTensionForce(const Grid& grid, double sigma, const Field* blocked);
+
+  // The face source of the flow from the soil fraction c (its ghosts current): fills
+  // flow.face_source(), which it enables.
+  void fill(const Field& soil_fraction, FlowSolver& flow);
+  // kappa of the last fill (1/m; owned cells, with ghosts), 0 where c~ has no gradient.
+  const Field& curvature() const { return *curvature_; }
+  // The capillary time-step limit on this mesh for phases of these densities (s).
+  double time_step_limit(double density_a, double density_b) const;
+
+  // Passes of the 1-2-1 filter that smooth c before its normal is taken. Two spread the interface over
+  // about five cells: a smooth enough normal for the curvature, yet local.
+  static constexpr int smoothing_passes = 2;
+
+ private:
+  void smooth(const Field& from, Field& to) const;  // one pass; `to` with its ghosts
+  void fill_mirror_ghosts(Field& f) const;
+  void compute_curvature(const Field& smoothed);
+
+  const Grid& grid_;
+  double sigma_;
+  const Field* blocked_;
+  std::unique_ptr<Field> smoothed_[2], curvature_, weight_;  // weight: |grad c~| at the cell
+};
+
+}  // namespace granflow
