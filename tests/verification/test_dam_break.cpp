@@ -1,19 +1,21 @@
 // Water column collapse against Martin & Moyce (1952), n^2 = 2: the shipped case
-// cases/water_dam_break.toml run to T = t sqrt(2g/a) = 3.06, its history compared with the tabulated
-// surge front Z(T) and residual column height H(tau) (validation/refdata/martin_moyce1952_n2_2_*.csv).
+// cases/water_dam_break.toml (water and air, with the water's surface tension) run to T = t sqrt(2g/a) =
+// 3.06, its history compared with the tabulated surge front Z(T) and residual column height H(tau)
+// (validation/refdata/martin_moyce1952_n2_2_*.csv).
 //
 // Surge front: the points with 0.8 < T < 1.7 (Z_exp = 1.22 ... 1.89) are not held to 10 %. There the
-// computed front runs ahead of the experiment by 0.2 - 0.25 in T (it reaches each Z about 11-13 ms
-// early), 10 - 15 % in Z. This is not a resolution effect: on 294 x 126 cells (a/48) the deviations
+// computed front runs ahead of the experiment by 0.16 - 0.24 in T (it reaches each Z about 9-13 ms
+// early), 9 - 13 % in Z. This is not a resolution effect: on 294 x 126 cells (a/48) the deviations
 // are the same within 1 % of Z, and they grow slightly as the time step goes to zero (courant 0.1 and
-// dt <= 2e-4 s: 15.6 % at T = 1.19, 10.4 % at T = 1.63, 9.1 % at T = 1.83), so the model's instantaneous
-// release of the column, not the discretisation, sets it. Other Navier-Stokes/VoF comparisons with these
-// data shift the simulated time by 0.175 in T to match the early points; that shift would make the
-// residual column fall late by 0.045 of its height, beyond the table's reading accuracy, so it is not
-// used here (docs/benchmark_dam_break.md).
-// For those points the test checks that the front is ahead of the experiment and within 16 %.
-// T = 1.63 is in that window too: the shipped settings give 9.7 % there, but the time-step-converged
-// value is above 10 %, so a 10 % bound at that point would only hold through the time-step error.
+// dt <= 2e-4 s: 14.5 % at T = 1.19, 9.9 % at T = 1.63, 8.5 % at T = 1.83), so the model's instantaneous
+// release of the column, not the discretisation, sets it. The surface tension takes 1.3 % off it
+// (14.6 % at T = 1.19 without). Other Navier-Stokes/VoF comparisons with these data shift the simulated
+// time by 0.175 in T to match the early points; that shift would make the residual column fall late by
+// 0.044 of its height, beyond the table's reading accuracy, so it is not used here
+// (docs/benchmark_dam_break.md).
+// For those points the test checks that the front is ahead of the experiment and within 15 %.
+// T = 1.63 is in that window too: the shipped settings give 8.6 % there, but the time-step-converged
+// value, 9.9 %, is too near 10 % for a 10 % bound at that point to test more than the time-step error.
 // Every other point with T <= 3, the first (T = 0.41, Z - 1 = 2.7 cells) included, must be within 10 %.
 //
 // Residual height: the table's H is read on a 1/4-inch grid, steps of 1/18 = 0.056 of the initial
@@ -93,10 +95,10 @@ TEST(DamBreak, MartinMoyceColumnCollapse) {
     const double dev = std::abs(Zs - Ze) / Ze;
     const double lead = Te - test::interp(Z, T, Ze);  // Z is increasing over this range
     const bool early = Te > 0.8 && Te < 1.7;
-    say("  %4.2f  %5.2f  %5.3f  %9.4f  %9.3f  %s\n", Te, Ze, Zs, dev, lead, early ? "16 %, ahead" : "10 %");
+    say("  %4.2f  %5.2f  %5.3f  %9.4f  %9.3f  %s\n", Te, Ze, Zs, dev, lead, early ? "15 %, ahead" : "10 %");
     if (early) {
       test::keep_largest(worst_early, dev);
-      EXPECT_LT(dev, 0.16) << "T = " << Te;
+      EXPECT_LT(dev, 0.15) << "T = " << Te;
       EXPECT_GT(Zs, Ze) << "T = " << Te << ": the early front should run ahead of the experiment";
     } else {
       test::keep_largest(worst_strict, dev);
