@@ -8,7 +8,7 @@ namespace granflow {
 std::vector<long> open_thin_ridges(int nx, int ny, int nz, bool periodic_x, std::vector<double>& mask,
                                    const std::function<bool(long)>& may_open) {
   auto index = [&](int i, int j, int k) { return (long(k) * ny + j) * nx + i; };
-  auto cell_of = [&](long n) { return std::array<int, 3>{int(n % nx), int(n / nx % ny), int(n / (long(nx) * ny))}; };
+  auto cell_of = [&](long n) { return cell_of_index(n, nx, ny); };
   auto blocked = [&](long n) { return mask[size_t(n)] > 0.5; };
   auto open = [&](int i, int j, int k) {
     if (periodic_x) i = (i + nx) % nx;

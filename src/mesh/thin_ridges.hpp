@@ -4,10 +4,16 @@
 // elevation model rougher than the cells leaves such ridges wherever a column stands above both its
 // neighbours along x or along z. Opening those cells, pass after pass until none is left, lowers each
 // such column to the higher of its two neighbours: the terrain the mesh can carry.
+#include <array>
 #include <functional>
 #include <vector>
 
 namespace granflow {
+
+// The cell {i, j, k} of index n of a whole-mesh array (x fastest, then y), as the mask's.
+inline std::array<int, 3> cell_of_index(long n, int nx, int ny) {
+  return {int(n % nx), int(n / nx % ny), int(n / (long(nx) * ny))};
+}
 
 // The blocked cells of `mask` (nx * ny * nz values, x fastest then y, blocked above 0.5) that stand
 // between two open cells along x or along z, opened (set to 0) until none that `may_open(index)`

@@ -177,9 +177,7 @@ void lower_thin_ridges(const Grid& g, const CaseConfig& config, const interface:
   layout.ridge_cells_opened.assign(count_of_solids, 0);
   if (rank == 0) {
     const long nx = g.nx(), ny = g.ny();
-    auto centre_of = [&](long n) {
-      return std::array<int, 3>{int(n % nx), int(n / nx % ny), int(n / (nx * ny))};
-    };
+    auto centre_of = [&](long n) { return cell_of_index(n, nx, ny); };
     opened = open_thin_ridges(g.nx(), g.ny(), g.nz(), g.periodic_x(), layout.mask_on_root, [&](long n) {
       const auto [i, j, k] = centre_of(n);
       for (size_t s = 0; s < count_of_solids; ++s)
