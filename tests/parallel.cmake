@@ -105,7 +105,7 @@ set_tests_properties(vof_sweeps_3d_2_ranks PROPERTIES
 # a layer slides between frictional side walls as on one rank.
 add_test(NAME flow_3d_2_ranks
          COMMAND ${MPIRUN} -np 2 --oversubscribe $<TARGET_FILE:verification_tests>
-                 --gtest_filter=FlowSolver3d.ALayerIndependentCavityIsThePlanarOne:FlowSolver3d.FlatLayersUnderGravityStayAtRest:SoilPhase3d.ALayerIndependentWaterColumnIsThePlanarOne:SoilPhase3d.WaterLeavesThroughAnOpenSideAsInThePlanarRun:SoilPhase3d.AGranularColumnSpreadsAsTheAxisymmetricOne:AirBand.AColumnOnAMeshOfLayersMovesAsInTheWholeDomain:Obstacles3d.BlockedFloorAndWallsAreTheDomainsOwn:Obstacles3d.AFloorOfAHeightMapIsTheDomainsOwn:Periodic3d.*:SlidingChannel.*:SoilMaterials3d.*:Inlet.*)
+                 --gtest_filter=FlowSolver3d.ALayerIndependentCavityIsThePlanarOne:FlowSolver3d.FlatLayersUnderGravityStayAtRest:SoilPhase3d.ALayerIndependentWaterColumnIsThePlanarOne:SoilPhase3d.WaterLeavesThroughAnOpenSideAsInThePlanarRun:SoilPhase3d.AGranularColumnSpreadsAsTheAxisymmetricOne:AirBand.AColumnOnAMeshOfLayersMovesAsInTheWholeDomain:Obstacles3d.BlockedFloorAndWallsAreTheDomainsOwn:Obstacles3d.AFloorOfAHeightMapIsTheDomainsOwn:Periodic3d.*:SlidingChannel.*:SoilMaterials3d.*:Inlet.*:SurfaceTension.*)
 set_tests_properties(flow_3d_2_ranks PROPERTIES
   LABELS parallel TIMEOUT 300
   ENVIRONMENT "OMPI_ALLOW_RUN_AS_ROOT=1;OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1;OMPI_MCA_rmaps_base_oversubscribe=1")

@@ -214,8 +214,8 @@ class FlowSolver::CoupledRows {
       cols[m] = MatStencil{kn, jn, in, pressure_};
       vals[m++] = s * w;
       p_centre += -s * w;
-      const double extra = f_.face_source_at(source_.view, c, std::min(i, in), std::min(j, jn), std::min(k, kn));
-      r += 0.5 * Vol * rhoP * (g_[c] - f_.ambient_weight(c) / rho_f + extra / rho_f);
+      const double surface_force = face_source_on(source_.view, i, j, k, fg);
+      r += 0.5 * Vol * rhoP * (g_[c] - f_.ambient_weight(c) / rho_f + surface_force / rho_f);
     }
     cols[m] = MatStencil{k, j, i, pressure_};
     vals[m++] = p_centre;
@@ -260,9 +260,9 @@ class FlowSolver::CoupledRows {
       p_centre += mob * area / d;
       cols[m] = MatStencil{kn, jn, in, pressure_};
       vals[m++] = -mob * area / d;
-      const double extra = f_.face_source_at(source_.view, axis, std::min(i, in), std::min(j, jn), std::min(k, kn));
+      const double surface_force = face_source_on(source_.view, i, j, k, fg);
       r += -s * area * mob * rho_f * g_[axis] + s * area * mob * f_.ambient_weight(axis) +
-           s * area * mob * 0.5 * (fcell[k][j][i] + fcell[kn][jn][in]) - s * area * mob * extra;
+           s * area * mob * 0.5 * (fcell[k][j][i] + fcell[kn][jn][in]) - s * area * mob * surface_force;
     }
     for (int c = 0; c < dim_; ++c) {
       cols[m] = MatStencil{k, j, i, c};

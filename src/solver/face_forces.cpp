@@ -147,7 +147,7 @@ void FlowSolver::compute_face_forces() {
         const int in = i + (axis == 0), jn = j + (axis == 1), kn = k + (axis == 2);
         const double d = grid_.centre(axis, index_along(axis, in, jn, kn)) - grid_.centre(axis, index_along(axis, i, j, k));
         return -(p[kn][jn][in] - p[k][j][i]) / d + 0.5 * (rho[k][j][i] + rho[kn][jn][in]) * g[axis] -
-               ambient_weight(axis) + face_source_at(source.view, axis, i, j, k);
+               ambient_weight(axis) + face_source_on(source.view, i, j, k, face_along(axis, 1));
       },
       [&](int axis, int i, int j, int k, int sign) {
         const FaceGeometry& fg = box_faces[2 * axis + (sign < 0)];

@@ -242,9 +242,9 @@ class FlowSolver {
   std::unique_ptr<Field> p_, rho_, mu_, face_mu_[3];
   std::unique_ptr<Field> body_force_[3];
   std::unique_ptr<Field> face_source_[3];  // enable_face_source
-  // The face source of `axis` at the face [k][j][i] (0 without one), in the local arrays of face_source_.
-  double face_source_at(const VolumeView source[], int axis, int i, int j, int k) const {
-    return source[axis] ? source[axis][k][j][i] : 0.0;
+  // The face source on face fg of cell (i, j, k) (0 without one), from the local arrays of face_source_.
+  static double face_source_on(const VolumeView source[], int i, int j, int k, const FaceGeometry& fg) {
+    return source[fg.axis] ? on_face(source, i, j, k, fg) : 0.0;
   }
   // The mass per volume each cell's momentum was carried with over the last step (state: it spans two
   // steps), and the density of the momentum the step starts with (carry_momentum_mass).

@@ -105,10 +105,8 @@ void FlowSolver::assemble_pressure_rhs() {
                                                        on_face(face_old.view, i, j, k, fg));
           const double rA = face_coefficient(rav, rho, i, j, k, fg);
           const double rho_f = 0.5 * (rho[k][j][i] + rho[kn][jn][in]);
-          // The face's source sits at the face [k][j][i] of the lower of its two cells.
-          const double f_extra =
-              face_source_at(source.view, fg.axis, std::min(i, in), std::min(j, jn), std::min(k, kn));
-          rhs -= fg.sign * (ustar + rA * rho_f * g[fg.axis] - rA * ambient_weight(fg.axis) + rA * f_extra) * area;
+          const double surface_force = face_source_on(source.view, i, j, k, fg);
+          rhs -= fg.sign * (ustar + rA * rho_f * g[fg.axis] - rA * ambient_weight(fg.axis) + rA * surface_force) * area;
         }
         r.volume()[k][j][i] = rhs;
       }

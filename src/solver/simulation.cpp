@@ -180,7 +180,9 @@ double Simulation::courant_after(double dt) const {
 
 double Simulation::choose_dt(double dt_previous) const {
   const auto& t = config_.time;
-  if (!t.adaptive) return std::min(t.dt, t.max_dt);
+  // The surface tension's force is explicit: its capillary limit holds a fixed step too.
+  const double capillary = surface_tension_ ? capillary_time_step() : t.max_dt;
+  if (!t.adaptive) return std::min({t.dt, t.max_dt, capillary});
   const bool soil_only = soil_ && t.courant_region == CourantRegion::soil;
   const double co = flow_->max_courant(dt_previous, soil_only ? &soil_->soil_fraction() : nullptr);
   // A NaN Courant number (the flow broke down where the speed check did not see it) shrinks the step.
@@ -191,8 +193,7 @@ double Simulation::choose_dt(double dt_previous) const {
     if (std::isnan(ci)) dt = std::min(dt, 0.1 * dt_previous);
     else if (ci > 0.0) dt = std::min(dt, dt_previous * limit / ci);
   }
-  dt = std::min({dt, dt_previous * t.max_growth, t.max_dt});
-  if (surface_tension_) dt = std::min(dt, capillary_time_step());
+  dt = std::min({dt, dt_previous * t.max_growth, t.max_dt, capillary});
   return dt;
 }
 
@@ -227,7 +228,7 @@ StepReport Simulation::take_step(double& step_dt, long& retried, double planned_
       soil_->advect(*flow_, step_dt);  // by the last step's faces, and its inlets' inflow
       set_inflow();
       soil_->refresh(*flow_);
-      if (surface_tension_) surface_tension_->fill(soil_->soil_fraction(), *flow_);
+      if (surface_tension_) surface_tension_->fill(soil_->soil_fraction(), *flow_);  // from the c just advected
       update_solve_region();
     } else {
       set_inflow();

@@ -122,9 +122,11 @@ class Simulation {
   std::unique_ptr<FlowSolver> flow_;
   std::unique_ptr<SoilPhase> soil_;
   std::unique_ptr<SurfaceTensionForce> surface_tension_;  // soil.surface_tension > 0
-  // Its limit on the step (solver/surface_tension_force.hpp).
+  // Its limit on the step (solver/surface_tension_force.hpp), shortest for the lightest soil.
   double capillary_time_step() const {
-    return surface_tension_->time_step_limit(config_.soil->soil_density, config_.soil->air_density);
+    double lightest = config_.soil->soil_density;
+    for (const auto& m : config_.soil->materials) lightest = std::min(lightest, m.rheology.density);
+    return surface_tension_->time_step_limit(lightest, config_.soil->air_density);
   }
   std::unique_ptr<VtkSeries> series_;
   std::vector<std::string> history_;  // rows of history.csv, rewritten whole at each output

@@ -17,9 +17,9 @@ SurfaceTensionForce::SurfaceTensionForce(const Grid& grid, double sigma, const F
     : grid_(grid), sigma_(sigma), blocked_(blocked) {
   for (auto& f : smoothed_) f = std::make_unique<Field>(grid);
   curvature_ = std::make_unique<Field>(grid);
-  weight_ = std::make_unique<Field>(grid);
+  gradient_magnitude_ = std::make_unique<Field>(grid);
   curvature_->set(0.0);
-  weight_->set(0.0);
+  gradient_magnitude_->set(0.0);
 }
 
 double SurfaceTensionForce::time_step_limit(double density_a, double density_b) const {
@@ -55,6 +55,7 @@ void SurfaceTensionForce::smooth(const Field& from, Field& to) const {
           out.volume()[k][j][i] = sum;
         }
   }
+  zero_blocked_cells(grid_, blocked_, to);  // a blocked cell's global value is 0, its local one the mirror
   to.scatter_to_local();
   fill_mirror_ghosts(to);
 }
@@ -69,7 +70,7 @@ void SurfaceTensionForce::compute_curvature(const Field& smoothed) {
     const ConstFieldArray s_array = local_read(grid_, smoothed);
     const VolumeView s = s_array.volume();
     const BlockedView mask(grid_, blocked_);
-    FieldArray kappa(grid_.field_dm(), curvature_->global()), weight(grid_.field_dm(), weight_->global());
+    FieldArray kappa(grid_.field_dm(), curvature_->global()), weight(grid_.field_dm(), gradient_magnitude_->global());
     // The central difference of c~ along `axis` at cell (i, j, k) (ghosts included).
     auto central = [&](int axis, int i, int j, int k) {
       const int di = axis == 0, dj = axis == 1, dk = axis == 2;
@@ -84,10 +85,10 @@ void SurfaceTensionForce::compute_curvature(const Field& smoothed) {
             kappa.volume()[k][j][i] = weight.volume()[k][j][i] = 0.0;
             continue;
           }
-          double outward = 0.0, gradient2 = 0.0;
+          double own[3] = {0.0, 0.0, 0.0};  // the cell's central differences
+          for (int axis = 0; axis < dim; ++axis) own[axis] = central(axis, i, j, k);
+          double outward = 0.0;
           for (int axis = 0; axis < dim; ++axis) {
-            const double g = central(axis, i, j, k);
-            gradient2 += g * g;
             for (int sign : {-1, 1}) {
               const int in = i + sign * (axis == 0), jn = j + sign * (axis == 1), kn = k + sign * (axis == 2);
               if (grid_.outside(in, jn, kn) || is_blocked(mask.data(), in, jn, kn)) continue;
@@ -97,17 +98,17 @@ void SurfaceTensionForce::compute_curvature(const Field& smoothed) {
               std::array<double, 2> across{0.0, 0.0};
               int m = 0;
               for (int other = 0; other < dim; ++other)
-                if (other != axis) across[m++] = 0.5 * (central(other, i, j, k) + central(other, in, jn, kn));
+                if (other != axis) across[m++] = 0.5 * (own[other] + central(other, in, jn, kn));
               const double n_along = interface::unit_normal_component(along, across[0], across[1]);
               outward += sign * n_along * grid_.face_area(axis, i, j, k, sign);
             }
           }
           kappa.volume()[k][j][i] = interface::cell_curvature(outward, grid_.volume(i, j, k));
-          weight.volume()[k][j][i] = std::sqrt(gradient2);
+          weight.volume()[k][j][i] = std::sqrt(own[0] * own[0] + own[1] * own[1] + own[2] * own[2]);
         }
   }
   curvature_->scatter_to_local();
-  weight_->scatter_to_local();
+  gradient_magnitude_->scatter_to_local();
 }
 
 void SurfaceTensionForce::fill(const Field& soil_fraction, FlowSolver& flow) {
@@ -118,8 +119,8 @@ void SurfaceTensionForce::fill(const Field& soil_fraction, FlowSolver& flow) {
 
   flow.enable_face_source();
   const ConstFieldArray c_array = local_read(grid_, soil_fraction), kappa_array = local_read(grid_, *curvature_),
-                        weight_array = local_read(grid_, *weight_);
-  const VolumeView c = c_array.volume(), kappa = kappa_array.volume(), weight = weight_array.volume();
+                        gradient_magnitude_array = local_read(grid_, *gradient_magnitude_);
+  const VolumeView c = c_array.volume(), kappa = kappa_array.volume(), weight = gradient_magnitude_array.volume();
   const BlockedView mask(grid_, blocked_);
   std::array<Field*, 3> faces{};
   for (int a = 0; a < grid_.dimension(); ++a) faces[a] = &flow.face_source(a);

@@ -17,7 +17,7 @@ class SurfaceTensionForce {
   SurfaceTensionForce(const Grid& grid, double sigma, const Field* blocked);
 
   // The face source of the flow from the soil fraction c (its ghosts current): fills
-  // flow.face_source(), which it enables.
+  // flow.face_source(), which the first call enables.
   void fill(const Field& soil_fraction, FlowSolver& flow);
   // kappa of the last fill (1/m; owned cells, with ghosts), 0 where c~ has no gradient.
   const Field& curvature() const { return *curvature_; }
@@ -36,7 +36,7 @@ class SurfaceTensionForce {
   const Grid& grid_;
   double sigma_;
   const Field* blocked_;
-  std::unique_ptr<Field> smoothed_[2], curvature_, weight_;  // weight: |grad c~| at the cell
+  std::unique_ptr<Field> smoothed_[2], curvature_, gradient_magnitude_;  // |grad c~| at the cell, kappa's weight
 };
 
 }  // namespace granflow

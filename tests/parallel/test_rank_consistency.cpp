@@ -248,6 +248,19 @@ TEST(RankConsistency, DropThroughTheRanksBoundaryOneAndTwoRanksAgree) {
                           1e-9);
 }
 
+// The same drop with the water's surface tension, beside an obstacle it touches: the smoothed fraction,
+// the curvature and its weight on the rows either side of the ranks' boundary come from each rank's
+// ghosts, mirrored into the obstacle's cells on both alike.
+TEST(RankConsistency, DropWithSurfaceTensionThroughTheRanksBoundaryOneAndTwoRanksAgree) {
+  expect_rank_independent(
+      "a falling drop with surface tension",
+      parse_case(test::falling_drop_case, {"mesh.cells=[20,30]", "time.end=0.08", "time.courant=0.5",
+                                           "numerics.convection=quick", "soil.surface_tension=0.072",
+                                           "initial.soil=[{shape = \"circle\", centre = [0.1, 0.17], radius = 0.03}]",
+                                           "obstacle=[{shape = \"box\", lower = [0.12, 0.12], upper = [0.15, 0.15]}]"}),
+      1e-9);
+}
+
 // A chute fed through an inlet, starting empty: the front crosses the ranks' boundary (100 columns split
 // 50 | 50 at x = 5 cm) by t = 0.3 s.
 TEST(RankConsistency, AChuteFedThroughAnInletOneAndTwoRanksAgree) {

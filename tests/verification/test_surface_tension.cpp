@@ -153,6 +153,23 @@ TEST(SurfaceTension, DropOnAMeshOfLayersHoldsLaplacesPressure) {
   EXPECT_LT(d.largest_speed, 0.03);
 }
 
+// The force is explicit: every step, a fixed one too, is at most the capillary limit
+// sqrt((rho_w + rho_a) h^3 / (4 pi sigma)) = 1.05e-3 s on cells of 1 mm, though time.dt asks for 5e-3 s.
+TEST(SurfaceTension, EveryStepIsWithinTheCapillaryLimit) {
+  const double limit = std::sqrt((1000.0 + 1.0) * 1e-9 / (4 * std::numbers::pi * sigma));
+  for (const char* adaptive : {"true", "false"}) {
+    std::vector<double> steps;
+    Simulation sim(PETSC_COMM_WORLD,
+                   parse_case(drop_case(planar_mesh(20), planar_drop, "west = { type = \"wall\" }"),
+                              {"time.end=0.02", "time.dt=5e-3", std::string("time.adaptive=") + adaptive}),
+                   "");
+    sim.run([&](Simulation&, double dt) { steps.push_back(dt); });
+    ASSERT_GE(steps.size(), 19u) << adaptive;
+    for (double dt : steps) EXPECT_LE(dt, limit * (1 + 1e-12)) << "adaptive = " << adaptive;
+    EXPECT_NEAR(steps[1], limit, 1e-12 * limit) << "adaptive = " << adaptive;  // the drop at rest: the limit binds
+  }
+}
+
 // A cylinder of water with radius R (1 + 0.1 cos 2 theta), released from rest on 40 x 40 cells, to
 // t = 0.15 s (two periods): the period of its elongation, fitted as m + a cos(omega t) + b sin(omega t),
 // against Rayleigh's 2 pi / omega_2 = 76.5 ms. Measured: 80.0 ms on 40 x 40, 78.6 ms on 80 x 80

@@ -9,6 +9,7 @@
 // the unit normal of a smoothed fraction c~, positive where the soil side is convex (a drop).
 // Pure functions of numbers; the stencils over the mesh are in solver/surface_tension_force.cpp.
 #include <cmath>
+#include <limits>
 #include <numbers>
 
 namespace granflow::interface {
@@ -43,7 +44,7 @@ inline double surface_tension_face_force(double sigma, double kappa_face, double
 // dt < sqrt(rho_mean h^3 / (2 pi sigma)), rho_mean the mean of the two phases' densities and h the
 // smallest cell width; beyond it capillary waves of the shortest length grow.
 inline double capillary_time_step(double density_a, double density_b, double h, double sigma) {
-  if (sigma <= 0.0) return INFINITY;
+  if (sigma <= 0.0) return std::numeric_limits<double>::infinity();
   return std::sqrt(0.5 * (density_a + density_b) * h * h * h / (2.0 * std::numbers::pi * sigma));
 }
 

@@ -770,7 +770,7 @@ TEST(CaseFile, GranularSoilDefaultsToTheFaceViscosityAndTheCoupledSolveOverAnAir
   EXPECT_EQ(water.soil->face_fraction, FaceFraction::cells);
 }
 
-// soil.surface_tension: N/m, none by default; a negative one is named, and so is one in a case without soil.
+// soil.surface_tension: N/m, none by default; a negative one is named, and so is a misspelt key.
 TEST(CaseFile, SurfaceTension) {
   const std::string phi = "soil.rheology.friction_angle=30";
   EXPECT_EQ(parse_case(two_phase, {phi}).soil->surface_tension, 0.0);
