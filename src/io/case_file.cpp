@@ -559,6 +559,11 @@ SoilSettings read_soil(TableReader& top, std::vector<std::string>& without_effec
     // N/m; water against air 0.072 at 20 C. Zero: none (the surface force is not computed).
     s.surface_tension = so.number("surface_tension", 0.0);
     so.require_range("surface_tension", s.surface_tension, 0.0, inf, "zero or positive");
+    if (so.has("contact_angle") && s.surface_tension == 0.0)
+      throw CaseError(so.key_path("contact_angle") +
+                      ": needs soil.surface_tension > 0 (it shapes the surface force at walls)");
+    s.contact_angle = so.number("contact_angle", 90.0);
+    so.require_range("contact_angle", s.contact_angle, 1.0, 179.0, "in [1, 179] degrees");
     s.displacement = so.boolean("displacement", s.rheology.has_value());
     // A granular soil's viscosity is taken on the faces by default, each choice defaulting to the one
     // before it: the cells' evaluations let a pile next to air creep (docs/method.md).

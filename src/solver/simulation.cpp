@@ -59,7 +59,8 @@ Simulation::Simulation(MPI_Comm comm, const CaseConfig& config, std::filesystem:
     soil_->initialise();
     soil_->refresh(*flow_);
     if (config.soil->surface_tension > 0.0) {
-      surface_tension_ = std::make_unique<SurfaceTensionForce>(*grid_, config.soil->surface_tension, blocked_.get());
+      surface_tension_ = std::make_unique<SurfaceTensionForce>(
+          *grid_, config.soil->surface_tension, config.soil->contact_angle, config.flow.boundaries, blocked_.get());
       surface_tension_->fill(soil_->soil_fraction(), *flow_);
     }
     flow_->set_property_update([soil = soil_.get()](FlowSolver& f) { soil->update_properties(f); });

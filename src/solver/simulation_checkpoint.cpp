@@ -71,8 +71,9 @@ std::string Simulation::physics() const {
   const SoilSettings& s = *config_.soil;
   text += fmt::format("; air {:.9g} kg/m^3, {:.9g} Pa s; soil {:.9g} kg/m^3", s.air_density, s.air_viscosity, s.soil_density);
   // Recorded only where there is one, so that a record without it stands for none.
-  const std::string tension =
-      s.surface_tension > 0.0 ? fmt::format("; surface tension {:.9g} N/m", s.surface_tension) : "";
+  std::string tension = s.surface_tension > 0.0 ? fmt::format("; surface tension {:.9g} N/m", s.surface_tension) : "";
+  if (s.surface_tension > 0.0 && s.contact_angle != 90.0)
+    tension += fmt::format(", contact angle {:.9g} deg", s.contact_angle);
   if (!s.rheology) return text + fmt::format(", {:.9g} Pa s", s.soil_viscosity) + tension;
   const auto& r = *s.rheology;
   text += ", " + rheology_record(r);

@@ -30,6 +30,7 @@ struct SoilSettings {
   double soil_density = 2650.0;
   double soil_viscosity = 1e-3;    // Pa s, a Newtonian dense phase (water) when no rheology is given
   double surface_tension = 0.0;    // sigma, N/m, of the soil-air interface; 0: none
+  double contact_angle = 90.0;     // theta, degrees through the soil, where the interface meets a wall side
   std::optional<rheology::RheologyParameters> rheology;  // granular soil
   mixture::MixtureInterpolation density_mixing;
   mixture::MixtureInterpolation viscosity_mixing;

@@ -4,6 +4,7 @@
 
 #include <array>
 #include <cmath>
+#include <numbers>
 
 #include "mesh/face_loop.hpp"
 #include "mesh/obstacles.hpp"
@@ -13,8 +14,13 @@
 
 namespace granflow {
 
-SurfaceTensionForce::SurfaceTensionForce(const Grid& grid, double sigma, const Field* blocked)
-    : grid_(grid), sigma_(sigma), blocked_(blocked) {
+SurfaceTensionForce::SurfaceTensionForce(const Grid& grid, double sigma, double contact_angle_deg,
+                                         const BoundarySet& boundaries, const Field* blocked)
+    : grid_(grid),
+      sigma_(sigma),
+      cot_theta_(contact_angle_deg == 90.0 ? 0.0 : 1.0 / std::tan(contact_angle_deg * std::numbers::pi / 180.0)),
+      boundaries_(boundaries),
+      blocked_(blocked) {
   for (auto& f : smoothed_) f = std::make_unique<Field>(grid);
   curvature_ = std::make_unique<Field>(grid);
   gradient_magnitude_ = std::make_unique<Field>(grid);
@@ -26,11 +32,39 @@ double SurfaceTensionForce::time_step_limit(double density_a, double density_b) 
   return interface::capillary_time_step(density_a, density_b, grid_.min_spacing(), sigma_);
 }
 
-// Ghosts beyond the sides and in the obstacles as mirror images of the cells inside.
-void SurfaceTensionForce::fill_mirror_ghosts(Field& f) const {
+// Ghosts beyond a wall side at the contact angle, from the first cell's c~ and its gradient along the
+// wall (interface::contact_angle_ghost); beyond the other sides and in the obstacles, mirror images of
+// the cells inside.
+void SurfaceTensionForce::fill_ghosts(Field& f) const {
   FieldArray a = local_array(grid_, f);
-  mirror_into_blocked(grid_, blocked_, a.volume(), 1.0);
-  fill_side_ghosts(grid_, a.volume(), [](Side, double inner, double) { return inner; });
+  double*** s = a.volume();
+  mirror_into_blocked(grid_, blocked_, s, 1.0);
+  const int dim = grid_.dimension();
+  fill_side_ghosts(grid_, s, [&](Side side, double inner, double first, const int* at) {
+    if (cot_theta_ == 0.0 || boundary(boundaries_, side).kind != BoundaryKind::wall) return inner;
+    const int axis = normal_axis(side);
+    const int n_axis = axis == 0 ? grid_.nx() : axis == 1 ? grid_.ny() : grid_.nz();
+    int cell[3] = {at[0], at[1], at[2]};  // the first cell inside, m layers from the ghost
+    const bool low = at[axis] < 0;
+    const int m = low ? -at[axis] : at[axis] - (n_axis - 1);
+    cell[axis] = low ? 0 : n_axis - 1;
+    // The gradient along the wall, by central differences within the local array (one-sided at its ends,
+    // in the corners' ghosts).
+    const CellBox e = grid_.with_ghosts();
+    const int first_index[3] = {e.xs, e.ys, e.zs}, end_index[3] = {e.xe(), e.ye(), e.ze()};
+    double along2 = 0.0;
+    for (int t = 0; t < dim; ++t) {
+      if (t == axis) continue;
+      int hi[3] = {cell[0], cell[1], cell[2]}, lo[3] = {cell[0], cell[1], cell[2]};
+      hi[t] = std::min(hi[t] + 1, end_index[t] - 1);
+      lo[t] = std::max(lo[t] - 1, first_index[t]);
+      if (hi[t] == lo[t]) continue;
+      const double span = grid_.centre(t, hi[t]) - grid_.centre(t, lo[t]);
+      const double g = (s[hi[2]][hi[1]][hi[0]] - s[lo[2]][lo[1]][lo[0]]) / span;
+      along2 += g * g;
+    }
+    return interface::contact_angle_ghost(first, std::sqrt(along2), grid_.width(axis, cell[axis]), m, cot_theta_);
+  });
 }
 
 void SurfaceTensionForce::smooth(const Field& from, Field& to) const {
@@ -57,12 +91,13 @@ void SurfaceTensionForce::smooth(const Field& from, Field& to) const {
   }
   zero_blocked_cells(grid_, blocked_, to);  // a blocked cell's global value is 0, its local one the mirror
   to.scatter_to_local();
-  fill_mirror_ghosts(to);
+  fill_ghosts(to);
 }
 
 // kappa = -div(n) over each owned cell's faces, n = grad(c~)/|grad(c~)| on the face: the difference
-// across it along its normal, the mean of its two cells' central differences across. Faces on a side or
-// an obstacle's wall have no normal component (the mirror). The weight of a cell is |grad(c~)| there.
+// across it along its normal, the mean of its two cells' central differences across. A side's face
+// takes its ghost (the mirror's gives no normal component; a wall's, the contact angle's); an obstacle's
+// wall has none. The weight of a cell is |grad(c~)| there.
 void SurfaceTensionForce::compute_curvature(const Field& smoothed) {
   const auto& b = grid_.owned();
   const int dim = grid_.dimension();
@@ -91,7 +126,7 @@ void SurfaceTensionForce::compute_curvature(const Field& smoothed) {
           for (int axis = 0; axis < dim; ++axis) {
             for (int sign : {-1, 1}) {
               const int in = i + sign * (axis == 0), jn = j + sign * (axis == 1), kn = k + sign * (axis == 2);
-              if (grid_.outside(in, jn, kn) || is_blocked(mask.data(), in, jn, kn)) continue;
+              if (is_blocked(mask.data(), in, jn, kn)) continue;
               const double d = std::abs(grid_.centre(axis, index_along(axis, in, jn, kn)) -
                                         grid_.centre(axis, index_along(axis, i, j, k)));
               const double along = sign * (s[kn][jn][in] - s[k][j][i]) / d;  // + axis component
@@ -113,7 +148,7 @@ void SurfaceTensionForce::compute_curvature(const Field& smoothed) {
 
 void SurfaceTensionForce::fill(const Field& soil_fraction, FlowSolver& flow) {
   smoothed_[0]->copy_from(soil_fraction);
-  fill_mirror_ghosts(*smoothed_[0]);
+  fill_ghosts(*smoothed_[0]);
   for (int pass = 0; pass < smoothing_passes; ++pass) smooth(*smoothed_[pass % 2], *smoothed_[(pass + 1) % 2]);
   compute_curvature(*smoothed_[smoothing_passes % 2]);
 

@@ -8,6 +8,7 @@
 // across a resting interface balances it exactly. The curvature kappa = -div(n), n = grad(c~)/|grad(c~)|
 // the unit normal of a smoothed fraction c~, positive where the soil side is convex (a drop).
 // Pure functions of numbers; the stencils over the mesh are in solver/surface_tension_force.cpp.
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <numbers>
@@ -46,6 +47,16 @@ inline double surface_tension_face_force(double sigma, double kappa_face, double
 inline double capillary_time_step(double density_a, double density_b, double h, double sigma) {
   if (sigma <= 0.0) return std::numeric_limits<double>::infinity();
   return std::sqrt(0.5 * (density_a + density_b) * h * h * h / (2.0 * std::numbers::pi * sigma));
+}
+
+// A wall's ghost of the smoothed fraction for a contact angle theta (through the soil, from the wall),
+// m cells beyond the wall's first cell, whose c~ is `first` and whose gradient along the wall has the
+// magnitude `along_wall`; h: the first cell's width across the wall. The unit normal n = grad(c~)/|grad(c~)|
+// at the wall is then -cos(theta) n_w + sin(theta) t (n_w into the domain, t along the wall towards the
+// soil), so the gradient across the wall is -cot(theta) |grad along the wall|: the ghost lies
+// m h cot(theta) |grad along| above `first`, clipped to [0, 1]. theta = 90 deg is the mirror.
+inline double contact_angle_ghost(double first, double along_wall, double h, int m, double cot_theta) {
+  return std::clamp(first + m * h * cot_theta * along_wall, 0.0, 1.0);
 }
 
 // The 1-2-1 weights of the smoothing filter, by offset -1, 0, 1 along one axis.

@@ -60,6 +60,22 @@ TEST(SurfaceTensionModel, CapillaryTimeStep) {
   EXPECT_TRUE(std::isinf(capillary_time_step(1000.0, 1.0, 5e-4, 0.0)));
 }
 
+// A wall's ghost at the contact angle: a right angle mirrors; below it the soil's side continues into the
+// wall (the ghost holds more soil than the cell), above it the air's; clipped to [0, 1]. Between the
+// first cell and its ghost the gradient across the wall is -cot(theta) times that along it.
+TEST(SurfaceTensionModel, ContactAngleGhost) {
+  const double h = 1e-3, along = 200.0;  // 1/m
+  EXPECT_DOUBLE_EQ(contact_angle_ghost(0.4, along, h, 1, 0.0), 0.4);
+  const double cot60 = 1.0 / std::tan(std::numbers::pi / 3);
+  EXPECT_NEAR(contact_angle_ghost(0.4, along, h, 1, cot60), 0.4 + h * along * cot60, 1e-15);
+  EXPECT_NEAR(contact_angle_ghost(0.4, along, h, 2, -cot60), 0.4 - 2 * h * along * cot60, 1e-15);
+  EXPECT_EQ(contact_angle_ghost(0.9, along, h, 2, cot60), 1.0);
+  EXPECT_EQ(contact_angle_ghost(0.1, along, h, 2, -cot60), 0.0);
+  // The normal the ghost gives at the wall: across / along = -cot(theta), i.e. theta from the wall.
+  const double across = -(contact_angle_ghost(0.4, along, h, 1, cot60) - 0.4) / h;  // d c / d n_w
+  EXPECT_NEAR(std::atan2(along, -across) * 180 / std::numbers::pi, 60.0, 1e-9);
+}
+
 TEST(SurfaceTensionModel, SmoothingWeightsSumToOne) {
   EXPECT_DOUBLE_EQ(smoothing_weight(-1) + smoothing_weight(0) + smoothing_weight(1), 1.0);
 }

@@ -780,6 +780,14 @@ TEST(CaseFile, SurfaceTension) {
   EXPECT_NE(negative.find("zero or positive"), std::string::npos) << negative;
   const std::string misspelt = error_of(two_phase, {phi, "soil.surface_tensoin=0.072"});
   EXPECT_NE(misspelt.find("surface_tension"), std::string::npos) << misspelt;
+  // The contact angle: 90 deg by default, in [1, 179], and only with a surface tension to act through.
+  EXPECT_EQ(parse_case(two_phase, {phi, "soil.surface_tension=0.072"}).soil->contact_angle, 90.0);
+  EXPECT_EQ(parse_case(two_phase, {phi, "soil.surface_tension=0.072", "soil.contact_angle=60"}).soil->contact_angle,
+            60.0);
+  const std::string flat = error_of(two_phase, {phi, "soil.surface_tension=0.072", "soil.contact_angle=180"});
+  EXPECT_NE(flat.find("soil.contact_angle"), std::string::npos) << flat;
+  const std::string alone = error_of(two_phase, {phi, "soil.contact_angle=60"});
+  EXPECT_NE(alone.find("needs soil.surface_tension"), std::string::npos) << alone;
 }
 
 // time.rest_speed: soil cases only, whose soil carries its displacement (which tells that it moved).
