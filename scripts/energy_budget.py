@@ -49,15 +49,18 @@ def main():
 
     kinetic, potential = change("kinetic_energy"), change("potential_energy")
     dissipated, brought_in = change("dissipated_energy"), change("boundary_work")
-    residual = kinetic + potential + dissipated - brought_in
+    surface = change("surface_energy") if "surface_energy" in h else 0.0  # a case with surface tension
+    residual = kinetic + potential + surface + dissipated - brought_in
     print(f"{args.run}: t = {start:.6g} to {end:.6g} s")
     print(f"  kinetic energy gained      {kinetic:14.6g}")
     print(f"  potential energy gained    {potential:14.6g}")
+    if "surface_energy" in h:
+        print(f"  surface energy gained      {surface:14.6g}")
     print(f"  dissipated                 {dissipated:14.6g}")
     print(f"  brought in through sides   {brought_in:14.6g}")
     shares = []
-    if potential < 0.0:
-        shares.append(f"{residual / -potential:+.4%} of the potential energy released")
+    if potential + surface < 0.0:
+        shares.append(f"{residual / -(potential + surface):+.4%} of the potential and surface energy released")
     if brought_in != 0.0:
         shares.append(f"{residual / brought_in:+.4%} of the energy brought in")
     print(f"  residual (gained + dissipated - brought in) {residual:.6g}" +

@@ -244,6 +244,7 @@ void Simulation::record_history(double dt) {
   const auto [force, obstacle, side_power] = flow_->wall_forces();
   boundary_work_ += (b.convected_energy_rate + side_power) * dt;
   soil_speed_ = soil_->largest_speed(*flow_);  // what time.rest_speed reads, once per step
+  const double surface_energy = surface_tension_ ? surface_tension_->surface_energy() : 0.0;
   if (rank_ != 0) return;
   const PileShape shape = pile_shape(*grid_, c, wall_column_);
   double toe_contour = 0.0;  // on a mesh of layers, the furthest of the layers' surfaces
@@ -263,6 +264,7 @@ void Simulation::record_history(double dt) {
     for (const auto& f : force) row += fmt::format(",{:.12g},{:.12g},{:.12g}", f[0], f[1], f[2]);
   if (blocked_) row += fmt::format(",{:.12g},{:.12g}", obstacle[0], obstacle[1]);
   if (blocked_ && grid_->dimension() == 3) row += fmt::format(",{:.12g}", obstacle[2]);
+  if (surface_tension_) row += fmt::format(",{:.9g}", surface_energy);
   history_.push_back(std::move(row));
 }
 
@@ -277,6 +279,7 @@ void Simulation::write_history() const {
       for (Side side : box_sides) fmt::print(out, ",force_{0}_x,force_{0}_y,force_{0}_z", side_name(side));
     if (blocked_) fmt::print(out, ",force_obstacle_x,force_obstacle_y");
     if (blocked_ && grid_->dimension() == 3) fmt::print(out, ",force_obstacle_z");
+    if (surface_tension_) fmt::print(out, ",surface_energy");
     fmt::print(out, "\n");
     for (const auto& row : history_) fmt::print(out, "{}\n", row);
   });

@@ -32,6 +32,19 @@ double SurfaceTensionForce::time_step_limit(double density_a, double density_b) 
   return interface::capillary_time_step(density_a, density_b, grid_.min_spacing(), sigma_);
 }
 
+double SurfaceTensionForce::surface_energy() const {
+  const auto& b = grid_.owned();
+  double sum = 0.0;
+  {
+    const ConstFieldArray g(grid_.field_dm(), gradient_magnitude_->global());  // 0 in blocked cells
+    for (int k = b.zs; k < b.ze(); ++k)
+      for (int j = b.ys; j < b.ye(); ++j)
+        for (int i = b.xs; i < b.xe(); ++i) sum += g.volume()[k][j][i] * grid_.volume(i, j, k);
+  }
+  MPI_Allreduce(MPI_IN_PLACE, &sum, 1, MPI_DOUBLE, MPI_SUM, grid_.comm());
+  return sigma_ * sum;
+}
+
 // Ghosts beyond a wall side at the contact angle, from the first cell's c~ and its gradient along the
 // wall (interface::contact_angle_ghost); beyond the other sides and in the obstacles, mirror images of
 // the cells inside.

@@ -25,6 +25,10 @@ class SurfaceTensionForce {
   void fill(const Field& soil_fraction, FlowSolver& flow);
   // kappa of the last fill (1/m; owned cells, with ghosts), 0 where c~ has no gradient.
   const Field& curvature() const { return *curvature_; }
+  // The interface's energy at the last fill, sigma times its length (area on a mesh of layers, per
+  // radian on an axisymmetric one): sigma times the integral of |grad(c~)| over the open cells, which
+  // through a smoothed interface is its length. J per metre depth. Collective.
+  double surface_energy() const;
   // The capillary time-step limit on this mesh for phases of these densities (s).
   double time_step_limit(double density_a, double density_b) const;
 
