@@ -60,7 +60,8 @@ def main():
     print(f"  brought in through sides   {brought_in:14.6g}")
     shares = []
     if potential + surface < 0.0:
-        shares.append(f"{residual / -(potential + surface):+.4%} of the potential and surface energy released")
+        released = "potential and surface energy" if "surface_energy" in h else "potential energy"
+        shares.append(f"{residual / -(potential + surface):+.4%} of the {released} released")
     if brought_in != 0.0:
         shares.append(f"{residual / brought_in:+.4%} of the energy brought in")
     print(f"  residual (gained + dissipated - brought in) {residual:.6g}" +
