@@ -53,6 +53,10 @@ void SurfaceTensionForce::fill_ghosts(Field& f) const {
   double*** s = a.volume();
   mirror_into_blocked(grid_, blocked_, s, 1.0);
   const int dim = grid_.dimension();
+  // The local array's extent: the gradient along a wall is taken within it (one-sided at its ends, in
+  // the corners' ghosts).
+  const CellBox e = grid_.with_ghosts();
+  const int first_index[3] = {e.xs, e.ys, e.zs}, end_index[3] = {e.xe(), e.ye(), e.ze()};
   fill_side_ghosts(grid_, s, [&](Side side, double inner, double first, const int* at) {
     if (cot_theta_ == 0.0 || boundary(boundaries_, side).kind != BoundaryKind::wall) return inner;
     const int axis = normal_axis(side);
@@ -61,11 +65,7 @@ void SurfaceTensionForce::fill_ghosts(Field& f) const {
     const bool low = at[axis] < 0;
     const int m = low ? -at[axis] : at[axis] - (n_axis - 1);
     cell[axis] = low ? 0 : n_axis - 1;
-    // The gradient along the wall, by central differences within the local array (one-sided at its ends,
-    // in the corners' ghosts).
-    const CellBox e = grid_.with_ghosts();
-    const int first_index[3] = {e.xs, e.ys, e.zs}, end_index[3] = {e.xe(), e.ye(), e.ze()};
-    double along2 = 0.0;
+    double along2 = 0.0;  // the gradient along the wall, by central differences
     for (int t = 0; t < dim; ++t) {
       if (t == axis) continue;
       int hi[3] = {cell[0], cell[1], cell[2]}, lo[3] = {cell[0], cell[1], cell[2]};

@@ -23,8 +23,6 @@ class SurfaceTensionForce {
   // The face source of the flow from the soil fraction c (its ghosts current): fills
   // flow.face_source(), which the first call enables.
   void fill(const Field& soil_fraction, FlowSolver& flow);
-  // kappa of the last fill (1/m; owned cells, with ghosts), 0 where c~ has no gradient.
-  const Field& curvature() const { return *curvature_; }
   // The interface's energy at the last fill, sigma times its length (area on a mesh of layers, per
   // radian on an axisymmetric one): sigma times the integral of |grad(c~)| over the open cells, which
   // through a smoothed interface is its length. J per metre depth. Collective.
